@@ -1,0 +1,48 @@
+#pragma once
+/// \file PointSourceWind.h
+/// The paper's wind (Bakay, Lalonde, Heidrich 2002, section 3): each vertex's wind vector is the
+/// direction from the vertex to a source point, projected onto the vertex's tangent plane
+/// (V = W - (W.N)N); each vertex's animation step is its distance from the source, quantised into
+/// `steps` rings; ring k feels the gust curve delayed by k * stepDelay_s, so waves travel outwards.
+/// This is the baseline the solved field replaces.
+
+#include "coupling/GustCurve.h"
+#include "coupling/WindSource.h"
+#include "render/GrassInput.h"
+
+#include <glm/vec3.hpp>
+
+namespace gale::coupling {
+
+struct PointSourceSpec {
+    glm::vec3 wsSource_m{0.0f};  ///< the source point, world metres
+    int steps = 16;              ///< animation steps (groups), 1..1024
+    double stepDelay_s = 0.15;   ///< delay of the gust between neighbouring rings, seconds
+    bool blowAway = true;        ///< true: grass bends away from the source (a gust from there)
+};
+
+/// V = W - (W.N)N for unit N, normalised; zero when |V| is below 1e-6 |W| (wind along the normal)
+/// or W is zero. Never NaN for finite input; a zero or non-finite N gives zero.
+glm::vec3 tangentWindDirection(const glm::vec3& wsWind, const glm::vec3& wsNormal);
+
+class PointSourceWind : public WindSource {
+public:
+    PointSourceWind(const render::TerrainMesh& mesh, const PointSourceSpec& spec, GustCurve curve);
+    int groupCount() const override { return mSpec.steps; }
+    void update(double t_s, render::GrassWind& wind) override;
+    std::string describe() const override;
+
+    /// The group (ring) of vertex v; for tests.
+    uint32_t groupOf(size_t v) const { return mGroup[v]; }
+    /// Time delay of group g relative to group 0, seconds.
+    double groupDelay_s(int g) const { return g * mSpec.stepDelay_s; }
+
+private:
+    PointSourceSpec mSpec;
+    GustCurve mCurve;
+    std::vector<glm::vec3> mDirection;
+    std::vector<uint32_t> mGroup;
+    bool mUploaded = false;
+};
+
+}  // namespace gale::coupling

@@ -1,0 +1,78 @@
+#pragma once
+/// \file GrassInput.h
+/// The plain data the renderer draws from. Everything the renderer knows of the world arrives in
+/// these structs; it never calls into sim/ or coupling/ (STYLE, module boundaries). All positions are
+/// world space, metres, z up.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace gale::render {
+
+/// The terrain as a regular grid of vertices (nx * ny, i fastest), triangulated two per quad.
+struct TerrainMesh {
+    int nx = 0;
+    int ny = 0;
+    std::vector<glm::vec3> wsPosition_m;  ///< vertex positions
+    std::vector<glm::vec3> wsNormal;      ///< unit upward normals
+    std::vector<glm::vec2> uv;            ///< grass texture coordinates (repeats across the terrain)
+};
+
+/// The wind as the shell renderer consumes it (paper section 3, Table 1): a tangent-plane wind
+/// direction and an animation-step group per vertex, and one intensity per group per frame. Both
+/// the paper's point source and the solved field produce this; the renderer cannot tell them apart.
+struct GrassWind {
+    /// Per vertex: unit wind direction in the vertex's tangent plane, or zero where undefined
+    /// (wind along the normal, no wind). The bend moves the vertex along it.
+    std::vector<glm::vec3> wsDirection;
+    /// Per vertex: animation-step group in [0, groupIntensity.size()).
+    std::vector<uint32_t> group;
+    /// Changes whenever wsDirection or group change, so the renderer re-uploads them only then.
+    uint64_t revision = 0;
+    /// Per group: intensity I this frame (unitless; |I| = 1 lays the tip flat, more over-bends).
+    std::vector<float> groupIntensity;
+};
+
+/// A point light (thesis 3.3): radiance scaled by 1 / (k_c + k_l d + k_q d^2), d in metres.
+struct PointLight {
+    glm::vec3 wsPosition_m{0.0f};
+    glm::vec3 color{1.0f};
+    glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  ///< (k_c, k_l [1/m], k_q [1/m^2])
+};
+
+struct Lighting {
+    glm::vec3 ambient{0.15f};         ///< added after attenuation (thesis 3.3.4)
+    std::vector<PointLight> lights;   ///< any number, including none
+    float specularPower = 32.0f;      ///< Kajiya-Kay specular exponent p
+    float specularStrength = 0.3f;    ///< weight of the specular term
+    float selfShadowMin = 0.25f;      ///< Banks self-shadowing floor S_min at the ground
+};
+
+struct Camera {
+    glm::vec3 wsPosition_m{0.0f, -50.0f, 30.0f};
+    glm::vec3 wsTarget_m{0.0f};
+    float fovY_deg = 45.0f;
+    float near_m = 0.5f;
+    float far_m = 2000.0f;
+};
+
+/// Shell grass parameters (DESIGN 5.1, 6).
+struct GrassParams {
+    float height_m = 0.5f;   ///< full blade height
+    int shells = 16;         ///< N: shells above the ground (N + 1 drawn with the ground), 1..256
+    float stiffness = 1.0f;  ///< gamma in theta_j = (pi/2) I (j/N)^gamma; 1 is the paper's
+    float tile_m = 2.0f;     ///< metres one repeat of the grass texture spans
+};
+
+/// An RGBA8 image, rows top-down.
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba;  ///< width * height * 4
+};
+
+}  // namespace gale::render
