@@ -8,18 +8,17 @@ namespace gale::render {
 
 void bendBladeInto(int shells, float height_m, float intensity, float stiffness, ShellOffset* out) {
     // DESIGN 5.1 (corrected from Bakay et al. 2002, section 3): segment j of N, length S, tilts by
-    // theta_j = (pi/2) I (j/N)^gamma. Sums run in double so 256 shells keep segment lengths to
-    // 1e-7 relative; the table is tiny (N + 1 entries per group per frame).
+    // theta_j = (pi/2) I (j/N)^gamma. The table is tiny (N + 1 entries per group per frame).
     const double s = static_cast<double>(height_m) / shells;
     const double halfPiI = 0.5 * 3.14159265358979323846 * intensity;
     double n = 0.0, w = 0.0;
-    out[0] = {0.0f, 0.0f};
+    out[0] = {0.0, 0.0};
     for (int j = 1; j <= shells; ++j) {
         const double x = static_cast<double>(j) / shells;
         const double theta = halfPiI * (stiffness == 1.0f ? x : std::pow(x, double(stiffness)));
         n += s * std::cos(theta);
         w += s * std::sin(theta);
-        out[j] = {static_cast<float>(n), static_cast<float>(w)};
+        out[j] = {n, w};
     }
 }
 

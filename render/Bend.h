@@ -11,9 +11,11 @@
 
 namespace gale::render {
 
+/// Double precision so that segment lengths hold to 1e-7 relative even at 256 shells; the renderer
+/// narrows to float when it uploads the table.
 struct ShellOffset {
-    float n_m;  ///< offset along the vertex normal, metres
-    float w_m;  ///< offset along the tangent-plane wind direction, metres
+    double n_m;  ///< offset along the vertex normal, metres
+    double w_m;  ///< offset along the tangent-plane wind direction, metres
 };
 
 /// Offsets of shells 0..N (shell 0 = ground, offset 0) for one intensity.
