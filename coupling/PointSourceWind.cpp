@@ -1,0 +1,95 @@
+#include "coupling/PointSourceWind.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+namespace gale::coupling {
+namespace {
+
+// Below this fraction of |W| the tangential part is rounding noise: the wind is along the normal
+// and has no direction in the tangent plane (DESIGN 5, step 2).
+constexpr double DEGENERATE_TANGENT_FRACTION = 1e-6;
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+glm::vec3 tangentWindDirection(const glm::vec3& wsWind, const glm::vec3& wsNormal) {
+    if (!finite(wsWind) || !finite(wsNormal)) return glm::vec3(0.0f);
+    // In double, so the result is perpendicular to N to ~1e-7 even on near-vertical slopes, and
+    // squaring cannot overflow for any finite float input.
+    const glm::dvec3 w(wsWind), nRaw(wsNormal);
+    const double windLength = glm::length(w), normalLength = glm::length(nRaw);
+    if (windLength == 0.0 || normalLength < 1e-12) return glm::vec3(0.0f);
+    const glm::dvec3 n = nRaw / normalLength;
+    // Paper section 3: V = W - (W.N) N.
+    const glm::dvec3 v = w - glm::dot(w, n) * n;
+    const double vLength = glm::length(v);
+    if (!(vLength > DEGENERATE_TANGENT_FRACTION * windLength)) return glm::vec3(0.0f);
+    return glm::vec3(v / vLength);
+}
+
+PointSourceWind::PointSourceWind(const render::TerrainMesh& mesh, const PointSourceSpec& spec,
+                                 GustCurve curve)
+    : mSpec(spec), mCurve(std::move(curve)) {
+    if (spec.steps < 1 || spec.steps > 1024)
+        throw std::invalid_argument("wind.steps must be in 1..1024, got " +
+                                    std::to_string(spec.steps));
+    if (!std::isfinite(spec.stepDelay_s) || spec.stepDelay_s < 0.0)
+        throw std::invalid_argument("wind.step_delay_s must be finite and >= 0, got " +
+                                    std::to_string(spec.stepDelay_s));
+    if (!finite(spec.wsSource_m))
+        throw std::invalid_argument("wind.source_m must be finite");
+    const size_t count = mesh.wsPosition_m.size();
+    if (mesh.wsNormal.size() != count)
+        throw std::invalid_argument("terrain mesh has " + std::to_string(count) +
+                                    " positions but " + std::to_string(mesh.wsNormal.size()) +
+                                    " normals");
+    mDirection.resize(count);
+    mGroup.resize(count);
+    std::vector<float> distance_m(count);
+    float maxDistance_m = 0.0f;
+    for (size_t v = 0; v < count; ++v) {
+        // W points from the vertex to the source (paper); a gust blowing from the source pushes
+        // the grass the other way.
+        const glm::vec3 toSource = spec.wsSource_m - mesh.wsPosition_m[v];
+        mDirection[v] = tangentWindDirection(spec.blowAway ? -toSource : toSource, mesh.wsNormal[v]);
+        distance_m[v] = glm::length(toSource);
+        maxDistance_m = std::max(maxDistance_m, distance_m[v]);
+    }
+    // Animation step = distance from the source in `steps` equal rings (paper section 3).
+    const float ringWidth_m = maxDistance_m > 0.0f ? maxDistance_m / spec.steps : 1.0f;
+    for (size_t v = 0; v < count; ++v)
+        mGroup[v] = static_cast<uint32_t>(
+            std::min(spec.steps - 1, static_cast<int>(distance_m[v] / ringWidth_m)));
+}
+
+void PointSourceWind::update(double t_s, render::GrassWind& wind) {
+    if (!mUploaded || wind.wsDirection.size() != mDirection.size()) {
+        wind.wsDirection = mDirection;
+        wind.group = mGroup;
+        ++wind.revision;
+        mUploaded = true;
+    }
+    wind.groupIntensity.resize(static_cast<size_t>(mSpec.steps));
+    for (int g = 0; g < mSpec.steps; ++g)
+        wind.groupIntensity[g] = static_cast<float>(mCurve(t_s - groupDelay_s(g)));
+}
+
+std::string PointSourceWind::describe() const {
+    std::ostringstream out;
+    out << "point-source wind (Bakay et al. 2002) from (" << mSpec.wsSource_m.x << ", "
+        << mSpec.wsSource_m.y << ", " << mSpec.wsSource_m.z << ") m, " << mSpec.steps
+        << " animation steps, " << mSpec.stepDelay_s << " s apart, gust period "
+        << mCurve.period_s() << " s";
+    return out.str();
+}
+
+}  // namespace gale::coupling

@@ -1,0 +1,101 @@
+// The length-preserving bend (DESIGN 5.1): segment lengths, tip tilt, straight blade at rest.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render/Bend.h"
+
+using gale::render::bendBlade;
+using gale::render::ShellOffset;
+
+namespace {
+
+constexpr double PI = 3.14159265358979323846;
+// The bound on segment length: 1e-5 relative; double sums reach ~1e-13.
+constexpr double SEGMENT_LENGTH_REL_TOL = 1e-5;
+// Tip tilt from the last segment's direction; atan2 of double offsets is good to ~1e-9 rad.
+constexpr double TIP_TILT_TOL_RAD = 1e-6;
+
+struct BendCase {
+    int shells;
+    float intensity;
+    float stiffness;
+};
+
+class BendInvariants : public ::testing::TestWithParam<BendCase> {};
+
+TEST_P(BendInvariants, EverySegmentKeepsLengthAndTipTiltsByHalfPiTimesIntensity) {
+    const BendCase c = GetParam();
+    const float height_m = 0.6f;
+    const std::vector<ShellOffset> s = bendBlade(c.shells, height_m, c.intensity, c.stiffness);
+    ASSERT_EQ(s.size(), static_cast<size_t>(c.shells) + 1);
+    EXPECT_EQ(s[0].n_m, 0.0);
+    EXPECT_EQ(s[0].w_m, 0.0);
+    const double segment_m = double(height_m) / c.shells;
+    for (int i = 1; i <= c.shells; ++i) {
+        const double dn = s[i].n_m - s[i - 1].n_m, dw = s[i].w_m - s[i - 1].w_m;
+        EXPECT_NEAR(std::hypot(dn, dw), segment_m, SEGMENT_LENGTH_REL_TOL * segment_m)
+            << "segment " << i << " of " << c.shells;
+    }
+    const double dn = s[c.shells].n_m - s[c.shells - 1].n_m;
+    const double dw = s[c.shells].w_m - s[c.shells - 1].w_m;
+    // The last segment's tilt from the normal, unwrapped by the expected value's turns.
+    const double expected = 0.5 * PI * c.intensity;
+    double tilt = std::atan2(dw, dn);
+    tilt += 2.0 * PI * std::round((expected - tilt) / (2.0 * PI));
+    EXPECT_NEAR(tilt, expected, TIP_TILT_TOL_RAD);
+}
+
+std::vector<BendCase> allCases() {
+    std::vector<BendCase> cases;
+    for (int shells : {1, 2, 9, 17, 65, 256})
+        for (float intensity : {-5.0f, -1.0f, -0.3f, 0.0f, 0.5f, 1.0f, 2.5f, 5.0f})
+            for (float stiffness : {0.5f, 1.0f, 2.0f}) cases.push_back({shells, intensity, stiffness});
+    return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(ShellsIntensitiesStiffness, BendInvariants, ::testing::ValuesIn(allCases()),
+                         [](const ::testing::TestParamInfo<BendCase>& info) {
+                             auto name = [](float v) {
+                                 std::string s = std::to_string(static_cast<int>(std::lround(v * 10)));
+                                 return (v < 0 ? "m" + s.substr(1) : s);
+                             };
+                             return "N" + std::to_string(info.param.shells) + "_I" +
+                                    name(info.param.intensity) + "_G" + name(info.param.stiffness);
+                         });
+
+TEST(Bend, ZeroIntensityGivesAStraightBladeOfFullHeight) {
+    for (int shells : {1, 9, 256}) {
+        const auto s = bendBlade(shells, 0.5f, 0.0f, 1.0f);
+        for (int i = 0; i <= shells; ++i) {
+            EXPECT_EQ(s[i].w_m, 0.0);
+            EXPECT_NEAR(s[i].n_m, 0.5 * i / shells, 1e-12);
+        }
+    }
+}
+
+TEST(Bend, StifferGrassBendsLessAtTheSameIntensity) {
+    const auto floppy = bendBlade(16, 1.0f, 0.8f, 0.5f);
+    const auto paper = bendBlade(16, 1.0f, 0.8f, 1.0f);
+    const auto stiff = bendBlade(16, 1.0f, 0.8f, 2.0f);
+    EXPECT_GT(floppy[16].w_m, paper[16].w_m);
+    EXPECT_GT(paper[16].w_m, stiff[16].w_m);
+}
+
+TEST(Bend, NegativeIntensityMirrorsTheBlade) {
+    const auto pos = bendBlade(9, 1.0f, 0.7f, 1.0f);
+    const auto neg = bendBlade(9, 1.0f, -0.7f, 1.0f);
+    for (int i = 0; i <= 9; ++i) {
+        EXPECT_NEAR(pos[i].n_m, neg[i].n_m, 1e-12);
+        EXPECT_NEAR(pos[i].w_m, -neg[i].w_m, 1e-12);
+    }
+}
+
+TEST(Bend, RejectsBadArguments) {
+    EXPECT_THROW(bendBlade(0, 1.0f, 0.5f, 1.0f), std::invalid_argument);
+    EXPECT_THROW(bendBlade(4, 1.0f, NAN, 1.0f), std::invalid_argument);
+    EXPECT_THROW(bendBlade(4, 1.0f, 0.5f, 0.0f), std::invalid_argument);
+    EXPECT_THROW(bendBlade(4, INFINITY, 0.5f, 1.0f), std::invalid_argument);
+}
+
+}  // namespace
