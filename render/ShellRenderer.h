@@ -8,6 +8,7 @@
 #include "render/GlContext.h"
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"
+#include "render/RenderLimits.h"
 
 namespace gale::render {
 
@@ -25,15 +26,37 @@ public:
     ShellRenderer(const ShellRenderer&) = delete;
     ShellRenderer& operator=(const ShellRenderer&) = delete;
 
+    /// Uploads the terrain grid (world space, metres): nx, ny >= 2, one position, unit normal and
+    /// uv per vertex, two triangles per quad. Throws std::invalid_argument on wrong sizes or
+    /// non-finite values. Forces the wind directions and groups to be re-uploaded.
     void setTerrain(const TerrainMesh& mesh);
-    /// Uploads the grass texture with its blade-keeping MIP chain (thesis 3.4).
+    /// Uploads the grass texture with its blade-keeping MIP chain (thesis 3.4; GL_TEXTURE_MAX_LEVEL
+    /// is the last level the chain kept). params.height_m > 0; params.shells in 0..kMaxShells
+    /// (0 draws the ground only, the paper's one-shell row); stiffness > 0. Texture levels must be
+    /// square, halving from a power of two. Throws std::invalid_argument otherwise.
     void setGrass(const GrassParams& params, const GrassTexture& texture);
+    /// At most kMaxLights point lights (RenderLimits.h); attenuation coefficients >= 0 with
+    /// k_c + k_l + k_q > 0; specularPower >= 0; selfShadowMin in [0, 1]. Throws
+    /// std::invalid_argument otherwise.
     void setLighting(const Lighting& lighting);
 
     /// Draws one frame: per-group (n_i, w_i) tables are built on the CPU from wind.groupIntensity
     /// (once per group per shell, never per vertex), directions and groups are re-uploaded only
     /// when wind.revision changed.
+    /// Requires setTerrain and setGrass first (std::logic_error otherwise). wind.wsDirection and
+    /// wind.group must each hold one entry per terrain vertex and every group must be below
+    /// wind.groupIntensity.size(); an empty groupIntensity means no wind (then the per-vertex arrays
+    /// may be empty). Intensities must be finite. Throws std::invalid_argument naming the field.
+    /// Clears to the sky colour, draws, and ends with glFinish.
     FrameStats draw(const Camera& camera, const GrassWind& wind);
+
+    /// Benchmark baseline: the same terrain, shell count and texture with a minimal shader
+    /// (shells extruded straight along the normal, texture fetch and alpha test, no bend, no
+    /// lighting). Same preconditions as draw; ends with glFinish.
+    FrameStats drawFillBaseline(const Camera& camera);
+
+    /// Sky (clear) colour, linear RGB in [0, 1].
+    static constexpr float kSkyColor[3] = {0.60f, 0.75f, 0.92f};
 
 private:
     struct Impl;

@@ -1,0 +1,58 @@
+/// \file CameraMath.cpp
+
+#include "render/CameraMath.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace gale::render {
+namespace {
+
+bool finite3(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+glm::mat4 cameraFromWorld(const Camera& camera) {
+    if (!finite3(camera.wsPosition_m) || !finite3(camera.wsTarget_m)) {
+        throw std::invalid_argument("Camera: wsPosition_m and wsTarget_m must be finite");
+    }
+    const glm::vec3 forward = camera.wsTarget_m - camera.wsPosition_m;
+    const float length = glm::length(forward);
+    if (!(length > 0.0f)) {
+        throw std::invalid_argument("Camera: wsPosition_m equals wsTarget_m; no view direction");
+    }
+    // Within ~0.06 degrees of vertical the z-up hint is too close to the view direction.
+    const bool vertical = std::abs(forward.z / length) > 0.999999f;
+    const glm::vec3 up = vertical ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(0.0f, 0.0f, 1.0f);
+    return glm::lookAt(camera.wsPosition_m, camera.wsTarget_m, up);
+}
+
+glm::mat4 clipFromCamera(const Camera& camera, float aspect) {
+    if (!(camera.fovY_deg > 0.0f && camera.fovY_deg < 180.0f)) {
+        throw std::invalid_argument("Camera.fovY_deg must be in (0, 180), got " +
+                                    std::to_string(camera.fovY_deg));
+    }
+    if (!(aspect > 0.0f) || !std::isfinite(aspect)) {
+        throw std::invalid_argument("Camera: aspect (width / height) must be > 0, got " +
+                                    std::to_string(aspect));
+    }
+    if (!(camera.near_m > 0.0f && camera.far_m > camera.near_m && std::isfinite(camera.far_m))) {
+        throw std::invalid_argument("Camera: need 0 < near_m < far_m, got near_m " +
+                                    std::to_string(camera.near_m) + ", far_m " +
+                                    std::to_string(camera.far_m));
+    }
+    return glm::perspective(glm::radians(camera.fovY_deg), aspect, camera.near_m, camera.far_m);
+}
+
+glm::mat4 clipFromWorld(const Camera& camera, float aspect) {
+    return clipFromCamera(camera, aspect) * cameraFromWorld(camera);
+}
+
+}  // namespace gale::render

@@ -1,0 +1,16 @@
+#pragma once
+/// \file RenderLimits.h
+/// Hard limits of the shell renderer, in one place so the scene parser can refuse a scene before
+/// any GL work starts.
+
+namespace gale::render {
+
+/// Most point lights the shell vertex shader evaluates (uniform arrays in shaders/shell.vert are
+/// sized by this; the thesis used 3). ShellRenderer::setLighting throws std::invalid_argument
+/// above it, and a scene naming more lights must be refused with that message.
+constexpr int kMaxLights = 16;
+
+/// Most shells above the ground (GrassParams::shells); the bend table has kMaxShells + 1 columns.
+constexpr int kMaxShells = 256;
+
+}  // namespace gale::render

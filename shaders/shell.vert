@@ -1,0 +1,79 @@
+#version 450 core
+// Shell grass vertex shader (Bakay, Lalonde, Heidrich 2002; Bakay 2003, chapter 3).
+// One instance per shell: gl_InstanceID = i, 0 = ground, N = top. Everything here is world space,
+// metres; lighting is evaluated per vertex, as in the thesis, so the fragment stage stays a texture
+// fetch, an alpha test and a multiply.
+
+// Must equal gale::render::kMaxLights (render/RenderLimits.h); ShellRenderer checks the array size.
+#define MAX_LIGHTS 16
+
+layout(location = 0) in vec3 aPosition;  // vertex on the terrain
+layout(location = 1) in vec3 aNormal;    // unit terrain normal
+layout(location = 2) in vec2 aUv;        // grass texture coordinates
+layout(location = 3) in vec3 aWindDir;   // unit tangent-plane wind direction, or zero
+layout(location = 4) in uint aGroup;     // animation-step group (row of uBend)
+
+uniform mat4 uClipFromWorld;
+uniform vec3 uEyePos;          // camera position
+uniform int uShells;           // N
+// Bend table (thesis Table 3.2: n_i, w_i once per frame, per group, per shell): texel (i, g) holds
+// (n_i, w_i) in metres for shell i of group g (DESIGN 5.1).
+uniform sampler2D uBend;
+
+uniform int uLightCount;
+uniform vec3 uLightPos[MAX_LIGHTS];
+uniform vec3 uLightColor[MAX_LIGHTS];
+uniform vec3 uLightAtten[MAX_LIGHTS];  // (k_c, k_l, k_q)
+uniform vec3 uAmbient;
+uniform float uSpecularPower;
+uniform float uSpecularStrength;
+uniform float uShadowMin;  // Banks S_min
+
+out vec2 vUv;
+out vec3 vLight;           // light reaching the vertex, multiplies the texture colour
+flat out float vThreshold; // alpha test: keep texels with alpha >= vThreshold
+
+vec3 shellPosition(int i) {
+    vec2 nw = texelFetch(uBend, ivec2(i, int(aGroup)), 0).rg;
+    return aPosition + nw.x * aNormal + nw.y * aWindDir;
+}
+
+void main() {
+    int i = gl_InstanceID;
+    vec3 pos = shellPosition(i);
+    gl_Position = uClipFromWorld * vec4(pos, 1.0);
+    vUv = aUv;
+
+    // Thesis 3.1: shell i keeps texels with alpha >= i/N; the ground keeps every texel. Half an
+    // 8-bit step of slack so a blade of alpha 255 i/N passes its shell despite rounding; never
+    // below half a step, so bare ground (alpha 0) never shows above shell 0.
+    float halfStep = 0.5 / 255.0;
+    vThreshold = (i == 0) ? -1.0 : max(float(i) / float(max(uShells, 1)) - halfStep, halfStep);
+
+    // Strand tangent (thesis 3.3.1): from this vertex on shell i-1 to shell i; the ground uses the
+    // terrain normal.
+    vec3 T = (i == 0) ? aNormal : normalize(pos - shellPosition(i - 1));
+    vec3 V = normalize(uEyePos - pos);
+
+    vec3 lit = vec3(0.0);
+    for (int l = 0; l < uLightCount; ++l) {
+        vec3 toLight = uLightPos[l] - pos;
+        float d = length(toLight);
+        vec3 L = toLight / max(d, 1e-6);
+        vec3 H = normalize(L + V);
+        // Kajiya & Kay 1989 via thesis 3.3.1-3.3.2: the best normal on the strand's normal disk
+        // gives cos = sqrt(1 - (T.L)^2) for diffuse and sqrt(1 - (T.H)^2) for the highlight.
+        float tl = dot(T, L);
+        float th = dot(T, H);
+        float diffuse = sqrt(max(1.0 - tl * tl, 0.0));
+        float specular = uSpecularStrength * pow(sqrt(max(1.0 - th * th, 0.0)), uSpecularPower);
+        // Thesis 3.3.4: 1 / (k_c + k_l d + k_q d^2).
+        vec3 k = uLightAtten[l];
+        float attenuation = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
+        lit += uLightColor[l] * (attenuation * (diffuse + specular));
+    }
+    // Banks 1994 self-shadowing (thesis 3.3.3): S = (D_cur / D_max)(1 - S_min) + S_min with
+    // D_cur / D_max = i / N; ambient added after attenuation and shadowing (thesis 3.3.4).
+    float S = float(i) / float(max(uShells, 1)) * (1.0 - uShadowMin) + uShadowMin;
+    vLight = lit * S + uAmbient;
+}

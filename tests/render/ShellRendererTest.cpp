@@ -1,0 +1,259 @@
+// The shell renderer end to end on llvmpipe: a reference image, the bend, shell coverage and input
+// validation (Bakay 2003, chapter 3).
+//
+// Regenerating the reference image: run
+//   GALE_UPDATE_REFERENCES=1 ./render_tests --gtest_filter='ShellRenderer.MatchesReferenceImage'
+// from the build folder; it rewrites tests/data/render/reference_shells.png in the source tree.
+// Look at the new image before committing it.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include "render/GlContext.h"
+#include "render/GrassTexture.h"
+#include "render/ImageIO.h"
+#include "render/ShellRenderer.h"
+#include "RenderTestUtil.h"
+
+namespace gale::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+// llvmpipe is deterministic for one Mesa build (DESIGN 7); a few levels of slack per channel
+// absorb differences between CPU instruction sets (AVX2 / AVX-512 code paths) and Mesa updates.
+constexpr int kReferenceChannelTolerance = 8;
+// A handful of pixels on blade edges may flip between blade and ground under such differences.
+constexpr double kReferenceMaxDifferingFraction = 0.005;
+
+struct ReferenceScene {
+    TerrainMesh mesh = test::makeHillMesh();
+    GrassParams grass;
+    GrassTexture texture;
+    Lighting lighting;
+    Camera camera;
+
+    ReferenceScene() {
+        grass.height_m = 0.3f;
+        grass.shells = 9;
+        grass.stiffness = 1.0f;
+        grass.tile_m = 1.5f;
+        GrassTextureSpec spec;
+        spec.size = 128;
+        spec.seed = 2003;
+        texture = generateGrassTexture(spec);
+        lighting.ambient = glm::vec3(0.12f);
+        lighting.lights.push_back({glm::vec3(-4.0f, -5.0f, 6.0f), glm::vec3(1.0f, 0.92f, 0.8f),
+                                   glm::vec3(1.0f, 0.0f, 0.004f)});
+        lighting.lights.push_back({glm::vec3(5.0f, 3.0f, 3.0f), glm::vec3(0.35f, 0.4f, 0.6f),
+                                   glm::vec3(1.0f, 0.05f, 0.0f)});
+        camera.wsPosition_m = glm::vec3(0.0f, -6.5f, 3.2f);
+        camera.wsTarget_m = glm::vec3(0.0f, 0.0f, 0.3f);
+        camera.fovY_deg = 45.0f;
+        camera.near_m = 0.5f;
+        camera.far_m = 100.0f;
+    }
+
+    GrassWind wind(float west, float east) const {
+        return test::makeUniformWind(mesh, glm::vec3(1.0f, 0.4f, 0.0f), west, east);
+    }
+};
+
+Image renderReference(const GrassWind& wind) {
+    auto context = createOsMesaContext(160, 120);
+    ReferenceScene scene;
+    ShellRenderer renderer(*context);
+    renderer.setTerrain(scene.mesh);
+    renderer.setGrass(scene.grass, scene.texture);
+    renderer.setLighting(scene.lighting);
+    renderer.draw(scene.camera, wind);
+    Image image;
+    context->readPixels(image);
+    return image;
+}
+
+TEST(ShellRenderer, MatchesReferenceImage) {
+    ReferenceScene scene;
+    const Image actual = renderReference(scene.wind(0.35f, 0.9f));
+    const fs::path reference = fs::path(GALE_SOURCE_DIR) / "tests/data/render/reference_shells.png";
+    const char* update = std::getenv("GALE_UPDATE_REFERENCES");
+    if (update != nullptr && std::string(update) == "1") {
+        writeImageAtomic(actual, reference.string());
+        GTEST_SKIP() << "reference rewritten: " << reference;
+    }
+    const Image expected = readImageRgba8(reference.string());
+    ASSERT_EQ(expected.width, actual.width);
+    ASSERT_EQ(expected.height, actual.height);
+    const test::ImageDiff diff =
+        test::compareImages(actual, expected, kReferenceChannelTolerance);
+    if (diff.differingFraction > kReferenceMaxDifferingFraction) {
+        const fs::path out = fs::path(GALE_BINARY_DIR) / "render_test_output";
+        fs::create_directories(out);
+        writeImageAtomic(actual, (out / "reference_shells.actual.png").string());
+        writeImageAtomic(diff.diff, (out / "reference_shells.diff.png").string());
+        ADD_FAILURE() << diff.differingFraction * 100.0 << "% of pixels differ by more than "
+                      << kReferenceChannelTolerance << "/255 (max " << diff.maxChannelDiff
+                      << "); actual: " << (out / "reference_shells.actual.png")
+                      << ", diff: " << (out / "reference_shells.diff.png")
+                      << ", expected: " << reference;
+    }
+}
+
+TEST(ShellRenderer, BendingMovesPixels) {
+    // A calm frame and a full-intensity frame of the reference scene differ in many pixels: the
+    // tips lean by up to the grass height along the wind.
+    constexpr double kMinMovedFraction = 0.05;
+    constexpr int kChannelNoise = 8;  // ignore differences below the reference tolerance
+    ReferenceScene scene;
+    const Image calm = renderReference(scene.wind(0.0f, 0.0f));
+    const Image windy = renderReference(scene.wind(1.0f, 1.0f));
+    const test::ImageDiff diff = test::compareImages(calm, windy, kChannelNoise);
+    EXPECT_GT(diff.differingFraction, kMinMovedFraction);
+}
+
+TEST(ShellRenderer, EmptyGroupIntensityMeansNoWind) {
+    ReferenceScene scene;
+    GrassWind none;  // no per-vertex arrays, no groups
+    const Image a = renderReference(none);
+    const Image b = renderReference(scene.wind(0.0f, 0.0f));
+    EXPECT_EQ(a.rgba, b.rgba);
+}
+
+// Top-down view of a flat field larger than the view, lit by one far light near the horizon so
+// the Kajiya-Kay diffuse term is ~1 for upright strands and the brightness of a shell is its Banks
+// factor S = (i/N)(1 - S_min) + S_min alone: with S_min = 1/2 the ground shows at half brightness,
+// the top shell at full.
+struct CoverageScene {
+    static constexpr int kShells = 8;
+    static constexpr float kShadowMin = 0.5f;
+    std::unique_ptr<GlContext> context = createOsMesaContext(96, 72);
+    ShellRenderer renderer{*context};
+
+    explicit CoverageScene(const Image& texture) {
+        renderer.setTerrain(test::makeFlatMesh(9, 6.0f, 1.0f));
+        GrassParams grass;
+        grass.height_m = 0.4f;
+        grass.shells = kShells;
+        renderer.setGrass(grass, grassTextureFromImage(texture));
+        Lighting lighting;
+        lighting.ambient = glm::vec3(0.0f);
+        lighting.specularStrength = 0.0f;
+        lighting.selfShadowMin = kShadowMin;
+        lighting.lights.push_back({glm::vec3(1.0e4f, 0.0f, 0.0f), glm::vec3(1.0f),
+                                   glm::vec3(1.0f, 0.0f, 0.0f)});
+        renderer.setLighting(lighting);
+    }
+
+    Image draw() {
+        Camera camera;
+        camera.wsPosition_m = glm::vec3(0.0f, 0.0f, 5.0f);
+        camera.wsTarget_m = glm::vec3(0.0f);
+        renderer.draw(camera, GrassWind{});
+        Image image;
+        context->readPixels(image);
+        return image;
+    }
+};
+
+// Rounding of the 8-bit framebuffer and texture plus the light's 1e-4 rad elevation.
+constexpr int kShadeTolerance = 2;
+
+int countPixelsOff(const Image& image, int expected) {
+    int off = 0;
+    for (size_t p = 0; p < image.rgba.size(); p += 4) {
+        for (int c = 0; c < 3; ++c) {
+            if (std::abs(int(image.rgba[p + c]) - expected) > kShadeTolerance) {
+                ++off;
+                break;
+            }
+        }
+    }
+    return off;
+}
+
+TEST(ShellRenderer, AllBladeTextureShowsTheTopShellEverywhere) {
+    CoverageScene scene(test::makeUniformImage(16, 255, 255, 255, 255));
+    const Image image = scene.draw();
+    EXPECT_EQ(countPixelsOff(image, 255), 0);
+}
+
+TEST(ShellRenderer, AllGroundTextureShowsOnlyShellZero) {
+    CoverageScene scene(test::makeUniformImage(16, 255, 255, 255, 0));
+    const Image image = scene.draw();
+    const int groundShade = static_cast<int>(255.0f * CoverageScene::kShadowMin + 0.5f);
+    EXPECT_EQ(countPixelsOff(image, groundShade), 0);
+}
+
+TEST(ShellRenderer, WrongWindArraySizesThrow) {
+    auto context = createOsMesaContext(32, 24);
+    ReferenceScene scene;
+    ShellRenderer renderer(*context);
+    renderer.setTerrain(scene.mesh);
+    renderer.setGrass(scene.grass, scene.texture);
+    GrassWind wind = scene.wind(0.5f, 0.5f);
+    wind.wsDirection.pop_back();
+    try {
+        renderer.draw(scene.camera, wind);
+        FAIL() << "expected std::invalid_argument";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("wsDirection"), std::string::npos) << e.what();
+    }
+    wind = scene.wind(0.5f, 0.5f);
+    wind.group.resize(3);
+    EXPECT_THROW(renderer.draw(scene.camera, wind), std::invalid_argument);
+}
+
+TEST(ShellRenderer, GroupOutOfRangeThrows) {
+    auto context = createOsMesaContext(32, 24);
+    ReferenceScene scene;
+    ShellRenderer renderer(*context);
+    renderer.setTerrain(scene.mesh);
+    renderer.setGrass(scene.grass, scene.texture);
+    GrassWind wind = scene.wind(0.5f, 0.5f);
+    wind.groupIntensity.resize(1);  // vertices east of x = 0 name group 1
+    try {
+        renderer.draw(scene.camera, wind);
+        FAIL() << "expected std::invalid_argument";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("group 1"), std::string::npos) << e.what();
+    }
+}
+
+TEST(ShellRenderer, MoreLightsThanTheCapThrow) {
+    auto context = createOsMesaContext(32, 24);
+    ShellRenderer renderer(*context);
+    Lighting lighting;
+    lighting.lights.resize(kMaxLights + 1);
+    try {
+        renderer.setLighting(lighting);
+        FAIL() << "expected std::invalid_argument";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("at most 16"), std::string::npos) << e.what();
+    }
+    lighting.lights.resize(kMaxLights);
+    EXPECT_NO_THROW(renderer.setLighting(lighting));
+}
+
+TEST(ShellRenderer, DrawBeforeTerrainThrows) {
+    auto context = createOsMesaContext(32, 24);
+    ShellRenderer renderer(*context);
+    EXPECT_THROW(renderer.draw(Camera{}, GrassWind{}), std::logic_error);
+}
+
+TEST(ShellRenderer, BadGrassParamsThrow) {
+    auto context = createOsMesaContext(32, 24);
+    ShellRenderer renderer(*context);
+    ReferenceScene scene;
+    GrassParams grass = scene.grass;
+    grass.shells = kMaxShells + 1;
+    EXPECT_THROW(renderer.setGrass(grass, scene.texture), std::invalid_argument);
+    grass = scene.grass;
+    grass.height_m = 0.0f;
+    EXPECT_THROW(renderer.setGrass(grass, scene.texture), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace gale::render
