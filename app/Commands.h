@@ -1,0 +1,65 @@
+#pragma once
+/// \file Commands.h
+/// The verbs of the gale program. Each returns the process exit code (0 ok) and throws
+/// InputError for bad input (exit 2) and other exceptions for internal failures (exit 1); only
+/// main catches.
+
+#include <optional>
+#include <string>
+
+#include "app/Scene.h"
+
+namespace gale::app {
+
+/// Exit codes (docs/cli.md).
+inline constexpr int EXIT_OK = 0;
+inline constexpr int EXIT_FAILURE_INTERNAL = 1;
+inline constexpr int EXIT_BAD_INPUT = 2;
+inline constexpr int EXIT_INTERRUPTED = 130;
+
+/// A scene and the command-line overrides of its [output] section.
+struct SceneRunOptions {
+    std::string scenePath;
+    std::string folder;  ///< -o; empty: the scene's output.folder
+    std::optional<int> frames;
+    std::optional<int> width;
+    std::optional<int> height;
+};
+
+/// Parses the scene and applies the overrides, checking them as the parser checks the scene.
+Scene loadScene(const SceneRunOptions& options);
+
+/// Where the output folder came from, for messages: "FILE:LINE: output.folder" or "-o".
+std::string outputFolderSource(const Scene& scene, const SceneRunOptions& options);
+
+/// `gale check SCENE`: validates, builds the CPU side, prints what the run would build and what it
+/// leaves out, to stdout.
+int runCheck(const SceneRunOptions& options);
+
+/// `gale render SCENE`: renders the frames headless into the output folder, with a run report.
+int runRender(const SceneRunOptions& options);
+
+struct BladeOptions {
+    int shells = 16;
+    double intensity = 0.5;
+    double stiffness = 1.0;
+    double height_m = 0.5;
+    std::string svgPath;  ///< empty: no SVG
+};
+
+/// `gale blade`: the bend's offsets of shells 0..N as CSV (i,n_m,w_m) on stdout, and optionally an
+/// SVG drawing of the blade.
+int runBlade(const BladeOptions& options);
+
+/// The SVG drawing of one bent blade (written by `gale blade --svg`).
+std::string bladeSvg(const BladeOptions& options);
+
+struct TerrainExportOptions {
+    std::string scenePath;
+    std::string imagePath;  ///< a .png file
+};
+
+/// `gale terrain SCENE -o FILE.png`: the scene's heightfield as a 16-bit grey PNG.
+int runTerrainExport(const TerrainExportOptions& options);
+
+}  // namespace gale::app

@@ -1,0 +1,155 @@
+/// \file CommandsCheck.cpp
+/// `gale check` and the scene loading shared by the scene verbs.
+
+#include <cstdio>
+#include <sstream>
+
+#include "app/Commands.h"
+#include "app/Errors.h"
+#include "app/OutputFolder.h"
+#include "app/SceneBuilder.h"
+#include "app/SceneParser.h"
+#include "coupling/PointSourceWind.h"
+#include "render/GrassTexture.h"
+
+namespace gale::app {
+namespace {
+
+std::string fmt(double v, int digits = 3) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    return buf;
+}
+
+std::string fmtFixed(double v, int decimals = 2) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    return buf;
+}
+
+std::string vec3(const glm::vec3& v) {
+    return "(" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) + ")";
+}
+
+void line(const char* label, const std::string& text) {
+    std::printf("%-9s %s\n", label, text.c_str());
+}
+
+}  // namespace
+
+Scene loadScene(const SceneRunOptions& options) {
+    Scene scene = parseSceneFile(options.scenePath);
+    OutputSection& o = scene.output;
+    if (!options.folder.empty()) o.folder = options.folder;
+    if (options.frames) o.frames = *options.frames;
+    if (options.width) o.width = *options.width;
+    if (options.height) o.height = *options.height;
+    if (options.frames || options.width || options.height) {
+        if (auto problem = outputBudgetProblem(o))
+            throw InputError(
+                std::string(problem->key == "frames" ? "--frames" : "--width/--height") + ": " +
+                problem->reason);
+    }
+    return scene;
+}
+
+std::string outputFolderSource(const Scene& scene, const SceneRunOptions& options) {
+    return options.folder.empty() ? scene.where("output.folder") : std::string("-o");
+}
+
+int runCheck(const SceneRunOptions& options) {
+    const Scene scene = loadScene(options);
+    const OutputFolderStatus folder =
+        checkOutputFolder(scene.output.folder, outputFolderSource(scene, options),
+                          scene.output.prefix, scene.output.frames);
+    const BuiltScene built = buildScene(scene);
+    const sim::Heightfield& field = built.heightfield;
+    const render::TerrainMesh& mesh = built.mesh;
+    const GrassSection& grass = scene.grass;
+    const OutputSection& out = scene.output;
+
+    line("scene", scene.path + (scene.description.empty() ? "" : ": " + scene.description));
+
+    std::ostringstream t;
+    t << sim::terrainKindName(scene.terrain.spec.kind);
+    if (scene.terrain.spec.kind == sim::TerrainKind::Heightmap)
+        t << " from " << scene.terrain.imagePath;
+    t << ", " << field.nx << " x " << field.ny << " samples at " << fmt(field.spacing_m) << " m ("
+      << fmt(field.sizeX_m()) << " x " << fmt(field.sizeY_m()) << " m), heights "
+      << fmtFixed(field.minHeight_m()) << " .. " << fmtFixed(field.maxHeight_m()) << " m";
+    line("terrain", t.str());
+
+    const long long quads = static_cast<long long>(mesh.nx - 1) * (mesh.ny - 1);
+    line("mesh", std::to_string(mesh.nx) + " x " + std::to_string(mesh.ny) + " = " +
+                     std::to_string(mesh.wsPosition_m.size()) + " vertices, " +
+                     std::to_string(2 * quads) + " triangles (every " +
+                     std::to_string(scene.terrain.meshStride) +
+                     (scene.terrain.meshStride == 1 ? "st" : "th") + " sample)");
+
+    line("grass", fmt(grass.params.height_m) + " m tall, " + std::to_string(grass.params.shells) +
+                      " shells (" + std::to_string(grass.params.shells + 1) +
+                      " layers with the ground), stiffness " + fmt(grass.params.stiffness) +
+                      ", texture repeats every " + fmt(grass.params.tile_m) + " m");
+
+    const render::Image& level0 = built.texture.levels.front();
+    std::string tex = grass.texturePath.empty()
+                          ? "generated (seed " + std::to_string(grass.generated.seed) +
+                                ", density " + fmt(grass.generated.density) + ")"
+                          : grass.texturePath;
+    line("texture",
+         tex + ", " + std::to_string(level0.width) + " x " + std::to_string(level0.height) + ", " +
+             std::to_string(built.texture.levels.size()) + " MIP levels (blade-keeping, down to " +
+             std::to_string(built.texture.levels.back().width) + " x " +
+             std::to_string(built.texture.levels.back().height) + ")");
+
+    const coupling::PointSourceSpec& ps = scene.wind.pointSource;
+    line("wind", "point source at " + vec3(built.wsWindSource_m) + " m" +
+                     (scene.wind.autoSource ? " (default: west edge)" : "") +
+                     (ps.blowAway ? ", blowing away from it" : ", blowing towards it") + "; " +
+                     std::to_string(built.wind->groupCount()) + " groups (rings), " +
+                     fmt(ps.stepDelay_s) + " s apart");
+    line("", "gust: " + scene.wind.curveDescription);
+
+    const render::Lighting& l = scene.lighting;
+    std::string lights = std::to_string(l.lights.size()) + " point light" +
+                         (l.lights.size() == 1 ? "" : "s") + " + ambient " + vec3(l.ambient);
+    line("lights", lights);
+    for (size_t i = 0; i < l.lights.size(); ++i)
+        line("", "light " + std::to_string(i) + " at " + vec3(l.lights[i].wsPosition_m) +
+                     " m, colour " + vec3(l.lights[i].color) + ", attenuation " +
+                     vec3(l.lights[i].attenuation));
+
+    const render::Camera& c = built.camera;
+    line("camera", vec3(c.wsPosition_m) + " m -> " + vec3(c.wsTarget_m) + " m" +
+                       (scene.autoCameraPosition ? " (default 3/4 view)" : "") + ", fov " +
+                       fmt(c.fovY_deg) + " deg, near " + fmt(c.near_m) + " m, far " + fmt(c.far_m) +
+                       " m");
+
+    const double endTime_s = out.startTime_s + (out.frames - 1) / out.fps;
+    line("output", std::to_string(out.frames) + " frames of " + std::to_string(out.width) + " x " +
+                       std::to_string(out.height) + " at " + fmt(out.fps) +
+                       " fps (t = " + fmt(out.startTime_s) + " .. " + fmt(endTime_s, 4) + " s)");
+    std::string where =
+        framePath(out.folder, out.prefix, 0) + " .. " +
+        framePath(out.folder, out.prefix, out.frames - 1).substr(out.folder.size() + 1);
+    where += folder.exists ? " (folder exists, " + std::to_string(folder.existingFiles) + " files)"
+                           : " (folder will be created)";
+    line("", where);
+    std::string size = "about " + formatBytes(estimatePngBytes(out)) + " of PNG";
+    if (folder.freeBytes >= 0) size += ", " + formatBytes(folder.freeBytes) + " free";
+    line("", size);
+    if (!folder.staleFrames.empty())
+        line("", "note: " + std::to_string(folder.staleFrames.size()) +
+                     " older frames beyond this run's last (e.g. " + folder.staleFrames.front() +
+                     ") stay in the folder");
+
+    line("left out", "no wind solver: point-source wind (Bakay et al. 2002), no velocity field");
+    line("", "no window: headless (OSMesa)");
+    if (l.lights.empty()) line("", "no lights: ambient only");
+    for (const std::string& note : scene.notes) line("note", note);
+    std::printf("ok: %s is valid (CPU side built in %.0f ms)\n", scene.path.c_str(),
+                built.build_ms);
+    return EXIT_OK;
+}
+
+}  // namespace gale::app

@@ -1,0 +1,180 @@
+/// \file CommandsRender.cpp
+/// `gale render`: scene -> heightfield -> mesh -> grass texture -> point-source wind -> OSMesa ->
+/// shells -> PNG frames, with a run report.
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <system_error>
+#include <vector>
+
+#include "app/AtomicFile.h"
+#include "app/Commands.h"
+#include "app/Errors.h"
+#include "app/OutputFolder.h"
+#include "app/Progress.h"
+#include "app/SceneBuilder.h"
+#include "app/SceneParser.h"
+#include "app/Version.h"
+#include "render/GlContext.h"
+#include "render/ImageIO.h"
+#include "render/ShellRenderer.h"
+
+namespace gale::app {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+/// Output we estimate at this many bytes per pixel or more; a run that cannot fit even this is
+/// refused before it starts (real grass PNGs take more, so this refuses only hopeless runs).
+constexpr double MIN_PNG_BYTES_PER_PIXEL = 0.5;
+
+std::atomic<bool> gInterrupted{false};
+extern "C" void onInterrupt(int) { gInterrupted = true; }
+
+double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+/// Removes the frames this run wrote and the folder if this run created it, so a failed run
+/// leaves nothing behind.
+void removeOutputs(const std::vector<std::string>& files, const std::string& folder,
+                   bool createdFolder) {
+    std::error_code ec;
+    for (const std::string& f : files) fs::remove(f, ec);
+    if (createdFolder) fs::remove(folder, ec);  // only removes it if empty
+}
+
+std::string utcNow() {
+    const std::time_t now = std::time(nullptr);
+    std::tm tm{};
+    gmtime_r(&now, &tm);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    return buf;
+}
+
+}  // namespace
+
+int runRender(const SceneRunOptions& options) {
+    const auto runStart = Clock::now();
+    Scene scene = loadScene(options);
+    const OutputSection& out = scene.output;
+    const std::string folderWhere = outputFolderSource(scene, options);
+    const OutputFolderStatus folder =
+        checkOutputFolder(out.folder, folderWhere, out.prefix, out.frames);
+    const double minBytes =
+        static_cast<double>(out.width) * out.height * out.frames * MIN_PNG_BYTES_PER_PIXEL;
+    if (folder.freeBytes >= 0 && minBytes > folder.freeBytes)
+        throw InputError(folderWhere + ": '" + out.folder + "' has " +
+                         formatBytes(folder.freeBytes) + " free but " + std::to_string(out.frames) +
+                         " frames of " + std::to_string(out.width) + " x " +
+                         std::to_string(out.height) + " need at least " + formatBytes(minBytes));
+    for (const std::string& note : scene.notes)
+        std::fprintf(stderr, "gale: note: %s\n", note.c_str());
+
+    BuiltScene built = buildScene(scene);
+
+    // GL: a failure here is ours (or the machine's), not the user's: exit 1.
+    std::unique_ptr<render::GlContext> context = render::createOsMesaContext(out.width, out.height);
+    render::ShellRenderer renderer(*context);
+    renderer.setTerrain(built.mesh);
+    renderer.setGrass(scene.grass.params, built.texture);
+    renderer.setLighting(scene.lighting);
+    const std::string glDescription = context->description();
+
+    // Everything is validated: only now does anything appear on disk.
+    const bool createdFolder = prepareOutputFolder(out.folder, folderWhere);
+    if (!folder.staleFrames.empty())
+        std::fprintf(stderr,
+                     "gale: note: %s holds %zu older frames beyond this run's last (e.g. %s); "
+                     "they are left as they are\n",
+                     out.folder.c_str(), folder.staleFrames.size(),
+                     folder.staleFrames.front().c_str());
+
+    std::vector<std::string> written;
+    std::vector<double> frame_ms, drawCpu_ms, drawGpu_ms;
+    render::GrassWind wind;
+    render::Image image;
+    gInterrupted = false;
+    auto previousHandler = std::signal(SIGINT, onInterrupt);
+    std::fprintf(stderr, "gale: rendering %d frames of %d x %d (%s)\n", out.frames, out.width,
+                 out.height, glDescription.c_str());
+    const auto loopStart = Clock::now();
+    int done = 0;
+    try {
+        Progress progress("frame", out.frames);
+        for (int k = 0; k < out.frames && !gInterrupted; ++k) {
+            const auto frameStart = Clock::now();
+            const double t_s = out.startTime_s + k / out.fps;
+            built.wind->update(t_s, wind);
+            const render::FrameStats stats = renderer.draw(built.camera, wind);
+            context->readPixels(image);
+            const std::string path = framePath(out.folder, out.prefix, k);
+            render::writeImageAtomic(image, path);
+            written.push_back(path);
+            drawCpu_ms.push_back(stats.cpu_ms);
+            drawGpu_ms.push_back(stats.gpu_ms);
+            frame_ms.push_back(msSince(frameStart));
+            ++done;
+            progress.step(done, frame_ms.back());
+        }
+    } catch (...) {
+        std::signal(SIGINT, previousHandler);
+        removeOutputs(written, out.folder, createdFolder);
+        throw;
+    }
+    std::signal(SIGINT, previousHandler);
+    const double loop_s = msSince(loopStart) / 1000.0;
+
+    nlohmann::json report;
+    report["gale_version"] = GALE_VERSION;
+    report["scene"] = scene.path;
+    report["scene_name"] = scene.name;
+    report["finished_utc"] = utcNow();
+    report["interrupted"] = done < out.frames;
+    report["frames"] = done;
+    report["frames_requested"] = out.frames;
+    report["width"] = out.width;
+    report["height"] = out.height;
+    report["fps"] = out.fps;
+    report["start_time_s"] = out.startTime_s;
+    report["folder"] = out.folder;
+    std::vector<std::string> names;
+    for (const std::string& f : written) names.push_back(fs::path(f).filename().string());
+    report["files"] = names;
+    report["gl"] = glDescription;
+    report["wind"] = built.wind->describe();
+    report["terrain_samples"] = {built.heightfield.nx, built.heightfield.ny};
+    report["mesh_vertices"] = built.mesh.wsPosition_m.size();
+    report["shells"] = scene.grass.params.shells;
+    report["build_ms"] = built.build_ms;
+    report["frame_ms"] = frame_ms;
+    report["draw_cpu_ms"] = drawCpu_ms;
+    report["draw_gpu_ms"] = drawGpu_ms;
+    report["render_s"] = loop_s;
+    report["total_s"] = msSince(runStart) / 1000.0;
+    const std::string reportPath = (fs::path(out.folder) / (out.prefix + "_report.json")).string();
+    writeTextAtomic(reportPath, report.dump(2) + "\n");
+
+    std::string shown = out.folder;
+    if (shown.back() != '/') shown += '/';
+    const double mean_ms = done > 0 ? loop_s * 1000.0 / done : 0.0;
+    if (done < out.frames) {
+        std::printf("interrupted: wrote %d of %d frames to %s (report %s)\n", done, out.frames,
+                    shown.c_str(), reportPath.c_str());
+        return EXIT_INTERRUPTED;
+    }
+    std::printf("wrote %d frames to %s (%s .. %s) in %s, %.0f ms/frame; report %s\n", done,
+                shown.c_str(), fs::path(written.front()).filename().c_str(),
+                fs::path(written.back()).filename().c_str(),
+                Progress::formatDuration(loop_s).c_str(), mean_ms, reportPath.c_str());
+    return EXIT_OK;
+}
+
+}  // namespace gale::app

@@ -1,0 +1,52 @@
+/// \file CommandsTerrain.cpp
+/// `gale terrain`: the scene's heightfield as a 16-bit greyscale PNG that a heightmap scene can
+/// read back.
+
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+#include "app/Commands.h"
+#include "app/Errors.h"
+#include "app/Heightmap.h"
+#include "app/SceneBuilder.h"
+#include "app/SceneParser.h"
+
+namespace gale::app {
+
+int runTerrainExport(const TerrainExportOptions& options) {
+    namespace fs = std::filesystem;
+    const fs::path out(options.imagePath);
+    std::string ext = out.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".png")
+        throw InputError(
+            "-o: the heightmap is written as a 16-bit PNG; the name must end in .png "
+            "(got \"" +
+            options.imagePath + "\")");
+    std::error_code ec;
+    if (fs::is_directory(out, ec)) throw InputError("-o: '" + options.imagePath + "' is a folder");
+    const fs::path parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+    if (!fs::is_directory(parent, ec))
+        throw InputError("-o: folder '" + parent.string() + "' does not exist");
+
+    const Scene scene = parseSceneFile(options.scenePath);
+    const sim::Heightfield field = buildHeightfield(scene);
+    HeightmapRange range;
+    try {
+        range = writeHeightmapPng16(field, options.imagePath);
+    } catch (const std::runtime_error& e) {
+        throw InputError(std::string("-o: ") + e.what());
+    }
+    std::printf("wrote %s: %d x %d pixels, 16-bit grey, heights %.6g .. %.6g m\n",
+                options.imagePath.c_str(), field.nx, field.ny, range.minHeight_m,
+                range.maxHeight_m);
+    std::printf("read it back with:\n");
+    std::printf("  [terrain]\n  kind = \"heightmap\"\n  image = \"%s\"\n",
+                out.filename().string().c_str());
+    std::printf("  metres_per_pixel = %.9g\n  height_offset_m = %.9g\n  height_scale_m = %.9g\n",
+                field.spacing_m, range.minHeight_m, range.maxHeight_m - range.minHeight_m);
+    return EXIT_OK;
+}
+
+}  // namespace gale::app

@@ -1,0 +1,42 @@
+#pragma once
+/// \file SceneBuilder.h
+/// Everything a run builds on the CPU from a validated Scene: the heightfield, the render mesh,
+/// the grass texture with its MIP chain, the wind source, and the camera with its defaults
+/// resolved. `gale check` builds this to report on it; `gale render` then adds GL.
+
+#include <memory>
+#include <string>
+
+#include "app/Scene.h"
+#include "coupling/WindSource.h"
+#include "render/GrassInput.h"
+#include "render/GrassTexture.h"
+#include "sim/Heightfield.h"
+
+namespace gale::app {
+
+struct BuiltScene {
+    sim::Heightfield heightfield;
+    render::TerrainMesh mesh;
+    render::GrassTexture texture;
+    std::unique_ptr<coupling::WindSource> wind;
+    render::Camera camera;           ///< the scene's camera with defaults resolved
+    glm::vec3 wsWindSource_m{0.0f};  ///< point source actually used
+    double build_ms = 0.0;           ///< wall time of buildScene
+};
+
+/// Builds the scene's CPU side. Throws SceneError naming the scene key (FILE:LINE: key: reason)
+/// when an input (heightmap, texture image) turns out bad; std::runtime_error for internal
+/// failures.
+BuiltScene buildScene(const Scene& scene);
+
+/// Only the heightfield (procedural or from the heightmap image); throws like buildScene.
+sim::Heightfield buildHeightfield(const Scene& scene);
+
+/// The default camera for `field`: a three-quarter view from the south-west, looking at the
+/// terrain's centre, far enough back to frame the whole terrain with the given vertical field of
+/// view. Keeps fov, near and far of `base`.
+render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera& base,
+                             bool keepPosition, bool keepTarget);
+
+}  // namespace gale::app

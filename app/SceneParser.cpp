@@ -1,0 +1,734 @@
+#include "app/SceneParser.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <system_error>
+
+#include "app/Errors.h"
+#include "render/GrassInput.h"
+#include "render/RenderLimits.h"
+
+namespace gale::app {
+
+static_assert(MAX_SHELLS <= render::kMaxShells,
+              "the parser must not allow more shells than the renderer draws");
+
+int maxLights() { return render::kMaxLights; }
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double INF = std::numeric_limits<double>::infinity();
+/// Longest value echoed back in a message; longer values are cut with "...".
+constexpr size_t MAX_SHOWN_CHARS = 60;
+/// |I| up to 4 turns the blade tip through a full circle ((pi/2) * 4 = 2 pi): beyond that the bend
+/// means nothing.
+constexpr double MAX_INTENSITY = 4.0;
+/// Bytes per output pixel as PNG, for the absurd-output estimate: grass is noisy and compresses
+/// to roughly 1.5-2.5 bytes per RGB(A) pixel.
+constexpr double PNG_BYTES_PER_PIXEL = 2.0;
+/// Bytes per pixel held by GL and the frame loop: colour and depth buffers, read-back, encoding.
+constexpr double FRAME_BYTES_PER_PIXEL = 16.0;
+
+// ---------------------------------------------------------------------------------------------
+// Showing values in messages
+
+std::string typeName(toml::node_type t) {
+    switch (t) {
+        case toml::node_type::table:
+            return "a table";
+        case toml::node_type::array:
+            return "an array";
+        case toml::node_type::string:
+            return "a string";
+        case toml::node_type::integer:
+            return "an integer";
+        case toml::node_type::floating_point:
+            return "a float";
+        case toml::node_type::boolean:
+            return "a boolean";
+        case toml::node_type::date:
+            return "a date";
+        case toml::node_type::time:
+            return "a time";
+        case toml::node_type::date_time:
+            return "a date-time";
+        default:
+            return "nothing";
+    }
+}
+
+std::string showNumber(double v) {
+    if (std::isnan(v)) return "nan";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.15g", v);
+    std::string s = buf;
+    if (s.find_first_of(".eE") == std::string::npos) s += ".0";
+    return s;
+}
+
+std::string cut(std::string s) {
+    if (s.size() > MAX_SHOWN_CHARS) s = s.substr(0, MAX_SHOWN_CHARS - 3) + "...";
+    return s;
+}
+
+std::string show(const toml::node& n) {
+    switch (n.type()) {
+        case toml::node_type::string: {
+            std::string out = "\"";
+            for (char c : n.as_string()->get()) {
+                if (c == '"' || c == '\\') {
+                    out += '\\';
+                    out += c;
+                } else if (static_cast<unsigned char>(c) < 0x20) {
+                    char buf[8];
+                    std::snprintf(buf, sizeof buf, "\\x%02x", c);
+                    out += buf;
+                } else {
+                    out += c;
+                }
+            }
+            return cut(out + "\"");
+        }
+        case toml::node_type::integer:
+            return std::to_string(n.as_integer()->get());
+        case toml::node_type::floating_point:
+            return showNumber(n.as_floating_point()->get());
+        case toml::node_type::boolean:
+            return n.as_boolean()->get() ? "true" : "false";
+        case toml::node_type::array: {
+            std::string out = "[";
+            const toml::array& a = *n.as_array();
+            for (size_t i = 0; i < a.size() && out.size() < MAX_SHOWN_CHARS; ++i)
+                out += (i ? ", " : "") + show(a[i]);
+            return cut(out + "]");
+        }
+        case toml::node_type::table:
+            return "a table";
+        default:
+            return typeName(n.type());
+    }
+}
+
+size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1] ? 1 : 0)});
+            diag = up;
+        }
+    }
+    return row[b.size()];
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ranges
+
+/// An interval of allowed values; NaN and infinities never pass.
+struct Limit {
+    double lo = -INF, hi = INF;
+    bool loOpen = false, hiOpen = false;
+
+    bool holds(double v) const {
+        if (!std::isfinite(v)) return false;
+        if (loOpen ? !(v > lo) : !(v >= lo)) return false;
+        if (hiOpen ? !(v < hi) : !(v <= hi)) return false;
+        return true;
+    }
+    std::string text() const {
+        if (lo == -INF && hi == INF) return "must be a finite number";
+        if (hi == INF) return std::string("must be ") + (loOpen ? "> " : ">= ") + num(lo);
+        if (lo == -INF) return std::string("must be ") + (hiOpen ? "< " : "<= ") + num(hi);
+        return std::string("must be in ") + (loOpen ? "(" : "[") + num(lo) + ", " + num(hi) +
+               (hiOpen ? ")" : "]");
+    }
+    static std::string num(double v) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%g", v);
+        return buf;
+    }
+};
+
+Limit anyFinite() { return {}; }
+Limit above(double lo, double hi = INF) { return {lo, hi, true, false}; }
+Limit atLeast(double lo, double hi = INF) { return {lo, hi, false, false}; }
+Limit closed(double lo, double hi) { return {lo, hi, false, false}; }
+
+// ---------------------------------------------------------------------------------------------
+// Reading one table
+
+struct Context {
+    std::string file;  ///< the scene path as the user gave it
+    fs::path folder;   ///< folder relative paths resolve against
+    Scene* scene;
+};
+
+/// One TOML table being read: every getter records the key as known (so `finish` can tell typos
+/// from valid keys) and throws SceneError with the key's full dotted name and line.
+class Section {
+  public:
+    Section(Context& ctx, const toml::table* table, std::string name, int line)
+        : mCtx(ctx), mTable(table), mName(std::move(name)), mLine(line) {}
+
+    bool present() const { return mTable != nullptr; }
+    const std::string& name() const { return mName; }
+    int line() const { return mLine; }
+    std::string full(const std::string& key) const {
+        return mName.empty() ? key : mName + "." + key;
+    }
+
+    /// The node at `key`, or nullptr; marks the key as known and records its line.
+    const toml::node* take(const std::string& key) {
+        mKnown.push_back(key);
+        if (!mTable) return nullptr;
+        auto it = mTable->find(key);
+        if (it == mTable->end()) return nullptr;
+        mGiven.insert(key);
+        mCtx.scene->keyLines[full(key)] = lineOf(it->first, it->second);
+        return &it->second;
+    }
+    bool given(const std::string& key) const { return mGiven.count(key) != 0; }
+    int lineOfKey(const std::string& key) const {
+        auto it = mCtx.scene->keyLines.find(full(key));
+        return it == mCtx.scene->keyLines.end() ? mLine : it->second;
+    }
+
+    [[noreturn]] void fail(int line, const std::string& key, const std::string& reason) const {
+        std::string where = mCtx.file;
+        if (line > 0) where += ":" + std::to_string(line);
+        throw SceneError(where + ": " + (key.empty() ? mName : full(key)) + ": " + reason);
+    }
+    [[noreturn]] void failValue(const toml::node& n, const std::string& key,
+                                const std::string& reason) const {
+        fail(lineOf(n), key, reason + " (got " + show(n) + ")");
+    }
+    [[noreturn]] void failKey(const std::string& key, const std::string& reason) const {
+        fail(lineOfKey(key), key, reason);
+    }
+
+    double number(const std::string& key, double def, Limit limit) {
+        const toml::node* n = take(key);
+        return n ? toNumber(*n, key, limit) : def;
+    }
+
+    int64_t integer(const std::string& key, int64_t def, int64_t lo, int64_t hi) {
+        const toml::node* n = take(key);
+        return n ? toInteger(*n, key, lo, hi) : def;
+    }
+
+    std::string string(const std::string& key, const std::string& def) {
+        const toml::node* n = take(key);
+        if (!n) return def;
+        if (!n->is_string()) failValue(*n, key, "expected a string, not " + typeName(n->type()));
+        return n->as_string()->get();
+    }
+
+    bool boolean(const std::string& key, bool def) {
+        const toml::node* n = take(key);
+        if (!n) return def;
+        if (!n->is_boolean())
+            failValue(*n, key, "expected true or false, not " + typeName(n->type()));
+        return n->as_boolean()->get();
+    }
+
+    template <size_t N>
+    std::array<double, N> vec(const std::string& key, std::array<double, N> def, Limit limit) {
+        const toml::node* n = take(key);
+        if (!n) return def;
+        const toml::array* a = n->as_array();
+        if (!a || a->size() != N)
+            failValue(*n, key, "expected an array of " + std::to_string(N) + " numbers");
+        std::array<double, N> out{};
+        for (size_t i = 0; i < N; ++i)
+            out[i] = toNumber((*a)[i], key + "[" + std::to_string(i) + "]", limit);
+        return out;
+    }
+
+    /// Sub-table `key` (absent: a Section that is not present, reading defaults).
+    Section table(const std::string& key) {
+        const toml::node* n = take(key);
+        if (n && !n->is_table()) failValue(*n, key, "expected a table ([" + full(key) + "])");
+        return Section(mCtx, n ? n->as_table() : nullptr, full(key), n ? lineOf(*n) : mLine);
+    }
+
+    /// Array of tables `key` ([[key]] in TOML); empty if absent.
+    std::vector<Section> tables(const std::string& key) {
+        const toml::node* n = take(key);
+        std::vector<Section> out;
+        if (!n) return out;
+        const toml::array* a = n->as_array();
+        if (!a || !a->is_array_of_tables())
+            failValue(*n, key, "expected an array of tables ([[" + full(key) + "]])");
+        for (size_t i = 0; i < a->size(); ++i)
+            out.emplace_back(mCtx, (*a)[i].as_table(), full(key) + "[" + std::to_string(i) + "]",
+                             lineOf((*a)[i]));
+        return out;
+    }
+
+    /// Throws for the first key of the table that no getter asked for.
+    void finish() const {
+        if (!mTable) return;
+        for (auto&& [k, v] : *mTable) {
+            const std::string key(k.str());
+            if (std::find(mKnown.begin(), mKnown.end(), key) != mKnown.end()) continue;
+            std::string best;
+            size_t bestDistance = 3;  // suggest only near misses (two edits or fewer)
+            for (const std::string& known : mKnown) {
+                const size_t d = editDistance(key, known);
+                if (d < bestDistance) bestDistance = d, best = known;
+            }
+            std::string valid;
+            for (const std::string& known : mKnown) valid += (valid.empty() ? "" : ", ") + known;
+            std::string reason = "unknown key";
+            if (!best.empty()) reason += " (did you mean '" + best + "'?)";
+            reason += mName.empty() ? "; valid sections: " : "; valid keys here: ";
+            reason += valid;
+            fail(lineOf(k, v), key, reason);
+        }
+    }
+
+    double toNumber(const toml::node& n, const std::string& key, Limit limit) const {
+        double v;
+        if (n.is_integer())
+            v = static_cast<double>(n.as_integer()->get());
+        else if (n.is_floating_point())
+            v = n.as_floating_point()->get();
+        else
+            failValue(n, key, "expected a number, not " + typeName(n.type()));
+        if (!limit.holds(v)) failValue(n, key, limit.text());
+        return v;
+    }
+
+    int64_t toInteger(const toml::node& n, const std::string& key, int64_t lo, int64_t hi) const {
+        if (!n.is_integer()) failValue(n, key, "expected an integer, not " + typeName(n.type()));
+        const int64_t v = n.as_integer()->get();
+        if (v < lo || v > hi)
+            failValue(n, key, "must be in " + std::to_string(lo) + ".." + std::to_string(hi));
+        return v;
+    }
+
+    static int lineOf(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
+    static int lineOf(const toml::key& k, const toml::node& n) {
+        const int line = static_cast<int>(k.source().begin.line);
+        return line > 0 ? line : lineOf(n);
+    }
+
+  private:
+    Context& mCtx;
+    const toml::table* mTable;
+    std::string mName;
+    int mLine;
+    std::vector<std::string> mKnown;
+    std::set<std::string> mGiven;
+};
+
+glm::vec3 toVec3(const std::array<double, 3>& a) {
+    return glm::vec3(static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]));
+}
+std::array<double, 3> fromVec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+std::string resolveAgainst(const fs::path& folder, const std::string& p) {
+    fs::path path(p);
+    if (path.is_absolute() || folder.empty()) return path.lexically_normal().string();
+    return (folder / path).lexically_normal().string();
+}
+
+/// Requires an input file to exist and be a regular file; names it as resolved and as written.
+void requireInputFile(Section& s, const std::string& key, const std::string& resolved,
+                      const std::string& written) {
+    std::error_code ec;
+    const fs::file_status st = fs::status(resolved, ec);
+    const std::string got = " (got \"" + written + "\")";
+    if (ec || !fs::exists(st)) s.failKey(key, "no such file '" + resolved + "'" + got);
+    if (fs::is_directory(st)) s.failKey(key, "'" + resolved + "' is a folder, not an image" + got);
+    if (!fs::is_regular_file(st)) s.failKey(key, "'" + resolved + "' is not a regular file" + got);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sections
+
+void readTerrain(Context& ctx, Section s) {
+    TerrainSection& t = ctx.scene->terrain;
+    sim::TerrainSpec& spec = t.spec;
+
+    const std::string kindName = s.string("kind", "gaussian_hill");
+    try {
+        spec.kind = sim::terrainKindFromName(kindName);
+    } catch (const std::invalid_argument&) {
+        s.failKey("kind",
+                  "expected one of flat, gaussian_hill, ridge, valley, crater, fractal, "
+                  "hemisphere, heightmap (got \"" +
+                      kindName + "\")");
+    }
+    const bool heightmap = spec.kind == sim::TerrainKind::Heightmap;
+
+    const auto size = s.vec<2>("size_m", {40.0, 40.0}, above(0.0));
+    spec.sizeX_m = size[0];
+    spec.sizeY_m = size[1];
+    spec.spacing_m = s.number("spacing_m", 0.25, above(0.0));
+    spec.height_m = s.number("height_m", 6.0, closed(0.0, 1e5));
+    spec.radius_m = s.number("radius_m", 8.0, above(0.0));
+    const auto center = s.vec<2>("center_m", {spec.sizeX_m / 2, spec.sizeY_m / 2}, anyFinite());
+    spec.centerX_m = center[0];
+    spec.centerY_m = center[1];
+    spec.axis_deg = s.number("axis_deg", 0.0, anyFinite());
+    spec.seed = static_cast<uint32_t>(s.integer("seed", 1, 0, 4294967295LL));
+    spec.octaves = static_cast<int>(s.integer("octaves", 5, 1, 16));
+    spec.roughness = s.number("roughness", 0.5, above(0.0, 1.0));
+    spec.featureSize_m = s.number("feature_size_m", 20.0, above(0.0));
+
+    const std::string image = s.string("image", "");
+    t.metresPerPixel = s.number("metres_per_pixel", 1.0, above(0.0));
+    t.heightScale_m = s.number("height_scale_m", 10.0, closed(-1e5, 1e5));
+    t.heightOffset_m = s.number("height_offset_m", 0.0, closed(-1e5, 1e5));
+    t.meshStride = static_cast<int>(s.integer("mesh_stride", 1, 1, 1024));
+    s.finish();
+
+    // Which keys each kind reads (sim/Heightfield.cpp); the others are noted as ignored.
+    using K = sim::TerrainKind;
+    auto uses = [&](const std::string& key) -> bool {
+        const K k = spec.kind;
+        if (key == "size_m" || key == "spacing_m") return !heightmap;
+        if (key == "height_m")
+            return k == K::GaussianHill || k == K::Ridge || k == K::Valley || k == K::Crater ||
+                   k == K::Fractal;
+        if (key == "radius_m" || key == "center_m")
+            return k == K::GaussianHill || k == K::Ridge || k == K::Valley || k == K::Crater ||
+                   k == K::Hemisphere;
+        if (key == "axis_deg") return k == K::Ridge || k == K::Valley;
+        if (key == "seed" || key == "octaves" || key == "roughness" || key == "feature_size_m")
+            return k == K::Fractal;
+        if (key == "image" || key == "metres_per_pixel" || key == "height_scale_m" ||
+            key == "height_offset_m")
+            return heightmap;
+        return true;
+    };
+    for (const char* key : {"size_m", "spacing_m", "height_m", "radius_m", "center_m", "axis_deg",
+                            "seed", "octaves", "roughness", "feature_size_m", "image",
+                            "metres_per_pixel", "height_scale_m", "height_offset_m"}) {
+        if (s.given(key) && !uses(key))
+            ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) + ": not used by kind \"" +
+                                       kindName + "\" (ignored)");
+    }
+
+    if (heightmap) {
+        if (image.empty()) {
+            if (s.given("image")) s.failKey("image", "must name an image file (got \"\")");
+            s.fail(s.line(), "image", "kind \"heightmap\" needs an image file (image = \"...\")");
+        }
+        t.imagePath = resolveAgainst(ctx.folder, image);
+        requireInputFile(s, "image", t.imagePath, image);
+        return;  // grid size is known once the image header is read (Heightmap.cpp checks it)
+    }
+
+    // Refuse absurd grids before anything allocates them.
+    const int64_t nx = samplesAlong(spec.sizeX_m, spec.spacing_m);
+    const int64_t ny = samplesAlong(spec.sizeY_m, spec.spacing_m);
+    if (nx > MAX_SAMPLES_PER_SIDE || ny > MAX_SAMPLES_PER_SIDE) {
+        std::ostringstream msg;
+        msg << "a " << Limit::num(spec.sizeX_m) << " x " << Limit::num(spec.sizeY_m)
+            << " m terrain at this spacing needs " << nx << " x " << ny << " samples; at most "
+            << MAX_SAMPLES_PER_SIDE << " per side (raise spacing_m) (got "
+            << Limit::num(spec.spacing_m) << ")";
+        s.failKey("spacing_m", msg.str());
+    }
+    const double bytes = estimateTerrainBytes(nx, ny, t.meshStride);
+    if (bytes > MAX_TERRAIN_BYTES) {
+        std::ostringstream msg;
+        msg << "a " << nx << " x " << ny << " sample terrain and its render mesh need about "
+            << formatBytes(bytes) << "; at most " << formatBytes(MAX_TERRAIN_BYTES)
+            << " (raise spacing_m or mesh_stride) (got " << Limit::num(spec.spacing_m) << ")";
+        s.failKey("spacing_m", msg.str());
+    }
+    if (t.meshStride >= std::max(nx, ny))
+        s.failKey("mesh_stride", "must be smaller than the grid (" + std::to_string(nx) + " x " +
+                                     std::to_string(ny) + " samples) (got " +
+                                     std::to_string(t.meshStride) + ")");
+}
+
+void readGrass(Context& ctx, Section s) {
+    GrassSection& g = ctx.scene->grass;
+    g.params.height_m = static_cast<float>(s.number("height_m", 0.5, above(0.0, 100.0)));
+    g.params.shells = static_cast<int>(s.integer("shells", 16, 1, MAX_SHELLS));
+    g.params.stiffness = static_cast<float>(s.number("stiffness", 1.0, above(0.0, 100.0)));
+    g.params.tile_m = static_cast<float>(s.number("tile_m", 1.0, above(0.0, 1e5)));
+    const std::string texture = s.string("texture", "generated");
+
+    Section gen = s.table("generated");
+    render::GrassTextureSpec& spec = g.generated;
+    const int64_t size = gen.integer("size", 512, 16, 4096);
+    if ((size & (size - 1)) != 0)
+        gen.failKey("size",
+                    "must be a power of two in 16..4096 (got " + std::to_string(size) + ")");
+    spec.size = static_cast<int>(size);
+    spec.seed = static_cast<uint32_t>(gen.integer("seed", 1, 0, 4294967295LL));
+    spec.density = static_cast<float>(gen.number("density", spec.density, above(0.0, 1.0)));
+    spec.minHeight = static_cast<float>(gen.number("min_height", spec.minHeight, above(0.0, 1.0)));
+    spec.groundColor = toVec3(gen.vec<3>("ground_color", fromVec3(spec.groundColor), closed(0, 1)));
+    spec.baseColor = toVec3(gen.vec<3>("base_color", fromVec3(spec.baseColor), closed(0, 1)));
+    spec.tipColor = toVec3(gen.vec<3>("tip_color", fromVec3(spec.tipColor), closed(0, 1)));
+    spec.colorVariation =
+        static_cast<float>(gen.number("color_variation", spec.colorVariation, closed(0.0, 1.0)));
+    gen.finish();
+    s.finish();
+
+    if (texture.empty()) s.failKey("texture", "expected \"generated\" or an image path (got \"\")");
+    if (texture != "generated") {
+        g.texturePath = resolveAgainst(ctx.folder, texture);
+        requireInputFile(s, "texture", g.texturePath, texture);
+        if (gen.present())
+            ctx.scene->notes.push_back(ctx.scene->where("grass.generated") +
+                                       ": not used: grass.texture names an image (ignored)");
+    }
+}
+
+void readWind(Context& ctx, Section s) {
+    WindSection& w = ctx.scene->wind;
+    const std::string kind = s.string("kind", "point_source");
+    if (kind != "point_source")
+        s.failKey("kind",
+                  "expected \"point_source\" (the only wind kind so far) (got \"" + kind + "\")");
+    w.kind = WindKind::PointSource;
+    coupling::PointSourceSpec& p = w.pointSource;
+    w.autoSource = !s.take("source_m");
+    if (!w.autoSource) p.wsSource_m = toVec3(s.vec<3>("source_m", {0, 0, 0}, anyFinite()));
+    p.steps = static_cast<int>(s.integer("steps", 16, 1, 1024));
+    p.stepDelay_s = s.number("step_delay_s", 0.15, closed(0.0, 3600.0));
+    p.blowAway = s.boolean("blow_away", true);
+
+    Section g = s.table("gust");
+    const double period_s = g.number("period_s", 4.0, above(0.0, 1e6));
+    const toml::node* keys = g.take("keys");
+    const bool shaped = g.take("base") || g.take("peak") || g.take("attack_s") || g.take("decay_s");
+    const double base = g.number("base", 0.1, closed(-MAX_INTENSITY, MAX_INTENSITY));
+    const double peak = g.number("peak", 0.8, closed(-MAX_INTENSITY, MAX_INTENSITY));
+    const double attack_s = g.number("attack_s", 0.4, above(0.0, 1e6));
+    const double decay_s = g.number("decay_s", 1.6, above(0.0, 1e6));
+    g.finish();
+    s.finish();
+
+    std::ostringstream desc;
+    if (keys) {
+        if (shaped) g.failKey("keys", "give either keys or base/peak/attack_s/decay_s, not both");
+        const toml::array* a = keys->as_array();
+        if (!a || a->empty())
+            g.failValue(*keys, "keys", "expected an array of [t_s, intensity] pairs");
+        std::vector<coupling::GustKey> list;
+        for (size_t i = 0; i < a->size(); ++i) {
+            const std::string name = "keys[" + std::to_string(i) + "]";
+            const toml::array* pair = (*a)[i].as_array();
+            if (!pair || pair->size() != 2)
+                g.failValue((*a)[i], name, "expected a pair [t_s, intensity]");
+            const double t_s = g.toNumber((*pair)[0], name + "[0]", atLeast(0.0));
+            if (!(t_s < period_s))
+                g.failValue((*pair)[0], name + "[0]",
+                            "key time must be < period_s = " + Limit::num(period_s));
+            if (!list.empty() && !(t_s > list.back().t_s))
+                g.failValue((*pair)[0], name + "[0]",
+                            "key times must increase strictly (previous key at " +
+                                Limit::num(list.back().t_s) + " s)");
+            const double intensity =
+                g.toNumber((*pair)[1], name + "[1]", closed(-MAX_INTENSITY, MAX_INTENSITY));
+            list.push_back({t_s, intensity});
+        }
+        desc << list.size() << " keys over a " << Limit::num(period_s) << " s period";
+        w.curve.emplace(period_s, std::move(list));
+    } else {
+        if (!(attack_s + decay_s < period_s)) {
+            const std::string got = Limit::num(attack_s) + " + " + Limit::num(decay_s);
+            g.failKey(g.given("decay_s")    ? "decay_s"
+                      : g.given("attack_s") ? "attack_s"
+                                            : "period_s",
+                      "attack_s + decay_s must be shorter than period_s = " + Limit::num(period_s) +
+                          " (got " + got + ")");
+        }
+        desc << "attack " << Limit::num(attack_s) << " s to " << Limit::num(peak) << ", decay "
+             << Limit::num(decay_s) << " s to " << Limit::num(base) << ", period "
+             << Limit::num(period_s) << " s";
+        w.curve = coupling::GustCurve::attackDecay(period_s, base, peak, attack_s, decay_s);
+    }
+    w.curveDescription = desc.str();
+}
+
+void readLighting(Context& ctx, Section s) {
+    render::Lighting& l = ctx.scene->lighting;
+    l.ambient = toVec3(s.vec<3>("ambient", {0.25, 0.25, 0.25}, closed(0.0, 1e3)));
+    l.specularPower = static_cast<float>(s.number("specular_power", 32.0, closed(1.0, 4096.0)));
+    l.specularStrength = static_cast<float>(s.number("specular_strength", 0.3, closed(0.0, 1e3)));
+    l.selfShadowMin = static_cast<float>(s.number("self_shadow_min", 0.25, closed(0.0, 1.0)));
+    std::vector<Section> lights = s.tables("light");
+    s.finish();
+    if (static_cast<int>(lights.size()) > maxLights())
+        s.failKey("light", "at most " + std::to_string(maxLights()) + " lights (got " +
+                               std::to_string(lights.size()) + ")");
+    for (Section& ls : lights) {
+        render::PointLight light;
+        if (!ls.take("position_m")) ls.fail(ls.line(), "", "missing key position_m (required)");
+        light.wsPosition_m = toVec3(ls.vec<3>("position_m", {0, 0, 0}, anyFinite()));
+        light.color = toVec3(ls.vec<3>("color", {1, 1, 1}, closed(0.0, 1e6)));
+        const auto att = ls.vec<3>("attenuation", {1, 0, 0}, closed(0.0, 1e6));
+        if (!(att[0] + att[1] + att[2] > 0.0))
+            ls.failKey("attenuation", "k_c, k_l and k_q cannot all be 0 (got [0, 0, 0])");
+        light.attenuation = toVec3(att);
+        ls.finish();
+        l.lights.push_back(light);
+    }
+}
+
+void readCamera(Context& ctx, Section s) {
+    render::Camera& c = ctx.scene->camera;
+    ctx.scene->autoCameraPosition = !s.take("position_m");
+    ctx.scene->autoCameraTarget = !s.take("target_m");
+    c.wsPosition_m = toVec3(s.vec<3>("position_m", fromVec3(c.wsPosition_m), anyFinite()));
+    c.wsTarget_m = toVec3(s.vec<3>("target_m", fromVec3(c.wsTarget_m), anyFinite()));
+    c.fovY_deg = static_cast<float>(s.number("fov_deg", 45.0, closed(1.0, 179.0)));
+    c.near_m = static_cast<float>(s.number("near_m", 0.1, above(0.0, 1e6)));
+    c.far_m = static_cast<float>(s.number("far_m", 1000.0, above(0.0, 1e9)));
+    s.finish();
+    if (!(c.far_m > c.near_m))
+        s.failKey("far_m", "must be greater than near_m = " + Limit::num(c.near_m) + " (got " +
+                               Limit::num(c.far_m) + ")");
+    if (!ctx.scene->autoCameraPosition && !ctx.scene->autoCameraTarget) {
+        const glm::vec3 d = c.wsTarget_m - c.wsPosition_m;
+        if (!(d.x * d.x + d.y * d.y + d.z * d.z > 1e-12f))
+            s.failKey("target_m", "must differ from position_m (the camera needs a direction)");
+    }
+}
+
+void readOutput(Context& ctx, Section s) {
+    OutputSection& o = ctx.scene->output;
+    o.width = static_cast<int>(s.integer("width", 640, 1, MAX_IMAGE_SIDE_PX));
+    o.height = static_cast<int>(s.integer("height", 480, 1, MAX_IMAGE_SIDE_PX));
+    o.frames = static_cast<int>(s.integer("frames", 48, 1, MAX_FRAMES));
+    o.fps = s.number("fps", 24.0, above(0.0, 1000.0));
+    o.startTime_s = s.number("start_time_s", 0.0, closed(-1e9, 1e9));
+    o.folder = s.string("folder", "out/" + ctx.scene->name);
+    o.prefix = s.string("prefix", "frame");
+    s.finish();
+    if (o.folder.empty()) s.failKey("folder", "must name a folder (got \"\")");
+    const bool prefixOk =
+        !o.prefix.empty() && o.prefix.size() <= 100 &&
+        std::all_of(o.prefix.begin(), o.prefix.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+        });
+    if (!prefixOk)
+        s.failKey("prefix",
+                  "must be 1-100 letters, digits, '_', '-' or '.' (got \"" + o.prefix + "\")");
+    if (auto problem = outputBudgetProblem(o)) s.failKey(problem->key, problem->reason);
+}
+
+}  // namespace
+
+std::optional<BudgetProblem> outputBudgetProblem(const OutputSection& o) {
+    const double pixels = static_cast<double>(o.width) * o.height;
+    if (pixels * FRAME_BYTES_PER_PIXEL > MAX_FRAME_BYTES)
+        return BudgetProblem{"width", "a " + std::to_string(o.width) + " x " +
+                                          std::to_string(o.height) + " frame needs about " +
+                                          formatBytes(pixels * FRAME_BYTES_PER_PIXEL) +
+                                          " of buffers; at most " + formatBytes(MAX_FRAME_BYTES)};
+    const double outBytes = pixels * o.frames * PNG_BYTES_PER_PIXEL;
+    if (outBytes > MAX_OUTPUT_BYTES)
+        return BudgetProblem{
+            "frames", std::to_string(o.frames) + " frames of " + std::to_string(o.width) + " x " +
+                          std::to_string(o.height) + " would write about " + formatBytes(outBytes) +
+                          " of PNG; at most " + formatBytes(MAX_OUTPUT_BYTES)};
+    return std::nullopt;
+}
+
+double estimatePngBytes(const OutputSection& o) {
+    return static_cast<double>(o.width) * o.height * o.frames * PNG_BYTES_PER_PIXEL;
+}
+
+int64_t samplesAlong(double size_m, double spacing_m) {
+    const double n = std::floor(size_m / spacing_m + 0.5) + 1.0;
+    if (!(n < 1e15)) return std::numeric_limits<int64_t>::max() / 4;
+    return std::max<int64_t>(2, static_cast<int64_t>(n));
+}
+
+double estimateTerrainBytes(int64_t nx, int64_t ny, int stride) {
+    // Heightfield: one float per sample. Mesh vertex: position, normal (2 x 12 B), uv (8 B); wind
+    // direction and group (16 B) in the source and in GrassWind; GL copies of all of it; and two
+    // triangles (24 B of indices) per quad.
+    constexpr double HEIGHT_BYTES = 4.0, VERTEX_BYTES = 2 * (32.0 + 2 * 16.0) + 24.0;
+    const double mx = std::ceil(static_cast<double>(nx - 1) / stride) + 1;
+    const double my = std::ceil(static_cast<double>(ny - 1) / stride) + 1;
+    return HEIGHT_BYTES * static_cast<double>(nx) * static_cast<double>(ny) +
+           VERTEX_BYTES * mx * my;
+}
+
+std::string formatBytes(double bytes) {
+    const char* units[] = {"B", "KB", "MB", "GB", "TB", "PB", "EB"};
+    int u = 0;
+    while (bytes >= 1024.0 && u < 6) bytes /= 1024.0, ++u;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, u == 0 ? "%.0f %s" : "%.1f %s", bytes, units[u]);
+    return buf;
+}
+
+Scene parseSceneString(const std::string& text, const std::string& pathForMessages) {
+    Scene scene;
+    scene.path = pathForMessages;
+    scene.name = fs::path(pathForMessages).stem().string();
+    if (scene.name.empty()) scene.name = "scene";
+
+    toml::table root;
+    try {
+        root = toml::parse(text, pathForMessages);
+    } catch (const toml::parse_error& e) {
+        const auto& begin = e.source().begin;
+        std::string reason(e.description());
+        std::replace(reason.begin(), reason.end(), '\n', ' ');
+        throw SceneError(pathForMessages + ":" + std::to_string(begin.line) + ":" +
+                         std::to_string(begin.column) + ": " + reason);
+    }
+
+    Context ctx{pathForMessages, fs::path(pathForMessages).parent_path(), &scene};
+    Section top(ctx, &root, "", 1);
+    scene.description = top.string("description", "");
+    // Terrain first: later sections' defaults and checks may depend on it.
+    readTerrain(ctx, top.table("terrain"));
+    readGrass(ctx, top.table("grass"));
+    readWind(ctx, top.table("wind"));
+    readLighting(ctx, top.table("lighting"));
+    readCamera(ctx, top.table("camera"));
+    readOutput(ctx, top.table("output"));
+    top.finish();
+    return scene;
+}
+
+Scene parseSceneFile(const std::string& path) {
+    std::error_code ec;
+    const fs::file_status st = fs::status(path, ec);
+    if (ec || !fs::exists(st)) throw SceneError(path + ": cannot read the scene: no such file");
+    if (fs::is_directory(st)) throw SceneError(path + ": is a folder, not a scene file");
+    const uintmax_t size = fs::file_size(path, ec);
+    if (!ec && size > MAX_SCENE_FILE_BYTES)
+        throw SceneError(path + ": " + formatBytes(static_cast<double>(size)) +
+                         " is too large for a scene file (at most " +
+                         formatBytes(MAX_SCENE_FILE_BYTES) + ")");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw SceneError(path + ": cannot read the scene: " + std::strerror(errno));
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw SceneError(path + ": cannot read the scene: read error");
+    return parseSceneString(text.str(), path);
+}
+
+}  // namespace gale::app

@@ -1,0 +1,66 @@
+#pragma once
+/// \file SceneParser.h
+/// Reads a TOML scene into a validated Scene. The schema, with every key, its type, unit, default
+/// and range, is docs/scene-format.md. Unknown keys, wrong types and out-of-range values are
+/// errors; every error is a SceneError whose message reads
+///   FILE:LINE: section.key: reason (got VALUE)
+/// or, for TOML syntax errors, FILE:LINE:COL: reason.
+///
+/// @code
+///   gale::app::Scene scene = gale::app::parseSceneFile("examples/knoll.toml");
+///   // scene.grass.params.shells, scene.output.folder, ...
+/// @endcode
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "app/Scene.h"
+
+namespace gale::app {
+
+/// Scene limits, checked by the parser (and by the CLI for its overrides).
+inline constexpr int MAX_SHELLS = 256;           ///< render::kMaxShells
+inline constexpr int MAX_IMAGE_SIDE_PX = 16384;  ///< output width and height
+inline constexpr int MAX_FRAMES = 100000;
+inline constexpr int MAX_SAMPLES_PER_SIDE = 16384;  ///< heightfield grid (also sim::makeTerrain's)
+inline constexpr double MAX_TERRAIN_BYTES = 4.0 * 1024 * 1024 * 1024;    ///< heightfield + mesh
+inline constexpr double MAX_FRAME_BYTES = 2.0 * 1024 * 1024 * 1024;      ///< GL buffers of a frame
+inline constexpr double MAX_OUTPUT_BYTES = 1024.0 * 1024 * 1024 * 1024;  ///< all frames, estimated
+inline constexpr uintmax_t MAX_SCENE_FILE_BYTES = 16u * 1024 * 1024;
+
+/// Most point lights a scene may name: render::kMaxLights (the shell shader's uniform arrays).
+int maxLights();
+
+/// Reads and parses the scene file at `path` (relative paths inside it resolve against its
+/// folder). Throws SceneError.
+Scene parseSceneFile(const std::string& path);
+
+/// Parses scene text; `pathForMessages` names it in error messages and its folder anchors the
+/// relative paths inside (image files). Throws SceneError.
+Scene parseSceneString(const std::string& text, const std::string& pathForMessages);
+
+/// Estimated bytes of the heightfield (nx x ny samples) and its render mesh (every stride-th
+/// sample): positions, normals, texture coordinates, wind directions and groups, indices, and
+/// their GL copies.
+double estimateTerrainBytes(int64_t nx, int64_t ny, int stride);
+
+/// Samples along one side of a procedural terrain, as sim::makeTerrain counts them.
+int64_t samplesAlong(double size_m, double spacing_m);
+
+/// An output too large to attempt: the key to blame ("width" or "frames") and why.
+struct BudgetProblem {
+    std::string key;
+    std::string reason;
+};
+/// Refuses frames whose GL buffers would exceed MAX_FRAME_BYTES and runs whose PNGs would exceed
+/// MAX_OUTPUT_BYTES (estimated); std::nullopt when the output is reasonable.
+std::optional<BudgetProblem> outputBudgetProblem(const OutputSection& output);
+
+/// Estimated bytes of all frames as PNG (noisy grass: about 2 bytes per pixel).
+double estimatePngBytes(const OutputSection& output);
+
+/// Human-readable byte count ("3.2 GB").
+std::string formatBytes(double bytes);
+
+}  // namespace gale::app

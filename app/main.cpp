@@ -1,0 +1,152 @@
+/// \file main.cpp
+/// The gale program: verbs over the scene format (docs/cli.md). The only place that catches
+/// exceptions: bad input exits 2, internal failures exit 1, each with one line on stderr.
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <new>
+#include <stdexcept>
+#include <string>
+
+#include "app/BenchRender.h"
+#include "app/Commands.h"
+#include "app/Errors.h"
+#include "app/SceneParser.h"
+#include "app/Version.h"
+
+namespace {
+
+using namespace gale::app;
+
+int reportError(const std::string& message, int code) {
+    std::string line = message;
+    std::replace(line.begin(), line.end(), '\n', ' ');
+    std::fflush(stdout);
+    std::fprintf(stderr, "gale: error: %s\n", line.c_str());
+    return code;
+}
+
+void addSceneOptions(CLI::App* verb, SceneRunOptions& o) {
+    verb->add_option("scene", o.scenePath, "Scene file (TOML; see docs/scene-format.md)")
+        ->required();
+    verb->add_option("-o,--output", o.folder,
+                     "Output folder, relative to the current directory (default: the scene's "
+                     "output.folder)");
+    verb->add_option("--frames", o.frames, "Number of frames (overrides output.frames)")
+        ->check(CLI::Range(1, MAX_FRAMES));
+    verb->add_option("--width", o.width, "Image width in pixels (overrides output.width)")
+        ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
+    verb->add_option("--height", o.height, "Image height in pixels (overrides output.height)")
+        ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
+}
+
+const char* EXIT_CODES_FOOTER =
+    "\nExit codes: 0 ok, 1 internal or runtime failure (e.g. no GL context), 2 bad input (scene, "
+    "image, arguments, output folder).";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "gale: wind over terrain, rendered as real-time shell grass (Bakay, Lalonde, "
+        "Heidrich 2002).",
+        "gale"};
+    app.set_version_flag("--version", std::string("gale ") + GALE_VERSION);
+    app.footer(
+        std::string("\nRun 'gale VERB --help' for a verb's options; docs/cli.md has them all.") +
+        EXIT_CODES_FOOTER);
+    app.require_subcommand(1);
+
+    SceneRunOptions checkOptions;
+    CLI::App* check = app.add_subcommand(
+        "check", "Validate a scene and print what a render would build and what it leaves out");
+    addSceneOptions(check, checkOptions);
+    check->footer(EXIT_CODES_FOOTER);
+
+    SceneRunOptions renderOptions;
+    CLI::App* render = app.add_subcommand(
+        "render", "Render a scene headless to PNG frames, with a JSON run report");
+    addSceneOptions(render, renderOptions);
+    render->footer(std::string("\nFrames go to FOLDER/<prefix>_0000.png ..., the report to "
+                               "FOLDER/<prefix>_report.json.") +
+                   EXIT_CODES_FOOTER);
+
+    BladeOptions bladeOptions;
+    CLI::App* blade = app.add_subcommand(
+        "blade",
+        "Print the length-preserving bend of one blade as CSV (i,n_m,w_m); --svg draws it");
+    blade->add_option("--shells", bladeOptions.shells, "Shells above the ground, N")
+        ->required()
+        ->check(CLI::Range(1, MAX_SHELLS));
+    blade
+        ->add_option("--intensity", bladeOptions.intensity,
+                     "Wind intensity I (1 lays the tip flat; negative bends the other way)")
+        ->required()
+        ->check(CLI::Range(-4.0, 4.0));
+    blade
+        ->add_option("--stiffness", bladeOptions.stiffness,
+                     "Stiffness gamma in theta_j = (pi/2) I (j/N)^gamma (1 is the paper's)")
+        ->required()
+        ->check(CLI::Range(1e-6, 100.0));
+    blade->add_option("--height-m", bladeOptions.height_m, "Blade height in metres")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-6, 100.0));
+    blade->add_option("--svg", bladeOptions.svgPath, "Also write an SVG drawing of the blade here");
+    blade->footer(EXIT_CODES_FOOTER);
+
+    BenchRenderOptions benchOptions;
+    CLI::App* bench = app.add_subcommand("bench", "Benchmarks");
+    bench->require_subcommand(1);
+    CLI::App* benchRender = bench->add_subcommand("render",
+                                                  "Time the shell renderer (the paper's Table 2) "
+                                                  "against a trivial fill of the same geometry");
+    benchRender->add_option("--frames", benchOptions.frames, "Timed frames per row and pass")
+        ->capture_default_str()
+        ->check(CLI::Range(1, MAX_FRAMES));
+    benchRender->add_flag("--quick", benchOptions.quick,
+                          "2 frames and 1 warm-up per row: a smoke run, not a measurement");
+    benchRender->add_option("--json", benchOptions.jsonPath, "Also write the results as JSON here");
+    benchRender->footer(EXIT_CODES_FOOTER);
+
+    TerrainExportOptions terrainOptions;
+    CLI::App* terrain = app.add_subcommand(
+        "terrain",
+        "Export a scene's heightfield as a 16-bit grey PNG (a heightmap scene reads it)");
+    terrain->add_option("scene", terrainOptions.scenePath, "Scene file")->required();
+    terrain->add_option("-o,--output", terrainOptions.imagePath, "PNG file to write")->required();
+    terrain->footer(EXIT_CODES_FOOTER);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        std::string hint = " (see 'gale --help')";
+        for (CLI::App* verb : {check, render, blade, bench, terrain})
+            if (verb->parsed()) hint = " (see 'gale " + verb->get_name() + " --help')";
+        if (benchRender->parsed()) hint = " (see 'gale bench render --help')";
+        return reportError(e.what() + hint, EXIT_BAD_INPUT);
+    }
+
+    try {
+        if (check->parsed()) return runCheck(checkOptions);
+        if (render->parsed()) return runRender(renderOptions);
+        if (blade->parsed()) return runBlade(bladeOptions);
+        if (benchRender->parsed()) {
+            try {
+                return runBenchRender(benchOptions);
+            } catch (const std::invalid_argument& e) {
+                throw InputError(e.what());  // the bench's "bad options"
+            }
+        }
+        if (terrain->parsed()) return runTerrainExport(terrainOptions);
+        return reportError("no verb given (see 'gale --help')", EXIT_BAD_INPUT);
+    } catch (const InputError& e) {
+        return reportError(e.what(), EXIT_BAD_INPUT);
+    } catch (const std::bad_alloc&) {
+        return reportError("out of memory", EXIT_FAILURE_INTERNAL);
+    } catch (const std::exception& e) {
+        return reportError(e.what(), EXIT_FAILURE_INTERNAL);
+    }
+}
