@@ -1,0 +1,327 @@
+#include "coupling/FieldWind.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "coupling/PointSourceWind.h"
+
+namespace gale::coupling {
+namespace {
+
+constexpr double PI = 3.14159265358979323846;
+// Oscillator sub-steps per natural period: the trapezoidal rule's phase error is about
+// (omega h)^2 / 12 per step, under 0.2 % at 40 steps per period.
+constexpr double OSCILLATOR_STEPS_PER_PERIOD = 40.0;
+// Cap on oscillator sub-steps per update (see advanceOscillators).
+constexpr int MAX_OSCILLATOR_SUBSTEPS = 4000;
+// Below this many vertices a loop runs serially: TBB's overhead would dominate.
+constexpr size_t PARALLEL_GRAIN = 4096;
+
+struct Named {
+    const char* name;
+    int value;
+};
+constexpr Named RESPONSES[] = {{"static", int(BladeResponse::Static)},
+                               {"oscillator", int(BladeResponse::Oscillator)}};
+constexpr Named GROUPINGS[] = {{"levels", int(Grouping::Levels)},
+                               {"tiles", int(Grouping::Tiles)},
+                               {"per_vertex", int(Grouping::PerVertex)}};
+
+template <size_t N>
+int fromName(const Named (&table)[N], const std::string& name, const char* field) {
+    std::string valid;
+    for (const Named& n : table) {
+        if (name == n.name) return n.value;
+        valid += std::string(valid.empty() ? "" : ", ") + n.name;
+    }
+    throw std::invalid_argument(std::string(field) + ": unknown value '" + name +
+                                "' (expected one of: " + valid + ")");
+}
+
+template <size_t N>
+const char* toName(const Named (&table)[N], int value) {
+    for (const Named& n : table)
+        if (n.value == value) return n.name;
+    return "unknown";
+}
+
+void requirePositive(double v, const char* field) {
+    if (!std::isfinite(v) || v <= 0.0) {
+        std::ostringstream msg;
+        msg << field << " must be a finite number > 0, got " << v;
+        throw std::invalid_argument(msg.str());
+    }
+}
+
+template <class F>
+void forEachVertex(size_t count, F&& f) {
+    if (count < PARALLEL_GRAIN) {
+        for (size_t v = 0; v < count; ++v) f(v);
+        return;
+    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, PARALLEL_GRAIN),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t v = r.begin(); v != r.end(); ++v) f(v);
+                      });
+}
+
+glm::vec3 finiteOrZero(const glm::vec3& v) {
+    return (std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) ? v : glm::vec3(0.0f);
+}
+
+}  // namespace
+
+const char* bladeResponseName(BladeResponse r) { return toName(RESPONSES, int(r)); }
+const char* groupingName(Grouping g) { return toName(GROUPINGS, int(g)); }
+BladeResponse bladeResponseFromName(const std::string& name) {
+    return BladeResponse(fromName(RESPONSES, name, "wind.response"));
+}
+Grouping groupingFromName(const std::string& name) {
+    return Grouping(fromName(GROUPINGS, name, "wind.grouping"));
+}
+
+void validate(const FieldWindSpec& spec) {
+    if (spec.grouping != Grouping::PerVertex && (spec.groups < 1 || spec.groups > 4096))
+        throw std::invalid_argument("wind.groups must be in 1..4096, got " +
+                                    std::to_string(spec.groups));
+    requirePositive(spec.bendSpeed_mps, "wind.bend_speed_mps");
+    requirePositive(spec.maxIntensity, "wind.max_intensity");
+    requirePositive(spec.frequency_hz, "wind.frequency_hz");
+    requirePositive(spec.dampingRatio, "wind.damping_ratio");
+    if (spec.response == BladeResponse::Oscillator && spec.grouping == Grouping::Levels)
+        throw std::invalid_argument(
+            "wind.grouping 'levels' regroups vertices at every field step, which would tear an "
+            "oscillator's state apart: use grouping = \"tiles\" or \"per_vertex\" with "
+            "response = \"oscillator\"");
+}
+
+FieldWind::FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec) : mSpec(spec) {
+    validate(spec);
+    const size_t count = mesh.wsPosition_m.size();
+    if (count == 0) throw std::invalid_argument("field wind needs a terrain mesh with vertices");
+    if (mesh.wsNormal.size() != count)
+        throw std::invalid_argument("terrain mesh has " + std::to_string(count) +
+                                    " positions but " + std::to_string(mesh.wsNormal.size()) +
+                                    " normals");
+    mNormal = mesh.wsNormal;
+    if (spec.grouping == Grouping::PerVertex) {
+        mGroupCount = static_cast<int>(count);
+        mTile.resize(count);
+        for (size_t v = 0; v < count; ++v) mTile[v] = static_cast<uint32_t>(v);
+    } else {
+        mGroupCount = spec.groups;
+    }
+    if (spec.grouping == Grouping::Tiles) {
+        glm::vec3 lo = mesh.wsPosition_m[0], hi = lo;
+        for (const glm::vec3& p : mesh.wsPosition_m) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        const int kx = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(spec.groups)))));
+        const int ky = std::max(1, (spec.groups + kx - 1) / kx);
+        const float sx = std::max(hi.x - lo.x, 1e-6f), sy = std::max(hi.y - lo.y, 1e-6f);
+        mTile.resize(count);
+        for (size_t v = 0; v < count; ++v) {
+            const glm::vec3& p = mesh.wsPosition_m[v];
+            const int tx = std::min(kx - 1, static_cast<int>((p.x - lo.x) / sx * kx));
+            const int ty = std::min(ky - 1, static_cast<int>((p.y - lo.y) / sy * ky));
+            mTile[v] = static_cast<uint32_t>(std::min(spec.groups - 1, ty * kx + tx));
+        }
+    }
+}
+
+void FieldWind::addFieldStep(double t_s, std::vector<glm::vec3> wsVelocity_mps) {
+    if (!std::isfinite(t_s)) throw std::invalid_argument("field step time must be finite");
+    if (wsVelocity_mps.size() != mNormal.size())
+        throw std::invalid_argument("field step has " + std::to_string(wsVelocity_mps.size()) +
+                                    " velocities for " + std::to_string(mNormal.size()) +
+                                    " grass vertices");
+    if (!mSteps.empty() && !(t_s > mSteps.back().t_s))
+        throw std::invalid_argument("field step at t = " + std::to_string(t_s) +
+                                    " s does not follow the previous step at t = " +
+                                    std::to_string(mSteps.back().t_s) + " s");
+    mSteps.push_back({t_s, std::move(wsVelocity_mps)});
+}
+
+void FieldWind::dropStepsBefore(double t_s) {
+    while (mSteps.size() > 2 && mSteps[1].t_s <= t_s) {
+        mSteps.pop_front();
+        if (mHaveInterval) {
+            if (mIntervalFirst == 0) mHaveInterval = false;
+            else --mIntervalFirst;
+        }
+    }
+}
+
+void FieldWind::enterInterval(size_t first) {
+    const size_t last = std::min(first + 1, mSteps.size() - 1);
+    const Step& a = mSteps[first];
+    const Step& b = mSteps[last];
+    const size_t count = mNormal.size();
+    mDirection.resize(count);
+    mDrive0.resize(count);
+    mDrive1.resize(count);
+    mGroup.resize(count);
+    const double maxI = mSpec.maxIntensity;
+    const double invBend = 1.0 / mSpec.bendSpeed_mps;
+    forEachVertex(count, [&](size_t v) {
+        const glm::vec3 wa = finiteOrZero(a.wsVelocity_mps[v]);
+        const glm::vec3 wb = finiteOrZero(b.wsVelocity_mps[v]);
+        // One direction for the interval: the tangent part of the mean wind (DESIGN 5, step 2);
+        // a wind that reverses within one step has no mean direction and gets none.
+        const glm::vec3 dir = tangentWindDirection(wa + wb, mNormal[v]);
+        mDirection[v] = dir;
+        // Static response along that direction: signed tangent speed over the bend speed.
+        mDrive0[v] = static_cast<float>(std::clamp(glm::dot(wa, dir) * invBend, -maxI, maxI));
+        mDrive1[v] = static_cast<float>(std::clamp(glm::dot(wb, dir) * invBend, -maxI, maxI));
+        mGroup[v] = mSpec.grouping == Grouping::Levels ? 0u : mTile[v];
+    });
+    if (mSpec.grouping == Grouping::Levels) {
+        // K equal bins over the range the interval's mid-interval drives actually span, so no
+        // level is spent on intensities no vertex has.
+        float lo = maxI, hi = -maxI;
+        for (size_t v = 0; v < count; ++v) {
+            const float mid = 0.5f * (mDrive0[v] + mDrive1[v]);
+            lo = std::min(lo, mid), hi = std::max(hi, mid);
+        }
+        const double width = std::max(double(hi) - lo, 1e-9);
+        forEachVertex(count, [&](size_t v) {
+            const double mid = 0.5 * (double(mDrive0[v]) + mDrive1[v]);
+            const int level = static_cast<int>((mid - lo) / width * mGroupCount);
+            mGroup[v] = static_cast<uint32_t>(std::clamp(level, 0, mGroupCount - 1));
+        });
+    }
+    // Group means at both ends (serial: K accumulators, one pass).
+    std::vector<double> sum0(mGroupCount, 0.0), sum1(mGroupCount, 0.0);
+    std::vector<uint32_t> members(mGroupCount, 0);
+    for (size_t v = 0; v < count; ++v) {
+        sum0[mGroup[v]] += mDrive0[v];
+        sum1[mGroup[v]] += mDrive1[v];
+        ++members[mGroup[v]];
+    }
+    mGroupDrive0.assign(mGroupCount, 0.0);
+    mGroupDrive1.assign(mGroupCount, 0.0);
+    for (int g = 0; g < mGroupCount; ++g) {
+        if (members[g] == 0) continue;
+        mGroupDrive0[g] = sum0[g] / members[g];
+        mGroupDrive1[g] = sum1[g] / members[g];
+    }
+    mIntervalFirst = first;
+    mIntervalT0_s = a.t_s;
+    mIntervalT1_s = b.t_s;
+    mHaveInterval = true;
+    ++mRevision;
+}
+
+double FieldWind::groupDrive(int g, double t_s) const {
+    const double span = mIntervalT1_s - mIntervalT0_s;
+    const double alpha = span > 0.0 ? std::clamp((t_s - mIntervalT0_s) / span, 0.0, 1.0) : 0.0;
+    return mGroupDrive0[g] + (mGroupDrive1[g] - mGroupDrive0[g]) * alpha;
+}
+
+void FieldWind::advanceOscillators(double t_s) {
+    const double omega = 2.0 * PI * mSpec.frequency_hz;
+    const double zeta = mSpec.dampingRatio;
+    if (!mOscStarted || t_s < mOscTime_s) {
+        // Start (or restart after seeking backwards) at rest in the static bend.
+        mOscX.resize(mGroupCount);
+        mOscV.assign(mGroupCount, 0.0);
+        for (int g = 0; g < mGroupCount; ++g) mOscX[g] = groupDrive(g, t_s);
+        mOscTime_s = t_s;
+        mOscStarted = true;
+        return;
+    }
+    const double total = t_s - mOscTime_s;
+    if (total <= 0.0) return;
+    // A long gap (seeking, a paused viewer) needs no more than the last MAX_OSCILLATOR_SUBSTEPS:
+    // older motion has decayed, and the trapezoidal rule is stable at any step.
+    const int substeps = static_cast<int>(std::clamp(
+        std::ceil(total * mSpec.frequency_hz * OSCILLATOR_STEPS_PER_PERIOD), 1.0,
+        double(MAX_OSCILLATOR_SUBSTEPS)));
+    const double h = total / substeps;
+    // Trapezoidal rule for y' = M y + omega^2 u e2, y = (x, v), M = [[0, 1], [-w^2, -2 z w]]:
+    // (I - h/2 M) y1 = (I + h/2 M) y0 + h/2 omega^2 (u0 + u1) e2. A-stable for every h.
+    const double a = h * 0.5;
+    const double w2 = omega * omega, c = 2.0 * zeta * omega;
+    // Inverse of (I - aM) = [[1, -a], [a w2, 1 + a c]]; determinant 1 + a c + a^2 w2 > 0.
+    const double det = 1.0 + a * c + a * a * w2;
+    for (int g = 0; g < mGroupCount; ++g) {
+        double x = mOscX[g], v = mOscV[g];
+        for (int s = 0; s < substeps; ++s) {
+            const double t0 = mOscTime_s + s * h, t1 = t0 + h;
+            const double u = 0.5 * (groupDrive(g, t0) + groupDrive(g, t1));
+            // Right-hand side (I + aM) y0 + 2a w2 u e2.
+            const double rx = x + a * v;
+            const double rv = v + a * (-w2 * x - c * v) + 2.0 * a * w2 * u;
+            x = ((1.0 + a * c) * rx + a * rv) / det;
+            v = (-a * w2 * rx + rv) / det;
+        }
+        mOscX[g] = x;
+        mOscV[g] = v;
+    }
+    mOscTime_s = t_s;
+}
+
+void FieldWind::update(double t_s, render::GrassWind& wind) {
+    if (mSteps.empty()) throw std::logic_error("FieldWind::update before any field step");
+    // The interval holding t: the last step at or before t (the first step before it).
+    size_t first = 0;
+    while (first + 1 < mSteps.size() && mSteps[first + 1].t_s <= t_s) ++first;
+    // Past the last step, `first` is the last step: an interval of one step, held.
+    if (mSpec.response == BladeResponse::Oscillator && mHaveInterval && mOscStarted &&
+        t_s >= mOscTime_s) {
+        // Carry the oscillators through every interval between the last frame and this one, each
+        // with its own drive.
+        while (mIntervalFirst < first) {
+            advanceOscillators(std::min(t_s, mIntervalT1_s));
+            enterInterval(mIntervalFirst + 1);
+        }
+    }
+    if (!mHaveInterval || mIntervalFirst != first) enterInterval(first);
+    if (wind.revision != mRevision || wind.wsDirection.size() != mDirection.size()) {
+        wind.wsDirection = mDirection;
+        wind.group = mGroup;
+        wind.revision = mRevision;
+    }
+    wind.groupIntensity.resize(mGroupCount);
+    if (mSpec.response == BladeResponse::Oscillator) {
+        advanceOscillators(t_s);
+        for (int g = 0; g < mGroupCount; ++g) wind.groupIntensity[g] = static_cast<float>(mOscX[g]);
+    } else {
+        for (int g = 0; g < mGroupCount; ++g)
+            wind.groupIntensity[g] = static_cast<float>(groupDrive(g, t_s));
+    }
+}
+
+std::vector<float> FieldWind::exactStaticIntensity(double t_s) {
+    size_t first = 0;
+    while (first + 1 < mSteps.size() && mSteps[first + 1].t_s <= t_s) ++first;
+    if (!mHaveInterval || mIntervalFirst != first) enterInterval(first);
+    const double span = mIntervalT1_s - mIntervalT0_s;
+    const double alpha = span > 0.0 ? std::clamp((t_s - mIntervalT0_s) / span, 0.0, 1.0) : 0.0;
+    std::vector<float> out(mNormal.size());
+    for (size_t v = 0; v < out.size(); ++v)
+        out[v] = static_cast<float>(mDrive0[v] + (mDrive1[v] - mDrive0[v]) * alpha);
+    return out;
+}
+
+std::vector<float> FieldWind::shownIntensity(const render::GrassWind& wind) {
+    std::vector<float> out(wind.group.size());
+    for (size_t v = 0; v < out.size(); ++v) out[v] = wind.groupIntensity[wind.group[v]];
+    return out;
+}
+
+std::string FieldWind::describe() const {
+    std::ostringstream out;
+    out << "solved-field wind: " << bladeResponseName(mSpec.response) << " blade response (bend speed "
+        << mSpec.bendSpeed_mps << " m/s";
+    if (mSpec.response == BladeResponse::Oscillator)
+        out << ", " << mSpec.frequency_hz << " Hz, damping ratio " << mSpec.dampingRatio;
+    out << "), " << mGroupCount << " groups by " << groupingName(mSpec.grouping);
+    return out.str();
+}
+
+}  // namespace gale::coupling
