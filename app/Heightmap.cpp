@@ -12,6 +12,7 @@
 
 #include "app/AtomicFile.h"
 #include "app/Errors.h"
+#include "app/QuietStderr.h"
 #include "app/SceneParser.h"
 
 namespace gale::app {
@@ -23,8 +24,9 @@ namespace fs = std::filesystem;
     throw ImageError(path + ": " + reason);
 }
 
+/// The first line of an OpenImageIO error (later lines repeat it in libpng's words).
 std::string oneLine(std::string s) {
-    std::replace(s.begin(), s.end(), '\n', ' ');
+    s = s.substr(0, s.find('\n'));
     while (!s.empty() && s.back() == ' ') s.pop_back();
     return s.empty() ? "unknown error" : s;
 }
@@ -36,7 +38,11 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
     if (fs::is_directory(st)) fail(path, "is a folder, not an image");
     if (fs::is_regular_file(st) && fs::file_size(path, ec) == 0)
         fail(path, "empty file, not an image");
-    auto in = OIIO::ImageInput::open(path);
+    std::unique_ptr<OIIO::ImageInput> in;
+    {
+        QuietStderr quiet;
+        in = OIIO::ImageInput::open(path);
+    }
     if (!in) fail(path, "not a readable image (" + oneLine(OIIO::geterror()) + ")");
     return in;
 }
@@ -69,6 +75,19 @@ ImageHeader checkHeader(const std::string& path, const OIIO::ImageSpec& spec, co
 
 }  // namespace
 
+ImageHeader readImageHeader(const std::string& path) {
+    auto in = openImage(path);
+    const OIIO::ImageSpec& spec = in->spec();
+    ImageHeader h;
+    h.width = spec.width;
+    h.height = spec.height;
+    h.channels = spec.nchannels;
+    h.format = in->format_name();
+    h.pixelType = spec.format.c_str();
+    in->close();
+    return h;
+}
+
 ImageHeader readHeightmapHeader(const std::string& path, int meshStride) {
     auto in = openImage(path);
     ImageHeader h = checkHeader(path, in->spec(), in->format_name(), meshStride);
@@ -82,8 +101,13 @@ sim::Heightfield loadHeightmap(const HeightmapSpec& spec) {
     const size_t count = static_cast<size_t>(h.width) * h.height;
     std::vector<float> value(count);
     // The first channel only, converted to float: integer types become [0, 1], floats stay raw.
-    if (!in->read_image(/*subimage=*/0, /*miplevel=*/0, /*chbegin=*/0, /*chend=*/1,
-                        OIIO::TypeDesc::FLOAT, value.data())) {
+    bool read;
+    {
+        QuietStderr quiet;
+        read = in->read_image(/*subimage=*/0, /*miplevel=*/0, /*chbegin=*/0, /*chend=*/1,
+                              OIIO::TypeDesc::FLOAT, value.data());
+    }
+    if (!read) {
         fail(spec.path, "truncated or corrupt image data (" + oneLine(in->geterror()) + ")");
     }
     in->close();

@@ -29,9 +29,14 @@ struct ImageHeader {
     std::string pixelType;  ///< e.g. "uint16", "float"
 };
 
-/// Reads the header of `path`. Throws ImageError ("PATH: reason") for a missing or unreadable
-/// file, a file that is not an image, a volume or deep image, fewer than 2 x 2 pixels, more than
-/// MAX_SAMPLES_PER_SIDE pixels per side, or a grid whose mesh would exceed MAX_TERRAIN_BYTES.
+/// Reads the header of any image (no checks beyond "it is a readable image"). Throws ImageError
+/// ("PATH: reason") for a missing, empty or unreadable file.
+ImageHeader readImageHeader(const std::string& path);
+
+/// Reads the header of `path` as a heightmap. Throws ImageError ("PATH: reason") for a missing or
+/// unreadable file, a file that is not an image, a volume or deep image, fewer than 2 x 2 pixels,
+/// more than MAX_SAMPLES_PER_SIDE pixels per side, or a grid whose mesh would exceed
+/// MAX_TERRAIN_BYTES.
 ImageHeader readHeightmapHeader(const std::string& path, int meshStride = 1);
 
 /// Loads the heightmap into a heightfield via sim::makeHeightfield. Checks the header before

@@ -1,7 +1,5 @@
 #include "app/SceneBuilder.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,6 +7,7 @@
 
 #include "app/Errors.h"
 #include "app/Heightmap.h"
+#include "app/QuietStderr.h"
 #include "coupling/PointSourceWind.h"
 #include "coupling/TerrainMeshBuilder.h"
 #include "render/ImageIO.h"
@@ -29,24 +28,25 @@ constexpr double DEFAULT_ELEVATION_DEG = 28.0;
 render::GrassTexture loadTexture(const Scene& scene) {
     const std::string& path = scene.grass.texturePath;
     // Check the header before decoding: a huge image must not be allocated.
-    {
-        auto in = OIIO::ImageInput::open(path);
-        if (!in) {
-            std::string why = OIIO::geterror();
-            std::replace(why.begin(), why.end(), '\n', ' ');
-            failAt(scene, "grass.texture", path + ": not a readable image (" + why + ")");
-        }
-        const OIIO::ImageSpec& spec = in->spec();
-        if (spec.width != spec.height || spec.width < 1 || (spec.width & (spec.width - 1)) != 0 ||
-            spec.width > MAX_TEXTURE_SIDE_PX)
-            failAt(scene, "grass.texture",
-                   path + ": a grass texture must be square with a power-of-two side of at most " +
-                       std::to_string(MAX_TEXTURE_SIDE_PX) + " pixels (got " +
-                       std::to_string(spec.width) + " x " + std::to_string(spec.height) + ")");
-        in->close();
-    }
+    ImageHeader header;
     try {
-        return render::grassTextureFromImage(render::readImageRgba8(path));
+        header = readImageHeader(path);
+    } catch (const ImageError& e) {
+        failAt(scene, "grass.texture", e.what());
+    }
+    if (header.width != header.height || header.width < 1 ||
+        (header.width & (header.width - 1)) != 0 || header.width > MAX_TEXTURE_SIDE_PX)
+        failAt(scene, "grass.texture",
+               path + ": a grass texture must be square with a power-of-two side of at most " +
+                   std::to_string(MAX_TEXTURE_SIDE_PX) + " pixels (got " +
+                   std::to_string(header.width) + " x " + std::to_string(header.height) + ")");
+    try {
+        render::Image image;
+        {
+            QuietStderr quiet;  // libpng would print the error a second time
+            image = render::readImageRgba8(path);
+        }
+        return render::grassTextureFromImage(std::move(image));
     } catch (const std::exception& e) {
         failAt(scene, "grass.texture", e.what());
     }

@@ -296,9 +296,9 @@ class Section {
             }
             std::string valid;
             for (const std::string& known : mKnown) valid += (valid.empty() ? "" : ", ") + known;
-            std::string reason = "unknown key";
+            std::string reason = v.is_table() ? "unknown section" : "unknown key";
             if (!best.empty()) reason += " (did you mean '" + best + "'?)";
-            reason += mName.empty() ? "; valid sections: " : "; valid keys here: ";
+            reason += mName.empty() ? "; valid top-level keys: " : "; valid keys here: ";
             reason += valid;
             fail(lineOf(k, v), key, reason);
         }
@@ -468,12 +468,12 @@ void readGrass(Context& ctx, Section s) {
     g.params.height_m = static_cast<float>(s.number("height_m", 0.5, above(0.0, 100.0)));
     g.params.shells = static_cast<int>(s.integer("shells", 16, 1, MAX_SHELLS));
     g.params.stiffness = static_cast<float>(s.number("stiffness", 1.0, above(0.0, 100.0)));
-    g.params.tile_m = static_cast<float>(s.number("tile_m", 1.0, above(0.0, 1e5)));
+    g.params.tile_m = static_cast<float>(s.number("tile_m", 3.0, above(0.0, 1e5)));
     const std::string texture = s.string("texture", "generated");
 
     Section gen = s.table("generated");
     render::GrassTextureSpec& spec = g.generated;
-    const int64_t size = gen.integer("size", 512, 16, 4096);
+    const int64_t size = gen.integer("size", 256, 16, 4096);
     if ((size & (size - 1)) != 0)
         gen.failKey("size",
                     "must be a power of two in 16..4096 (got " + std::to_string(size) + ")");
