@@ -1,0 +1,245 @@
+/// \file AirDomain.cpp
+/// Open fractions of cut cells over a heightfield, and the OpenVDB air mask.
+
+#include "sim/AirDomain.h"
+
+#include <openvdb/openvdb.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "sim/PoissonSolver.h"
+#include "sim/VdbIO.h"
+
+namespace gale::sim {
+
+struct AirDomain::Vdb {
+    openvdb::BoolGrid::Ptr mask;
+};
+
+namespace detail {
+namespace {
+
+std::string num(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+/// Mean over t in [0, 1] of clamp(f0 + (f1 - f0) t, 0, D): exact for a linear f.
+double meanClampedLinear(double f0, double f1, double D) {
+    if (f0 > f1) std::swap(f0, f1);  // the mean is symmetric under t -> 1 - t
+    if (f1 <= 0.0) return 0.0;
+    if (f0 >= D) return D;
+    const double df = f1 - f0;
+    if (df < 1e-300) return std::clamp(f0, 0.0, D);
+    const double t0 = std::clamp(-f0 / df, 0.0, 1.0), t1 = std::clamp((D - f0) / df, 0.0, 1.0);
+    const double a = f0 + df * t0, b = f0 + df * t1;
+    return (t1 - t0) * 0.5 * (a + b) + (1.0 - t1) * D;
+}
+
+/// Fraction of t in [0, 1] where g0 + (g1 - g0) t < level.
+double fractionBelow(double g0, double g1, double level) {
+    const bool b0 = g0 < level, b1 = g1 < level;
+    if (b0 && b1) return 1.0;
+    if (!b0 && !b1) return 0.0;
+    const double t = (level - g0) / (g1 - g0);
+    return b0 ? t : 1.0 - t;
+}
+
+float cleanFraction(double f) {
+    if (f < AirDomain::MIN_OPEN_FRACTION) return 0.f;
+    if (f > 1.0 - 1e-6) return 1.f;
+    return float(f);
+}
+
+}  // namespace
+}  // namespace detail
+
+double AirDomain::estimateSolveMemory_bytes(int nx, int ny, int nz) {
+    const double cells = double(nx) * ny * nz;
+    // open fractions 12 B, air flags 1 B, solver hierarchy and PCG vectors, the MAC field (3
+    // doubles), right-hand side and potential (2 doubles) and their padded copies inside the
+    // solver are part of estimatedBytesPerCell; plus the OpenVDB mask (~0.5 B per voxel).
+    return cells * (12.0 + 1.0 + PoissonSolver::estimatedBytesPerCell() + 24.0 + 16.0 + 0.5);
+}
+
+AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
+    using detail::num;
+    // --- validate everything before allocating anything ------------------------------------
+    if (hf.nx < 2 || hf.ny < 2)
+        throw std::invalid_argument("terrain must have at least 2x2 samples, got " + std::to_string(hf.nx) + "x" +
+                                    std::to_string(hf.ny));
+    if (hf.height_m.size() != size_t(hf.nx) * hf.ny)
+        throw std::invalid_argument("terrain.height_m must have nx*ny = " + std::to_string(size_t(hf.nx) * hf.ny) +
+                                    " entries, got " + std::to_string(hf.height_m.size()));
+    if (!(hf.spacing_m > 0.0) || !std::isfinite(hf.spacing_m))
+        throw std::invalid_argument("terrain.spacing_m must be > 0 and finite, got " + num(hf.spacing_m));
+    if (!std::isfinite(hf.originX_m) || !std::isfinite(hf.originY_m))
+        throw std::invalid_argument("terrain origin must be finite");
+    for (size_t n = 0; n < hf.height_m.size(); ++n)
+        if (!std::isfinite(hf.height_m[n]))
+            throw std::invalid_argument("terrain.height_m is not finite (" + num(hf.height_m[n]) + ") at sample (" +
+                                        std::to_string(n % hf.nx) + ", " + std::to_string(n / hf.nx) + ")");
+    const double h = spec.voxelSize_m;
+    if (!(h > 0.0) || !std::isfinite(h))
+        throw std::invalid_argument("DomainSpec.voxelSize_m must be > 0 and finite, got " + num(h));
+    if (!(spec.memoryLimit_bytes > 0.0))
+        throw std::invalid_argument("DomainSpec.memoryLimit_bytes must be > 0, got " + num(spec.memoryLimit_bytes));
+    const double nxD = std::floor(hf.sizeX_m() / h + 1e-9), nyD = std::floor(hf.sizeY_m() / h + 1e-9);
+    if (nxD < 1 || nyD < 1)
+        throw std::invalid_argument("DomainSpec.voxelSize_m (" + num(h) + " m) is larger than the terrain (" +
+                                    num(hf.sizeX_m()) + " x " + num(hf.sizeY_m()) + " m)");
+    const double minH = hf.minHeight_m(), maxH = hf.maxHeight_m();
+    const double zMin = std::floor(minH / h) * h;
+    double top = 0.0;
+    if (spec.top_m) {
+        top = *spec.top_m;
+        if (!std::isfinite(top) || !(top > maxH))
+            throw std::invalid_argument("DomainSpec.top_m (" + num(top) + " m) must be above the highest terrain point (" +
+                                        num(maxH) + " m): the domain would have no air");
+    } else {
+        top = maxH + std::max(AUTO_TOP_RELIEF_FACTOR * (maxH - minH), AUTO_TOP_MIN_CELLS * h);
+    }
+    const double nzD = std::ceil((top - zMin) / h - 1e-9);
+    const double estimate = estimateSolveMemory_bytes(1, 1, 1) * nxD * nyD * nzD;
+    if (nxD * nyD * nzD > 2.0e9 || estimate > spec.memoryLimit_bytes)
+        throw std::invalid_argument(
+            "estimated memory " + num(std::round(estimate / 1e6)) + " MB for " + num(nxD) + " x " + num(nyD) + " x " +
+            num(nzD) + " cells exceeds DomainSpec.memoryLimit_bytes (" + num(std::round(spec.memoryLimit_bytes / 1e6)) +
+            " MB): increase voxelSize_m, lower top_m or raise the limit");
+
+    mNx = int(nxD), mNy = int(nyD), mNz = std::max(1, int(nzD));
+    mVoxelSize_m = h;
+    mWsMin_m = {hf.originX_m, hf.originY_m, zMin};
+    mMemoryEstimate_bytes = size_t(estimate);
+    mTerrain = std::make_shared<const Heightfield>(hf);
+
+    // --- open fractions, column by column ------------------------------------------------
+    const int nx = mNx, ny = mNy, nz = mNz, S = FRACTION_SUBSAMPLES;
+    mOpenX.assign(size_t(nx + 1) * ny * nz, 0.f);
+    mOpenY.assign(size_t(nx) * (ny + 1) * nz, 0.f);
+    mOpenZ.assign(size_t(nx) * ny * (nz + 1), 0.f);
+    mAir.assign(size_t(nx) * ny * nz, 0);
+    const Heightfield& T = *mTerrain;
+    auto zAt = [&](int k) { return zMin + k * h; };
+    // Vertical face along a line of S+1 heights: open fraction of its cell k.
+    auto verticalFace = [&](const double* line, int k, double lineMin, double lineMax) -> float {
+        const double z0 = zAt(k), z1 = z0 + h;
+        if (z0 >= lineMax) return 1.f;
+        if (z1 <= lineMin) return 0.f;
+        double s = 0.0;
+        for (int b = 0; b < S; ++b) s += detail::meanClampedLinear(z1 - line[b], z1 - line[b + 1], h);
+        return detail::cleanFraction(s / (S * h));
+    };
+    tbb::parallel_for(tbb::blocked_range<int>(0, ny), [&](const tbb::blocked_range<int>& rj) {
+        std::vector<double> H(size_t(S + 1) * (S + 1)), line(S + 1), mid(S + 1);
+        auto Hat = [&](int a, int b) -> double& { return H[size_t(b) * (S + 1) + a]; };
+        for (int j = rj.begin(); j < rj.end(); ++j)
+            for (int i = 0; i < nx; ++i) {
+                double cMin = 1e300, cMax = -1e300;
+                for (int b = 0; b <= S; ++b)
+                    for (int a = 0; a <= S; ++a) {
+                        const double v = T.sample(mWsMin_m[0] + (i + double(a) / S) * h,
+                                                  mWsMin_m[1] + (j + double(b) / S) * h);
+                        Hat(a, b) = v;
+                        cMin = std::min(cMin, v), cMax = std::max(cMax, v);
+                    }
+                auto doLine = [&](bool alongY, int fixed, auto&& store) {
+                    double lMin = 1e300, lMax = -1e300;
+                    for (int t = 0; t <= S; ++t) {
+                        line[t] = alongY ? Hat(fixed, t) : Hat(t, fixed);
+                        lMin = std::min(lMin, line[t]), lMax = std::max(lMax, line[t]);
+                    }
+                    for (int k = 0; k < nz; ++k) store(k, verticalFace(line.data(), k, lMin, lMax));
+                };
+                doLine(true, 0, [&](int k, float f) { mOpenX[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = f; });
+                if (i == nx - 1)
+                    doLine(true, S, [&](int k, float f) { mOpenX[size_t(nx) + size_t(nx + 1) * (j + size_t(ny) * k)] = f; });
+                doLine(false, 0, [&](int k, float f) { mOpenY[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = f; });
+                if (j == ny - 1)
+                    doLine(false, S, [&](int k, float f) { mOpenY[size_t(i) + size_t(nx) * (ny + size_t(ny + 1) * k)] = f; });
+                // Horizontal faces: area where h < z_face, S rows at the sub-row midpoints.
+                for (int k = 0; k <= nz; ++k) {
+                    const double zf = zAt(k);
+                    float f;
+                    if (zf > cMax) {
+                        f = 1.f;
+                    } else if (zf <= cMin) {
+                        f = 0.f;
+                    } else {
+                        double s = 0.0;
+                        for (int b = 0; b < S; ++b) {
+                            for (int a = 0; a <= S; ++a) mid[a] = 0.5 * (Hat(a, b) + Hat(a, b + 1));
+                            for (int a = 0; a < S; ++a) s += detail::fractionBelow(mid[a], mid[a + 1], zf);
+                        }
+                        f = detail::cleanFraction(s / (S * S));
+                    }
+                    mOpenZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = f;
+                }
+            }
+    });
+    // --- air cells, and closing every face that touches rock ------------------------------
+    size_t active = 0;
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const bool air = openFractionZ(i, j, k + 1) > 0.f;
+                mAir[cellIndex(i, j, k)] = air;
+                active += air;
+            }
+    mActiveCount = active;
+    if (active == 0)
+        throw std::invalid_argument("domain has no air cells: raise DomainSpec.top_m (" + num(top) +
+                                    " m) above the terrain (max " + num(maxH) + " m)");
+    auto air = [&](int i, int j, int k) { return mAir[cellIndex(i, j, k)] != 0; };
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j) {
+            for (int i = 0; i <= nx; ++i)
+                if ((i > 0 && !air(i - 1, j, k)) || (i < nx && !air(i, j, k)))
+                    mOpenX[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = 0.f;
+        }
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i < nx; ++i)
+                if ((j > 0 && !air(i, j - 1, k)) || (j < ny && !air(i, j, k)))
+                    mOpenY[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = 0.f;
+    for (int k = 0; k <= nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i)
+                if (k == 0 || (k > 0 && !air(i, j, k - 1)) || (k < nz && !air(i, j, k)))
+                    mOpenZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = 0.f;
+
+    // --- the OpenVDB air mask ------------------------------------------------------------
+    openvdb::initialize();
+    mVdb = std::make_shared<Vdb>();
+    mVdb->mask = openvdb::BoolGrid::create(false);
+    mVdb->mask->setTransform(detail::cellCentredTransform(h, mWsMin_m));
+    mVdb->mask->setName("air");
+    {
+        auto acc = mVdb->mask->getAccessor();
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i)
+                for (int k = 0; k < nz; ++k)
+                    if (air(i, j, k)) acc.setValueOn(openvdb::Coord(i, j, k), true);
+    }
+}
+
+AirDomain::~AirDomain() = default;
+AirDomain::AirDomain(AirDomain&&) noexcept = default;
+AirDomain& AirDomain::operator=(AirDomain&&) noexcept = default;
+
+size_t AirDomain::vdbMemory_bytes() const { return mVdb && mVdb->mask ? size_t(mVdb->mask->memUsage()) : 0; }
+
+size_t AirDomain::memory_bytes() const {
+    return (mOpenX.size() + mOpenY.size() + mOpenZ.size()) * sizeof(float) + mAir.size() + vdbMemory_bytes() +
+           mTerrain->height_m.size() * sizeof(float);
+}
+
+openvdb::BoolGrid::ConstPtr airMaskGrid(const AirDomain& domain) { return domain.vdb().mask; }
+
+}  // namespace gale::sim

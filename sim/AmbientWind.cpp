@@ -1,0 +1,57 @@
+/// \file AmbientWind.cpp
+#include "sim/AmbientWind.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace gale::sim {
+namespace {
+constexpr double PI = 3.14159265358979323846;
+std::string num(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+}  // namespace
+
+const char* windProfileName(WindProfile profile) {
+    return profile == WindProfile::Uniform ? "uniform" : "log";
+}
+
+WindProfile windProfileFromName(const std::string& name) {
+    if (name == "uniform") return WindProfile::Uniform;
+    if (name == "log") return WindProfile::LogLaw;
+    throw std::invalid_argument("unknown wind profile '" + name + "' (expected one of: uniform, log)");
+}
+
+void AmbientWind::validate() const {
+    if (!(speed_mps >= 0.0) || !std::isfinite(speed_mps))
+        throw std::invalid_argument("AmbientWind.speed_mps must be >= 0 and finite, got " + num(speed_mps));
+    if (!std::isfinite(direction_deg))
+        throw std::invalid_argument("AmbientWind.direction_deg must be finite, got " + num(direction_deg));
+    if (!(referenceHeight_m > 0.0) || !std::isfinite(referenceHeight_m))
+        throw std::invalid_argument("AmbientWind.referenceHeight_m must be > 0 and finite, got " +
+                                    num(referenceHeight_m));
+    if (profile == WindProfile::LogLaw) {
+        if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
+            throw std::invalid_argument("AmbientWind.roughness_m must be > 0 and finite, got " + num(roughness_m));
+        if (!(referenceHeight_m > roughness_m))
+            throw std::invalid_argument("AmbientWind.referenceHeight_m (" + num(referenceHeight_m) +
+                                        " m) must be above roughness_m (" + num(roughness_m) + " m)");
+    }
+}
+
+double AmbientWind::speedAt_mps(double z) const {
+    if (profile == WindProfile::Uniform) return z >= 0.0 ? speed_mps : 0.0;
+    if (!(z > roughness_m)) return 0.0;
+    // Neutral surface layer: u(z) = (u* / kappa) ln(z / z0), scaled so u(z_ref) = speed_mps.
+    return speed_mps * std::log(z / roughness_m) / std::log(referenceHeight_m / roughness_m);
+}
+
+std::array<double, 3> AmbientWind::velocityAt_mps(double z) const {
+    const double s = speedAt_mps(z), a = direction_deg * PI / 180.0;
+    return {s * std::cos(a), s * std::sin(a), 0.0};
+}
+
+}  // namespace gale::sim

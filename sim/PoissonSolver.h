@@ -1,0 +1,137 @@
+#pragma once
+/// \file PoissonSolver.h
+/// The reusable elliptic solver of gale: multigrid-preconditioned conjugate gradients (MGPCG,
+/// McAdams, Sifakis, Teran 2010) for the cell-centred, matrix-free 7-point operator
+///
+///   (A x)_c = sum over the six faces f of c:  w_f (x_c - x_nb(f)),
+///
+/// on a box of nx * ny * nz cells with per-face weights w_f >= 0. The weights carry everything the
+/// caller's physics needs: open fractions of cut cells (Batty, Bertails, Bridson 2007), the
+/// anisotropy of the operator, and zeros around solid cells. A cell whose six weights are all zero
+/// is inactive: it is not an unknown and its solution value is 0.
+///
+/// Boundaries of the box: Dirichlet (value 0 on the boundary face, half a cell from the cell
+/// centre, hence the factor 2 the solver applies to boundary-face weights) or Neumann (no flux,
+/// boundary weight ignored). Non-zero Dirichlet data is the caller's business: add
+/// 2 * w_f * g_f to the right-hand side of the boundary cell (SteadyWind does that).
+///
+/// Knows nothing about wind or terrain, so the unsteady solver's projection reuses it unchanged:
+/// build one PoissonSolver per topology and call solve() every step with the previous solution as
+/// the warm start.
+///
+/// @code
+///   gale::sim::PoissonSystem sys = gale::sim::PoissonSystem::uniformBox(64, 64, 32);
+///   sys.sides[gale::sim::SIDE_ZMIN] = gale::sim::BoundaryKind::Neumann;   // ground
+///   gale::sim::PoissonSolver solver(sys);
+///   std::vector<double> rhs(sys.cellCount(), 1.0), x;   // x empty: cold start from 0
+///   gale::sim::SolveReport rep = solver.solve(rhs, x, gale::sim::SolverSettings{});
+///   if (!rep.converged) { /* the caller decides: report, retry, stop */ }
+/// @endcode
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gale::sim {
+
+enum class BoundaryKind { Dirichlet, Neumann };
+
+/// Index of a side of the box in PoissonSystem::sides.
+enum BoxSide : int { SIDE_XMIN = 0, SIDE_XMAX, SIDE_YMIN, SIDE_YMAX, SIDE_ZMIN, SIDE_ZMAX };
+
+/// The operator: box size, boundary kinds and face weights (dimensionless conductances, the
+/// open fraction of the face times the operator's coefficient in that direction).
+struct PoissonSystem {
+    int nx = 0, ny = 0, nz = 0;  ///< cells along x, y, z (each >= 1)
+    std::array<BoundaryKind, 6> sides{BoundaryKind::Dirichlet, BoundaryKind::Dirichlet,
+                                      BoundaryKind::Dirichlet, BoundaryKind::Dirichlet,
+                                      BoundaryKind::Dirichlet, BoundaryKind::Dirichlet};
+    /// x-faces: face i sits between cells i-1 and i (i in [0, nx]); index i + (nx+1)*(j + ny*k).
+    std::vector<float> weightX;
+    /// y-faces: face j between cells j-1 and j (j in [0, ny]); index i + nx*(j + (ny+1)*k).
+    std::vector<float> weightY;
+    /// z-faces: face k between cells k-1 and k (k in [0, nz]); index i + nx*(j + ny*k).
+    std::vector<float> weightZ;
+
+    size_t cellCount() const { return size_t(nx) * ny * nz; }
+    /// Index of cell (i, j, k) in solution and right-hand-side vectors: i fastest.
+    size_t cellIndex(int i, int j, int k) const { return size_t(i) + size_t(nx) * (j + size_t(ny) * k); }
+    size_t faceXIndex(int i, int j, int k) const { return size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k); }
+    size_t faceYIndex(int i, int j, int k) const { return size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k); }
+    size_t faceZIndex(int i, int j, int k) const { return size_t(i) + size_t(nx) * (j + size_t(ny) * k); }
+
+    /// All weights 1 (the plain Laplacian scaled by h), all sides Dirichlet.
+    static PoissonSystem uniformBox(int nx, int ny, int nz);
+};
+
+/// Criteria on input. Defaults suit the steady wind solve.
+struct SolverSettings {
+    /// Stop when max|r| / max|b| <= relativeTolerance (max norm, as openvdb::math::pcg does, so
+    /// the benchmark compares like with like). Must be in (0, 1).
+    double relativeTolerance = 1e-6;
+    int maxIterations = 100;  ///< PCG iterations (>= 1)
+    /// Red-black Gauss-Seidel sweeps before and after the coarse correction: V(n, n).
+    int smoothingSweeps = 2;
+    /// false: Jacobi (diagonal) preconditioner instead of the V-cycle, for comparisons only.
+    bool useMultigrid = true;
+};
+
+/// What a solve reached. Non-convergence is reported here, never thrown.
+struct [[nodiscard]] SolveReport {
+    bool converged = false;
+    int iterations = 0;                 ///< PCG iterations done (0: the start already met the criteria)
+    double initialRelativeResidual = 0; ///< max|b - A x0| / max|b|
+    double relativeResidual = 0;        ///< max|b - A x| / max|b| on return (recurrence residual)
+    double solveSeconds = 0;            ///< wall time of solve()
+    double setupSeconds = 0;            ///< wall time of building the hierarchy (constructor)
+    int levels = 0;                     ///< multigrid levels (1: no coarsening)
+    std::string message;                ///< why it stopped, in words
+    /// Filled by callers that know the physics (SteadyWind): max |div u| * h / U over air cells.
+    double maxDivergenceScaled = 0;
+};
+
+/// MGPCG on a PoissonSystem. Construction validates the system, copies the weights into a padded
+/// layout and builds the multigrid hierarchy (coarse weights: sums of the fine face weights over
+/// each coarse face divided by the coarsening factor, i.e. averaged open fractions at twice the
+/// spacing, as McAdams et al. 2010 coarsen their cell types). Not copyable; solve() is not
+/// re-entrant (it uses the solver's scratch vectors), but every kernel runs on TBB threads.
+class PoissonSolver {
+public:
+    /// Throws std::invalid_argument naming the field when a size is < 1, a weight vector has the
+    /// wrong length, or a weight is negative or not finite.
+    explicit PoissonSolver(const PoissonSystem& system);
+    ~PoissonSolver();
+    PoissonSolver(PoissonSolver&&) noexcept;
+    PoissonSolver& operator=(PoissonSolver&&) noexcept;
+    PoissonSolver(const PoissonSolver&) = delete;
+    PoissonSolver& operator=(const PoissonSolver&) = delete;
+
+    /// Solves A x = rhs. `solution` on input is the warm start (empty: start from zero; else it
+    /// must have cellCount() entries); on output it is the solution, 0 in inactive cells.
+    /// Right-hand-side entries of inactive cells are ignored. Throws std::invalid_argument only
+    /// for wrong vector sizes or bad settings; numerical trouble is in the report.
+    SolveReport solve(const std::vector<double>& rhs, std::vector<double>& solution,
+                      const SolverSettings& settings);
+
+    /// out = A x (cellCount() entries each), for tests and diagnostics.
+    void applyOperator(const std::vector<double>& x, std::vector<double>& out) const;
+
+    int levelCount() const;
+    size_t activeCellCount() const;
+    /// Bytes held by the hierarchy and the PCG vectors.
+    size_t memory_bytes() const;
+    /// Bytes of the solver's arrays per cell of the box, for estimates before allocating.
+    static double estimatedBytesPerCell();
+    /// Bytes the finest level moves per cell in one PCG iteration with V(n, n) (reads + writes of
+    /// every array a kernel streams, counted once per kernel), and the sum over coarser levels;
+    /// for the memory-bandwidth floor of the benchmark.
+    static double bytesPerCellPerIteration(int smoothingSweeps);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+};
+
+}  // namespace gale::sim

@@ -1,0 +1,238 @@
+/// \file SteadyWind.cpp
+/// Assembly of Sherman's (1978) mass-consistent problem on cut cells, and the velocity update.
+#include "sim/SteadyWind.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace gale::sim {
+namespace {
+
+std::string num(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+double checkedRatio(const MassConsistentWeights& w) {
+    if (!(w.alphaH > 0.0) || !std::isfinite(w.alphaH))
+        throw std::invalid_argument("MassConsistentWeights.alphaH must be > 0 and finite, got " + num(w.alphaH));
+    if (!(w.alphaV > 0.0) || !std::isfinite(w.alphaV))
+        throw std::invalid_argument("MassConsistentWeights.alphaV must be > 0 and finite, got " + num(w.alphaV));
+    const double r = (w.alphaH / w.alphaV) * (w.alphaH / w.alphaV);
+    if (r < SteadyWindSolver::MIN_VERTICAL_RATIO || r > SteadyWindSolver::MAX_VERTICAL_RATIO)
+        throw std::invalid_argument("MassConsistentWeights: (alphaH/alphaV)^2 = " + num(r) + " is outside the supported [" +
+                                    num(SteadyWindSolver::MIN_VERTICAL_RATIO) + ", " +
+                                    num(SteadyWindSolver::MAX_VERTICAL_RATIO) + "]");
+    return r;
+}
+
+// Fill faces without a value (valid == 0) from valid neighbours in the same face grid.
+void extrapolate(std::vector<double>& a, std::vector<uint8_t>& valid, int n0, int n1, int n2, int layers) {
+    std::vector<uint8_t> next;
+    for (int layer = 0; layer < layers; ++layer) {
+        next = valid;
+        tbb::parallel_for(0, n2, [&](int k) {
+            for (int j = 0; j < n1; ++j)
+                for (int i = 0; i < n0; ++i) {
+                    const size_t p = size_t(i) + size_t(n0) * (j + size_t(n1) * k);
+                    if (valid[p]) continue;
+                    double s = 0.0;
+                    int c = 0;
+                    auto take = [&](int ii, int jj, int kk) {
+                        if (ii < 0 || jj < 0 || kk < 0 || ii >= n0 || jj >= n1 || kk >= n2) return;
+                        const size_t q = size_t(ii) + size_t(n0) * (jj + size_t(n1) * kk);
+                        if (valid[q]) s += a[q], ++c;
+                    };
+                    take(i - 1, j, k), take(i + 1, j, k), take(i, j - 1, k);
+                    take(i, j + 1, k), take(i, j, k - 1), take(i, j, k + 1);
+                    if (c > 0) a[p] = s / c, next[p] = 1;
+                }
+        });
+        valid.swap(next);
+    }
+    for (size_t p = 0; p < a.size(); ++p)
+        if (!valid[p]) a[p] = 0.0;
+}
+
+}  // namespace
+
+PoissonSystem SteadyWindSolver::makeSystem(const AirDomain& d, double r) {
+    PoissonSystem s;
+    s.nx = d.nx(), s.ny = d.ny(), s.nz = d.nz();
+    s.sides = {BoundaryKind::Dirichlet, BoundaryKind::Dirichlet, BoundaryKind::Dirichlet,
+               BoundaryKind::Dirichlet, BoundaryKind::Neumann,   BoundaryKind::Dirichlet};
+    s.weightX = d.openFractionsX();
+    s.weightY = d.openFractionsY();
+    s.weightZ = d.openFractionsZ();
+    if (r != 1.0)
+        for (float& w : s.weightZ) w = float(w * r);
+    return s;
+}
+
+SteadyWindSolver::SteadyWindSolver(const AirDomain& domain, const MassConsistentWeights& weights)
+    : mDomain(domain), mRatio(checkedRatio(weights)), mSystem(makeSystem(domain, mRatio)), mPoisson(mSystem) {}
+
+void SteadyWindSolver::setWarmStart(std::vector<double> potential) {
+    if (!potential.empty() && potential.size() != mSystem.cellCount())
+        throw std::invalid_argument("SteadyWindSolver::setWarmStart: potential must have " +
+                                    std::to_string(mSystem.cellCount()) + " entries, got " +
+                                    std::to_string(potential.size()));
+    mPotential = std::move(potential);
+}
+
+SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const SolverSettings& settings,
+                                         const BoundaryPotential& boundary) {
+    ambient.validate();
+    const auto t0 = std::chrono::steady_clock::now();
+    const AirDomain& D = mDomain;
+    const PoissonSystem& S = mSystem;
+    const int nx = D.nx(), ny = D.ny(), nz = D.nz();
+    const double h = D.voxelSize_m(), r = mRatio;
+    const auto o = D.wsMin_m();
+    const Heightfield& T = D.terrain();
+
+    SteadyWindResult res;
+    res.field = WindField(nx, ny, nz, h, o, D.terrainShared(), D.airFlags());
+    std::vector<double>& U = res.field.u_mps();
+    std::vector<double>& V = res.field.v_mps();
+    std::vector<double>& W = res.field.w_mps();
+
+    // --- first guess on faces: the profile at the height above the local ground of the centroid
+    //     of the face's open part (vertical faces: the open part spans its top theta*h).
+    const bool uniform = ambient.profile == WindProfile::Uniform;
+    const auto dir = ambient.velocityAt_mps(ambient.referenceHeight_m);
+    const double sref = ambient.speed_mps > 0 ? ambient.speed_mps : 1.0;
+    const double ex = dir[0] / sref, ey = dir[1] / sref;  // unit direction (times speed/sref)
+    auto speedAt = [&](double x, double y, double zTop, double theta) {
+        if (uniform) return ambient.speed_mps;
+        const double zc = zTop - 0.5 * std::max(double(theta), 1e-3) * h;
+        return ambient.speedAt_mps(zc - T.sample(x, y));
+    };
+    tbb::parallel_for(0, nz, [&](int k) {
+        const double zTop = o[2] + (k + 1) * h;
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i <= nx; ++i) {
+                const size_t f = S.faceXIndex(i, j, k);
+                U[f] = ex * speedAt(o[0] + i * h, o[1] + (j + 0.5) * h, zTop, S.weightX[f]);
+            }
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const size_t f = S.faceYIndex(i, j, k);
+                V[f] = ey * speedAt(o[0] + (i + 0.5) * h, o[1] + j * h, zTop, S.weightY[f]);
+            }
+    });
+    // W stays 0: the ambient wind is horizontal.
+
+    // --- right-hand side: h * outward open flux of u0, plus Dirichlet data on the open sides.
+    // Boundary weights carry the factor 2 of a face half a cell from the centre.
+    const std::vector<float>&thX = D.openFractionsX(), &thY = D.openFractionsY(), &thZ = D.openFractionsZ();
+    auto g = [&](double x, double y, double z) { return boundary ? boundary(x, y, z) : 0.0; };
+    std::vector<double> rhs(S.cellCount(), 0.0);
+    tbb::parallel_for(0, nz, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                if (!D.isAir(i, j, k)) continue;
+                const size_t xm = S.faceXIndex(i, j, k), xp = S.faceXIndex(i + 1, j, k);
+                const size_t ym = S.faceYIndex(i, j, k), yp = S.faceYIndex(i, j + 1, k);
+                const size_t zm = S.faceZIndex(i, j, k), zp = S.faceZIndex(i, j, k + 1);
+                double b = h * (thX[xp] * U[xp] - thX[xm] * U[xm] + thY[yp] * V[yp] - thY[ym] * V[ym] +
+                                thZ[zp] * W[zp] - thZ[zm] * W[zm]);
+                if (boundary) {
+                    const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h, zc = o[2] + (k + 0.5) * h;
+                    if (i == 0) b += 2.0 * thX[xm] * g(o[0], yc, zc);
+                    if (i == nx - 1) b += 2.0 * thX[xp] * g(o[0] + nx * h, yc, zc);
+                    if (j == 0) b += 2.0 * thY[ym] * g(xc, o[1], zc);
+                    if (j == ny - 1) b += 2.0 * thY[yp] * g(xc, o[1] + ny * h, zc);
+                    if (k == nz - 1) b += 2.0 * r * thZ[zp] * g(xc, yc, o[2] + nz * h);
+                }
+                rhs[S.cellIndex(i, j, k)] = b;
+            }
+    });
+    const double tAssemble = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    // --- solve -----------------------------------------------------------------------------
+    res.report = mPoisson.solve(rhs, mPotential, settings);
+    const auto t1 = std::chrono::steady_clock::now();
+
+    // --- velocity update: u = u0 + (d/dx psi, d/dy psi, r d/dz psi) on every face whose
+    //     neighbouring cells are air (open or not); boundary faces use the Dirichlet data.
+    const std::vector<double>& psi = mPotential;
+    std::vector<uint8_t> okX(U.size(), 0), okY(V.size(), 0), okZ(W.size(), 0);
+    auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
+    auto air = [&](int i, int j, int k) { return D.isAir(i, j, k); };
+    tbb::parallel_for(0, nz, [&](int k) {
+        const double zc = o[2] + (k + 0.5) * h;
+        for (int j = 0; j < ny; ++j) {
+            const double yc = o[1] + (j + 0.5) * h;
+            for (int i = 0; i <= nx; ++i) {
+                const size_t f = S.faceXIndex(i, j, k);
+                if (i > 0 && i < nx && air(i - 1, j, k) && air(i, j, k)) {
+                    U[f] += (P(i, j, k) - P(i - 1, j, k)) / h, okX[f] = 1;
+                } else if (i == 0 && air(0, j, k)) {
+                    U[f] += 2.0 * (P(0, j, k) - g(o[0], yc, zc)) / h, okX[f] = 1;
+                } else if (i == nx && air(nx - 1, j, k)) {
+                    U[f] += 2.0 * (g(o[0] + nx * h, yc, zc) - P(nx - 1, j, k)) / h, okX[f] = 1;
+                }
+            }
+        }
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const double xc = o[0] + (i + 0.5) * h;
+                const size_t f = S.faceYIndex(i, j, k);
+                if (j > 0 && j < ny && air(i, j - 1, k) && air(i, j, k)) {
+                    V[f] += (P(i, j, k) - P(i, j - 1, k)) / h, okY[f] = 1;
+                } else if (j == 0 && air(i, 0, k)) {
+                    V[f] += 2.0 * (P(i, 0, k) - g(xc, o[1], zc)) / h, okY[f] = 1;
+                } else if (j == ny && air(i, ny - 1, k)) {
+                    V[f] += 2.0 * (g(xc, o[1] + ny * h, zc) - P(i, ny - 1, k)) / h, okY[f] = 1;
+                }
+            }
+    });
+    tbb::parallel_for(0, nz + 1, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const size_t f = S.faceZIndex(i, j, k);
+                if (k > 0 && k < nz && air(i, j, k - 1) && air(i, j, k)) {
+                    W[f] += r * (P(i, j, k) - P(i, j, k - 1)) / h, okZ[f] = 1;
+                } else if (k == nz && air(i, j, nz - 1)) {
+                    const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h;
+                    W[f] += 2.0 * r * (g(xc, yc, o[2] + nz * h) - P(i, j, nz - 1)) / h, okZ[f] = 1;
+                }
+            }
+    });
+    extrapolate(U, okX, nx + 1, ny, nz, EXTRAPOLATION_LAYERS);
+    extrapolate(V, okY, nx, ny + 1, nz, EXTRAPOLATION_LAYERS);
+    extrapolate(W, okZ, nx, ny, nz + 1, EXTRAPOLATION_LAYERS);
+
+    // --- divergence of the open fluxes, per air cell, scaled by h / U ----------------------
+    const double Uref = ambient.speed_mps > 0.0 ? ambient.speed_mps : 1.0;
+    double maxDiv = 0.0;
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                if (!air(i, j, k)) continue;
+                const size_t xm = S.faceXIndex(i, j, k), xp = S.faceXIndex(i + 1, j, k);
+                const size_t ym = S.faceYIndex(i, j, k), yp = S.faceYIndex(i, j + 1, k);
+                const size_t zm = S.faceZIndex(i, j, k), zp = S.faceZIndex(i, j, k + 1);
+                const double div = thX[xp] * U[xp] - thX[xm] * U[xm] + thY[yp] * V[yp] - thY[ym] * V[ym] +
+                                   thZ[zp] * W[zp] - thZ[zm] * W[zm];
+                maxDiv = std::max(maxDiv, std::abs(div));
+            }
+    res.report.maxDivergenceScaled = maxDiv / Uref;
+    res.assemblySeconds = tAssemble + std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    return res;
+}
+
+SteadyWindResult solveSteadyWind(const AirDomain& domain, const AmbientWind& ambient, const MassConsistentWeights& weights,
+                                 const SolverSettings& settings, const BoundaryPotential& boundary) {
+    SteadyWindSolver solver(domain, weights);
+    return solver.solve(ambient, settings, boundary);
+}
+
+}  // namespace gale::sim

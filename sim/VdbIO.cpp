@@ -1,0 +1,85 @@
+/// \file VdbIO.cpp
+#include "sim/VdbIO.h"
+
+#include <openvdb/io/File.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+namespace gale::sim {
+
+namespace detail {
+openvdb::math::Transform::Ptr cellCentredTransform(double h, const std::array<double, 3>& wsMin) {
+    auto xform = openvdb::math::Transform::createLinearTransform(h);
+    xform->postTranslate(openvdb::Vec3d(wsMin[0] + 0.5 * h, wsMin[1] + 0.5 * h, wsMin[2] + 0.5 * h));
+    return xform;
+}
+}  // namespace detail
+
+openvdb::Vec3SGrid::Ptr velocityGrid(const WindField& f) {
+    openvdb::initialize();
+    auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+    grid->setName("velocity");
+    grid->setTransform(detail::cellCentredTransform(f.voxelSize_m(), f.wsMin_m()));
+    grid->setGridClass(openvdb::GRID_UNKNOWN);
+    grid->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
+    grid->setIsInWorldSpace(true);
+    auto acc = grid->getAccessor();
+    for (int j = 0; j < f.ny(); ++j)
+        for (int i = 0; i < f.nx(); ++i)
+            for (int k = 0; k < f.nz(); ++k) {
+                if (!f.isAir(i, j, k)) continue;
+                const auto v = f.cellVelocity_mps(i, j, k);
+                acc.setValueOn(openvdb::Coord(i, j, k), openvdb::Vec3s(float(v[0]), float(v[1]), float(v[2])));
+            }
+    return grid;
+}
+
+openvdb::FloatGrid::Ptr speedGrid(const WindField& f) {
+    openvdb::initialize();
+    auto grid = openvdb::FloatGrid::create(0.f);
+    grid->setName("speed");
+    grid->setTransform(detail::cellCentredTransform(f.voxelSize_m(), f.wsMin_m()));
+    grid->setGridClass(openvdb::GRID_UNKNOWN);
+    auto acc = grid->getAccessor();
+    for (int j = 0; j < f.ny(); ++j)
+        for (int i = 0; i < f.nx(); ++i)
+            for (int k = 0; k < f.nz(); ++k) {
+                if (!f.isAir(i, j, k)) continue;
+                const auto v = f.cellVelocity_mps(i, j, k);
+                acc.setValueOn(openvdb::Coord(i, j, k), float(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])));
+            }
+    return grid;
+}
+
+void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata) const {
+    openvdb::initialize();
+    auto vel = velocityGrid(*this);
+    auto speed = speedGrid(*this);
+    for (openvdb::GridBase* g : {static_cast<openvdb::GridBase*>(vel.get()), static_cast<openvdb::GridBase*>(speed.get())}) {
+        g->insertMeta("units", openvdb::StringMetadata("m/s"));
+        g->insertMeta("cell_placement",
+                      openvdb::StringMetadata("cell-centred average of MAC face velocities; voxel (i,j,k) centre at "
+                                              "world wsMin + (i+0.5, j+0.5, k+0.5) * voxel_size"));
+        g->insertMeta("voxel_size_m", openvdb::DoubleMetadata(mH));
+        for (const auto& [k, v] : metadata.strings) g->insertMeta(k, openvdb::StringMetadata(v));
+        for (const auto& [k, v] : metadata.numbers) g->insertMeta(k, openvdb::DoubleMetadata(v));
+    }
+    namespace fs = std::filesystem;
+    const fs::path target(path);
+    const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()));
+    try {
+        openvdb::io::File file(tmp.string());
+        file.write({vel, speed});
+        file.close();
+        fs::rename(tmp, target);
+    } catch (const std::exception& e) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw std::runtime_error("cannot write VDB file '" + path + "': " + e.what());
+    }
+}
+
+}  // namespace gale::sim

@@ -1,0 +1,83 @@
+#pragma once
+/// \file WindField.h
+/// A wind field on a staggered (MAC) grid over an AirDomain's box: u on x-faces, v on y-faces,
+/// w on z-faces, world axes, m/s. Face layouts are PoissonSystem's (faceXIndex etc.); the x-face i
+/// of row (j, k) sits at world (wsMin.x + i h, wsMin.y + (j + 1/2) h, wsMin.z + (k + 1/2) h).
+///
+/// Faces closed by the terrain hold extrapolated values (SteadyWind documents how), so sampling
+/// near the ground interpolates smoothly; they carry no flux. No OpenVDB here: writeVdb is
+/// implemented in VdbIO.cpp.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sim/Heightfield.h"
+
+namespace gale::sim {
+
+/// Extra metadata for writeVdb: strings and numbers attached to both grids.
+struct VdbMetadata {
+    std::vector<std::pair<std::string, std::string>> strings;
+    std::vector<std::pair<std::string, double>> numbers;
+};
+
+class WindField {
+public:
+    WindField() = default;
+    /// An all-zero field over nx * ny * nz cells of edge voxelSize_m whose cell (0, 0, 0) has its
+    /// minimum corner at wsMin_m. `air` (nx*ny*nz flags, i fastest) marks the cells with air.
+    WindField(int nx, int ny, int nz, double voxelSize_m, std::array<double, 3> wsMin_m,
+              std::shared_ptr<const Heightfield> terrain, std::vector<uint8_t> air);
+
+    int nx() const { return mNx; }
+    int ny() const { return mNy; }
+    int nz() const { return mNz; }
+    double voxelSize_m() const { return mH; }
+    std::array<double, 3> wsMin_m() const { return mWsMin; }
+
+    /// Face velocities, m/s (sizes (nx+1)*ny*nz, nx*(ny+1)*nz, nx*ny*(nz+1)).
+    std::vector<double>& u_mps() { return mU; }
+    std::vector<double>& v_mps() { return mV; }
+    std::vector<double>& w_mps() { return mW; }
+    const std::vector<double>& u_mps() const { return mU; }
+    const std::vector<double>& v_mps() const { return mV; }
+    const std::vector<double>& w_mps() const { return mW; }
+    double u(int i, int j, int k) const { return mU[size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k)]; }
+    double v(int i, int j, int k) const { return mV[size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k)]; }
+    double w(int i, int j, int k) const { return mW[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)]; }
+    bool isAir(int i, int j, int k) const { return mAir[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)] != 0; }
+
+    /// Velocity at a world position (metres), m/s: each component trilinearly interpolated from
+    /// its own staggered faces (index coordinates clamped to the face grid, so within half a cell
+    /// of the box sides the nearest face layer is used). Returns {0, 0, 0} outside the box and
+    /// below the terrain surface (the Heightfield's bilinear h(x, y)). Const and lock-free: safe
+    /// for any number of concurrent readers.
+    std::array<double, 3> velocityAt_mps(double wsX_m, double wsY_m, double wsZ_m) const;
+
+    /// Cell-centred velocity: the average of the two faces of each component, m/s.
+    std::array<double, 3> cellVelocity_mps(int i, int j, int k) const {
+        return {0.5 * (u(i, j, k) + u(i + 1, j, k)), 0.5 * (v(i, j, k) + v(i, j + 1, k)),
+                0.5 * (w(i, j, k) + w(i, j, k + 1))};
+    }
+
+    /// Writes the field as an OpenVDB file: a Vec3s grid "velocity" (cell-centred averages of the
+    /// face velocities, world axes, m/s; GRID_UNKNOWN, VEC_CONTRAVARIANT_RELATIVE, not staggered;
+    /// voxel (i, j, k) is cell (i, j, k), its centre at world wsMin + (i+1/2, j+1/2, k+1/2) h) and
+    /// a float grid "speed" (|velocity|, m/s), active on air cells only. Atomic: written to a
+    /// temporary name in the same folder, then renamed. Throws std::runtime_error on I/O failure.
+    void writeVdb(const std::string& path, const VdbMetadata& metadata = {}) const;
+
+private:
+    int mNx = 0, mNy = 0, mNz = 0;
+    double mH = 1.0;
+    std::array<double, 3> mWsMin{};
+    std::shared_ptr<const Heightfield> mTerrain;
+    std::vector<uint8_t> mAir;
+    std::vector<double> mU, mV, mW;
+};
+
+}  // namespace gale::sim
