@@ -3,12 +3,11 @@
 #include "render/CameraMath.h"
 
 #include <cmath>
-#include <stdexcept>
-#include <string>
-
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
+#include <stdexcept>
+#include <string>
 
 namespace gale::render {
 namespace {

@@ -28,7 +28,7 @@ void checkGlError(const char* what);
 /// Move-only owner of one GL object name; `Deleter` releases it (e.g. glDeleteProgram).
 template <void (*Deleter)(GLuint)>
 class GlName {
-public:
+  public:
     GlName() = default;
     explicit GlName(GLuint name) : mName(name) {}
     ~GlName() { reset(); }
@@ -48,7 +48,7 @@ public:
         mName = 0;
     }
 
-private:
+  private:
     GLuint mName = 0;
 };
 

@@ -16,7 +16,7 @@ namespace {
 /// splitmix64 (Steele, Lea, Flood 2014): a fixed, portable generator, so a seed gives the same
 /// texture bytes with every compiler and standard library.
 class SplitMix64 {
-public:
+  public:
     explicit SplitMix64(uint64_t seed) : mState(seed) {}
     uint64_t next() {
         uint64_t z = (mState += 0x9E3779B97F4A7C15ull);
@@ -31,7 +31,7 @@ public:
         return static_cast<uint32_t>(((next() >> 32) * static_cast<uint64_t>(n)) >> 32);
     }
 
-private:
+  private:
     uint64_t mState;
 };
 
@@ -65,8 +65,8 @@ void requireSquarePowerOfTwo(const Image& image, const char* what) {
 
 void validateSpec(const GrassTextureSpec& spec) {
     auto fail = [](const std::string& field, const std::string& expected, double got) {
-        throw std::invalid_argument("GrassTextureSpec." + field + " must be " + expected + ", got " +
-                                    std::to_string(got));
+        throw std::invalid_argument("GrassTextureSpec." + field + " must be " + expected +
+                                    ", got " + std::to_string(got));
     };
     if (!isPowerOfTwo(spec.size) || spec.size < 16 || spec.size > 4096) {
         fail("size", "a power of two in 16..4096", spec.size);
@@ -91,14 +91,14 @@ struct Footprint {
     int dy[3];
 };
 constexpr Footprint kFootprints[] = {
-    {1, {0, 0, 0}, {0, 0, 0}},   // single texel
-    {2, {0, 1, 0}, {0, 0, 0}},   // horizontal pair
-    {2, {0, 0, 0}, {0, 1, 0}},   // vertical pair
-    {2, {0, 1, 0}, {0, 1, 0}},   // diagonal pair
-    {3, {0, 1, 0}, {0, 0, 1}},   // L
-    {3, {0, 1, 1}, {0, 0, 1}},   // L, turned
-    {3, {0, 1, 2}, {0, 0, 0}},   // short horizontal line
-    {3, {0, 0, 0}, {0, 1, 2}},   // short vertical line
+    {1, {0, 0, 0}, {0, 0, 0}},  // single texel
+    {2, {0, 1, 0}, {0, 0, 0}},  // horizontal pair
+    {2, {0, 0, 0}, {0, 1, 0}},  // vertical pair
+    {2, {0, 1, 0}, {0, 1, 0}},  // diagonal pair
+    {3, {0, 1, 0}, {0, 0, 1}},  // L
+    {3, {0, 1, 1}, {0, 0, 1}},  // L, turned
+    {3, {0, 1, 2}, {0, 0, 0}},  // short horizontal line
+    {3, {0, 0, 0}, {0, 1, 2}},  // short vertical line
 };
 constexpr uint32_t kFootprintCount = sizeof(kFootprints) / sizeof(kFootprints[0]);
 
@@ -114,7 +114,8 @@ GrassTexture generateGrassTexture(const GrassTextureSpec& spec) {
     image.rgba.assign(texels * 4u, 0);
 
     // Seed mixing keeps nearby seeds unrelated.
-    SplitMix64 rng(0xD1B54A32D192ED03ull ^ (static_cast<uint64_t>(spec.seed) * 0x9E3779B97F4A7C15ull));
+    SplitMix64 rng(0xD1B54A32D192ED03ull ^
+                   (static_cast<uint64_t>(spec.seed) * 0x9E3779B97F4A7C15ull));
 
     // Bare ground: alpha 0, groundColor with a little per-texel brightness noise so the soil under
     // the blades is not flat.
@@ -129,15 +130,16 @@ GrassTexture generateGrassTexture(const GrassTextureSpec& spec) {
 
     // Blades: random footprints, wrapped at the edges so the texture tiles, until the requested
     // fraction of texels is covered. Later blades overwrite earlier ones where they overlap.
-    const size_t target = static_cast<size_t>(std::ceil(static_cast<double>(spec.density) * texels));
+    const size_t target =
+        static_cast<size_t>(std::ceil(static_cast<double>(spec.density) * texels));
     size_t covered = 0;
     const size_t maxAttempts = 8u * target + 64u;
     auto paintBlade = [&](int x0, int y0, const Footprint& fp) {
         const float height = spec.minHeight + (1.0f - spec.minHeight) * rng.uniform();
         const float brightness = 1.0f + spec.colorVariation * (2.0f * rng.uniform() - 1.0f);
-        const glm::vec3 hueJitter{1.0f + 0.5f * spec.colorVariation * (2.0f * rng.uniform() - 1.0f),
-                                  1.0f,
-                                  1.0f + 0.5f * spec.colorVariation * (2.0f * rng.uniform() - 1.0f)};
+        const glm::vec3 hueJitter{
+            1.0f + 0.5f * spec.colorVariation * (2.0f * rng.uniform() - 1.0f), 1.0f,
+            1.0f + 0.5f * spec.colorVariation * (2.0f * rng.uniform() - 1.0f)};
         const glm::vec3 color =
             (spec.baseColor + (spec.tipColor - spec.baseColor) * height) * brightness * hueJitter;
         // Alpha = blade height fraction, 1..255: a blade is never 0 (that is bare ground).

@@ -3,9 +3,8 @@
 
 #include "render/ImageIO.h"
 
-#include <unistd.h>
-
 #include <OpenImageIO/imageio.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -63,8 +62,9 @@ void writeImageAtomic(const Image& image, const std::string& path) {
 
     auto out = OIIO::ImageOutput::create(temp.string());
     if (!out) {
-        failWrite(path, "no image writer for extension '" + target.extension().string() +
-                            "': " + OIIO::geterror(),
+        failWrite(path,
+                  "no image writer for extension '" + target.extension().string() +
+                      "': " + OIIO::geterror(),
                   {});
     }
     // Formats without alpha (JPEG ...) get RGB only.
@@ -120,7 +120,8 @@ Image readImageRgba8(const std::string& path) {
                                  ", " + std::to_string(channels) + " channels)");
     }
     if (spec.depth > 1) {
-        throw std::runtime_error("cannot read image '" + path + "': volume images are not supported");
+        throw std::runtime_error("cannot read image '" + path +
+                                 "': volume images are not supported");
     }
     const size_t texels = static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height);
     std::vector<uint8_t> raw(texels * static_cast<size_t>(channels));
@@ -136,8 +137,9 @@ Image readImageRgba8(const std::string& path) {
     image.width = spec.width;
     image.height = spec.height;
     image.rgba.resize(texels * 4u);
-    const int alphaChannel =
-        spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 ? 1 : (channels >= 4 ? 3 : -1));
+    const int alphaChannel = spec.alpha_channel >= 0
+                                 ? spec.alpha_channel
+                                 : (channels == 2 ? 1 : (channels >= 4 ? 3 : -1));
     for (size_t t = 0; t < texels; ++t) {
         const uint8_t* src = &raw[t * channels];
         uint8_t* dst = &image.rgba[t * 4u];

@@ -17,7 +17,7 @@ namespace gale::render {
 namespace {
 
 class OsMesaContext final : public GlContext {
-public:
+  public:
     OsMesaContext(int width, int height) : mWidth(width), mHeight(height) {
         if (width < 1 || height < 1 || width > 16384 || height > 16384) {
             throw std::runtime_error("createOsMesaContext: size must be 1..16384 per side, got " +
@@ -74,8 +74,7 @@ public:
         const size_t rowBytes = static_cast<size_t>(mWidth) * 4u;
         for (int y = 0; y < mHeight; ++y) {
             std::memcpy(out.rgba.data() + static_cast<size_t>(y) * rowBytes,
-                        mBuffer.data() + static_cast<size_t>(mHeight - 1 - y) * rowBytes,
-                        rowBytes);
+                        mBuffer.data() + static_cast<size_t>(mHeight - 1 - y) * rowBytes, rowBytes);
         }
     }
 
@@ -86,7 +85,7 @@ public:
                (version ? reinterpret_cast<const char*>(version) : "?");
     }
 
-private:
+  private:
     int mWidth;
     int mHeight;
     OSMesaContext mContext = nullptr;

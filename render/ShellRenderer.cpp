@@ -1,20 +1,19 @@
 /// \file ShellRenderer.cpp
-/// Shell grass (Bakay 2003, chapter 3): the terrain mesh drawn N + 1 times, instanced, with the bend
-/// table per group built on the CPU once per frame (thesis Table 3.2) and the displacement, the
-/// Kajiya-Kay / Banks lighting and the alpha test in shaders/shell.vert and shell.frag.
+/// Shell grass (Bakay 2003, chapter 3): the terrain mesh drawn N + 1 times, instanced, with the
+/// bend table per group built on the CPU once per frame (thesis Table 3.2) and the displacement,
+/// the Kajiya-Kay / Banks lighting and the alpha test in shaders/shell.vert and shell.frag.
 
 #include "render/ShellRenderer.h"
 
 #include <algorithm>
 #include <chrono>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <glm/gtc/type_ptr.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <glm/gtc/type_ptr.hpp>
 
 #include "render/Bend.h"
 #include "render/CameraMath.h"
@@ -378,8 +377,8 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     auto checkSize = [&](const char* field, size_t size) {
         if (size != n) {
             throw std::invalid_argument("TerrainMesh." + std::string(field) + " has " +
-                                        std::to_string(size) + " entries, expected nx * ny = " +
-                                        std::to_string(n));
+                                        std::to_string(size) +
+                                        " entries, expected nx * ny = " + std::to_string(n));
         }
     };
     checkSize("wsPosition_m", mesh.wsPosition_m.size());
@@ -418,8 +417,9 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
                  vertices.data(), GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     glBindVertexArray(m.vao.get());
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)),
-                 indices.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)), indices.data(),
+                 GL_STATIC_DRAW);
     glBindVertexArray(0);
     detail::checkGlError("ShellRenderer::setTerrain");
     m.vertexCount = n;
@@ -448,8 +448,7 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
     for (size_t l = 0; l < texture.levels.size(); ++l) {
         const Image& level = texture.levels[l];
         const int expected = texture.levels[0].width >> l;
-        if (level.width != level.height || level.width < 1 ||
-            (l > 0 && level.width != expected) ||
+        if (level.width != level.height || level.width < 1 || (l > 0 && level.width != expected) ||
             level.rgba.size() != static_cast<size_t>(level.width) * level.height * 4u) {
             throw std::invalid_argument(
                 "GrassTexture level " + std::to_string(l) + " is " + std::to_string(level.width) +
@@ -517,7 +516,8 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind) {
     Impl& m = *mImpl;
     m.requireReady("draw");
     const auto cpuStart = Clock::now();
-    const float aspect = static_cast<float>(m.context.width()) / static_cast<float>(m.context.height());
+    const float aspect =
+        static_cast<float>(m.context.width()) / static_cast<float>(m.context.height());
     const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
     m.context.makeCurrent();
     m.uploadWind(wind);
@@ -547,7 +547,8 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind) {
 FrameStats ShellRenderer::drawFillBaseline(const Camera& camera) {
     Impl& m = *mImpl;
     m.requireReady("drawFillBaseline");
-    const float aspect = static_cast<float>(m.context.width()) / static_cast<float>(m.context.height());
+    const float aspect =
+        static_cast<float>(m.context.width()) / static_cast<float>(m.context.height());
     const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
     m.context.makeCurrent();
     // fill.vert reads no wind, but the VAO's wind arrays must still be backed by a full buffer.

@@ -45,9 +45,9 @@ public:
     /// when wind.revision changed.
     /// Requires setTerrain and setGrass first (std::logic_error otherwise). wind.wsDirection and
     /// wind.group must each hold one entry per terrain vertex and every group must be below
-    /// wind.groupIntensity.size(); an empty groupIntensity means no wind (then the per-vertex arrays
-    /// may be empty). Intensities must be finite. Throws std::invalid_argument naming the field.
-    /// Clears to the sky colour, draws, and ends with glFinish.
+    /// wind.groupIntensity.size(); an empty groupIntensity means no wind (then the per-vertex
+    /// arrays may be empty). Intensities must be finite. Throws std::invalid_argument naming the
+    /// field. Clears to the sky colour, draws, and ends with glFinish.
     FrameStats draw(const Camera& camera, const GrassWind& wind);
 
     /// Benchmark baseline: the same terrain, shell count and texture with a minimal shader

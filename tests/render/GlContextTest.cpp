@@ -1,7 +1,6 @@
 // The headless OSMesa context (DESIGN 7).
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
-
 #include <gtest/gtest.h>
 
 #include "render/GlContext.h"

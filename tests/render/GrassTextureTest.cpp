@@ -7,8 +7,8 @@
 #include <set>
 #include <vector>
 
-#include "render/GrassTexture.h"
 #include "RenderTestUtil.h"
+#include "render/GrassTexture.h"
 
 namespace gale::render {
 namespace {
@@ -54,18 +54,20 @@ std::multiset<int> bladeDots(const Image& image) {
 }
 
 TEST(BladeMip, OneBladeTexelOfFourIsGroundWithMeanOfAll) {
-    const Image block = makeImage(2, {{200, 100, 0, 180}, {0, 0, 40, 0}, {0, 0, 40, 0}, {0, 0, 40, 0}});
+    const Image block =
+        makeImage(2, {{200, 100, 0, 180}, {0, 0, 40, 0}, {0, 0, 40, 0}, {0, 0, 40, 0}});
     const Image next = downsampleKeepingBlades(block);
     ASSERT_EQ(next.width, 1);
     const uint8_t* t = texel(next, 0, 0);
     EXPECT_EQ(t[3], 0);
-    EXPECT_EQ(t[0], 50);   // (200 + 0 + 0 + 0) / 4
-    EXPECT_EQ(t[1], 25);   // 100 / 4
-    EXPECT_EQ(t[2], 30);   // (0 + 40 * 3) / 4
+    EXPECT_EQ(t[0], 50);  // (200 + 0 + 0 + 0) / 4
+    EXPECT_EQ(t[1], 25);  // 100 / 4
+    EXPECT_EQ(t[2], 30);  // (0 + 40 * 3) / 4
 }
 
 TEST(BladeMip, TwoBladeTexelsOfFourMakeABladeWithTheirMeanColourAndMaxAlpha) {
-    const Image block = makeImage(2, {{200, 100, 0, 180}, {0, 0, 40, 0}, {100, 50, 20, 90}, {0, 0, 40, 0}});
+    const Image block =
+        makeImage(2, {{200, 100, 0, 180}, {0, 0, 40, 0}, {100, 50, 20, 90}, {0, 0, 40, 0}});
     const Image next = downsampleKeepingBlades(block);
     const uint8_t* t = texel(next, 0, 0);
     EXPECT_EQ(t[3], 180);  // max of 180 and 90
@@ -75,7 +77,8 @@ TEST(BladeMip, TwoBladeTexelsOfFourMakeABladeWithTheirMeanColourAndMaxAlpha) {
 }
 
 TEST(BladeMip, FourBladeTexelsKeepTheMaximumHeight) {
-    const Image block = makeImage(2, {{10, 10, 10, 5}, {20, 20, 20, 250}, {30, 30, 30, 7}, {40, 40, 40, 1}});
+    const Image block =
+        makeImage(2, {{10, 10, 10, 5}, {20, 20, 20, 250}, {30, 30, 30, 7}, {40, 40, 40, 1}});
     const Image next = downsampleKeepingBlades(block);
     const uint8_t* t = texel(next, 0, 0);
     EXPECT_EQ(t[3], 250);

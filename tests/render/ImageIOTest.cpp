@@ -1,17 +1,16 @@
 // Atomic image writes and RGBA8 reads (STYLE: never write a half file).
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
-#include "render/ImageIO.h"
 #include "RenderTestUtil.h"
+#include "render/ImageIO.h"
 
 namespace gale::render {
 namespace {

@@ -6,10 +6,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <glm/geometric.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/geometric.hpp>
 
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"

@@ -12,11 +12,11 @@
 #include <iostream>
 #include <string>
 
+#include "RenderTestUtil.h"
 #include "render/GlContext.h"
 #include "render/GrassTexture.h"
 #include "render/ImageIO.h"
 #include "render/ShellRenderer.h"
-#include "RenderTestUtil.h"
 
 namespace gale::render {
 namespace {
@@ -87,8 +87,7 @@ TEST(ShellRenderer, MatchesReferenceImage) {
     const Image expected = readImageRgba8(reference.string());
     ASSERT_EQ(expected.width, actual.width);
     ASSERT_EQ(expected.height, actual.height);
-    const test::ImageDiff diff =
-        test::compareImages(actual, expected, kReferenceChannelTolerance);
+    const test::ImageDiff diff = test::compareImages(actual, expected, kReferenceChannelTolerance);
     if (diff.differingFraction > kReferenceMaxDifferingFraction) {
         const fs::path out = fs::path(GALE_BINARY_DIR) / "render_test_output";
         fs::create_directories(out);
@@ -142,8 +141,8 @@ struct CoverageScene {
         lighting.ambient = glm::vec3(0.0f);
         lighting.specularStrength = 0.0f;
         lighting.selfShadowMin = kShadowMin;
-        lighting.lights.push_back({glm::vec3(1.0e4f, 0.0f, 0.0f), glm::vec3(1.0f),
-                                   glm::vec3(1.0f, 0.0f, 0.0f)});
+        lighting.lights.push_back(
+            {glm::vec3(1.0e4f, 0.0f, 0.0f), glm::vec3(1.0f), glm::vec3(1.0f, 0.0f, 0.0f)});
         renderer.setLighting(lighting);
     }
 

@@ -1,0 +1,163 @@
+/// \file BenchRender.cpp
+/// The render benchmark table: our fps against the paper's GeForce3 numbers (Bakay 2003, Table
+/// 4.1; Bakay, Lalonde, Heidrich 2002, Table 2) and against a trivial fill on the same machine.
+
+#include "app/BenchRender.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "render/RenderBench.h"
+
+namespace gale::app {
+namespace {
+
+struct PaperRow {
+    int layers;
+    int width;
+    int height;
+    double fps;  ///< GeForce3, 1.7 GHz Pentium (thesis 4.1)
+};
+
+constexpr PaperRow kPaperRows[] = {
+    {1, 640, 480, 293.5}, {9, 640, 480, 47.0},   {17, 640, 480, 25.6}, {33, 640, 480, 13.4},
+    {65, 640, 480, 6.9},  {1, 1024, 768, 130.8}, {9, 1024, 768, 22.8}, {17, 1024, 768, 12.4},
+    {33, 1024, 768, 6.5}, {65, 1024, 768, 3.3},
+};
+
+// Targets printed with the table: at least twice the paper's GeForce3, and the full shader at
+// least 0.7 of the trivial fill (the lighting should stay nearly free, as the thesis found).
+constexpr double kTargetRatioToPaper = 2.0;
+constexpr double kTargetRatioToTrivial = 0.7;
+
+void writeTextAtomicLocal(const std::string& path, const std::string& text) {
+    namespace fs = std::filesystem;
+    const fs::path target(path);
+    fs::path temp = target.parent_path();
+    temp /= "." + target.filename().string() + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        out << text;
+        out.flush();
+        if (!out) {
+            std::error_code ignored;
+            fs::remove(temp, ignored);
+            throw std::runtime_error("cannot write '" + path + "': cannot write temporary file '" +
+                                     temp.string() + "'");
+        }
+    }
+    std::error_code ec;
+    fs::rename(temp, target, ec);
+    if (ec) {
+        std::error_code ignored;
+        fs::remove(temp, ignored);
+        throw std::runtime_error("cannot write '" + path + "': " + ec.message());
+    }
+}
+
+}  // namespace
+
+int runBenchRender(const BenchRenderOptions& options) {
+    if (options.frames < 1) {
+        throw std::invalid_argument("bench render: --frames must be >= 1, got " +
+                                    std::to_string(options.frames));
+    }
+    const int frames = options.quick ? 2 : options.frames;
+    const int warmup = options.quick ? 1 : 2;
+
+    std::vector<render::ShellFillResult> results;
+    std::string rendererName;
+    int index = 0;
+    for (const PaperRow& row : kPaperRows) {
+        ++index;
+        render::ShellFillCase c;
+        c.width = row.width;
+        c.height = row.height;
+        c.layers = row.layers;
+        c.frames = frames;
+        c.warmupFrames = warmup;
+        c.lights = 3;
+        c.gridVertices = 17;
+        const render::ShellFillResult r = render::measureShellFill(c);
+        rendererName = r.renderer;
+        results.push_back(r);
+        std::fprintf(
+            stderr, "bench render: row %d/%zu: %d shells at %dx%d: %.1f fps (trivial %.1f)\n",
+            index, std::size(kPaperRows), r.layers, r.width, r.height, r.fps, r.baselineFps);
+    }
+
+    std::printf(
+        "Shell grass, paper Table 2 layout (Bakay, Lalonde, Heidrich 2002; thesis Table "
+        "4.1)\n");
+    std::printf(
+        "renderer: %s; %d timed frames per row after %d warm-up; 3 point lights; base mesh "
+        "17x17 vertices (512 triangles)\n",
+        rendererName.c_str(), frames, warmup);
+    std::printf(
+        "paper: GeForce3, 1.7 GHz Pentium 4. \"shells\" counts layers drawn, ground "
+        "included, as in the paper.\n\n");
+    std::printf("%6s  %-10s  %8s  %9s  %8s  %9s  %11s  %12s  %8s\n", "shells", "resolution",
+                "polygons", "paper fps", "our fps", "vs paper", "trivial fps", "ours/trivial",
+                "coverage");
+    bool allPaper = true;
+    bool allTrivial = true;
+    nlohmann::json rows = nlohmann::json::array();
+    for (size_t k = 0; k < results.size(); ++k) {
+        const render::ShellFillResult& r = results[k];
+        const double paper = kPaperRows[k].fps;
+        const double vsPaper = r.fps / paper;
+        const double vsTrivial = r.fps / r.baselineFps;
+        allPaper = allPaper && vsPaper >= kTargetRatioToPaper;
+        allTrivial = allTrivial && vsTrivial >= kTargetRatioToTrivial;
+        const std::string resolution = std::to_string(r.width) + "x" + std::to_string(r.height);
+        std::printf("%6d  %-10s  %8ld  %9.1f  %8.1f  %8.2fx  %11.1f  %12.2f  %7.1f%%\n", r.layers,
+                    resolution.c_str(), r.triangles, paper, r.fps, vsPaper, r.baselineFps,
+                    vsTrivial, 100.0 * r.coverage);
+        rows.push_back({{"shells", r.layers},
+                        {"width", r.width},
+                        {"height", r.height},
+                        {"polygons", r.triangles},
+                        {"paper_fps", paper},
+                        {"fps", r.fps},
+                        {"ratio_to_paper", vsPaper},
+                        {"trivial_fps", r.baselineFps},
+                        {"ratio_to_trivial", vsTrivial},
+                        {"cpu_ms_per_frame", r.cpu_ms},
+                        {"coverage", r.coverage}});
+    }
+    std::printf("\ntargets: every row >= %.1fx paper: %s; every row >= %.2f of trivial: %s\n",
+                kTargetRatioToPaper, allPaper ? "met" : "MISSED", kTargetRatioToTrivial,
+                allTrivial ? "met" : "MISSED");
+    if (options.quick) std::printf("(quick run: %d frames per row, not a measurement)\n", frames);
+
+    if (!options.jsonPath.empty()) {
+        nlohmann::json doc;
+        doc["benchmark"] = "render";
+        doc["renderer"] = rendererName;
+        doc["frames_per_row"] = frames;
+        doc["warmup_frames"] = warmup;
+        doc["quick"] = options.quick;
+        doc["lights"] = 3;
+        doc["base_mesh_triangles"] = 512;
+        doc["rows"] = rows;
+        doc["targets"] = {{"ratio_to_paper_min", kTargetRatioToPaper},
+                          {"ratio_to_trivial_min", kTargetRatioToTrivial},
+                          {"ratio_to_paper_met", allPaper},
+                          {"ratio_to_trivial_met", allTrivial}};
+        writeTextAtomicLocal(options.jsonPath, doc.dump(2) + "\n");
+        std::fprintf(stderr, "bench render: wrote %s\n", options.jsonPath.c_str());
+    }
+    return 0;
+}
+
+}  // namespace gale::app
