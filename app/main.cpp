@@ -118,6 +118,16 @@ int main(int argc, char** argv) {
     terrain->add_option("-o,--output", terrainOptions.imagePath, "PNG file to write")->required();
     terrain->footer(EXIT_CODES_FOOTER);
 
+    if (argc > 1 && argv[1][0] != '-') {
+        const std::string verb = argv[1];
+        bool known = false;
+        for (CLI::App* v : {check, render, blade, bench, terrain}) known |= v->get_name() == verb;
+        if (!known)
+            return reportError("unknown verb '" + verb +
+                                   "' (expected check, render, blade, bench or terrain; see 'gale "
+                                   "--help')",
+                               EXIT_BAD_INPUT);
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,0 +1,104 @@
+#pragma once
+// Helpers shared by the app tests: fresh temporary folders and running the gale binary.
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace gale::app::test {
+
+namespace fs = std::filesystem;
+
+/// A new empty folder under the system temp folder, removed with everything in it at scope end.
+class TempDir {
+  public:
+    TempDir() {
+        static std::atomic<int> counter{0};
+        mPath = fs::temp_directory_path() /
+                ("gale_app_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+        fs::remove_all(mPath);
+        fs::create_directories(mPath);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(mPath, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const fs::path& path() const { return mPath; }
+    std::string operator/(const std::string& name) const { return (mPath / name).string(); }
+
+  private:
+    fs::path mPath;
+};
+
+inline std::string readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+inline void writeFile(const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+}
+
+inline std::string quote(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+struct RunResult {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+/// Runs GALE_EXE with `args` (each quoted for the shell) in folder `cwd`, capturing both streams.
+inline RunResult runGale(const std::vector<std::string>& args, const std::string& cwd = "") {
+    TempDir capture;
+    std::string cmd;
+    if (!cwd.empty()) cmd += "cd " + quote(cwd) + " && ";
+    cmd += quote(GALE_EXE);
+    for (const std::string& a : args) cmd += " " + quote(a);
+    cmd += " >" + quote(capture / "out") + " 2>" + quote(capture / "err") + " </dev/null";
+    const int status = std::system(cmd.c_str());
+    RunResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = readFile(capture / "out");
+    r.err = readFile(capture / "err");
+    return r;
+}
+
+inline std::string sourcePath(const std::string& relative) {
+    return (fs::path(GALE_SOURCE_DIR) / relative).string();
+}
+
+inline int countLines(const std::string& text) {
+    int n = 0;
+    for (char c : text) n += (c == '\n');
+    return n;
+}
+
+/// Files directly in `folder`; 0 if it does not exist.
+inline int countFiles(const std::string& folder) {
+    std::error_code ec;
+    if (!fs::exists(folder, ec)) return 0;
+    int n = 0;
+    for (const auto& e : fs::directory_iterator(folder, ec)) {
+        (void)e;
+        ++n;
+    }
+    return n;
+}
+
+}  // namespace gale::app::test

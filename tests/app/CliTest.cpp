@@ -1,0 +1,244 @@
+// The gale program as a user meets it: exit codes, one-line errors naming file, field and reason,
+// nothing written on bad input, and a tiny end-to-end render whose frames move.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "AppTestSupport.h"
+#include "render/Bend.h"
+#include "render/ImageIO.h"
+
+namespace gale::app {
+namespace {
+
+using test::runGale;
+using test::RunResult;
+using test::TempDir;
+
+std::string corpus(const std::string& name) {
+    return test::sourcePath("tests/data/scenes/" + name);
+}
+
+/// One bad scene of tests/data/scenes and what its error must say.
+struct BadScene {
+    const char* file;
+    std::vector<std::string> fragments;  ///< besides the file name: field (or line) and reason
+};
+
+const std::vector<BadScene>& badScenes() {
+    static const std::vector<BadScene> scenes = {
+        {"malformed.toml", {"malformed.toml:2:", "expected ']'"}},
+        {"unknown_key.toml", {"unknown_key.toml:4:", "grass.shell", "unknown key"}},
+        {"unknown_section.toml", {"unknown_section.toml:5:", "weather", "unknown section"}},
+        {"wrong_type.toml", {"wrong_type.toml:3:", "grass.shells", "expected an integer"}},
+        {"negative_shells.toml", {"negative_shells.toml:3:", "grass.shells", "(got -4)"}},
+        {"huge_shells.toml", {"huge_shells.toml:3:", "grass.shells", "(got 100000)"}},
+        {"nan_height.toml", {"nan_height.toml:3:", "grass.height_m", "(got nan)"}},
+        {"zero_spacing.toml", {"zero_spacing.toml:3:", "terrain.spacing_m", "must be > 0"}},
+        {"absurd_terrain.toml", {"absurd_terrain.toml:4:", "terrain.spacing_m", "samples"}},
+        {"zero_width.toml", {"zero_width.toml:3:", "output.width", "(got 0)"}},
+        {"bad_gust_keys.toml", {"bad_gust_keys.toml:4:", "wind.gust.keys", "increase"}},
+        {"missing_heightmap.toml",
+         {"missing_heightmap.toml:4:", "terrain.image", "no such file", "no_such_heightmap.png"}},
+        {"corrupt_heightmap.toml",
+         {"corrupt_heightmap.toml:4:", "terrain.image", "corrupt_heightmap.png",
+          "not a readable image"}},
+        {"truncated_heightmap.toml",
+         {"truncated_heightmap.toml:4:", "terrain.image", "truncated_heightmap.png",
+          "truncated or corrupt"}},
+        {"single_pixel_heightmap.toml",
+         {"single_pixel_heightmap.toml:4:", "terrain.image", "too small"}},
+    };
+    return scenes;
+}
+
+/// Exit code 2, exactly one stderr line "gale: error: ..." holding every fragment.
+void expectBadInput(const RunResult& r, const std::vector<std::string>& fragments) {
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(test::countLines(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("gale: error: ", 0), 0u) << r.err;
+    for (const std::string& f : fragments)
+        EXPECT_NE(r.err.find(f), std::string::npos) << "'" << f << "' not in: " << r.err;
+}
+
+class BadSceneTest : public testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneTest, RenderExitsTwoWithOneLineAndWritesNothing) {
+    TempDir dir;
+    const std::string out = dir / "frames";
+    expectBadInput(runGale({"render", corpus(GetParam().file), "-o", out}), GetParam().fragments);
+    EXPECT_EQ(test::countFiles(out), 0);
+    EXPECT_FALSE(test::fs::exists(out));
+}
+
+TEST_P(BadSceneTest, CheckExitsTwoWithOneLine) {
+    TempDir dir;
+    const RunResult r = runGale({"check", corpus(GetParam().file), "-o", dir / "frames"});
+    expectBadInput(r, GetParam().fragments);
+    EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, BadSceneTest, testing::ValuesIn(badScenes()),
+                         [](const testing::TestParamInfo<BadScene>& info) {
+                             std::string name = info.param.file;
+                             name = name.substr(0, name.find('.'));
+                             std::string out;
+                             for (char c : name) out += std::isalnum(c) ? c : '_';
+                             return out;
+                         });
+
+TEST(Cli, OutputFolderThatIsAFileIsBadInputForRenderAndCheck) {
+    TempDir dir;
+    test::writeFile(dir / "occupied", "a file where the frames should go\n");
+    for (const char* verb : {"render", "check"}) {
+        SCOPED_TRACE(verb);
+        expectBadInput(runGale({verb, corpus("tiny.toml"), "-o", dir / "occupied"}),
+                       {"-o", "occupied", "is a file"});
+    }
+    EXPECT_EQ(test::readFile(dir / "occupied"), "a file where the frames should go\n");
+    EXPECT_EQ(test::countFiles(dir.path().string()), 1);
+}
+
+TEST(Cli, SceneOutputFolderThatIsAFileNamesTheSceneKey) {
+    TempDir dir;
+    test::writeFile(dir / "occupied", "x");
+    test::writeFile(dir / "s.toml", "[output]\nframes = 1\nfolder = \"occupied\"\n");
+    // output.folder resolves against the current directory: run from `dir`.
+    expectBadInput(runGale({"render", "s.toml"}, dir.path().string()),
+                   {"s.toml:3: output.folder", "is a file"});
+}
+
+TEST(Cli, MissingSceneIsBadInput) {
+    expectBadInput(runGale({"check", "/nonexistent/scene.toml"}),
+                   {"/nonexistent/scene.toml", "no such file"});
+}
+
+TEST(Cli, BadArgumentsExitTwo) {
+    expectBadInput(runGale({"render"}), {"scene"});
+    expectBadInput(runGale({"render", corpus("tiny.toml"), "--frames", "0"}), {"--frames"});
+    expectBadInput(runGale({"frobnicate"}), {"frobnicate"});
+    expectBadInput(runGale({}), {"gale --help"});
+    expectBadInput(runGale({"blade", "--shells", "4"}), {"--intensity"});
+}
+
+TEST(Cli, HelpAndVersionExitZero) {
+    RunResult r = runGale({"--version"});
+    EXPECT_EQ(r.exitCode, 0);
+    EXPECT_EQ(r.out.rfind("gale ", 0), 0u) << r.out;
+    for (std::vector<std::string> args : {std::vector<std::string>{"--help"},
+                                          {"check", "--help"},
+                                          {"render", "--help"},
+                                          {"blade", "--help"},
+                                          {"bench", "render", "--help"},
+                                          {"terrain", "--help"}}) {
+        r = runGale(args);
+        EXPECT_EQ(r.exitCode, 0) << args[0];
+        EXPECT_NE(r.out.find("Usage"), std::string::npos) << r.out;
+    }
+}
+
+TEST(Cli, BladePrintsOneCsvLinePerShellAndTheBendsTip) {
+    const RunResult r = runGale({"blade", "--shells", "12", "--intensity", "0.7", "--stiffness",
+                                 "1.5", "--height-m", "0.6"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::istringstream lines(r.out);
+    std::string line;
+    std::getline(lines, line);
+    EXPECT_EQ(line, "i,n_m,w_m");
+    std::vector<std::string> rows;
+    while (std::getline(lines, line)) rows.push_back(line);
+    ASSERT_EQ(rows.size(), 13u);  // shells 0..N
+    EXPECT_EQ(rows.front(), "0,0,0");
+    int i = -1;
+    double n = 0, w = 0;
+    ASSERT_EQ(std::sscanf(rows.back().c_str(), "%d,%lf,%lf", &i, &n, &w), 3) << rows.back();
+    EXPECT_EQ(i, 12);
+    const auto bend = render::bendBlade(12, 0.6f, 0.7f, 1.5f);
+    constexpr double PRINTED_TOLERANCE_M = 1e-7;  // printed with 9 significant digits
+    EXPECT_NEAR(n, bend.back().n_m, PRINTED_TOLERANCE_M);
+    EXPECT_NEAR(w, bend.back().w_m, PRINTED_TOLERANCE_M);
+}
+
+TEST(Cli, BladeSvgDrawsTheBladeAtomically) {
+    TempDir dir;
+    const RunResult r = runGale({"blade", "--shells", "8", "--intensity", "0.5", "--stiffness", "1",
+                                 "--svg", dir / "blade.svg"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string svg = test::readFile(dir / "blade.svg");
+    EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+    EXPECT_NE(svg.find("<polyline"), std::string::npos);
+    EXPECT_NE(svg.find("ground"), std::string::npos);
+    EXPECT_NE(svg.find("</svg>"), std::string::npos);
+    EXPECT_EQ(test::countFiles(dir.path().string()), 1);  // no temporary left
+}
+
+TEST(Cli, CheckOnKnollSucceedsAndSaysWhatItLeavesOut) {
+    TempDir dir;
+    const RunResult r =
+        runGale({"check", test::sourcePath("examples/knoll.toml"), "-o", dir / "o"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* fragment :
+         {"gaussian_hill", "161 x 161", "vertices", "20 shells", "MIP levels", "point source",
+          "groups", "2 point lights", "48 frames of 640 x 480", "left out", "no wind solver",
+          "no window: headless"})
+        EXPECT_NE(r.out.find(fragment), std::string::npos) << fragment << " not in:\n" << r.out;
+    EXPECT_FALSE(test::fs::exists(dir / "o"));  // check creates nothing
+}
+
+TEST(Cli, CheckSaysAmbientOnlyWhenThereAreNoLights) {
+    TempDir dir;
+    test::writeFile(dir / "dark.toml", "[terrain]\nkind = \"flat\"\n");
+    const RunResult r = runGale({"check", dir / "dark.toml", "-o", dir / "o"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("no lights: ambient only"), std::string::npos) << r.out;
+}
+
+TEST(Cli, TinyRenderWritesThreeDistinctFramesAndAReport) {
+    TempDir dir;
+    const std::string out = dir / "frames";
+    const RunResult r = runGale({"render", corpus("tiny.toml"), "-o", out});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("wrote 3 frames to " + out), std::string::npos) << r.out;
+    ASSERT_EQ(test::countFiles(out), 4);  // 3 PNGs + the report, no temporaries
+    std::vector<render::Image> frames;
+    for (int k = 0; k < 3; ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame_%04d.png", k);
+        frames.push_back(render::readImageRgba8(out + name));
+        EXPECT_EQ(frames.back().width, 64);
+        EXPECT_EQ(frames.back().height, 48);
+    }
+    // The wind moves the grass: consecutive frames differ somewhere.
+    for (int k = 1; k < 3; ++k) EXPECT_NE(frames[k].rgba, frames[k - 1].rgba) << "frame " << k;
+
+    const nlohmann::json report = nlohmann::json::parse(test::readFile(out + "/frame_report.json"));
+    EXPECT_EQ(report["frames"], 3);
+    EXPECT_EQ(report["frame_ms"].size(), 3u);
+    EXPECT_EQ(report["files"].size(), 3u);
+    EXPECT_NE(report["gl"].get<std::string>().find("OpenGL"), std::string::npos) << report["gl"];
+    // Not a terminal: one progress line per frame.
+    EXPECT_NE(r.err.find("frame 3/3"), std::string::npos) << r.err;
+}
+
+TEST(Cli, TerrainExportWritesAHeightmapThatCheckReadsBack) {
+    TempDir dir;
+    const RunResult r = runGale({"terrain", corpus("tiny.toml"), "-o", dir / "hill.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("17 x 17 pixels"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("height_scale_m"), std::string::npos) << r.out;
+    test::writeFile(
+        dir / "back.toml",
+        "[terrain]\nkind = \"heightmap\"\nimage = \"hill.png\"\nmetres_per_pixel = 0.5\n");
+    const RunResult c = runGale({"check", dir / "back.toml", "-o", dir / "o"});
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    EXPECT_NE(c.out.find("17 x 17 samples at 0.5 m"), std::string::npos) << c.out;
+    expectBadInput(runGale({"terrain", corpus("tiny.toml"), "-o", dir / "hill.jpg"}), {".png"});
+}
+
+}  // namespace
+}  // namespace gale::app
