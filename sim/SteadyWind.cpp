@@ -25,7 +25,8 @@ double checkedRatio(const MassConsistentWeights& w) {
     if (!(w.alphaV > 0.0) || !std::isfinite(w.alphaV))
         throw std::invalid_argument("MassConsistentWeights.alphaV must be > 0 and finite, got " + num(w.alphaV));
     const double r = (w.alphaH / w.alphaV) * (w.alphaH / w.alphaV);
-    if (r < SteadyWindSolver::MIN_VERTICAL_RATIO || r > SteadyWindSolver::MAX_VERTICAL_RATIO)
+    constexpr double ROUNDING = 1e-9;  // (sqrt(10))^2 must pass as 10
+    if (r < SteadyWindSolver::MIN_VERTICAL_RATIO * (1 - ROUNDING) || r > SteadyWindSolver::MAX_VERTICAL_RATIO * (1 + ROUNDING))
         throw std::invalid_argument("MassConsistentWeights: (alphaH/alphaV)^2 = " + num(r) + " is outside the supported [" +
                                     num(SteadyWindSolver::MIN_VERTICAL_RATIO) + ", " +
                                     num(SteadyWindSolver::MAX_VERTICAL_RATIO) + "]");
