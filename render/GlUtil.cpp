@@ -39,6 +39,10 @@ GLuint compileShaderFile(GLenum stage, const char* fileName) {
         throw std::runtime_error(std::string("shaders/") + fileName +
                                  ": no such shader embedded in the binary");
     }
+    return compileShaderSource(stage, fileName, source);
+}
+
+GLuint compileShaderSource(GLenum stage, const char* fileName, const char* source) {
     const GLuint shader = glCreateShader(stage);
     if (shader == 0) {
         throw std::runtime_error(std::string("shaders/") + fileName +

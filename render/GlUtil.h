@@ -15,6 +15,10 @@ namespace gale::render::detail {
 /// naming the file and carrying the compiler log if the file is missing or does not compile.
 GLuint compileShaderFile(GLenum stage, const char* fileName);
 
+/// Compiles `source` as a shader of `stage`; `fileName` only names it in errors. Throws
+/// std::runtime_error naming the file and carrying the compiler log if it does not compile.
+GLuint compileShaderSource(GLenum stage, const char* fileName, const char* source);
+
 /// Links a program from shaders/<vertexFile> and shaders/<fragmentFile>. Throws
 /// std::runtime_error naming both files and carrying the compile or link log.
 GLuint linkProgramFiles(const char* vertexFile, const char* fragmentFile);

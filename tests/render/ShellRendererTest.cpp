@@ -121,6 +121,27 @@ TEST(ShellRenderer, EmptyGroupIntensityMeansNoWind) {
     EXPECT_EQ(a.rgba, b.rgba);
 }
 
+TEST(ShellRenderer, WindArraysAreReuploadedOnlyWhenRevisionChanges) {
+    auto context = createOsMesaContext(160, 120);
+    ReferenceScene scene;
+    ShellRenderer renderer(*context);
+    renderer.setTerrain(scene.mesh);
+    renderer.setGrass(scene.grass, scene.texture);
+    renderer.setLighting(scene.lighting);
+    auto frame = [&](const GrassWind& wind) {
+        renderer.draw(scene.camera, wind);
+        Image image;
+        context->readPixels(image);
+        return image;
+    };
+    GrassWind wind = scene.wind(1.0f, 1.0f);
+    const Image first = frame(wind);
+    for (glm::vec3& d : wind.wsDirection) d = -d;  // new directions, same revision: not uploaded
+    EXPECT_EQ(frame(wind).rgba, first.rgba);
+    ++wind.revision;  // now they are
+    EXPECT_NE(frame(wind).rgba, first.rgba);
+}
+
 // Top-down view of a flat field larger than the view, lit by one far light near the horizon so
 // the Kajiya-Kay diffuse term is ~1 for upright strands and the brightness of a shell is its Banks
 // factor S = (i/N)(1 - S_min) + S_min alone: with S_min = 1/2 the ground shows at half brightness,
