@@ -225,6 +225,39 @@ TEST(Cli, TinyRenderWritesThreeDistinctFramesAndAReport) {
     EXPECT_NE(r.err.find("frame 3/3"), std::string::npos) << r.err;
 }
 
+TEST(Cli, GrassTextureImageIsLoadedRelativeToTheScene) {
+    TempDir dir;
+    // A 32 x 32 RGBA texture: green blades (alpha = height) on every other texel.
+    render::Image texture;
+    texture.width = texture.height = 32;
+    texture.rgba.assign(32 * 32 * 4, 0);
+    for (int t = 0; t < 32 * 32; ++t) {
+        uint8_t* p = &texture.rgba[t * 4];
+        p[0] = 60, p[1] = 140, p[2] = 40, p[3] = (t % 2) ? static_cast<uint8_t>(100 + t % 155) : 0;
+    }
+    render::writeImageAtomic(texture, dir / "blades.png");
+    test::writeFile(dir / "textured.toml",
+                    "[terrain]\nsize_m = [8, 8]\nspacing_m = 0.5\nheight_m = 1\nradius_m = 2\n"
+                    "[grass]\nshells = 4\ntexture = \"blades.png\"\n"
+                    "[[lighting.light]]\nposition_m = [20, -10, 15]\n"
+                    "[output]\nwidth = 64\nheight = 48\n");
+    const RunResult c = runGale({"check", dir / "textured.toml", "-o", dir / "o"});
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    EXPECT_NE(c.out.find("blades.png, 32 x 32"), std::string::npos) << c.out;
+    const RunResult r =
+        runGale({"render", dir / "textured.toml", "-o", dir / "o", "--frames", "1"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(test::fs::exists(dir / "o/frame_0000.png"));
+
+    // A texture that is not square is refused with the key named.
+    texture.height = 16;
+    texture.rgba.resize(32 * 16 * 4);
+    render::writeImageAtomic(texture, dir / "blades.png");
+    expectBadInput(runGale({"render", dir / "textured.toml", "-o", dir / "o2"}),
+                   {"textured.toml:", "grass.texture", "square"});
+    EXPECT_FALSE(test::fs::exists(dir / "o2"));
+}
+
 TEST(Cli, TerrainExportWritesAHeightmapThatCheckReadsBack) {
     TempDir dir;
     const RunResult r = runGale({"terrain", corpus("tiny.toml"), "-o", dir / "hill.png"});

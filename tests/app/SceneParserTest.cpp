@@ -41,6 +41,19 @@ TEST(SceneParser, EveryExampleSceneParses) {
     }
 }
 
+TEST(SceneParser, CompleteSceneInTheFormatDocParses) {
+    const std::string doc = test::readFile(test::sourcePath("docs/scene-format.md"));
+    const std::string fence = "```toml\n";
+    const size_t begin = doc.find(fence);
+    ASSERT_NE(begin, std::string::npos) << "docs/scene-format.md has no ```toml block";
+    const size_t end = doc.find("```", begin + fence.size());
+    ASSERT_NE(end, std::string::npos);
+    const std::string text = doc.substr(begin + fence.size(), end - begin - fence.size());
+    const Scene s = parseSceneString(text, "docs/scene-format.md");
+    EXPECT_EQ(s.grass.params.shells, 20);
+    EXPECT_TRUE(s.notes.empty());
+}
+
 TEST(SceneParser, KnollIsTheDocumentedDefaultScene) {
     const Scene s = parseSceneFile(test::sourcePath("examples/knoll.toml"));
     EXPECT_EQ(s.name, "knoll");
