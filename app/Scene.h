@@ -1,7 +1,8 @@
 #pragma once
 /// \file Scene.h
 /// A validated scene: everything a run needs, in SI units (metres, seconds, m/s). Parsed from TOML
-/// by parseScene (SceneParser.h); the schema, with every key and its unit, is docs/scene-format.md.
+/// by parseSceneFile (SceneParser.h); the schema, with every key and its unit, is
+/// docs/scene-format.md.
 
 #include <map>
 #include <optional>

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -29,6 +30,9 @@ struct BadScene {
     const char* file;
     std::vector<std::string> fragments;  ///< besides the file name: field (or line) and reason
 };
+
+/// Test names and failure messages show the scene's file name, not its bytes.
+void PrintTo(const BadScene& scene, std::ostream* os) { *os << scene.file; }
 
 const std::vector<BadScene>& badScenes() {
     static const std::vector<BadScene> scenes = {
