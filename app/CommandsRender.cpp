@@ -160,7 +160,12 @@ int runRender(const SceneRunOptions& options) {
     report["render_s"] = loop_s;
     report["total_s"] = msSince(runStart) / 1000.0;
     const std::string reportPath = (fs::path(out.folder) / (out.prefix + "_report.json")).string();
-    writeTextAtomic(reportPath, report.dump(2) + "\n");
+    try {
+        writeTextAtomic(reportPath, report.dump(2) + "\n");
+    } catch (...) {
+        removeOutputs(written, out.folder, createdFolder);  // frames without their report: none
+        throw;
+    }
 
     std::string shown = out.folder;
     if (shown.back() != '/') shown += '/';
