@@ -584,16 +584,18 @@ double PoissonSolver::estimatedBytesPerCell() {
 }
 
 double PoissonSolver::bytesPerCellPerIteration(int n) {
-    // Streams per kernel on one level (doubles 8 B, the three weight arrays 12 B per cell):
-    //   first red half sweep: read b, w, write x                      8 + 12 + 8 = 28
-    //   each later half sweep: read x, b, w, write x                  8 + 8 + 12 + 8 = 36
-    //   residual: read x, b, w, write r                               36
-    //   restriction (reads the fine residual once)                    8
-    //   prolongation: read w (activity), read+write x                 28
-    const double vcycleLevel = 28 + 36 * (4.0 * n - 1) + 36 + 8 + 28;
+    // Streams per kernel on one level (doubles 8 B, the three weight arrays 12 B per cell), with
+    // the slab pipelining of fusedSweep (neighbour slabs come from cache):
+    //   first sweep from zero (both colours): read b, w, write x                   8 + 12 + 8 = 28
+    //   each later sweep (both colours): read x, b, w, write x                     36
+    //   the residual fused into the last pre-sweep: write r                        8
+    //   restriction: read the fine residual                                        8
+    //   prolongation: read + write x                                               16
+    const double vcycleLevel = 28 + 36.0 * (2 * n - 1) + 8 + 8 + 16;
     //   PCG on level 0: q = A p (+dot): read p, w, write q 28; x += a p, r -= a q (+max): 48;
     //   r.z: 16; p = z + b p: 24.
     const double pcg = 28 + 48 + 16 + 24;
+    // Coarser levels hold 1/8 + 1/64 + ... = 1/7 of the cells.
     return pcg + vcycleLevel * (1.0 + 1.0 / 7.0);
 }
 

@@ -1,0 +1,626 @@
+/// \file BenchSolve.cpp
+/// Accuracy and speed benchmarks of the steady solver (docs/solver.md).
+
+#include "app/BenchSolve.h"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/PoissonSolver.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/AtomicFile.h"
+#include "sim/SteadyWind.h"
+
+namespace gale::app {
+namespace {
+
+constexpr double PI = 3.14159265358979323846;
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// =================================================================================================
+// Hemisphere of radius R on flat ground in a uniform wind U along +x: by symmetry the sphere in a
+// free stream, u = U e_x + grad(phi), phi = U R^3 cos(theta) / (2 r^2) = U R^3 X / (2 r^3)
+// (DESIGN 4.1). The box [0, 2L]^2 x [0, T] carries the exact potential on its open faces
+// (Dirichlet psi = phi), so the box size adds no truncation error; the ground is the symmetry plane.
+struct Hemisphere {
+    double R = 1.0;          ///< radius, m
+    double U = 1.0;          ///< free stream, m/s
+    double halfWidth = 3.0;  ///< L, m (3 R)
+    double top = 3.0;        ///< T, m (3 R)
+    double c() const { return halfWidth; }
+    double phi(double x, double y, double z) const {
+        const double X = x - c(), Y = y - c(), r2 = X * X + Y * Y + z * z;
+        return 0.5 * U * R * R * R * X / (r2 * std::sqrt(r2));
+    }
+    std::array<double, 3> velocity(double x, double y, double z) const {
+        const double X = x - c(), Y = y - c(), r2 = X * X + Y * Y + z * z, r = std::sqrt(r2), r5 = r2 * r2 * r;
+        const double k = 0.5 * U * R * R * R;
+        return {U + k * (1.0 / (r2 * r) - 3.0 * X * X / r5), -3.0 * k * X * Y / r5, -3.0 * k * X * z / r5};
+    }
+    /// Fixed evaluation points 0.1 R above the surface: on the shell r = 1.1 R (polar angles
+    /// 0..80 degrees by 10, 16 azimuths) and 0.1 R above the ground at 1.2, 1.5, 2, 2.5 R from
+    /// the axis (16 azimuths): 193 points, the same physical points at every resolution.
+    std::vector<std::array<double, 3>> nearPoints() const {
+        std::vector<std::array<double, 3>> p;
+        for (int ia = 0; ia <= 8; ++ia)
+            for (int ib = 0; ib < (ia == 0 ? 1 : 16); ++ib) {
+                const double al = ia * 10.0 * PI / 180.0, be = ib * 2.0 * PI / 16.0, rr = 1.1 * R;
+                p.push_back({c() + rr * std::sin(al) * std::cos(be), c() + rr * std::sin(al) * std::sin(be),
+                             rr * std::cos(al)});
+            }
+        for (double rho : {1.2, 1.5, 2.0, 2.5})
+            for (int ib = 0; ib < 16; ++ib)
+                p.push_back({c() + rho * R * std::cos(ib * PI / 8), c() + rho * R * std::sin(ib * PI / 8), 0.1 * R});
+        return p;
+    }
+};
+
+struct AccuracyRow {
+    int cellsPerRadius = 0;
+    double tolerance = 0;
+    size_t boxCells = 0, activeCells = 0;
+    int iterations = 0;
+    bool converged = false;
+    double relativeResidual = 0, maxDivergenceScaled = 0;
+    double domainSeconds = 0, setupSeconds = 0, solveSeconds = 0, assemblySeconds = 0, totalSeconds = 0;
+    double nearL2 = 0, nearMax = 0, domainL2 = 0, domainMax = 0;
+    size_t nearPoints = 0, domainFaces = 0;
+};
+
+std::string fmt(double v, int prec = 3) {
+    std::ostringstream s;
+    s << std::setprecision(prec) << v;
+    return s.str();
+}
+
+// ---- a small log-log SVG plot -------------------------------------------------------------------
+struct Series {
+    std::string name, colour;
+    bool dashed = false;
+    std::vector<std::array<double, 2>> xy;
+    std::vector<std::string> labels;
+};
+
+std::string logLogSvg(const std::string& title, const std::string& xLabel, const std::string& yLabel,
+                      const std::vector<Series>& series) {
+    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+    for (const Series& s : series)
+        for (const auto& p : s.xy)
+            if (p[0] > 0 && p[1] > 0)
+                xmin = std::min(xmin, p[0]), xmax = std::max(xmax, p[0]), ymin = std::min(ymin, p[1]), ymax = std::max(ymax, p[1]);
+    const double lx0 = std::floor(std::log10(xmin)), lx1 = std::max(lx0 + 1, std::ceil(std::log10(xmax)));
+    const double ly0 = std::floor(std::log10(ymin)), ly1 = std::max(ly0 + 1, std::ceil(std::log10(ymax)));
+    const double W = 760, H = 500, ml = 80, mr = 210, mt = 44, mb = 60, pw = W - ml - mr, ph = H - mt - mb;
+    auto X = [&](double x) { return ml + (std::log10(x) - lx0) / (lx1 - lx0) * pw; };
+    auto Y = [&](double y) { return mt + (1.0 - (std::log10(y) - ly0) / (ly1 - ly0)) * ph; };
+    std::ostringstream o;
+    o << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H
+      << "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
+    o << "<text x='" << ml + pw / 2 << "' y='24' text-anchor='middle' font-size='15'>" << title << "</text>\n";
+    for (double d = lx0; d <= lx1 + 1e-9; d += 1) {
+        o << "<line x1='" << X(std::pow(10, d)) << "' y1='" << mt << "' x2='" << X(std::pow(10, d)) << "' y2='" << mt + ph
+          << "' stroke='#ddd'/>\n<text x='" << X(std::pow(10, d)) << "' y='" << mt + ph + 18
+          << "' text-anchor='middle'>1e" << int(d) << "</text>\n";
+    }
+    for (double d = ly0; d <= ly1 + 1e-9; d += 1) {
+        o << "<line x1='" << ml << "' y1='" << Y(std::pow(10, d)) << "' x2='" << ml + pw << "' y2='" << Y(std::pow(10, d))
+          << "' stroke='#ddd'/>\n<text x='" << ml - 6 << "' y='" << Y(std::pow(10, d)) + 4
+          << "' text-anchor='end'>1e" << int(d) << "</text>\n";
+    }
+    o << "<rect x='" << ml << "' y='" << mt << "' width='" << pw << "' height='" << ph
+      << "' fill='none' stroke='black'/>\n";
+    o << "<text x='" << ml + pw / 2 << "' y='" << H - 16 << "' text-anchor='middle'>" << xLabel << "</text>\n";
+    o << "<text transform='translate(18," << mt + ph / 2 << ") rotate(-90)' text-anchor='middle'>" << yLabel
+      << "</text>\n";
+    for (size_t n = 0; n < series.size(); ++n) {
+        const Series& s = series[n];
+        o << "<polyline fill='none' stroke='" << s.colour << "' stroke-width='2'"
+          << (s.dashed ? " stroke-dasharray='6,4'" : "") << " points='";
+        for (const auto& p : s.xy) o << X(p[0]) << "," << Y(p[1]) << " ";
+        o << "'/>\n";
+        for (size_t k = 0; k < s.xy.size(); ++k) {
+            o << "<circle cx='" << X(s.xy[k][0]) << "' cy='" << Y(s.xy[k][1]) << "' r='3.5' fill='" << s.colour << "'/>\n";
+            if (k < s.labels.size())
+                o << "<text x='" << X(s.xy[k][0]) + 5 << "' y='" << Y(s.xy[k][1]) - 5 << "' font-size='10' fill='"
+                  << s.colour << "'>" << s.labels[k] << "</text>\n";
+        }
+        const double ly = mt + 16 + 20 * n;
+        o << "<line x1='" << ml + pw + 12 << "' y1='" << ly << "' x2='" << ml + pw + 40 << "' y2='" << ly << "' stroke='"
+          << s.colour << "' stroke-width='2'" << (s.dashed ? " stroke-dasharray='6,4'" : "") << "/>\n<text x='"
+          << ml + pw + 46 << "' y='" << ly + 4 << "'>" << s.name << "</text>\n";
+    }
+    o << "</svg>\n";
+    return o.str();
+}
+
+/// Least-squares slope of log(error) against log(cells per radius): the observed order.
+double observedOrder(const std::vector<std::pair<int, double>>& nErr) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    const double n = double(nErr.size());
+    for (const auto& [N, e] : nErr) {
+        const double x = std::log(double(N)), y = std::log(e);
+        sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+    return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+}  // namespace
+
+int runBenchAccuracy(const BenchAccuracyOptions& opt) {
+    const Hemisphere H;
+    const std::vector<int> resolutions = opt.quick ? std::vector<int>{4, 8, 16} : std::vector<int>{4, 8, 16, 32};
+    const std::vector<double> tolerances = opt.quick ? std::vector<double>{1e-6} : std::vector<double>{1e-1, 1e-3, 1e-6};
+    // Terrain: the verification kind, sampled at R/256 (finer than the fraction sub-samples at
+    // 32 cells per radius, h/8 = R/256), the same heightfield at every resolution.
+    sim::TerrainSpec ts;
+    ts.kind = sim::TerrainKind::Hemisphere;
+    ts.sizeX_m = ts.sizeY_m = 2 * H.halfWidth;
+    ts.spacing_m = H.R / 256;
+    ts.radius_m = H.R;
+    ts.centerX_m = ts.centerY_m = H.c();
+    const sim::Heightfield hf = sim::makeTerrain(ts);
+    const auto points = H.nearPoints();
+    sim::AmbientWind ambient;
+    ambient.profile = sim::WindProfile::Uniform;
+    ambient.speed_mps = H.U;
+    const sim::BoundaryPotential farField = [&](double x, double y, double z) { return H.phi(x, y, z); };
+
+    std::vector<AccuracyRow> rows;
+    for (int N : resolutions) {
+        const auto t0 = Clock::now();
+        sim::AirDomain domain(hf, sim::DomainSpec{H.R / N, /*top_m=*/H.top, /*memoryLimit_bytes=*/8e9});
+        const double domainSeconds = since(t0);
+        sim::SteadyWindSolver solver(domain);
+        for (double tol : tolerances) {
+            solver.setWarmStart({});  // every row from a cold start: its time is its own
+            sim::SolverSettings set;
+            set.relativeTolerance = tol;
+            set.maxIterations = 200;
+            const sim::SteadyWindResult res = solver.solve(ambient, set, farField);
+            AccuracyRow r;
+            r.cellsPerRadius = N, r.tolerance = tol;
+            r.boxCells = domain.boxCellCount(), r.activeCells = domain.activeCellCount();
+            r.iterations = res.report.iterations, r.converged = res.report.converged;
+            r.relativeResidual = res.report.relativeResidual, r.maxDivergenceScaled = res.report.maxDivergenceScaled;
+            r.domainSeconds = domainSeconds, r.setupSeconds = res.report.setupSeconds;
+            r.solveSeconds = res.report.solveSeconds, r.assemblySeconds = res.assemblySeconds;
+            r.totalSeconds = r.domainSeconds + r.setupSeconds + r.solveSeconds + r.assemblySeconds;
+            // Near the surface, at the fixed points.
+            double e2 = 0, n2 = 0;
+            for (const auto& p : points) {
+                const auto u = res.field.velocityAt_mps(p[0], p[1], p[2]);
+                const auto ue = H.velocity(p[0], p[1], p[2]);
+                double d = 0;
+                for (int q = 0; q < 3; ++q) d += (u[q] - ue[q]) * (u[q] - ue[q]), n2 += ue[q] * ue[q];
+                e2 += d;
+                r.nearMax = std::max(r.nearMax, std::sqrt(d) / H.U);
+            }
+            r.nearL2 = std::sqrt(e2 / n2), r.nearPoints = points.size();
+            // Whole domain: every fully open interior face, its own component at its centre.
+            const double h = domain.voxelSize_m();
+            const auto o = domain.wsMin_m();
+            const sim::PoissonSystem& S = solver.system();
+            double d2 = 0, m2 = 0;
+            size_t faces = 0;
+            auto face = [&](double value, double exact) {
+                d2 += (value - exact) * (value - exact), m2 += exact * exact, ++faces;
+                r.domainMax = std::max(r.domainMax, std::abs(value - exact) / H.U);
+            };
+            for (int k = 0; k < domain.nz(); ++k)
+                for (int j = 0; j < domain.ny(); ++j)
+                    for (int i = 0; i < domain.nx(); ++i) {
+                        const double x = o[0] + (i + 0.5) * h, y = o[1] + (j + 0.5) * h, z = o[2] + (k + 0.5) * h;
+                        if (i > 0 && domain.openFractionX(i, j, k) == 1.f)
+                            face(res.field.u_mps()[S.faceXIndex(i, j, k)], H.velocity(x - 0.5 * h, y, z)[0]);
+                        if (j > 0 && domain.openFractionY(i, j, k) == 1.f)
+                            face(res.field.v_mps()[S.faceYIndex(i, j, k)], H.velocity(x, y - 0.5 * h, z)[1]);
+                        if (k > 0 && domain.openFractionZ(i, j, k) == 1.f)
+                            face(res.field.w_mps()[S.faceZIndex(i, j, k)], H.velocity(x, y, z - 0.5 * h)[2]);
+                    }
+            r.domainL2 = std::sqrt(d2 / m2), r.domainFaces = faces;
+            rows.push_back(r);
+            std::fprintf(stderr, "bench accuracy: %d cells/R, tol %.0e: %d its, near L2 %.2e, %.2f s\n", N, tol,
+                         r.iterations, r.nearL2, r.totalSeconds);
+        }
+    }
+
+    // ---- tables --------------------------------------------------------------------------------
+    std::printf("Hemisphere R = 1 m on flat ground, uniform U = 1 m/s, potential flow (a_h = a_v);\n"
+                "box 6R x 6R x 3R with the exact potential on its open faces; cut cells.\n"
+                "near = 193 fixed points 0.1 R above the surface; domain = every fully open face.\n\n");
+    std::printf("%5s %7s %9s %4s %9s %10s %10s %10s %10s %8s %8s\n", "N/R", "tol", "cells", "its", "rel.res",
+                "near L2", "near max", "dom L2", "dom max", "solve s", "total s");
+    for (const AccuracyRow& r : rows)
+        std::printf("%5d %7.0e %9zu %4d %9.1e %10.3e %10.3e %10.3e %10.3e %8.3f %8.3f%s\n", r.cellsPerRadius,
+                    r.tolerance, r.boxCells, r.iterations, r.relativeResidual, r.nearL2, r.nearMax, r.domainL2,
+                    r.domainMax, r.setupSeconds + r.solveSeconds, r.totalSeconds, r.converged ? "" : "  NOT CONVERGED");
+    // Orders at the tightest tolerance.
+    const double tightest = tolerances.back();
+    std::vector<std::pair<int, double>> nearL2, nearMax, domL2, domMax;
+    for (const AccuracyRow& r : rows)
+        if (r.tolerance == tightest) {
+            nearL2.push_back({r.cellsPerRadius, r.nearL2}), nearMax.push_back({r.cellsPerRadius, r.nearMax});
+            domL2.push_back({r.cellsPerRadius, r.domainL2}), domMax.push_back({r.cellsPerRadius, r.domainMax});
+        }
+    std::printf("\nObserved order (tol %.0e), pairwise and least squares over all resolutions:\n", tightest);
+    auto printOrders = [&](const char* name, const std::vector<std::pair<int, double>>& v) {
+        std::printf("  %-9s", name);
+        for (size_t n = 1; n < v.size(); ++n)
+            std::printf("  %d->%d: %.2f", v[n - 1].first, v[n].first, std::log(v[n - 1].second / v[n].second) / std::log(double(v[n].first) / v[n - 1].first));
+        std::printf("  | fit: %.2f\n", observedOrder(v));
+    };
+    printOrders("near L2", nearL2);
+    printOrders("near max", nearMax);
+    printOrders("dom L2", domL2);
+    printOrders("dom max", domMax);
+    double nearAt16 = -1;
+    for (const auto& [N, e] : nearL2)
+        if (N == 16) nearAt16 = e;
+    const double order = observedOrder(nearL2);
+    const bool ok = nearAt16 >= 0 && nearAt16 <= 0.01 && order >= 1.5;
+    std::printf("\nTargets: near-surface rel. L2 <= 1%% at 16 cells/R: %.3f%% %s; observed order >= 1.5: %.2f %s\n",
+                100 * nearAt16, nearAt16 <= 0.01 ? "(met)" : "(MISSED)", order, order >= 1.5 ? "(met)" : "(MISSED)");
+
+    // ---- files ---------------------------------------------------------------------------------
+    std::filesystem::create_directories(opt.outputFolder);
+    std::ostringstream csv;
+    csv << "cells_per_radius,tolerance,box_cells,active_cells,iterations,converged,relative_residual,"
+           "max_div_scaled,near_rel_l2,near_max_rel,domain_rel_l2,domain_max_rel,domain_s,setup_s,solve_s,"
+           "assembly_s,total_s\n";
+    for (const AccuracyRow& r : rows)
+        csv << r.cellsPerRadius << "," << r.tolerance << "," << r.boxCells << "," << r.activeCells << ","
+            << r.iterations << "," << r.converged << "," << r.relativeResidual << "," << r.maxDivergenceScaled << ","
+            << r.nearL2 << "," << r.nearMax << "," << r.domainL2 << "," << r.domainMax << "," << r.domainSeconds << ","
+            << r.setupSeconds << "," << r.solveSeconds << "," << r.assemblySeconds << "," << r.totalSeconds << "\n";
+    writeTextAtomic(opt.outputFolder + "/accuracy.csv", csv.str());
+    const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd"};
+    std::vector<Series> series;
+    for (size_t t = 0; t < tolerances.size(); ++t) {
+        Series l2{"near L2, tol " + fmt(tolerances[t], 1), colours[t % 5], false, {}, {}};
+        Series mx{"near max, tol " + fmt(tolerances[t], 1), colours[t % 5], true, {}, {}};
+        for (const AccuracyRow& r : rows)
+            if (r.tolerance == tolerances[t]) {
+                l2.xy.push_back({r.totalSeconds, r.nearL2}), l2.labels.push_back(std::to_string(r.cellsPerRadius) + "/R");
+                mx.xy.push_back({r.totalSeconds, r.nearMax});
+            }
+        series.push_back(l2), series.push_back(mx);
+    }
+    Series dom{"domain L2, tol " + fmt(tightest, 1), colours[3], false, {}, {}};
+    for (const AccuracyRow& r : rows)
+        if (r.tolerance == tightest) dom.xy.push_back({r.totalSeconds, r.domainL2});
+    series.push_back(dom);
+    writeTextAtomic(opt.outputFolder + "/accuracy.svg",
+                    logLogSvg("Hemisphere: velocity error against wall time", "wall time (domain + solve), s",
+                              "relative error", series));
+    std::fprintf(stderr, "bench accuracy: wrote %s/accuracy.csv and accuracy.svg\n", opt.outputFolder.c_str());
+    if (!opt.jsonPath.empty()) {
+        nlohmann::json j;
+        j["case"] = "hemisphere R=1 m, U=1 m/s, box 6R x 6R x 3R, exact far field on open faces";
+        j["observed_order_near_l2"] = order;
+        j["observed_order_near_max"] = observedOrder(nearMax);
+        j["observed_order_domain_l2"] = observedOrder(domL2);
+        j["near_l2_at_16"] = nearAt16;
+        j["targets_met"] = ok;
+        for (const AccuracyRow& r : rows)
+            j["rows"].push_back({{"cells_per_radius", r.cellsPerRadius}, {"tolerance", r.tolerance},
+                                 {"box_cells", r.boxCells}, {"active_cells", r.activeCells},
+                                 {"iterations", r.iterations}, {"converged", r.converged},
+                                 {"relative_residual", r.relativeResidual}, {"max_div_scaled", r.maxDivergenceScaled},
+                                 {"near_rel_l2", r.nearL2}, {"near_max_rel", r.nearMax},
+                                 {"domain_rel_l2", r.domainL2}, {"domain_max_rel", r.domainMax},
+                                 {"total_s", r.totalSeconds}, {"solve_s", r.solveSeconds}, {"setup_s", r.setupSeconds}});
+        writeTextAtomic(opt.jsonPath, j.dump(2) + "\n");
+    }
+    return ok ? 0 : 1;
+}
+
+// =================================================================================================
+// Solver speed: the same elliptic problem for ours and OpenVDB's.
+namespace {
+
+/// The benchmark problem: a box of unit cells, the 7-point Laplacian, Dirichlet 0 on the faces of
+/// the sides and top, Neumann on the ground, and a deterministic pseudo-random right-hand side in
+/// [-0.5, 0.5] (every frequency present: the hard case for any preconditioner).
+std::vector<double> benchRhs(size_t n) {
+    std::vector<double> b(n);
+    uint64_t s = 0x9E3779B97F4A7C15ull;
+    for (double& v : b) {
+        s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+        v = double(s >> 11) / 9007199254740992.0 - 0.5;
+    }
+    return b;
+}
+
+sim::PoissonSystem benchSystem(int nx, int ny, int nz) {
+    sim::PoissonSystem s = sim::PoissonSystem::uniformBox(nx, ny, nz);
+    s.sides[sim::SIDE_ZMIN] = sim::BoundaryKind::Neumann;
+    return s;
+}
+
+/// What a child process reports back through a pipe (plain data).
+struct RunResult {
+    int ok = 0, converged = 0, iterations = 0, levels = 0;
+    double relativeResidual = 0, setupSeconds = 0, solveSeconds = 0, totalSeconds = 0;
+    double baselineRss_bytes = 0, peakRss_bytes = 0, heldBytes = 0;
+    double solutionDifference = -1;  // max |x - x_ours| / max |x_ours|, OpenVDB runs only
+    double triad_Bps = 0;
+    char message[160] = {0};
+};
+
+double residentBytes() {
+    std::ifstream f("/proc/self/statm");
+    double pages = 0, resident = 0;
+    f >> pages >> resident;
+    return resident * double(sysconf(_SC_PAGESIZE));
+}
+
+double peakRssBytes() {
+    rusage ru{};
+    getrusage(RUSAGE_SELF, &ru);
+    return double(ru.ru_maxrss) * 1024.0;
+}
+
+/// Runs f in a forked child (so its peak memory is its own) and returns its RunResult; without
+/// fork, runs in this process.
+template <class F>
+RunResult inChild(F&& f) {
+    int fd[2];
+    if (pipe(fd) != 0) return f();
+    const pid_t pid = fork();
+    if (pid < 0) {
+        close(fd[0]), close(fd[1]);
+        return f();
+    }
+    if (pid == 0) {
+        close(fd[0]);
+        RunResult r;
+        try {
+            r = f();
+        } catch (const std::exception& e) {
+            r.ok = 0;
+            std::snprintf(r.message, sizeof r.message, "%s", e.what());
+        }
+        const char* p = reinterpret_cast<const char*>(&r);
+        size_t left = sizeof r;
+        while (left > 0) {
+            const ssize_t w = write(fd[1], p, left);
+            if (w <= 0) break;
+            p += w, left -= size_t(w);
+        }
+        _exit(0);
+    }
+    close(fd[1]);
+    RunResult r;
+    char* p = reinterpret_cast<char*>(&r);
+    size_t got = 0;
+    while (got < sizeof r) {
+        const ssize_t n = read(fd[0], p + got, sizeof r - got);
+        if (n <= 0) break;
+        got += size_t(n);
+    }
+    close(fd[0]);
+    int status = 0;
+    rusage ru{};
+    wait4(pid, &status, 0, &ru);
+    if (got != sizeof r) {
+        r = RunResult{};
+        std::snprintf(r.message, sizeof r.message, "child process failed (status %d)", status);
+    }
+    r.peakRss_bytes = double(ru.ru_maxrss) * 1024.0;
+    return r;
+}
+
+RunResult runOurs(int nx, int ny, int nz, double tol) {
+    RunResult r;
+    r.baselineRss_bytes = residentBytes();
+    const sim::PoissonSystem sys = benchSystem(nx, ny, nz);
+    const std::vector<double> b = benchRhs(sys.cellCount());
+    const auto t0 = Clock::now();
+    sim::PoissonSolver solver(sys);
+    std::vector<double> x;
+    sim::SolverSettings set;
+    set.relativeTolerance = tol;
+    const sim::SolveReport rep = solver.solve(b, x, set);
+    r.totalSeconds = since(t0);
+    r.ok = 1, r.converged = rep.converged, r.iterations = rep.iterations, r.levels = rep.levels;
+    r.relativeResidual = rep.relativeResidual, r.setupSeconds = rep.setupSeconds, r.solveSeconds = rep.solveSeconds;
+    r.heldBytes = double(solver.memory_bytes());
+    std::snprintf(r.message, sizeof r.message, "%s", rep.message.c_str());
+    return r;
+}
+
+enum class VdbPrecond { Jacobi, IncompleteCholesky };
+
+RunResult runOpenVdb(int nx, int ny, int nz, double tol, VdbPrecond pc) {
+    using namespace openvdb;
+    RunResult r;
+    initialize();
+    r.baselineRss_bytes = residentBytes();
+    const sim::PoissonSystem sys = benchSystem(nx, ny, nz);
+    const std::vector<double> b = benchRhs(sys.cellCount());
+    const auto t0 = Clock::now();
+    // OpenVDB solves L x = source with L the negative-definite Laplacian; ours is A = -L, so the
+    // source is -b for the same x.
+    DoubleTree source(0.0);
+    {
+        tree::ValueAccessor<DoubleTree> acc(source);
+        for (int k = 0; k < nz; ++k)
+            for (int j = 0; j < ny; ++j)
+                for (int i = 0; i < nx; ++i) acc.setValueOn(Coord(i, j, k), -b[sys.cellIndex(i, j, k)]);
+    }
+    // staggered = true selects OpenVDB's compact 7-point Laplacian (ours); its collocated variant
+    // uses neighbours two voxels away (OPENVDB_TOOLS_POISSON_LAPLACIAN_STENCIL 2), another problem.
+    // Out-of-domain neighbours: below the ground Neumann (the ghost equals the cell: nothing to
+    // add); elsewhere Dirichlet 0 on the face, half a cell away (ghost = -x: diagonal -= 2).
+    auto boundary = [](const Coord&, const Coord& nb, double&, double& diagonal) {
+        if (nb.z() < 0) return;
+        diagonal -= 2.0;
+    };
+    math::pcg::State state = math::pcg::terminationDefaults<double>();
+    state.iterations = 20000;
+    state.relativeError = tol;
+    state.absoluteError = 0.0;
+    util::NullInterrupter interrupter;
+    DoubleTree::Ptr x;
+    if (pc == VdbPrecond::Jacobi) {
+        x = tools::poisson::solveWithBoundaryConditionsAndPreconditioner<
+            math::pcg::JacobiPreconditioner<tools::poisson::LaplacianMatrix>>(source, boundary, state, interrupter,
+                                                                              /*staggered=*/true);
+    } else {
+        x = tools::poisson::solveWithBoundaryConditions(source, boundary, state, interrupter, /*staggered=*/true);
+    }
+    r.totalSeconds = r.solveSeconds = since(t0);
+    r.peakRss_bytes = peakRssBytes();  // before our comparison solve below
+    r.ok = 1, r.converged = state.success, r.iterations = state.iterations;
+    r.relativeResidual = state.relativeError;
+    // Same problem? Compare with ours solved tightly.
+    sim::PoissonSolver ours(sys);
+    std::vector<double> xo;
+    sim::SolverSettings set;
+    set.relativeTolerance = std::min(tol, 1e-8);
+    (void)ours.solve(b, xo, set);
+    double diff = 0, norm = 0;
+    tree::ValueAccessor<const DoubleTree> acc(*x);
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const double v = xo[sys.cellIndex(i, j, k)];
+                diff = std::max(diff, std::abs(acc.getValue(Coord(i, j, k)) - v));
+                norm = std::max(norm, std::abs(v));
+            }
+    r.solutionDifference = diff / norm;
+    std::snprintf(r.message, sizeof r.message, "%s", state.success ? "converged" : "stopped (divergence guard or limit)");
+    return r;
+}
+
+/// Best-of-5 STREAM-style triad a = b + s c over 3 x 128 MB, on all TBB threads.
+RunResult runTriad() {
+    RunResult r;
+    const size_t n = size_t(1) << 24;
+    std::vector<double> a(n, 1.0), b(n, 2.0), c(n, 3.0);
+    double best = 0;
+    for (int rep = 0; rep < 5; ++rep) {
+        const auto t0 = Clock::now();
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 16), [&](const tbb::blocked_range<size_t>& q) {
+            for (size_t i = q.begin(); i < q.end(); ++i) a[i] = b[i] + 1.5 * c[i];
+        });
+        best = std::max(best, 3.0 * 8.0 * double(n) / since(t0));
+    }
+    r.ok = a[7] == 6.5;
+    r.triad_Bps = best;
+    return r;
+}
+
+}  // namespace
+
+int runBenchSolve(const BenchSolveOptions& optIn) {
+    BenchSolveOptions opt = optIn;
+    if (opt.sizes.empty()) opt.sizes = {{64, 64, 32}, {128, 128, 64}, {256, 256, 64}};
+    if (opt.quick) opt.sizes.resize(1);
+    for (const auto& s : opt.sizes)
+        if (s[0] < 2 || s[1] < 2 || s[2] < 2)
+            throw std::invalid_argument("bench solve: sizes must be at least 2 cells per axis");
+    if (!(opt.relativeTolerance > 0 && opt.relativeTolerance < 1))
+        throw std::invalid_argument("bench solve: relativeTolerance must be in (0, 1)");
+    const int sweeps = sim::SolverSettings{}.smoothingSweeps;
+    const double bytesPerCellIt = sim::PoissonSolver::bytesPerCellPerIteration(sweeps);
+
+    std::fprintf(stderr, "bench solve: measuring triad bandwidth...\n");
+    const RunResult triad = inChild(runTriad);
+    const double bw = triad.triad_Bps > 0 ? triad.triad_Bps : 1e10;
+    const double baseline = inChild([] {
+                                RunResult r;
+                                r.ok = 1;
+                                return r;
+                            }).peakRss_bytes;
+
+    struct Row {
+        std::array<int, 3> size;
+        std::string solver;
+        RunResult r;
+    };
+    std::vector<Row> rows;
+    for (const auto& s : opt.sizes) {
+        const std::string name = std::to_string(s[0]) + "x" + std::to_string(s[1]) + "x" + std::to_string(s[2]);
+        std::fprintf(stderr, "bench solve: %s ours (MGPCG)...\n", name.c_str());
+        rows.push_back({s, "gale MGPCG", inChild([&] { return runOurs(s[0], s[1], s[2], opt.relativeTolerance); })});
+        if (opt.openVdb) {
+            std::fprintf(stderr, "bench solve: %s OpenVDB Jacobi-PCG...\n", name.c_str());
+            rows.push_back({s, "openvdb Jacobi-PCG", inChild([&] {
+                                return runOpenVdb(s[0], s[1], s[2], opt.relativeTolerance, VdbPrecond::Jacobi);
+                            })});
+            std::fprintf(stderr, "bench solve: %s OpenVDB IC-PCG (poisson::solve default)...\n", name.c_str());
+            rows.push_back({s, "openvdb IC-PCG", inChild([&] {
+                                return runOpenVdb(s[0], s[1], s[2], opt.relativeTolerance, VdbPrecond::IncompleteCholesky);
+                            })});
+        }
+    }
+
+    std::printf("Same elliptic problem for every solver: box of unit cells, 7-point Laplacian, Dirichlet 0 on the\n"
+                "faces of the sides and top, Neumann ground, pseudo-random right-hand side; stop at max-norm\n"
+                "relative residual %.0e. Peak memory = the solver process's peak RSS minus an idle child's (%.0f MB).\n"
+                "Triad bandwidth %.1f GB/s; our traffic model %.0f bytes per cell per iteration (V(%d,%d)).\n\n",
+                opt.relativeTolerance, baseline / 1e6, bw / 1e9, bytesPerCellIt, sweeps, sweeps);
+    std::printf("%-12s %-19s %5s %5s %9s %8s %8s %8s %8s %9s %8s %9s\n", "size", "solver", "its", "conv", "rel.res",
+                "setup s", "solve s", "total s", "peak MB", "vs gale", "floor s", "x floor");
+    nlohmann::json j;
+    j["triad_GBps"] = bw / 1e9;
+    j["bytes_per_cell_per_iteration"] = bytesPerCellIt;
+    j["relative_tolerance"] = opt.relativeTolerance;
+    bool allConverged = true;
+    int itsFirst = -1, itsLast = -1;
+    double oursTotal = 0;
+    for (const Row& row : rows) {
+        const RunResult& r = row.r;
+        const double cells = double(row.size[0]) * row.size[1] * row.size[2];
+        const bool ours = row.solver == "gale MGPCG";
+        const std::string name = std::to_string(row.size[0]) + "x" + std::to_string(row.size[1]) + "x" + std::to_string(row.size[2]);
+        double floorS = 0;
+        if (ours) {
+            oursTotal = r.totalSeconds;
+            floorS = bytesPerCellIt * cells * r.iterations / bw;
+            allConverged = allConverged && r.converged;
+            if (itsFirst < 0) itsFirst = r.iterations;
+            itsLast = r.iterations;
+        }
+        const double peakMB = std::max(0.0, r.peakRss_bytes - baseline) / 1e6;
+        std::printf("%-12s %-19s %5d %5s %9.1e %8.3f %8.3f %8.3f %8.0f %9s %8s %9s%s\n", name.c_str(), row.solver.c_str(),
+                    r.iterations, r.converged ? "yes" : "NO", r.relativeResidual, r.setupSeconds, r.solveSeconds,
+                    r.totalSeconds, peakMB, ours ? "1" : (fmt(r.totalSeconds / oursTotal, 3) + "x").c_str(),
+                    ours ? fmt(floorS, 3).c_str() : "", ours ? fmt(r.solveSeconds / floorS, 3).c_str() : "",
+                    r.ok ? "" : (std::string("  FAILED: ") + r.message).c_str());
+        if (!ours && r.solutionDifference >= 0 && !std::isnan(r.solutionDifference))
+            std::printf("%-12s %-19s max |x - x_gale| / max |x_gale| = %.1e (%s)\n", "", "", r.solutionDifference, r.message);
+        j["rows"].push_back({{"size", row.size}, {"solver", row.solver}, {"iterations", r.iterations},
+                             {"converged", bool(r.converged)}, {"relative_residual", r.relativeResidual},
+                             {"setup_s", r.setupSeconds}, {"solve_s", r.solveSeconds}, {"total_s", r.totalSeconds},
+                             {"peak_rss_MB", peakMB}, {"held_MB", r.heldBytes / 1e6},
+                             {"ratio_to_gale_total", ours ? 1.0 : r.totalSeconds / oursTotal},
+                             {"floor_s", floorS}, {"solution_difference", r.solutionDifference},
+                             {"message", r.message}});
+    }
+    if (itsFirst > 0)
+        std::printf("\nIteration growth smallest -> largest: %d -> %d (%.2fx; target <= 1.5x)\n", itsFirst, itsLast,
+                    double(itsLast) / itsFirst);
+    j["iteration_growth"] = itsFirst > 0 ? double(itsLast) / itsFirst : 0.0;
+    if (!opt.jsonPath.empty()) writeTextAtomic(opt.jsonPath, j.dump(2) + "\n");
+    return allConverged ? 0 : 1;
+}
+
+}  // namespace gale::app

@@ -1,0 +1,95 @@
+/// \file SolveCommand.cpp
+#include "app/SolveCommand.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "app/AtomicFile.h"
+
+namespace gale::app {
+
+int runSolve(const SolveRequest& req) {
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
+    req.ambient.validate();
+    std::fprintf(stderr, "solve: building the air domain (voxel %.3g m)...\n", req.domain.voxelSize_m);
+    const sim::AirDomain domain(req.terrain, req.domain);
+    const double domainSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MB; solving...\n", domain.nx(),
+                 domain.ny(), domain.nz(), domain.activeCellCount(), domain.memoryEstimate_bytes() / 1e6);
+    sim::SteadyWindSolver solver(domain, req.weights);
+    const sim::SteadyWindResult res = solver.solve(req.ambient, req.solver);
+    const sim::SolveReport& rep = res.report;
+
+    nlohmann::json j;
+    j["scene"] = req.sceneName;
+    j["model"] = "steady mass-consistent wind (Sherman 1978), cut cells (Batty, Bertails, Bridson 2007), MGPCG "
+                 "(McAdams, Sifakis, Teran 2010)";
+    const auto o = domain.wsMin_m();
+    j["domain"] = {{"cells", {domain.nx(), domain.ny(), domain.nz()}},
+                   {"voxel_size_m", domain.voxelSize_m()},
+                   {"ws_min_m", {o[0], o[1], o[2]}},
+                   {"ws_top_m", domain.wsTop_m()},
+                   {"box_cells", domain.boxCellCount()},
+                   {"air_cells", domain.activeCellCount()},
+                   {"memory_estimate_bytes", domain.memoryEstimate_bytes()},
+                   {"memory_limit_bytes", req.domain.memoryLimit_bytes},
+                   {"domain_bytes", domain.memory_bytes()},
+                   {"vdb_mask_bytes", domain.vdbMemory_bytes()},
+                   {"solver_bytes", solver.poisson().memory_bytes()}};
+    j["ambient"] = {{"speed_mps", req.ambient.speed_mps},
+                    {"reference_height_m", req.ambient.referenceHeight_m},
+                    {"direction_deg", req.ambient.direction_deg},
+                    {"direction_convention", "towards, counter-clockwise from +x"},
+                    {"profile", sim::windProfileName(req.ambient.profile)},
+                    {"roughness_m", req.ambient.roughness_m}};
+    j["weights"] = {{"alpha_h", req.weights.alphaH}, {"alpha_v", req.weights.alphaV}};
+    j["solver"] = {{"relative_tolerance", req.solver.relativeTolerance},
+                   {"max_iterations", req.solver.maxIterations},
+                   {"smoothing_sweeps", req.solver.smoothingSweeps},
+                   {"multigrid", req.solver.useMultigrid},
+                   {"residual_norm", "max-norm of b - A x over max-norm of b"}};
+    j["report"] = {{"converged", rep.converged},
+                   {"iterations", rep.iterations},
+                   {"relative_residual", rep.relativeResidual},
+                   {"initial_relative_residual", rep.initialRelativeResidual},
+                   {"max_div_u_h_over_U", rep.maxDivergenceScaled},
+                   {"levels", rep.levels},
+                   {"message", rep.message},
+                   {"domain_s", domainSeconds},
+                   {"setup_s", rep.setupSeconds},
+                   {"solve_s", rep.solveSeconds},
+                   {"assembly_s", res.assemblySeconds}};
+    if (!req.vdbPath.empty()) {
+        const auto parent = std::filesystem::path(req.vdbPath).parent_path();
+        if (!parent.empty()) std::filesystem::create_directories(parent);
+        sim::VdbMetadata meta;
+        meta.strings = {{"scene", req.sceneName}, {"converged", rep.converged ? "yes" : "no"}};
+        meta.numbers = {{"iterations", double(rep.iterations)}, {"relative_residual", rep.relativeResidual},
+                        {"max_div_u_h_over_U", rep.maxDivergenceScaled}};
+        res.field.writeVdb(req.vdbPath, meta);
+        j["outputs"]["vdb"] = {{"path", req.vdbPath},
+                               {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
+                               {"placement", "cell-centred averages of the MAC face velocities; voxel (i,j,k) "
+                                             "centre at ws_min_m + (i+0.5, j+0.5, k+0.5) * voxel_size_m"},
+                               {"grid_class", "GRID_UNKNOWN"},
+                               {"vector_type", "VEC_CONTRAVARIANT_RELATIVE"}};
+    }
+    j["total_s"] = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (!req.reportPath.empty()) {
+        const auto parent = std::filesystem::path(req.reportPath).parent_path();
+        if (!parent.empty()) std::filesystem::create_directories(parent);
+        writeTextAtomic(req.reportPath, j.dump(2) + "\n");
+    }
+    std::printf("solve: %s in %d iterations, relative residual %.2e, max|div u| h/U %.2e, %.2f s (%d x %d x %d cells, "
+                "%zu air)\n",
+                rep.converged ? "converged" : "DID NOT CONVERGE", rep.iterations, rep.relativeResidual,
+                rep.maxDivergenceScaled, j["total_s"].get<double>(), domain.nx(), domain.ny(), domain.nz(),
+                domain.activeCellCount());
+    if (!rep.converged) std::printf("solve: %s\n", rep.message.c_str());
+    return rep.converged ? 0 : 2;
+}
+
+}  // namespace gale::app
