@@ -14,12 +14,6 @@
 namespace gale::coupling {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
-// Oscillator sub-steps per natural period: the trapezoidal rule's phase error is about
-// (omega h)^2 / 12 per step, under 0.2 % at 40 steps per period.
-constexpr double OSCILLATOR_STEPS_PER_PERIOD = 40.0;
-// Cap on oscillator sub-steps per update (see advanceOscillators).
-constexpr int MAX_OSCILLATOR_SUBSTEPS = 4000;
 // Below this many vertices a loop runs serially: TBB's overhead would dominate.
 constexpr size_t PARALLEL_GRAIN = 4096;
 
@@ -101,7 +95,8 @@ void validate(const FieldWindSpec& spec) {
             "response = \"oscillator\"");
 }
 
-FieldWind::FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec) : mSpec(spec) {
+FieldWind::FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec)
+    : mSpec(spec), mOscillators(spec.frequency_hz, spec.dampingRatio) {
     validate(spec);
     const size_t count = mesh.wsPosition_m.size();
     if (count == 0) throw std::invalid_argument("field wind needs a terrain mesh with vertices");
@@ -223,46 +218,7 @@ double FieldWind::groupDrive(int g, double t_s) const {
 }
 
 void FieldWind::advanceOscillators(double t_s) {
-    const double omega = 2.0 * PI * mSpec.frequency_hz;
-    const double zeta = mSpec.dampingRatio;
-    if (!mOscStarted || t_s < mOscTime_s) {
-        // Start (or restart after seeking backwards) at rest in the static bend.
-        mOscX.resize(mGroupCount);
-        mOscV.assign(mGroupCount, 0.0);
-        for (int g = 0; g < mGroupCount; ++g) mOscX[g] = groupDrive(g, t_s);
-        mOscTime_s = t_s;
-        mOscStarted = true;
-        return;
-    }
-    const double total = t_s - mOscTime_s;
-    if (total <= 0.0) return;
-    // A long gap (seeking, a paused viewer) needs no more than the last MAX_OSCILLATOR_SUBSTEPS:
-    // older motion has decayed, and the trapezoidal rule is stable at any step.
-    const int substeps = static_cast<int>(std::clamp(
-        std::ceil(total * mSpec.frequency_hz * OSCILLATOR_STEPS_PER_PERIOD), 1.0,
-        double(MAX_OSCILLATOR_SUBSTEPS)));
-    const double h = total / substeps;
-    // Trapezoidal rule for y' = M y + omega^2 u e2, y = (x, v), M = [[0, 1], [-w^2, -2 z w]]:
-    // (I - h/2 M) y1 = (I + h/2 M) y0 + h/2 omega^2 (u0 + u1) e2. A-stable for every h.
-    const double a = h * 0.5;
-    const double w2 = omega * omega, c = 2.0 * zeta * omega;
-    // Inverse of (I - aM) = [[1, -a], [a w2, 1 + a c]]; determinant 1 + a c + a^2 w2 > 0.
-    const double det = 1.0 + a * c + a * a * w2;
-    for (int g = 0; g < mGroupCount; ++g) {
-        double x = mOscX[g], v = mOscV[g];
-        for (int s = 0; s < substeps; ++s) {
-            const double t0 = mOscTime_s + s * h, t1 = t0 + h;
-            const double u = 0.5 * (groupDrive(g, t0) + groupDrive(g, t1));
-            // Right-hand side (I + aM) y0 + 2a w2 u e2.
-            const double rx = x + a * v;
-            const double rv = v + a * (-w2 * x - c * v) + 2.0 * a * w2 * u;
-            x = ((1.0 + a * c) * rx + a * rv) / det;
-            v = (-a * w2 * rx + rv) / det;
-        }
-        mOscX[g] = x;
-        mOscV[g] = v;
-    }
-    mOscTime_s = t_s;
+    mOscillators.advance(t_s, mGroupCount, [this](int g, double t) { return groupDrive(g, t); });
 }
 
 void FieldWind::update(double t_s, render::GrassWind& wind) {
@@ -271,8 +227,7 @@ void FieldWind::update(double t_s, render::GrassWind& wind) {
     size_t first = 0;
     while (first + 1 < mSteps.size() && mSteps[first + 1].t_s <= t_s) ++first;
     // Past the last step, `first` is the last step: an interval of one step, held.
-    if (mSpec.response == BladeResponse::Oscillator && mHaveInterval && mOscStarted &&
-        t_s >= mOscTime_s) {
+    if (mSpec.response == BladeResponse::Oscillator && mHaveInterval) {
         // Carry the oscillators through every interval between the last frame and this one, each
         // with its own drive.
         while (mIntervalFirst < first) {
@@ -289,7 +244,8 @@ void FieldWind::update(double t_s, render::GrassWind& wind) {
     wind.groupIntensity.resize(mGroupCount);
     if (mSpec.response == BladeResponse::Oscillator) {
         advanceOscillators(t_s);
-        for (int g = 0; g < mGroupCount; ++g) wind.groupIntensity[g] = static_cast<float>(mOscX[g]);
+        for (int g = 0; g < mGroupCount; ++g)
+            wind.groupIntensity[g] = static_cast<float>(mOscillators.bend()[g]);
     } else {
         for (int g = 0; g < mGroupCount; ++g)
             wind.groupIntensity[g] = static_cast<float>(groupDrive(g, t_s));

@@ -18,6 +18,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "coupling/GroupOscillators.h"
 #include "coupling/WindSource.h"
 #include "render/GrassInput.h"
 
@@ -117,10 +118,7 @@ private:
     std::vector<uint32_t> mGroup;
     std::vector<double> mGroupDrive0, mGroupDrive1;  // per-group mean drive at both ends
 
-    // Oscillator state per group.
-    double mOscTime_s = 0.0;
-    bool mOscStarted = false;
-    std::vector<double> mOscX, mOscV;
+    GroupOscillators mOscillators;
 };
 
 }  // namespace gale::coupling
