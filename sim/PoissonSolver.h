@@ -124,10 +124,13 @@ public:
     size_t memory_bytes() const;
     /// Bytes of the solver's arrays per cell of the box, for estimates before allocating.
     static double estimatedBytesPerCell();
-    /// Bytes the finest level moves per cell in one PCG iteration with V(n, n) (reads + writes of
-    /// every array a kernel streams, counted once per kernel), and the sum over coarser levels;
-    /// for the memory-bandwidth floor of the benchmark.
-    static double bytesPerCellPerIteration(int smoothingSweeps);
+    /// Bytes moved per cell of the box in one PCG iteration with V(n, n): reads + writes of every
+    /// array a kernel streams, counted once per kernel, on the finest level plus 1/7 for the
+    /// coarser ones; cells in uniform (full-open) runs skip their weights. For the
+    /// memory-bandwidth floor of the benchmark.
+    static double bytesPerCellPerIteration(int smoothingSweeps, double uniformFraction);
+    /// Fraction of the finest level's cells on the constant-coefficient fast path.
+    double uniformCellFraction() const;
 
 private:
     struct Impl;
