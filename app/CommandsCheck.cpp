@@ -62,7 +62,9 @@ int runCheck(const SceneRunOptions& options) {
     const OutputFolderStatus folder =
         checkOutputFolder(scene.output.folder, outputFolderSource(scene, options),
                           scene.output.prefix, scene.output.frames);
-    const BuiltScene built = buildScene(scene);
+    BuildOptions buildOptions;
+    buildOptions.solveWind = false;  // check validates and estimates; it does not solve
+    const BuiltScene built = buildScene(scene, buildOptions);
     const sim::Heightfield& field = built.heightfield;
     const render::TerrainMesh& mesh = built.mesh;
     const GrassSection& grass = scene.grass;
@@ -102,13 +104,33 @@ int runCheck(const SceneRunOptions& options) {
              std::to_string(built.texture.levels.back().width) + " x " +
              std::to_string(built.texture.levels.back().height) + ")");
 
-    const coupling::PointSourceSpec& ps = scene.wind.pointSource;
-    line("wind", "point source at " + vec3(built.wsWindSource_m) + " m" +
-                     (scene.wind.autoSource ? " (default: west edge)" : "") +
-                     (ps.blowAway ? ", blowing away from it" : ", blowing towards it") + "; " +
-                     std::to_string(built.wind->groupCount()) + " groups (rings), " +
-                     fmt(ps.stepDelay_s) + " s apart");
-    line("", "gust: " + scene.wind.curveDescription);
+    const bool solved = scene.wind.kind == WindKind::Solved;
+    if (solved) {
+        const sim::AmbientWind& a = scene.wind.ambient;
+        const coupling::FieldWindSpec& r = scene.wind.response;
+        line("wind", "solved steady field (mass-consistent, DESIGN 4.1): " + fmt(a.speed_mps) +
+                         " m/s at " + fmt(a.referenceHeight_m) + " m towards " +
+                         fmt(a.direction_deg) + " deg, " + sim::windProfileName(a.profile) +
+                         " profile" +
+                         (a.profile == sim::WindProfile::LogLaw ? " (z0 " + fmt(a.roughness_m) + " m)" : ""));
+        line("", "domain " + built.domainSummary);
+        line("", std::string("blade response ") + coupling::bladeResponseName(r.response) +
+                     ", bend speed " + fmt(r.bendSpeed_mps) + " m/s" +
+                     (scene.wind.gusts
+                          ? "; travelling gusts, " + std::to_string(scene.wind.arrivalBands) +
+                                " arrival bands x " + std::to_string(scene.wind.levels) + " levels"
+                          : "; " + std::string(coupling::groupingName(r.grouping)) + " groups (" +
+                                std::to_string(r.groups) + ")"));
+        if (scene.wind.gusts) line("", "gust: " + scene.wind.curveDescription);
+    } else {
+        const coupling::PointSourceSpec& ps = scene.wind.pointSource;
+        line("wind", "point source at " + vec3(built.wsWindSource_m) + " m" +
+                         (scene.wind.autoSource ? " (default: west edge)" : "") +
+                         (ps.blowAway ? ", blowing away from it" : ", blowing towards it") + "; " +
+                         std::to_string(built.wind->groupCount()) + " groups (rings), " +
+                         fmt(ps.stepDelay_s) + " s apart");
+        line("", "gust: " + scene.wind.curveDescription);
+    }
 
     const render::Lighting& l = scene.lighting;
     std::string lights = std::to_string(l.lights.size()) + " point light" +
@@ -143,7 +165,14 @@ int runCheck(const SceneRunOptions& options) {
                      " older frames beyond this run's last (e.g. " + folder.staleFrames.front() +
                      ") stay in the folder");
 
-    line("left out", "no wind solver: point-source wind (Bakay et al. 2002), no velocity field");
+    if (solved) {
+        line("left out", "no unsteady solver: a steady field" +
+                             std::string(scene.wind.gusts ? " with kinematic travelling gusts"
+                                                          : ", held still") +
+                             "; no vortex code");
+    } else {
+        line("left out", "no wind solver: point-source wind (Bakay et al. 2002), no velocity field");
+    }
     line("", "no window: headless (OSMesa)");
     if (l.lights.empty()) line("", "no lights: ambient only");
     for (const std::string& note : scene.notes) line("note", note);

@@ -21,6 +21,7 @@
 #include "app/SceneParser.h"
 #include "app/Version.h"
 #include "render/GlContext.h"
+#include "render/Animation.h"
 #include "render/ImageIO.h"
 #include "render/ShellRenderer.h"
 
@@ -78,7 +79,19 @@ int runRender(const SceneRunOptions& options) {
     for (const std::string& note : scene.notes)
         std::fprintf(stderr, "gale: note: %s\n", note.c_str());
 
-    BuiltScene built = buildScene(scene);
+    BuildOptions buildOptions;
+    buildOptions.progress = [](const std::string& text) {
+        std::fprintf(stderr, "gale: %s\n", text.c_str());
+    };
+    BuiltScene built = buildScene(scene, buildOptions);
+    if (built.solve) {
+        const sim::SolveReport& r = *built.solve;
+        std::fprintf(stderr,
+                     "gale: steady wind %s in %d iterations, relative residual %.2e, "
+                     "max |div u| h / U %.2e, %.0f ms\n",
+                     r.converged ? "converged" : "DID NOT CONVERGE", r.iterations,
+                     r.relativeResidual, r.maxDivergenceScaled, built.solve_ms);
+    }
 
     // GL: a failure here is ours (or the machine's), not the user's: exit 1.
     std::unique_ptr<render::GlContext> context = render::createOsMesaContext(out.width, out.height);
@@ -97,7 +110,8 @@ int runRender(const SceneRunOptions& options) {
                      out.folder.c_str(), folder.staleFrames.size(),
                      folder.staleFrames.front().c_str());
 
-    std::vector<std::string> written;
+    std::vector<std::string> written;  // frames
+    std::vector<std::string> extras;   // contact sheet and GIF
     std::vector<double> frame_ms, drawCpu_ms, drawGpu_ms;
     render::GrassWind wind;
     render::Image image;
@@ -107,7 +121,12 @@ int runRender(const SceneRunOptions& options) {
                  out.height, glDescription.c_str());
     const auto loopStart = Clock::now();
     int done = 0;
+    render::AnimationOptions animation;
+    if (out.contactSheet) animation.sheetPath = out.folder + "/" + out.prefix + "_sheet.png";
+    if (out.gif) animation.gifPath = out.folder + "/" + out.prefix + ".gif";
+    animation.fps = out.fps;
     try {
+        render::AnimationWriter animationWriter(animation, out.frames);
         Progress progress("frame", out.frames);
         for (int k = 0; k < out.frames && !gInterrupted; ++k) {
             const auto frameStart = Clock::now();
@@ -118,12 +137,17 @@ int runRender(const SceneRunOptions& options) {
             const std::string path = framePath(out.folder, out.prefix, k);
             render::writeImageAtomic(image, path);
             written.push_back(path);
+            animationWriter.addFrame(image, k);
             drawCpu_ms.push_back(stats.cpu_ms);
             drawGpu_ms.push_back(stats.gpu_ms);
             frame_ms.push_back(msSince(frameStart));
             ++done;
             progress.step(done, frame_ms.back());
         }
+        // An interrupted run still gets its sheet and GIF, of the frames it finished.
+        animationWriter.finish();
+        if (done > 0 && !animation.sheetPath.empty()) extras.push_back(animation.sheetPath);
+        if (done > 0 && !animation.gifPath.empty()) extras.push_back(animation.gifPath);
     } catch (...) {
         std::signal(SIGINT, previousHandler);
         removeOutputs(written, out.folder, createdFolder);
@@ -140,6 +164,15 @@ int runRender(const SceneRunOptions& options) {
     report["interrupted"] = done < out.frames;
     report["frames"] = done;
     report["frames_requested"] = out.frames;
+    if (built.solve) {
+        const sim::SolveReport& r = *built.solve;
+        report["wind_solve"] = {{"domain", built.domainSummary},
+                                {"converged", r.converged},
+                                {"iterations", r.iterations},
+                                {"relative_residual", r.relativeResidual},
+                                {"max_divergence_scaled", r.maxDivergenceScaled},
+                                {"wall_ms", built.solve_ms}};
+    }
     report["width"] = out.width;
     report["height"] = out.height;
     report["fps"] = out.fps;
@@ -148,6 +181,9 @@ int runRender(const SceneRunOptions& options) {
     std::vector<std::string> names;
     for (const std::string& f : written) names.push_back(fs::path(f).filename().string());
     report["files"] = names;
+    std::vector<std::string> extraNames;
+    for (const std::string& f : extras) extraNames.push_back(fs::path(f).filename().string());
+    report["previews"] = extraNames;
     report["gl"] = glDescription;
     report["wind"] = built.wind->describe();
     report["terrain_samples"] = {built.heightfield.nx, built.heightfield.ny};
@@ -163,6 +199,7 @@ int runRender(const SceneRunOptions& options) {
     try {
         writeTextAtomic(reportPath, report.dump(2) + "\n");
     } catch (...) {
+        written.insert(written.end(), extras.begin(), extras.end());
         removeOutputs(written, out.folder, createdFolder);  // frames without their report: none
         throw;
     }
@@ -179,6 +216,7 @@ int runRender(const SceneRunOptions& options) {
                 shown.c_str(), fs::path(written.front()).filename().c_str(),
                 fs::path(written.back()).filename().c_str(),
                 Progress::formatDuration(loop_s).c_str(), mean_ms, reportPath.c_str());
+    for (const std::string& f : extras) std::printf("preview %s\n", f.c_str());
     return EXIT_OK;
 }
 

@@ -9,11 +9,16 @@
 #include <string>
 #include <vector>
 
+#include "coupling/FieldWind.h"
 #include "coupling/GustCurve.h"
 #include "coupling/PointSourceWind.h"
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"
+#include "sim/AirDomain.h"
+#include "sim/AmbientWind.h"
 #include "sim/Heightfield.h"
+#include "sim/PoissonSolver.h"
+#include "sim/SteadyWind.h"
 
 namespace gale::app {
 
@@ -33,7 +38,9 @@ struct GrassSection {
     render::GrassTextureSpec generated;
 };
 
-enum class WindKind { PointSource };
+/// point_source: the paper's heuristic (Bakay et al. 2002). solved: the steady mass-consistent
+/// field over the terrain (sim/SteadyWind), optionally with travelling gusts (coupling/SteadyGustWind).
+enum class WindKind { PointSource, Solved };
 
 struct WindSection {
     WindKind kind = WindKind::PointSource;
@@ -41,6 +48,21 @@ struct WindSection {
     std::optional<coupling::GustCurve> curve;  ///< set after parsing
     std::string curveDescription;              ///< how the curve was given, for `gale check`
     bool autoSource = true;  ///< source_m not given: placed from the terrain when it is built
+
+    // kind == Solved (the ambient wind is also what `gale solve` solves for, whatever the kind):
+    sim::AmbientWind ambient;
+    coupling::FieldWindSpec response;  ///< blade response and, without gusts, grouping
+    double sampleHeight_m = -1.0;      ///< field sampled this high above the ground; < 0: grass height
+    bool gusts = false;                ///< [wind.gust] given: travelling gusts over the steady field
+    int arrivalBands = 16;             ///< gust groups: arrival-time bands ...
+    int levels = 4;                    ///< ... times steady-intensity levels
+};
+
+/// [solver]: the air domain and the elliptic solve (docs/solver.md).
+struct SolverSection {
+    sim::DomainSpec domain;
+    sim::MassConsistentWeights weights;
+    sim::SolverSettings settings;
 };
 
 struct OutputSection {
@@ -51,6 +73,8 @@ struct OutputSection {
     double startTime_s = 0.0;
     std::string folder = "out/scene";  ///< resolved against the current directory
     std::string prefix = "frame";      ///< frame files are <prefix>_0000.png ...
+    bool contactSheet = true;          ///< <prefix>_sheet.png: a grid of evenly spaced frames
+    bool gif = true;                   ///< <prefix>.gif: the frames as an animated GIF
 };
 
 struct Scene {
@@ -60,6 +84,7 @@ struct Scene {
     TerrainSection terrain;
     GrassSection grass;
     WindSection wind;
+    SolverSection solver;
     render::Lighting lighting;
     render::Camera camera;
     OutputSection output;

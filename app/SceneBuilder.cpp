@@ -3,12 +3,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "app/Errors.h"
 #include "app/Heightmap.h"
 #include "app/QuietStderr.h"
+#include "coupling/FieldSampling.h"
+#include "coupling/FieldWind.h"
 #include "coupling/PointSourceWind.h"
+#include "coupling/SteadyGustWind.h"
+#include "sim/AirDomain.h"
+#include "sim/SteadyWind.h"
 #include "coupling/TerrainMeshBuilder.h"
 #include "render/ImageIO.h"
 
@@ -50,6 +56,92 @@ render::GrassTexture loadTexture(const Scene& scene) {
     } catch (const std::exception& e) {
         failAt(scene, "grass.texture", e.what());
     }
+}
+
+
+coupling::GustCurve gustCurve(const Scene& scene) {
+    return scene.wind.curve ? *scene.wind.curve
+                            : coupling::GustCurve::attackDecay(/*period_s=*/4.0, /*base=*/0.1,
+                                                               /*peak=*/0.8, /*attack_s=*/0.4,
+                                                               /*decay_s=*/1.6);
+}
+
+void buildPointSourceWind(const Scene& scene, BuiltScene& built) {
+    const sim::Heightfield& field = built.heightfield;
+    coupling::PointSourceSpec source = scene.wind.pointSource;
+    if (scene.wind.autoSource) {
+        // West edge, half way along it, on the ground: the gust crosses the terrain along +x.
+        const double y = field.originY_m + 0.5 * field.sizeY_m();
+        source.wsSource_m = glm::vec3(field.originX_m, y, field.sample(field.originX_m, y));
+    }
+    built.wsWindSource_m = source.wsSource_m;
+    try {
+        built.wind = std::make_unique<coupling::PointSourceWind>(built.mesh, source, gustCurve(scene));
+    } catch (const std::invalid_argument& e) {
+        failAt(scene, "wind", e.what());
+    }
+}
+
+std::string describeDomain(const sim::AirDomain& d) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "%d x %d x %d cells of %.3g m, %zu air cells (%.0f%% of the box), top at %.1f m, "
+                  "about %.0f MB",
+                  d.nx(), d.ny(), d.nz(), d.voxelSize_m(), d.activeCellCount(),
+                  100.0 * double(d.activeCellCount()) / double(std::max<size_t>(1, d.boxCellCount())),
+                  d.wsTop_m(), d.memoryEstimate_bytes() / (1024.0 * 1024.0));
+    return buf;
+}
+
+/// wind.kind = "solved": the steady mass-consistent field (DESIGN 4.1) sampled at grass height,
+/// then either held (steady) or swept by travelling gusts (DESIGN 4.2, kinematic mode).
+void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
+    const auto start = std::chrono::steady_clock::now();
+    std::optional<sim::AirDomain> domain;
+    try {
+        domain.emplace(built.heightfield, scene.solver.domain);
+    } catch (const std::invalid_argument& e) {
+        failAt(scene, "solver", e.what());
+    }
+    built.domainSummary = describeDomain(*domain);
+    if (!options.solveWind) return;
+    if (options.progress) options.progress("solving the steady wind: " + built.domainSummary);
+    sim::SteadyWindResult result;
+    try {
+        result = sim::solveSteadyWind(*domain, scene.wind.ambient, scene.solver.weights,
+                                      scene.solver.settings);
+    } catch (const std::invalid_argument& e) {
+        failAt(scene, "wind", e.what());
+    }
+    built.solve = result.report;
+    const double sampleHeight_m = scene.wind.sampleHeight_m >= 0.0
+                                      ? scene.wind.sampleHeight_m
+                                      : double(scene.grass.params.height_m);
+    const std::vector<glm::vec3> velocity =
+        coupling::sampleAtGrass(result.field, built.mesh, sampleHeight_m);
+    try {
+        if (scene.wind.gusts) {
+            coupling::SteadyGustSpec spec;
+            spec.response = scene.wind.response;
+            spec.arrivalBands = scene.wind.arrivalBands;
+            spec.levels = scene.wind.levels;
+            // The front travels with the ambient wind at its reference height (at least 0.5 m/s,
+            // so a calm scene still has a finite arrival time).
+            spec.convection_mps = std::max(0.5, scene.wind.ambient.speed_mps);
+            const double a = scene.wind.ambient.direction_deg * PI / 180.0;
+            spec.wsDirection = glm::vec3(std::cos(a), std::sin(a), 0.0f);
+            built.wind = std::make_unique<coupling::SteadyGustWind>(built.mesh, velocity, spec,
+                                                                     gustCurve(scene));
+        } else {
+            auto wind = std::make_unique<coupling::FieldWind>(built.mesh, scene.wind.response);
+            wind->addFieldStep(0.0, velocity);
+            built.wind = std::move(wind);
+        }
+    } catch (const std::invalid_argument& e) {
+        failAt(scene, "wind", e.what());
+    }
+    built.solve_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -96,7 +188,7 @@ render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera
     return camera;
 }
 
-BuiltScene buildScene(const Scene& scene) {
+BuiltScene buildScene(const Scene& scene, const BuildOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     BuiltScene built;
     built.heightfield = buildHeightfield(scene);
@@ -126,23 +218,10 @@ BuiltScene buildScene(const Scene& scene) {
         failAt(scene, scene.autoCameraTarget ? "camera.position_m" : "camera.target_m",
                "the camera sits on its target (give both position_m and target_m)");
 
-    coupling::PointSourceSpec source = scene.wind.pointSource;
-    if (scene.wind.autoSource) {
-        // West edge, half way along it, on the ground: the gust crosses the terrain along +x.
-        const double y = field.originY_m + 0.5 * field.sizeY_m();
-        source.wsSource_m = glm::vec3(field.originX_m, y, field.sample(field.originX_m, y));
-    }
-    built.wsWindSource_m = source.wsSource_m;
-    try {
-        const coupling::GustCurve curve =
-            scene.wind.curve ? *scene.wind.curve
-                             : coupling::GustCurve::attackDecay(/*period_s=*/4.0, /*base=*/0.1,
-                                                                /*peak=*/0.8, /*attack_s=*/0.4,
-                                                                /*decay_s=*/1.6);
-        built.wind = std::make_unique<coupling::PointSourceWind>(built.mesh, source, curve);
-    } catch (const std::invalid_argument& e) {
-        failAt(scene, "wind", e.what());
-    }
+    if (scene.wind.kind == WindKind::Solved)
+        buildSolvedWind(scene, options, built);
+    else
+        buildPointSourceWind(scene, built);
     built.build_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return built;

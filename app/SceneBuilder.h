@@ -5,6 +5,7 @@
 /// resolved. `gale check` builds this to report on it; `gale render` then adds GL.
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "app/Scene.h"
@@ -12,6 +13,7 @@
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"
 #include "sim/Heightfield.h"
+#include "sim/PoissonSolver.h"
 
 namespace gale::app {
 
@@ -23,12 +25,25 @@ struct BuiltScene {
     render::Camera camera;           ///< the scene's camera with defaults resolved
     glm::vec3 wsWindSource_m{0.0f};  ///< point source actually used
     double build_ms = 0.0;           ///< wall time of buildScene
+
+    // wind.kind = "solved":
+    std::string domainSummary;               ///< cells, air cells, memory of the air domain
+    std::optional<sim::SolveReport> solve;   ///< the steady solve (absent when not solved)
+    double solve_ms = 0.0;                   ///< domain + solve + sampling wall time
+};
+
+struct BuildOptions {
+    /// false: `gale check` builds the domain and reports it but does not solve; the wind source is
+    /// then left empty for a solved scene.
+    bool solveWind = true;
+    /// Progress lines for long steps (the solve), to stderr; nullptr: quiet.
+    void (*progress)(const std::string& line) = nullptr;
 };
 
 /// Builds the scene's CPU side. Throws SceneError naming the scene key (FILE:LINE: key: reason)
 /// when an input (heightmap, texture image) turns out bad; std::runtime_error for internal
 /// failures.
-BuiltScene buildScene(const Scene& scene);
+BuiltScene buildScene(const Scene& scene, const BuildOptions& options = {});
 
 /// Only the heightfield (procedural or from the heightmap image); throws like buildScene.
 sim::Heightfield buildHeightfield(const Scene& scene);

@@ -502,10 +502,12 @@ void readGrass(Context& ctx, Section s) {
 void readWind(Context& ctx, Section s) {
     WindSection& w = ctx.scene->wind;
     const std::string kind = s.string("kind", "point_source");
-    if (kind != "point_source")
-        s.failKey("kind",
-                  "expected \"point_source\" (the only wind kind so far) (got \"" + kind + "\")");
-    w.kind = WindKind::PointSource;
+    if (kind == "point_source")
+        w.kind = WindKind::PointSource;
+    else if (kind == "solved")
+        w.kind = WindKind::Solved;
+    else
+        s.failKey("kind", "expected \"point_source\" or \"solved\" (got \"" + kind + "\")");
     coupling::PointSourceSpec& p = w.pointSource;
     w.autoSource = !s.take("source_m");
     if (!w.autoSource) p.wsSource_m = toVec3(s.vec<3>("source_m", {0, 0, 0}, anyFinite()));
@@ -513,7 +515,60 @@ void readWind(Context& ctx, Section s) {
     p.stepDelay_s = s.number("step_delay_s", 0.15, closed(0.0, 3600.0));
     p.blowAway = s.boolean("blow_away", true);
 
+    // The ambient wind (first guess of the solve, DESIGN 4.1): read whatever the kind, since
+    // `gale solve` uses it for any scene.
+    sim::AmbientWind& a = w.ambient;
+    a.speed_mps = s.number("speed_mps", a.speed_mps, closed(0.0, 1000.0));
+    a.referenceHeight_m = s.number("reference_height_m", a.referenceHeight_m, above(0.0, 1e5));
+    a.direction_deg = s.number("direction_deg", a.direction_deg, anyFinite());
+    const std::string profile = s.string("profile", "log");
+    try {
+        a.profile = sim::windProfileFromName(profile);
+    } catch (const std::invalid_argument& e) {
+        s.failKey("profile", e.what());
+    }
+    a.roughness_m = s.number("roughness_m", a.roughness_m, above(0.0, 100.0));
+    if (!(a.referenceHeight_m > a.roughness_m))
+        s.failKey("reference_height_m", "must be above roughness_m = " + Limit::num(a.roughness_m) +
+                                            " (got " + Limit::num(a.referenceHeight_m) + ")");
+
+    // How the grass answers the solved field (coupling/FieldWind.h).
+    coupling::FieldWindSpec& r = w.response;
+    try {
+        r.response = coupling::bladeResponseFromName(s.string("response", "static"));
+        r.grouping = coupling::groupingFromName(
+            s.string("grouping", r.response == coupling::BladeResponse::Oscillator ? "tiles" : "levels"));
+    } catch (const std::invalid_argument& e) {
+        s.failKey(s.given("grouping") ? "grouping" : "response", e.what());
+    }
+    r.groups = static_cast<int>(s.integer("groups", 64, 1, 4096));
+    r.bendSpeed_mps = s.number("bend_speed_mps", r.bendSpeed_mps, above(0.0, 1e4));
+    r.maxIntensity = s.number("max_intensity", r.maxIntensity, above(0.0, MAX_INTENSITY));
+    r.frequency_hz = s.number("frequency_hz", r.frequency_hz, above(0.0, 1e3));
+    r.dampingRatio = s.number("damping_ratio", r.dampingRatio, above(0.0, 100.0));
+    w.sampleHeight_m = s.number("sample_height_m", -1.0, atLeast(0.0, 1e4));
+    if (!s.given("sample_height_m")) w.sampleHeight_m = -1.0;
+    w.arrivalBands = static_cast<int>(s.integer("arrival_bands", 16, 1, 1024));
+    w.levels = static_cast<int>(s.integer("levels", 4, 1, 256));
+    try {
+        coupling::validate(r);
+    } catch (const std::invalid_argument& e) {
+        s.failKey(s.given("grouping") ? "grouping" : "response", e.what());
+    }
+    const bool solved = w.kind == WindKind::Solved;
+    for (const char* key : {"source_m", "steps", "step_delay_s", "blow_away"})
+        if (solved && s.given(key))
+            ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) +
+                                       ": not used by kind \"solved\" (ignored)");
+    for (const char* key : {"response", "grouping", "groups", "bend_speed_mps", "max_intensity",
+                            "frequency_hz", "damping_ratio", "sample_height_m", "arrival_bands",
+                            "levels"})
+        if (!solved && s.given(key))
+            ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) +
+                                       ": not used by kind \"point_source\" (ignored)");
+
     Section g = s.table("gust");
+    w.gusts = g.present();
     const double period_s = g.number("period_s", 4.0, above(0.0, 1e6));
     const toml::node* keys = g.take("keys");
     const bool shaped = g.take("base") || g.take("peak") || g.take("attack_s") || g.take("decay_s");
@@ -565,6 +620,28 @@ void readWind(Context& ctx, Section s) {
         w.curve = coupling::GustCurve::attackDecay(period_s, base, peak, attack_s, decay_s);
     }
     w.curveDescription = desc.str();
+}
+
+void readSolver(Context& ctx, Section s) {
+    SolverSection& v = ctx.scene->solver;
+    v.domain.voxelSize_m = s.number("voxel_size_m", 1.0, above(0.0, 1e5));
+    if (s.take("top_m")) v.domain.top_m = s.number("top_m", 0.0, anyFinite());
+    v.domain.memoryLimit_bytes =
+        s.number("memory_limit_mb", 4096.0, above(0.0, 1e9)) * 1024.0 * 1024.0;
+    v.weights.alphaH = s.number("alpha_h", 1.0, above(0.0, 1e6));
+    v.weights.alphaV = s.number("alpha_v", 1.0, above(0.0, 1e6));
+    const double ratio = (v.weights.alphaH / v.weights.alphaV) * (v.weights.alphaH / v.weights.alphaV);
+    if (ratio < sim::SteadyWindSolver::MIN_VERTICAL_RATIO ||
+        ratio > sim::SteadyWindSolver::MAX_VERTICAL_RATIO)
+        s.failKey(s.given("alpha_v") ? "alpha_v" : "alpha_h",
+                  "(alpha_h / alpha_v)^2 must be in [" +
+                      Limit::num(sim::SteadyWindSolver::MIN_VERTICAL_RATIO) + ", " +
+                      Limit::num(sim::SteadyWindSolver::MAX_VERTICAL_RATIO) +
+                      "]: stronger anisotropy defeats the multigrid smoother (got " +
+                      Limit::num(ratio) + ")");
+    v.settings.relativeTolerance = s.number("tolerance", 1e-6, above(0.0, 0.5));
+    v.settings.maxIterations = static_cast<int>(s.integer("max_iterations", 100, 1, 100000));
+    s.finish();
 }
 
 void readLighting(Context& ctx, Section s) {
@@ -621,6 +698,8 @@ void readOutput(Context& ctx, Section s) {
     o.startTime_s = s.number("start_time_s", 0.0, closed(-1e9, 1e9));
     o.folder = s.string("folder", "out/" + ctx.scene->name);
     o.prefix = s.string("prefix", "frame");
+    o.contactSheet = s.boolean("contact_sheet", true);
+    o.gif = s.boolean("gif", true);
     s.finish();
     if (o.folder.empty()) s.failKey("folder", "must name a folder (got \"\")");
     const bool prefixOk =
@@ -706,6 +785,7 @@ Scene parseSceneString(const std::string& text, const std::string& pathForMessag
     readTerrain(ctx, top.table("terrain"));
     readGrass(ctx, top.table("grass"));
     readWind(ctx, top.table("wind"));
+    readSolver(ctx, top.table("solver"));
     readLighting(ctx, top.table("lighting"));
     readCamera(ctx, top.table("camera"));
     readOutput(ctx, top.table("output"));

@@ -208,7 +208,10 @@ TEST(Cli, TinyRenderWritesThreeDistinctFramesAndAReport) {
     const RunResult r = runGale({"render", corpus("tiny.toml"), "-o", out});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("wrote 3 frames to " + out), std::string::npos) << r.out;
-    ASSERT_EQ(test::countFiles(out), 4);  // 3 PNGs + the report, no temporaries
+    // 3 frames, the contact sheet, the GIF and the report; no temporaries.
+    ASSERT_EQ(test::countFiles(out), 6);
+    const render::Image sheet = render::readImageRgba8(out + "/frame_sheet.png");
+    EXPECT_GT(sheet.width, 64);  // three thumbnails side by side
     std::vector<render::Image> frames;
     for (int k = 0; k < 3; ++k) {
         char name[32];
@@ -224,6 +227,7 @@ TEST(Cli, TinyRenderWritesThreeDistinctFramesAndAReport) {
     EXPECT_EQ(report["frames"], 3);
     EXPECT_EQ(report["frame_ms"].size(), 3u);
     EXPECT_EQ(report["files"].size(), 3u);
+    EXPECT_EQ(report["previews"].size(), 2u);
     EXPECT_NE(report["gl"].get<std::string>().find("OpenGL"), std::string::npos) << report["gl"];
     // Not a terminal: one progress line per frame.
     EXPECT_NE(r.err.find("frame 3/3"), std::string::npos) << r.err;
