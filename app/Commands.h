@@ -26,6 +26,15 @@ struct SceneRunOptions {
     std::optional<int> height;
 };
 
+/// `gale solve`: the scene's steady wind (DESIGN 4.1) to a .vdb file and a JSON report.
+struct SolveVerbOptions {
+    std::string scenePath;
+    std::string vdbPath;     ///< -o; empty: <output.folder>/<prefix>_wind.vdb
+    std::string reportPath;  ///< --report; empty: the .vdb path with .json
+};
+/// Returns 0 when the solve converged, 2 when it did not (files still written, report says so).
+int runSolveVerb(const SolveVerbOptions& options);
+
 /// Parses the scene and applies the overrides, checking them as the parser checks the scene.
 Scene loadScene(const SceneRunOptions& options);
 

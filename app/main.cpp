@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/BenchRender.h"
+#include "app/BenchSolve.h"
 #include "app/Commands.h"
 #include "app/Errors.h"
 #include "app/SceneParser.h"
@@ -110,6 +111,49 @@ int main(int argc, char** argv) {
     benchRender->add_option("--json", benchOptions.jsonPath, "Also write the results as JSON here");
     benchRender->footer(EXIT_CODES_FOOTER);
 
+    BenchAccuracyOptions accuracyOptions;
+    CLI::App* benchAccuracy = bench->add_subcommand(
+        "accuracy",
+        "Error against run time of the steady solver on the exact hemisphere (potential flow "
+        "past a sphere): CSV, SVG plot and convergence order");
+    benchAccuracy->add_option("--out", accuracyOptions.outputFolder,
+                              "Folder for accuracy.csv and accuracy.svg")
+        ->capture_default_str();
+    benchAccuracy->add_flag("--quick", accuracyOptions.quick,
+                            "4, 8, 16 cells per radius at one tolerance (a CI smoke run)");
+    benchAccuracy->add_option("--json", accuracyOptions.jsonPath, "Also write the table as JSON");
+    benchAccuracy->footer(EXIT_CODES_FOOTER);
+
+    BenchSolveOptions solveBenchOptions;
+    std::vector<std::string> solveBenchSizes;
+    bool noOpenVdb = false;
+    CLI::App* benchSolve = bench->add_subcommand(
+        "solve", "Our MGPCG against OpenVDB's PCG on the same elliptic problem, with memory and "
+                 "the bandwidth floor");
+    benchSolve->add_option("--size", solveBenchSizes,
+                           "Box NXxNYxNZ (repeatable; default 64x64x32 128x128x64 256x256x64)");
+    benchSolve->add_flag("--quick", solveBenchOptions.quick, "Only the first size (a CI smoke run)");
+    benchSolve->add_flag("--no-openvdb", noOpenVdb, "Skip OpenVDB's solver (ours only)");
+    benchSolve->add_option("--tolerance", solveBenchOptions.relativeTolerance,
+                           "Max-norm relative residual for both solvers")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-14, 0.5));
+    benchSolve->add_option("--json", solveBenchOptions.jsonPath, "Also write the table as JSON");
+    benchSolve->footer(EXIT_CODES_FOOTER);
+
+    SolveVerbOptions solveOptions;
+    CLI::App* solve = app.add_subcommand(
+        "solve", "Solve a scene's steady wind over its terrain; write the field as .vdb and a "
+                 "JSON report");
+    solve->add_option("scene", solveOptions.scenePath, "Scene file")->required();
+    solve->add_option("-o,--output", solveOptions.vdbPath,
+                      "The .vdb file (default: <output.folder>/<prefix>_wind.vdb)");
+    solve->add_option("--report", solveOptions.reportPath,
+                      "The JSON report (default: the .vdb path with .json)");
+    solve->footer(std::string("\nThe .vdb holds a Vec3s grid 'velocity' (m/s, world axes, cell "
+                              "centres) and a float grid 'speed'; docs/solver.md says more.") +
+                  EXIT_CODES_FOOTER);
+
     TerrainExportOptions terrainOptions;
     CLI::App* terrain = app.add_subcommand(
         "terrain",
@@ -121,10 +165,11 @@ int main(int argc, char** argv) {
     if (argc > 1 && argv[1][0] != '-') {
         const std::string verb = argv[1];
         bool known = false;
-        for (CLI::App* v : {check, render, blade, bench, terrain}) known |= v->get_name() == verb;
+        for (CLI::App* v : {check, render, solve, blade, bench, terrain})
+            known |= v->get_name() == verb;
         if (!known)
             return reportError("unknown verb '" + verb +
-                                   "' (expected check, render, blade, bench or terrain; see 'gale "
+                                   "' (expected check, render, solve, blade, bench or terrain; see 'gale "
                                    "--help')",
                                EXIT_BAD_INPUT);
     }
@@ -133,9 +178,10 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
         std::string hint = " (see 'gale --help')";
-        for (CLI::App* verb : {check, render, blade, bench, terrain})
+        for (CLI::App* verb : {check, render, solve, blade, bench, terrain})
             if (verb->parsed()) hint = " (see 'gale " + verb->get_name() + " --help')";
-        if (benchRender->parsed()) hint = " (see 'gale bench render --help')";
+        for (CLI::App* verb : {benchRender, benchAccuracy, benchSolve})
+            if (verb->parsed()) hint = " (see 'gale bench " + verb->get_name() + " --help')";
         return reportError(e.what() + hint, EXIT_BAD_INPUT);
     }
 
@@ -151,6 +197,26 @@ int main(int argc, char** argv) {
             }
         }
         if (terrain->parsed()) return runTerrainExport(terrainOptions);
+        if (solve->parsed()) return runSolveVerb(solveOptions);
+        if (benchAccuracy->parsed()) return runBenchAccuracy(accuracyOptions);
+        if (benchSolve->parsed()) {
+            solveBenchOptions.openVdb = !noOpenVdb;
+            for (const std::string& text : solveBenchSizes) {
+                std::array<int, 3> n{};
+                char x1 = 0, x2 = 0;
+                if (std::sscanf(text.c_str(), "%d%c%d%c%d", &n[0], &x1, &n[1], &x2, &n[2]) != 5 ||
+                    x1 != 'x' || x2 != 'x' || n[0] < 2 || n[1] < 2 || n[2] < 2 || n[0] > 4096 ||
+                    n[1] > 4096 || n[2] > 4096)
+                    throw InputError("--size: expected NXxNYxNZ with 2..4096 cells per side (got '" +
+                                     text + "')");
+                solveBenchOptions.sizes.push_back(n);
+            }
+            try {
+                return runBenchSolve(solveBenchOptions);
+            } catch (const std::invalid_argument& e) {
+                throw InputError(e.what());
+            }
+        }
         return reportError("no verb given (see 'gale --help')", EXIT_BAD_INPUT);
     } catch (const InputError& e) {
         return reportError(e.what(), EXIT_BAD_INPUT);
