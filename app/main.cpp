@@ -3,14 +3,19 @@
 /// exceptions: bad input exits 2, internal failures exit 1, each with one line on stderr.
 
 #include <CLI/CLI.hpp>
+#include <tbb/global_control.h>
+
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <memory>
 #include <new>
 #include <stdexcept>
 #include <string>
 
 #include "app/BenchRender.h"
+#include "app/BenchCoupling.h"
 #include "app/BenchSolve.h"
 #include "app/Commands.h"
 #include "app/Errors.h"
@@ -29,12 +34,32 @@ int reportError(const std::string& message, int code) {
     return code;
 }
 
+/// A path option given as "": refused, since an empty path would silently mean "the default".
+const CLI::Validator NOT_EMPTY(
+    [](std::string& s) { return s.empty() ? std::string("must not be empty") : std::string(); },
+    "NOT EMPTY", "not empty");
+
+/// GALE_THREADS=N caps the worker threads of TBB (solver, field sampling), e.g. to show that
+/// results do not depend on the thread count (docs/reliability.md); unset: all cores.
+std::unique_ptr<tbb::global_control> threadLimitFromEnvironment() {
+    const char* text = std::getenv("GALE_THREADS");
+    if (!text) return nullptr;
+    char* end = nullptr;
+    const long n = std::strtol(text, &end, 10);
+    if (end == text || *end != '\0' || n < 1 || n > 4096)
+        throw InputError(std::string("GALE_THREADS: must be an integer in 1..4096 (got '") + text +
+                         "')");
+    return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                 static_cast<size_t>(n));
+}
+
 void addSceneOptions(CLI::App* verb, SceneRunOptions& o) {
     verb->add_option("scene", o.scenePath, "Scene file (TOML; see docs/scene-format.md)")
         ->required();
     verb->add_option("-o,--output", o.folder,
                      "Output folder, relative to the current directory (default: the scene's "
-                     "output.folder)");
+                     "output.folder)")
+        ->check(NOT_EMPTY);
     verb->add_option("--frames", o.frames, "Number of frames (overrides output.frames)")
         ->check(CLI::Range(1, MAX_FRAMES));
     verb->add_option("--width", o.width, "Image width in pixels (overrides output.width)")
@@ -141,15 +166,28 @@ int main(int argc, char** argv) {
     benchSolve->add_option("--json", solveBenchOptions.jsonPath, "Also write the table as JSON");
     benchSolve->footer(EXIT_CODES_FOOTER);
 
+    BenchCouplingOptions couplingOptions;
+    CLI::App* benchCoupling = bench->add_subcommand(
+        "coupling", "Grouped against exact bends as the group count grows, and the coupling's cost "
+                    "per field step and per frame at 100k and 1M vertices");
+    benchCoupling->add_option("--out", couplingOptions.outputFolder,
+                              "Folder for coupling.csv and coupling.svg")
+        ->capture_default_str();
+    benchCoupling->add_flag("--quick", couplingOptions.quick, "10k and 100k vertices (a CI smoke run)");
+    benchCoupling->add_option("--json", couplingOptions.jsonPath, "Also write the tables as JSON");
+    benchCoupling->footer(EXIT_CODES_FOOTER);
+
     SolveVerbOptions solveOptions;
     CLI::App* solve = app.add_subcommand(
         "solve", "Solve a scene's steady wind over its terrain; write the field as .vdb and a "
                  "JSON report");
     solve->add_option("scene", solveOptions.scenePath, "Scene file")->required();
     solve->add_option("-o,--output", solveOptions.vdbPath,
-                      "The .vdb file (default: <output.folder>/<prefix>_wind.vdb)");
+                      "The .vdb file (default: <output.folder>/<prefix>_wind.vdb)")
+        ->check(NOT_EMPTY);
     solve->add_option("--report", solveOptions.reportPath,
-                      "The JSON report (default: the .vdb path with .json)");
+                      "The JSON report (default: the .vdb path with .json)")
+        ->check(NOT_EMPTY);
     solve->footer(std::string("\nThe .vdb holds a Vec3s grid 'velocity' (m/s, world axes, cell "
                               "centres) and a float grid 'speed'; docs/solver.md says more.") +
                   EXIT_CODES_FOOTER);
@@ -180,12 +218,13 @@ int main(int argc, char** argv) {
         std::string hint = " (see 'gale --help')";
         for (CLI::App* verb : {check, render, solve, blade, bench, terrain})
             if (verb->parsed()) hint = " (see 'gale " + verb->get_name() + " --help')";
-        for (CLI::App* verb : {benchRender, benchAccuracy, benchSolve})
+        for (CLI::App* verb : {benchRender, benchAccuracy, benchSolve, benchCoupling})
             if (verb->parsed()) hint = " (see 'gale bench " + verb->get_name() + " --help')";
         return reportError(e.what() + hint, EXIT_BAD_INPUT);
     }
 
     try {
+        const auto threadLimit = threadLimitFromEnvironment();
         if (check->parsed()) return runCheck(checkOptions);
         if (render->parsed()) return runRender(renderOptions);
         if (blade->parsed()) return runBlade(bladeOptions);
@@ -199,6 +238,7 @@ int main(int argc, char** argv) {
         if (terrain->parsed()) return runTerrainExport(terrainOptions);
         if (solve->parsed()) return runSolveVerb(solveOptions);
         if (benchAccuracy->parsed()) return runBenchAccuracy(accuracyOptions);
+        if (benchCoupling->parsed()) return runBenchCoupling(couplingOptions);
         if (benchSolve->parsed()) {
             solveBenchOptions.openVdb = !noOpenVdb;
             for (const std::string& text : solveBenchSizes) {
