@@ -8,6 +8,7 @@
 
 #include "app/Commands.h"
 #include "app/Errors.h"
+#include "app/OutputFolder.h"
 #include "app/SceneBuilder.h"
 #include "app/SolveCommand.h"
 
@@ -35,23 +36,23 @@ int runSolveVerb(const SolveVerbOptions& options) {
     request.reportPath = options.reportPath.empty()
                              ? fs::path(request.vdbPath).replace_extension(".json").string()
                              : options.reportPath;
-    // The folder must exist and be a folder: nothing is created for a run that fails on input.
+    // Each folder must be a folder or creatable (checked, not created): nothing is created for a
+    // run that fails on input. runSolve creates them just before it writes.
+    const std::string vdbWhere = options.vdbPath.empty() ? scene.where("output.folder") : "-o";
     for (const std::string& path : {request.vdbPath, request.reportPath}) {
         const fs::path folder = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
         std::error_code ec;
         if (fs::exists(folder, ec) && !fs::is_directory(folder, ec))
             throw InputError("'" + folder.string() + "' is a file, not a folder (for " + path + ")");
+        const bool isReport = path == request.reportPath && !options.reportPath.empty();
+        checkOutputFolder(folder.string(), isReport ? "--report" : vdbWhere, scene.output.prefix, 0);
     }
     try {
         // The domain and solve validate their inputs (voxel size, memory limit, wind) before
         // allocating; a bad value is the scene's.
-        const fs::path folder = fs::path(request.vdbPath).parent_path();
-        if (!folder.empty()) fs::create_directories(folder);
         return runSolve(request);
     } catch (const std::invalid_argument& e) {
-        throw InputError(scene.path + ": " + e.what());
-    } catch (const fs::filesystem_error& e) {
-        throw InputError(std::string("cannot create the output folder: ") + e.what());
+        throw InputError(scene.where("solver") + ": " + e.what());
     }
 }
 

@@ -14,7 +14,7 @@ int runSolve(const SolveRequest& req) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     req.ambient.validate();
-    std::fprintf(stderr, "solve: building the air domain (voxel %.3g m)...\n", req.domain.voxelSize_m);
+    // No progress line before the domain has validated its inputs: bad input gets one line only.
     const sim::AirDomain domain(req.terrain, req.domain);
     const double domainSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
     std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MB; solving...\n", domain.nx(),
