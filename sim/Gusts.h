@@ -1,0 +1,50 @@
+#pragma once
+/// \file Gusts.h
+/// Gust events of the unsteady wind (DESIGN 4.2): a gust adds a horizontal velocity
+///   G(t) = peak_mps * e((t - start_s) / duration_s) * (cos d, sin d, 0)
+/// to the air that enters the domain (UnsteadyWindSolver's far field), scaled with height like the
+/// mean flow (|u_mean(z)| / U_ref, capped at 1, so a log-law inflow gusts less near the ground).
+/// The flow then carries the front over the terrain: it arrives later downstream.
+///
+/// Envelopes e(s), s = (t - start) / duration, all 0 for s < 0 and s > 1:
+///  - Spline: the thesis' gust shape, a sharp attack and a gradual decay: a cubic Hermite
+///    smoothstep from 0 to 1 over the attack fraction a = attack_s / duration_s, then a smoothstep
+///    from 1 back to 0 over the rest (C1, never outside [0, 1]).
+///  - IecEog: the extreme operating gust of IEC 61400-1 (ed. 3, section 6.3.2.2):
+///    V(t) = V_hub - 0.37 V_gust sin(3 pi t / T) (1 - cos(2 pi t / T)), 0 <= t <= T. We use its
+///    shape normalised so that the peak (at t = T/2, where it is 0.74 V_gust) equals peak_mps:
+///    e(s) = -0.37 sin(3 pi s) (1 - cos(2 pi s)) / 0.74, with the standard's dips before and
+///    after the peak (e reaches about -0.27 there).
+///  - OneMinusCosine: e(s) = (1 - cos(2 pi s)) / 2.
+///  - Step: e(s) = 1 for 0 <= s < 1: an infinitely sharp attack (and release), for the stability
+///    suite.
+
+#include <array>
+#include <string>
+
+namespace gale::sim {
+
+enum class GustEnvelope { Spline, IecEog, OneMinusCosine, Step };
+
+/// "spline", "iec_eog", "one_minus_cosine", "step" and back; fromName throws
+/// std::invalid_argument listing the valid names.
+const char* gustEnvelopeName(GustEnvelope e);
+GustEnvelope gustEnvelopeFromName(const std::string& name);
+
+struct GustEvent {
+    double start_s = 0.0;        ///< time the gust starts entering the domain, seconds
+    double direction_deg = 0.0;  ///< direction it blows towards, degrees counter-clockwise from +x
+    double peak_mps = 3.0;       ///< peak added speed, m/s (may be negative: a lull)
+    double duration_s = 4.0;     ///< length of the envelope, seconds, > 0
+    GustEnvelope envelope = GustEnvelope::Spline;
+    double attack_s = -1.0;      ///< Spline only: rise time, in (0, duration_s); < 0: 0.15 duration
+
+    /// Throws std::invalid_argument naming the field when a value is out of range or not finite.
+    void validate() const;
+    /// Envelope value e at time t_s (dimensionless; 0 outside [start_s, start_s + duration_s]).
+    double envelopeAt(double t_s) const;
+    /// Added velocity at time t_s at full height (the profile factor is the caller's), m/s.
+    std::array<double, 3> velocityAt_mps(double t_s) const;
+};
+
+}  // namespace gale::sim

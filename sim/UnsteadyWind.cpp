@@ -1,0 +1,406 @@
+/// \file UnsteadyWind.cpp
+/// Operator-split incompressible steps on the MAC grid (Stam 1999; projection as SteadyWind.cpp).
+#include "sim/UnsteadyWind.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "sim/SteadyWind.h"
+#include "sim/Viscosity.h"
+
+namespace gale::sim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::string num(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+/// Layers of closed faces refilled from their neighbours after each projection (as SteadyWind).
+constexpr int EXTRAPOLATION_LAYERS = SteadyWindSolver::EXTRAPOLATION_LAYERS;
+/// Smallest whirlwind forcing time scale, in steps: relaxing faster than one step over-shoots.
+constexpr double MIN_FORCING_STEPS = 1.0;
+/// Forcing and circulation are measured on a ring of this many core radii (at least 2 cells).
+constexpr double FORCING_RING_CORES = 2.0;
+
+void extrapolate(std::vector<double>& a, const std::vector<uint8_t>& valid0, int n0, int n1, int n2, int layers) {
+    std::vector<uint8_t> valid = valid0, next;
+    for (int layer = 0; layer < layers; ++layer) {
+        next = valid;
+        tbb::parallel_for(0, n2, [&](int k) {
+            for (int j = 0; j < n1; ++j)
+                for (int i = 0; i < n0; ++i) {
+                    const size_t p = size_t(i) + size_t(n0) * (j + size_t(n1) * k);
+                    if (valid[p]) continue;
+                    double s = 0.0;
+                    int c = 0;
+                    auto take = [&](int ii, int jj, int kk) {
+                        if (ii < 0 || jj < 0 || kk < 0 || ii >= n0 || jj >= n1 || kk >= n2) return;
+                        const size_t q = size_t(ii) + size_t(n0) * (jj + size_t(n1) * kk);
+                        if (valid[q]) s += a[q], ++c;
+                    };
+                    take(i - 1, j, k), take(i + 1, j, k), take(i, j - 1, k);
+                    take(i, j + 1, k), take(i, j, k - 1), take(i, j, k + 1);
+                    if (c > 0) a[p] = s / c, next[p] = 1;
+                }
+        });
+        valid.swap(next);
+    }
+    for (size_t p = 0; p < a.size(); ++p)
+        if (!valid[p]) a[p] = 0.0;
+}
+
+/// The steady solve's operator with A = I; the top closed by a lid unless it is open.
+PoissonSystem projectionSystem(const AirDomain& domain, bool openTop) {
+    PoissonSystem s = SteadyWindSolver::makeSystem(domain, /*verticalRatio=*/1.0);
+    if (!openTop) s.sides[SIDE_ZMAX] = BoundaryKind::Neumann;
+    return s;
+}
+
+}  // namespace
+
+void UnsteadySettings::validate() const {
+    if (!(dt_s >= 0.0) || !std::isfinite(dt_s)) throw std::invalid_argument("unsteady.dt_s must be >= 0, got " + num(dt_s));
+    if (dt_s == 0.0 && (!(cfl > 0.0) || !std::isfinite(cfl)))
+        throw std::invalid_argument("unsteady.cfl must be > 0, got " + num(cfl));
+    if (!(maxDt_s > 0.0) || !std::isfinite(maxDt_s))
+        throw std::invalid_argument("unsteady.max_dt_s must be > 0, got " + num(maxDt_s));
+    if (!(viscosity_m2ps >= 0.0) || !std::isfinite(viscosity_m2ps))
+        throw std::invalid_argument("unsteady.viscosity_m2ps must be >= 0, got " + num(viscosity_m2ps));
+    if (!(vorticityConfinement >= 0.0) || !std::isfinite(vorticityConfinement))
+        throw std::invalid_argument("unsteady.vorticity_confinement must be >= 0, got " + num(vorticityConfinement));
+    for (size_t i = 0; i < gusts.size(); ++i) try {
+            gusts[i].validate();
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument("wind.gusts[" + std::to_string(i) + "]: " + e.what());
+        }
+    for (size_t i = 0; i < whirlwinds.size(); ++i) try {
+            whirlwinds[i].validate();
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument("wind.whirlwinds[" + std::to_string(i) + "]: " + e.what());
+        }
+}
+
+UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField& mean, const UnsteadySettings& settings,
+                                       double referenceSpeed_mps)
+    : mDomain(domain),
+      mSettings(settings),
+      mRefSpeed_mps(referenceSpeed_mps > 0.0 ? referenceSpeed_mps : 1.0),
+      mField(mean),
+      mSystem(projectionSystem(domain, settings.openTop)),
+      mPoisson(mSystem) {
+    mSettings.validate();
+    if (mean.nx() != domain.nx() || mean.ny() != domain.ny() || mean.nz() != domain.nz())
+        throw std::invalid_argument("UnsteadyWindSolver: the mean field does not match the domain");
+    mGrid = MacGrid{domain.nx(), domain.ny(), domain.nz(), domain.voxelSize_m(), domain.wsMin_m()};
+    mMeanU = mean.u_mps(), mMeanV = mean.v_mps(), mMeanW = mean.w_mps();
+    for (const auto* a : {&mMeanU, &mMeanV, &mMeanW})
+        for (double x : *a) mMeanMax_mps = std::max(mMeanMax_mps, std::abs(x));
+    for (const GustEvent& g : mSettings.gusts) mGustMax_mps += std::abs(g.peak_mps);
+    const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
+    mOkX.assign(mGrid.count(Placement::FaceX), 0);
+    mOkY.assign(mGrid.count(Placement::FaceY), 0);
+    mOkZ.assign(mGrid.count(Placement::FaceZ), 0);
+    auto air = [&](int i, int j, int k) { return domain.isAir(i, j, k); };
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i <= nx; ++i)
+                mOkX[mSystem.faceXIndex(i, j, k)] = (i > 0 && i < nx) ? (air(i - 1, j, k) && air(i, j, k))
+                                                    : i == 0         ? air(0, j, k)
+                                                                     : air(nx - 1, j, k);
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i < nx; ++i)
+                mOkY[mSystem.faceYIndex(i, j, k)] = (j > 0 && j < ny) ? (air(i, j - 1, k) && air(i, j, k))
+                                                    : j == 0         ? air(i, 0, k)
+                                                                     : air(i, ny - 1, k);
+    for (int k = 0; k <= nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i)
+                mOkZ[mSystem.faceZIndex(i, j, k)] = (k > 0 && k < nz) ? (air(i, j, k - 1) && air(i, j, k))
+                                                    : k == nz        ? (mSettings.openTop ? air(i, j, nz - 1) : uint8_t(0))
+                                                                     : 0;
+    mSeeded.assign(mSettings.whirlwinds.size(), 0);
+    if (!mSettings.openTop) {
+        // The steady field's small flux through the top becomes the lid's first projection.
+        closeLid();
+        (void)project();
+    }
+    for (const Whirlwind& w : mSettings.whirlwinds) mAxes.push_back(w.wsPosition_m);
+}
+
+Vec3d UnsteadyWindSolver::farField_mps(const Vec3d& ws, double t) const {
+    Vec3d m{sampleAt(mGrid, Placement::FaceX, mMeanU, ws), sampleAt(mGrid, Placement::FaceY, mMeanV, ws),
+            sampleAt(mGrid, Placement::FaceZ, mMeanW, ws)};
+    if (mSettings.gusts.empty()) return m;
+    // The gust scales with height like the mean flow (capped at 1): calm air near the ground
+    // gusts less.
+    const double s = std::sqrt(m[0] * m[0] + m[1] * m[1]);
+    const double factor = mRefSpeed_mps > 0.0 && mMeanMax_mps > 0.0 ? std::min(1.0, s / mRefSpeed_mps) : 1.0;
+    for (const GustEvent& g : mSettings.gusts) {
+        const auto a = g.velocityAt_mps(t);
+        m[0] += factor * a[0], m[1] += factor * a[1];
+    }
+    return m;
+}
+
+double UnsteadyWindSolver::maxSpeed_mps() const {
+    double m = 0.0;
+    for (int k = 0; k < mGrid.nz; ++k)
+        for (int j = 0; j < mGrid.ny; ++j)
+            for (int i = 0; i < mGrid.nx; ++i) {
+                if (!mDomain.isAir(i, j, k)) continue;
+                const auto c = mField.cellVelocity_mps(i, j, k);
+                const double s = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+                if (!(s <= m)) m = s;  // NaN propagates
+            }
+    return m;
+}
+
+double UnsteadyWindSolver::nextDt_s() const {
+    if (mSettings.dt_s > 0.0) return mSettings.dt_s;
+    double umax = std::max(mMeanMax_mps + mGustMax_mps, 0.0);
+    for (const auto* a : {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()})
+        for (double x : *a) umax = std::max(umax, std::abs(x));
+    if (!(umax > 0.0) || !std::isfinite(umax)) return mSettings.maxDt_s;
+    return std::min(mSettings.maxDt_s, mSettings.cfl * mGrid.voxelSize_m / umax);
+}
+
+double UnsteadyWindSolver::kineticEnergy_m5ps2() const {
+    const double h3 = mGrid.voxelSize_m * mGrid.voxelSize_m * mGrid.voxelSize_m;
+    double e = 0.0;
+    const std::vector<double>* a[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
+    const std::vector<float>* th[3] = {&mDomain.openFractionsX(), &mDomain.openFractionsY(), &mDomain.openFractionsZ()};
+    for (int c = 0; c < 3; ++c)
+        for (size_t f = 0; f < a[c]->size(); ++f) e += double((*th[c])[f]) * (*a[c])[f] * (*a[c])[f];
+    return 0.5 * e * h3;
+}
+
+double UnsteadyWindSolver::maxDivergenceScaled() const {
+    const auto& thX = mDomain.openFractionsX();
+    const auto& thY = mDomain.openFractionsY();
+    const auto& thZ = mDomain.openFractionsZ();
+    const auto &U = mField.u_mps(), &V = mField.v_mps(), &W = mField.w_mps();
+    double maxDiv = 0.0;
+    for (int k = 0; k < mGrid.nz; ++k)
+        for (int j = 0; j < mGrid.ny; ++j)
+            for (int i = 0; i < mGrid.nx; ++i) {
+                if (!mDomain.isAir(i, j, k)) continue;
+                const size_t xm = mSystem.faceXIndex(i, j, k), xp = mSystem.faceXIndex(i + 1, j, k);
+                const size_t ym = mSystem.faceYIndex(i, j, k), yp = mSystem.faceYIndex(i, j + 1, k);
+                const size_t zm = mSystem.faceZIndex(i, j, k), zp = mSystem.faceZIndex(i, j, k + 1);
+                const double div = thX[xp] * U[xp] - thX[xm] * U[xm] + thY[yp] * V[yp] - thY[ym] * V[ym] +
+                                   thZ[zp] * W[zp] - thZ[zm] * W[zm];
+                if (!(std::abs(div) <= maxDiv)) maxDiv = std::abs(div);
+            }
+    return maxDiv / mRefSpeed_mps;
+}
+
+void UnsteadyWindSolver::extrapolateClosedFaces() {
+    extrapolate(mField.u_mps(), mOkX, mGrid.nx + 1, mGrid.ny, mGrid.nz, EXTRAPOLATION_LAYERS);
+    extrapolate(mField.v_mps(), mOkY, mGrid.nx, mGrid.ny + 1, mGrid.nz, EXTRAPOLATION_LAYERS);
+    extrapolate(mField.w_mps(), mOkZ, mGrid.nx, mGrid.ny, mGrid.nz + 1, EXTRAPOLATION_LAYERS);
+}
+
+SolveReport UnsteadyWindSolver::project() {
+    const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
+    const double h = mGrid.voxelSize_m;
+    const PoissonSystem& S = mSystem;
+    const auto& thX = mDomain.openFractionsX();
+    const auto& thY = mDomain.openFractionsY();
+    const auto& thZ = mDomain.openFractionsZ();
+    std::vector<double>&U = mField.u_mps(), &V = mField.v_mps(), &W = mField.w_mps();
+    auto air = [&](int i, int j, int k) { return mDomain.isAir(i, j, k); };
+    // Right-hand side: h times the outward open flux (as SteadyWind.cpp); p = 0 on the open sides.
+    std::vector<double> rhs(S.cellCount(), 0.0);
+    tbb::parallel_for(0, nz, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                if (!air(i, j, k)) continue;
+                const size_t xm = S.faceXIndex(i, j, k), xp = S.faceXIndex(i + 1, j, k);
+                const size_t ym = S.faceYIndex(i, j, k), yp = S.faceYIndex(i, j + 1, k);
+                const size_t zm = S.faceZIndex(i, j, k), zp = S.faceZIndex(i, j, k + 1);
+                rhs[S.cellIndex(i, j, k)] = h * (thX[xp] * U[xp] - thX[xm] * U[xm] + thY[yp] * V[yp] - thY[ym] * V[ym] +
+                                                 thZ[zp] * W[zp] - thZ[zm] * W[zm]);
+            }
+    });
+    SolveReport rep = mPoisson.solve(rhs, mPsi, mSettings.projection);
+    const std::vector<double>& psi = mPsi;
+    auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
+    tbb::parallel_for(0, nz, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i <= nx; ++i) {
+                const size_t f = S.faceXIndex(i, j, k);
+                if (!mOkX[f]) continue;
+                U[f] += (i == 0 ? 2.0 * P(0, j, k) : i == nx ? -2.0 * P(nx - 1, j, k) : P(i, j, k) - P(i - 1, j, k)) / h;
+            }
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const size_t f = S.faceYIndex(i, j, k);
+                if (!mOkY[f]) continue;
+                V[f] += (j == 0 ? 2.0 * P(i, 0, k) : j == ny ? -2.0 * P(i, ny - 1, k) : P(i, j, k) - P(i, j - 1, k)) / h;
+            }
+    });
+    tbb::parallel_for(0, nz + 1, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const size_t f = S.faceZIndex(i, j, k);
+                if (!mOkZ[f]) continue;
+                W[f] += (k == nz ? -2.0 * P(i, j, nz - 1) : P(i, j, k) - P(i, j, k - 1)) / h;
+            }
+    });
+    extrapolateClosedFaces();
+    if (!mSettings.openTop) closeLid();  // extrapolation must not reopen it
+    return rep;
+}
+
+void UnsteadyWindSolver::closeLid() {
+    std::vector<double>& W = mField.w_mps();
+    for (int j = 0; j < mGrid.ny; ++j)
+        for (int i = 0; i < mGrid.nx; ++i) W[mSystem.faceZIndex(i, j, mGrid.nz)] = 0.0;
+}
+
+void UnsteadyWindSolver::seedDue(double t0, double t1) {
+    const Heightfield& T = mDomain.terrain();
+    const GroundHeight ground = [&T](double x, double y) { return T.sample(x, y); };
+    for (size_t n = 0; n < mSettings.whirlwinds.size(); ++n) {
+        const Whirlwind& ww = mSettings.whirlwinds[n];
+        if (mSeeded[n] || ww.start_s >= t1) continue;
+        (void)t0;
+        addWhirlwind(mGrid, ww, mAxes[n], 1.0, ground, mDomain.wsTop_m(), mField.u_mps(), mField.v_mps(), mField.w_mps(),
+                     {&mOkX, &mOkY, &mOkZ});
+        mSeeded[n] = 1;
+    }
+}
+
+void UnsteadyWindSolver::applyForcing(double t0, double dt) {
+    const Heightfield& T = mDomain.terrain();
+    const GroundHeight ground = [&T](double x, double y) { return T.sample(x, y); };
+    for (size_t n = 0; n < mSettings.whirlwinds.size(); ++n) {
+        const Whirlwind& ww = mSettings.whirlwinds[n];
+        if (!ww.forced || !mSeeded[n] || t0 > ww.start_s + ww.lifetime_s) continue;
+        const double R = std::max(FORCING_RING_CORES * ww.coreRadius_m, 2.0 * mGrid.voxelSize_m);
+        const double g0 = ground(mAxes[n][0], mAxes[n][1]);
+        const double column = ww.height_m > 0 ? ww.height_m : mDomain.wsTop_m() - g0;
+        const double z = g0 + 0.25 * column;
+        const double target = ww.circulationWithin_m2ps(R);
+        if (target == 0.0) continue;
+        const double now = circulationAround(mGrid, velocity(), mAxes[n], R, z);
+        const double deficit = std::clamp((target - now) / target, 0.0, 1.0);
+        const double vPeak = std::abs(ww.circulation()) * peakSpeedFactor(ww.profile) / (2 * M_PI * ww.coreRadius_m);
+        const double tau = std::max(ww.coreRadius_m / std::max(vPeak, 1e-9), MIN_FORCING_STEPS * dt);
+        const double scale = deficit * (1.0 - std::exp(-dt / tau));
+        if (scale > 0.0)
+            addWhirlwind(mGrid, ww, mAxes[n], scale, ground, mDomain.wsTop_m(), mField.u_mps(), mField.v_mps(),
+                         mField.w_mps(), {&mOkX, &mOkY, &mOkZ});
+    }
+}
+
+StepReport UnsteadyWindSolver::step(double dt) {
+    if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("UnsteadyWindSolver::step: dt_s must be > 0, got " + num(dt));
+    const auto tStart = Clock::now();
+    StepReport rep;
+    const double t0 = mTime_s, t1 = mTime_s + dt;
+    rep.dt_s = dt;
+    double umax = mMeanMax_mps + mGustMax_mps;
+    for (const auto* a : {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()})
+        for (double x : *a) umax = std::max(umax, std::abs(x));
+    rep.cfl = umax * dt / mGrid.voxelSize_m;
+
+    // 1. whirlwinds: seeding and carrying the axis markers (vortex code only when needed).
+    auto t = Clock::now();
+    if (!mSettings.whirlwinds.empty()) {
+        seedDue(t0, t1);
+        const Heightfield& T = mDomain.terrain();
+        const FarField far = [&](const Vec3d& p) { return farField_mps(p, t0); };
+        for (size_t n = 0; n < mAxes.size(); ++n) {
+            if (!mSeeded[n]) continue;
+            const Whirlwind& ww = mSettings.whirlwinds[n];
+            const double g0 = T.sample(mAxes[n][0], mAxes[n][1]);
+            const double column = ww.height_m > 0 ? ww.height_m : mDomain.wsTop_m() - g0;
+            const Vec3d x{mAxes[n][0], mAxes[n][1], g0 + 0.25 * column};
+            const Vec3d u0 = velocityAt(mGrid, velocity(), far, x);
+            const Vec3d mid{x[0] + 0.5 * dt * u0[0], x[1] + 0.5 * dt * u0[1], x[2]};
+            const Vec3d u1 = velocityAt(mGrid, velocity(), far, mid);
+            mAxes[n] = {x[0] + dt * u1[0], x[1] + dt * u1[1]};
+        }
+    }
+    rep.forcing_s += since(t);
+
+    // 2. advection of each component through the frozen field.
+    t = Clock::now();
+    {
+        const std::vector<double> u0 = mField.u_mps(), v0 = mField.v_mps(), w0 = mField.w_mps();
+        const MacVelocity vel{&u0, &v0, &w0};
+        const FarField far = [&](const Vec3d& p) { return farField_mps(p, t1); };
+        const std::vector<double>* src[3] = {&u0, &v0, &w0};
+        std::vector<double>* dst[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
+        const std::vector<uint8_t>* masks[3] = {&mOkX, &mOkY, &mOkZ};
+        for (int c = 0; c < 3; ++c) {
+            const OutsideValue outside = [&, c](const Vec3d& p) { return farField_mps(p, t1)[c]; };
+            advect(mGrid, Placement(c), *src[c], vel, far, outside, dt, mSettings.advection, *dst[c], masks[c]);
+        }
+    }
+    rep.advection_s = since(t);
+
+    if (!mSettings.openTop) closeLid();
+    // 3. forces.
+    t = Clock::now();
+    if (!mSettings.whirlwinds.empty()) applyForcing(t0, dt);
+    if (mSettings.vorticityConfinement > 0.0)
+        addVorticityConfinement(mGrid, mDomain.airFlags(), mSettings.vorticityConfinement, dt, mField.u_mps(),
+                                mField.v_mps(), mField.w_mps());
+    rep.forcing_s += since(t);
+
+    // 4. viscosity.
+    if (mSettings.viscosity_m2ps > 0.0) {
+        t = Clock::now();
+        const ViscosityReport vr = diffuseImplicit(mGrid, mSettings.viscosity_m2ps, dt, {&mOkX, &mOkY, &mOkZ},
+                                                   mField.u_mps(), mField.v_mps(), mField.w_mps());
+        rep.viscosityIterations = vr.iterations;
+        rep.viscosity_s = since(t);
+    }
+
+    // 5. projection.
+    t = Clock::now();
+    rep.projection = project();
+    rep.projection_s = since(t);
+
+    mTime_s = t1;
+    rep.t_s = t1;
+    rep.maxSpeed_mps = maxSpeed_mps();
+    rep.kineticEnergy_m5ps2 = kineticEnergy_m5ps2();
+    rep.maxDivergenceScaled = maxDivergenceScaled();
+    rep.projection.maxDivergenceScaled = rep.maxDivergenceScaled;
+    rep.finite = std::isfinite(rep.maxSpeed_mps) && std::isfinite(rep.kineticEnergy_m5ps2);
+    if (rep.finite)
+        for (const auto* a : {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()})
+            for (double x : *a)
+                if (!std::isfinite(x)) rep.finite = false;
+    rep.total_s = since(tStart);
+    return rep;
+}
+
+std::vector<StepReport> UnsteadyWindSolver::advanceTo(double tEnd) {
+    std::vector<StepReport> reps;
+    // Steps shorter than this fraction of a regular step are merged into the previous one.
+    constexpr double MERGE_FRACTION = 1e-6;
+    while (mTime_s < tEnd) {
+        double dt = nextDt_s();
+        if (mTime_s + dt * (1.0 + MERGE_FRACTION) >= tEnd) dt = tEnd - mTime_s;
+        reps.push_back(step(dt));
+        if (!reps.back().finite) break;
+    }
+    return reps;
+}
+
+}  // namespace gale::sim

@@ -1,0 +1,145 @@
+#pragma once
+/// \file UnsteadyWind.h
+/// The unsteady wind (DESIGN 4.2): incompressible, inviscid or viscous flow on the AirDomain's MAC
+/// grid, started from the steady mass-consistent field, which stays the mean flow that enters
+/// through the open boundaries. docs/unsteady.md has the method, the choices and the measurements.
+///
+/// One step of length dt (operator splitting, Stam 1999 "Stable fluids"; Bridson 2015):
+///  1. seed whirlwinds whose start time falls in the step (sim/Vortices.h), and carry each
+///     whirlwind's axis marker with the flow (midpoint rule);
+///  2. advect the velocity through itself (sim/Advection.h: semi-Lagrangian with an RK2 trace,
+///     MacCormack or BFECC, both limited). Traces that leave the box through a side or the top
+///     read the far field: the steady field (clamped to the box) plus the gusts' added velocity
+///     at the end of the step (sim/Gusts.h). That makes every side an inflow where the air comes
+///     in and zero-gradient where it goes out;
+///  3. forces: whirlwind forcing during a forced whirlwind's lifetime (relaxes its circulation
+///     at 2 r_c back to the seeded one; injects, never removes), vorticity confinement
+///     (Fedkiw, Stam, Jensen 2001);
+///  4. optional implicit viscosity (sim/Viscosity.h: backward Euler, unconditionally stable);
+///  5. projection: the steady solve's operator with A = I (SteadyWindSolver::makeSystem(domain,
+///     1)) on cut cells, fluxes theta_f u_f through open fractions theta_f, Dirichlet (p = 0) on
+///     the sides, a free-slip lid on top (UnsteadySettings::openTop), no flux through the terrain; MGPCG warm-started from the previous
+///     step's potential. u <- u + grad(psi), closed faces refilled by extrapolation as in the
+///     steady solve.
+/// The steady field is a fixed point of steps 2-5 up to the advection's truncation error.
+///
+/// Time step: UnsteadySettings::dt_s if > 0, else adaptive, dt = cfl h / max|u| (the field's
+/// maximum and the far field's), at most maxDt_s. The semi-Lagrangian path is stable at any CFL;
+/// each StepReport says what CFL the step reached.
+///
+/// @code
+///   gale::sim::AirDomain domain(terrain, {/*voxelSize_m=*/2.0});
+///   auto steady = gale::sim::solveSteadyWind(domain, ambient, {}, {});
+///   gale::sim::UnsteadySettings s;  s.cfl = 2.0;  s.gusts.push_back(gust);
+///   gale::sim::UnsteadyWindSolver solver(domain, steady.field, s, ambient.speed_mps);
+///   for (const auto& rep : solver.advanceTo(10.0)) if (!rep.finite) break;
+///   auto u = solver.field().velocityAt_mps(x, y, z);
+/// @endcode
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "sim/Advection.h"
+#include "sim/AirDomain.h"
+#include "sim/Gusts.h"
+#include "sim/PoissonSolver.h"
+#include "sim/Vortices.h"
+#include "sim/WindField.h"
+
+namespace gale::sim {
+
+struct UnsteadySettings {
+    AdvectionScheme advection = AdvectionScheme::SemiLagrangian;
+    double dt_s = 0.0;             ///< fixed step, seconds; 0: adaptive from cfl
+    double cfl = 2.0;              ///< adaptive: max|u| dt / h, > 0
+    double maxDt_s = 1.0;          ///< adaptive: longest step, seconds (used in calm air), > 0
+    double viscosity_m2ps = 0.0;   ///< kinematic viscosity nu, m^2/s, >= 0 (0: no diffusion step)
+    double vorticityConfinement = 0.0;  ///< epsilon of Fedkiw et al. 2001, >= 0 (0: off)
+    /// Projection solve: defaults a little looser than the steady solve (every step is warm).
+    SolverSettings projection{/*relativeTolerance=*/1e-5, /*maxIterations=*/60};
+    /// Top boundary. false (default): a free-slip lid, w = 0 and no flux, Neumann in the
+    /// projection. true: open as in the steady solve, p = 0. Measured (docs/unsteady.md): with
+    /// p = 0 on the top a whirlwind's low-pressure core sucks air in through the top, the core
+    /// hollows into a ring within 5 s and the kinetic energy grows by 7 % in 10 s without forcing;
+    /// under the lid the same vortex stays compact and its energy decays monotonically.
+    bool openTop = false;
+    std::vector<GustEvent> gusts;
+    std::vector<Whirlwind> whirlwinds;
+
+    /// Throws std::invalid_argument naming the field (unsteady.cfl, wind.gusts[i].duration_s ...).
+    void validate() const;
+};
+
+/// What one step did. Non-convergence of the projection is reported, never thrown.
+struct [[nodiscard]] StepReport {
+    double t_s = 0;        ///< time at the end of the step, seconds
+    double dt_s = 0;       ///< step length, seconds
+    double cfl = 0;        ///< max|u| dt / h reached (field before the step and far field)
+    double maxSpeed_mps = 0;            ///< max cell-centred speed over air cells after the step
+    double kineticEnergy_m5ps2 = 0;     ///< 1/2 sum_f theta_f u_f^2 h^3 after the step (per unit density)
+    double maxDivergenceScaled = 0;     ///< max over air cells |sum_f theta_f u_f . n| / U after the projection
+    bool finite = true;                 ///< no NaN/Inf in any velocity after the step
+    SolveReport projection;             ///< the elliptic solve of step 5
+    int viscosityIterations = 0;        ///< CG iterations of the viscous step (0: none)
+    double advection_s = 0, forcing_s = 0, viscosity_s = 0, projection_s = 0, total_s = 0;  ///< wall times
+};
+
+class UnsteadyWindSolver {
+public:
+    /// domain must outlive the solver. meanFlow: the steady field on this domain (its arrays give
+    /// the initial state and the far field). referenceSpeed_mps: U of the divergence scaling
+    /// (the ambient speed; 0 means 1 m/s). Throws std::invalid_argument on bad settings or a field
+    /// that does not match the domain.
+    UnsteadyWindSolver(const AirDomain& domain, const WindField& meanFlow, const UnsteadySettings& settings,
+                       double referenceSpeed_mps);
+
+    /// The next step length the settings ask for (fixed, or adaptive from cfl), seconds.
+    double nextDt_s() const;
+    /// One step of dt_s (> 0) seconds.
+    StepReport step(double dt_s);
+    /// Steps until time() == t_s (the last step shortened to land on it); none if t_s <= time().
+    [[nodiscard]] std::vector<StepReport> advanceTo(double t_s);
+
+    const WindField& field() const { return mField; }
+    double time_s() const { return mTime_s; }
+    const MacGrid& grid() const { return mGrid; }
+    const UnsteadySettings& settings() const { return mSettings; }
+    /// True when the vortex code path runs (whirlwinds or vorticity confinement).
+    bool usesVortexCode() const { return !mSettings.whirlwinds.empty() || mSettings.vorticityConfinement > 0.0; }
+    /// Current axis (x, y) of each whirlwind's marker, carried by the flow, world metres.
+    const std::vector<std::array<double, 2>>& whirlwindAxes_m() const { return mAxes; }
+    /// Far-field velocity at a world position and time: mean flow (clamped to the box) plus gusts.
+    Vec3d farField_mps(const Vec3d& wsPos_m, double t_s) const;
+    /// Diagnostics of the current field (the StepReport's, available before any step).
+    double kineticEnergy_m5ps2() const;
+    double maxSpeed_mps() const;
+    double maxDivergenceScaled() const;
+    /// The MAC arrays of the field, for sampling helpers.
+    MacVelocity velocity() const { return {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()}; }
+    /// Projects the current field (after external edits, e.g. seeding in tests).
+    SolveReport project();
+
+private:
+    void seedDue(double t0, double t1);
+    void applyForcing(double t0, double dt);
+    void extrapolateClosedFaces();
+    void closeLid();
+
+    const AirDomain& mDomain;
+    MacGrid mGrid;
+    UnsteadySettings mSettings;
+    double mRefSpeed_mps;
+    double mTime_s = 0.0;
+    double mMeanMax_mps = 0.0, mGustMax_mps = 0.0;
+    WindField mField;
+    std::vector<double> mMeanU, mMeanV, mMeanW;
+    std::vector<uint8_t> mOkX, mOkY, mOkZ;  // faces the projection updates (between air cells or on the box)
+    PoissonSystem mSystem;
+    PoissonSolver mPoisson;
+    std::vector<double> mPsi;  // projection potential (m^2/s), warm start
+    std::vector<std::array<double, 2>> mAxes;
+    std::vector<uint8_t> mSeeded;
+};
+
+}  // namespace gale::sim
