@@ -208,8 +208,11 @@ int runRender(const SceneRunOptions& options) {
     if (shown.back() != '/') shown += '/';
     const double mean_ms = done > 0 ? loop_s * 1000.0 / done : 0.0;
     if (done < out.frames) {
-        std::printf("interrupted: wrote %d of %d frames to %s (report %s)\n", done, out.frames,
-                    shown.c_str(), reportPath.c_str());
+        // Where it stopped: the last complete frame (frames are written atomically).
+        const std::string last = done > 0 ? "after " + fs::path(written.back()).filename().string()
+                                          : std::string("before the first frame");
+        std::printf("interrupted %s: wrote %d of %d frames to %s (report %s)\n", last.c_str(),
+                    done, out.frames, shown.c_str(), reportPath.c_str());
         return EXIT_INTERRUPTED;
     }
     std::printf("wrote %d frames to %s (%s .. %s) in %s, %.0f ms/frame; report %s\n", done,
