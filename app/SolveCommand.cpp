@@ -1,7 +1,10 @@
 /// \file SolveCommand.cpp
 #include "app/SolveCommand.h"
 
+#include <unistd.h>
+
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -9,18 +12,63 @@
 #include "app/AtomicFile.h"
 
 namespace gale::app {
+namespace {
+
+/// Ctrl-C (docs/reliability.md): while the domain is built and solved nothing is on disk, so the
+/// handler says where the run was and exits at once; while the files are written it only records
+/// the interrupt, so both (each written atomically) are complete before the run stops.
+enum SolveStage : int { STAGE_DOMAIN = 0, STAGE_SOLVING = 1, STAGE_WRITING = 2 };
+volatile std::sig_atomic_t gStage = STAGE_DOMAIN;
+volatile std::sig_atomic_t gInterruptedWhileWriting = 0;
+
+extern "C" void onSolveInterrupt(int) {
+    static const char DOMAIN_MSG[] =
+        "gale: interrupted while building the air domain: nothing written\n";
+    static const char SOLVING_MSG[] = "gale: interrupted while solving: nothing written\n";
+    if (gStage == STAGE_WRITING) {
+        gInterruptedWhileWriting = 1;
+        return;
+    }
+    // write and _exit are async-signal-safe; the message is all a handler may print.
+    if (gStage == STAGE_DOMAIN)
+        (void)!::write(STDERR_FILENO, DOMAIN_MSG, sizeof DOMAIN_MSG - 1);
+    else
+        (void)!::write(STDERR_FILENO, SOLVING_MSG, sizeof SOLVING_MSG - 1);
+    ::_exit(130);
+}
+
+/// Installs onSolveInterrupt for SIGINT for its lifetime.
+class SolveInterruptGuard {
+  public:
+    SolveInterruptGuard() {
+        gStage = STAGE_DOMAIN;
+        gInterruptedWhileWriting = 0;
+        mPrevious = std::signal(SIGINT, onSolveInterrupt);
+    }
+    ~SolveInterruptGuard() { std::signal(SIGINT, mPrevious); }
+    SolveInterruptGuard(const SolveInterruptGuard&) = delete;
+    SolveInterruptGuard& operator=(const SolveInterruptGuard&) = delete;
+
+  private:
+    void (*mPrevious)(int);
+};
+
+}  // namespace
 
 int runSolve(const SolveRequest& req) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     req.ambient.validate();
+    SolveInterruptGuard interruptGuard;
     // No progress line before the domain has validated its inputs: bad input gets one line only.
     const sim::AirDomain domain(req.terrain, req.domain);
     const double domainSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
     std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MB; solving...\n", domain.nx(),
                  domain.ny(), domain.nz(), domain.activeCellCount(), domain.memoryEstimate_bytes() / 1e6);
     sim::SteadyWindSolver solver(domain, req.weights);
+    gStage = STAGE_SOLVING;
     const sim::SteadyWindResult res = solver.solve(req.ambient, req.solver);
+    gStage = STAGE_WRITING;
     const sim::SolveReport& rep = res.report;
 
     nlohmann::json j;
@@ -89,6 +137,13 @@ int runSolve(const SolveRequest& req) {
                 rep.maxDivergenceScaled, j["total_s"].get<double>(), domain.nx(), domain.ny(), domain.nz(),
                 domain.activeCellCount());
     if (!rep.converged) std::printf("solve: %s\n", rep.message.c_str());
+    if (gInterruptedWhileWriting) {
+        std::fflush(stdout);
+        std::fprintf(stderr, "gale: interrupted while writing; the solve had finished and %s%s%s are "
+                     "complete\n", req.vdbPath.c_str(), req.reportPath.empty() ? "" : " and ",
+                     req.reportPath.c_str());
+        return 130;
+    }
     return rep.converged ? 0 : 2;
 }
 
