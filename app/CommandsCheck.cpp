@@ -105,7 +105,37 @@ int runCheck(const SceneRunOptions& options) {
              std::to_string(built.texture.levels.back().height) + ")");
 
     const bool solved = scene.wind.kind == WindKind::Solved;
-    if (solved) {
+    const bool unsteady = scene.wind.kind == WindKind::Unsteady;
+    const sim::UnsteadySettings& us = scene.unsteady.settings;
+    if (unsteady) {
+        const sim::AmbientWind& a = scene.wind.ambient;
+        line("wind", "unsteady field (DESIGN 4.2): steady mass-consistent start and mean flow, " + fmt(a.speed_mps) +
+                         " m/s at " + fmt(a.referenceHeight_m) + " m towards " + fmt(a.direction_deg) + " deg, " +
+                         sim::windProfileName(a.profile) + " profile");
+        line("", "domain " + built.domainSummary);
+        line("", std::string("time stepping: ") + sim::advectionSchemeName(us.advection) + " advection, " +
+                     (us.dt_s > 0 ? "fixed dt " + fmt(us.dt_s) + " s" : "adaptive CFL " + fmt(us.cfl) + " (dt <= " + fmt(us.maxDt_s) + " s)") +
+                     ", projection to " + fmt(us.projection.relativeTolerance) + " (warm MGPCG), " +
+                     (us.openTop ? "open top" : "free-slip lid on top"));
+        line("", "forces: " + std::string(us.viscosity_m2ps > 0 ? "implicit viscosity " + fmt(us.viscosity_m2ps) + " m^2/s" : "no viscosity") +
+                     (us.vorticityConfinement > 0 ? ", vorticity confinement " + fmt(us.vorticityConfinement) : ", no vorticity confinement"));
+        for (size_t i = 0; i < us.gusts.size(); ++i) {
+            const sim::GustEvent& g = us.gusts[i];
+            line("", "gust " + std::to_string(i) + ": " + sim::gustEnvelopeName(g.envelope) + " envelope, " + fmt(g.peak_mps) +
+                         " m/s towards " + fmt(g.direction_deg) + " deg, from t = " + fmt(g.start_s) + " s for " + fmt(g.duration_s) +
+                         " s, entering through the inflow boundary");
+        }
+        for (size_t i = 0; i < us.whirlwinds.size(); ++i) {
+            const sim::Whirlwind& v = us.whirlwinds[i];
+            line("", "whirlwind " + std::to_string(i) + ": " + sim::vortexProfileName(v.profile) + " at (" + fmt(v.wsPosition_m[0]) +
+                         ", " + fmt(v.wsPosition_m[1]) + ") m, core " + fmt(v.coreRadius_m) + " m, circulation " +
+                         fmt(v.circulation()) + " m^2/s" + (v.updraft_mps > 0 ? ", updraft " + fmt(v.updraft_mps) + " m/s" : "") +
+                         (v.forced ? ", forced" + (v.lifetime_s < 1e29 ? " for " + fmt(v.lifetime_s) + " s" : std::string()) : ", free"));
+        }
+        line("", std::string("blade response ") + coupling::bladeResponseName(scene.wind.response.response) + ", " +
+                     coupling::groupingName(scene.wind.response.grouping) + " groups (" + std::to_string(scene.wind.response.groups) +
+                     "), the field sampled after every step");
+    } else if (solved) {
         const sim::AmbientWind& a = scene.wind.ambient;
         const coupling::FieldWindSpec& r = scene.wind.response;
         line("wind", "solved steady field (mass-consistent, DESIGN 4.1): " + fmt(a.speed_mps) +
@@ -165,7 +195,16 @@ int runCheck(const SceneRunOptions& options) {
                      " older frames beyond this run's last (e.g. " + folder.staleFrames.front() +
                      ") stay in the folder");
 
-    if (solved) {
+    if (unsteady) {
+        std::string out = us.whirlwinds.empty() && us.vorticityConfinement == 0.0 ? "no vortex code (no whirlwinds, no confinement)" : "";
+        auto add = [&](bool leave, const std::string& what) {
+            if (leave) out += (out.empty() ? "" : "; ") + what;
+        };
+        add(us.gusts.empty(), "no gusts");
+        add(us.viscosity_m2ps == 0.0, "no viscosity step");
+        add(us.advection == sim::AdvectionScheme::SemiLagrangian, "no MacCormack/BFECC correction");
+        line("left out", out.empty() ? "nothing: every part of the unsteady solver runs" : out);
+    } else if (solved) {
         line("left out", "no unsteady solver: a steady field" +
                              std::string(scene.wind.gusts ? " with kinematic travelling gusts"
                                                           : ", held still") +

@@ -19,6 +19,7 @@
 #include "sim/Heightfield.h"
 #include "sim/PoissonSolver.h"
 #include "sim/SteadyWind.h"
+#include "sim/UnsteadyWind.h"
 
 namespace gale::app {
 
@@ -40,7 +41,9 @@ struct GrassSection {
 
 /// point_source: the paper's heuristic (Bakay et al. 2002). solved: the steady mass-consistent
 /// field over the terrain (sim/SteadyWind), optionally with travelling gusts (coupling/SteadyGustWind).
-enum class WindKind { PointSource, Solved };
+/// unsteady: the steady field as initial state and mean flow, stepped in time with gusts and
+/// whirlwinds ([unsteady], [[wind.gusts]], [[wind.whirlwinds]]; sim/UnsteadyWind, docs/unsteady.md).
+enum class WindKind { PointSource, Solved, Unsteady };
 
 struct WindSection {
     WindKind kind = WindKind::PointSource;
@@ -65,6 +68,14 @@ struct SolverSection {
     sim::SolverSettings settings;
 };
 
+/// [unsteady] with [[wind.gusts]] and [[wind.whirlwinds]] (docs/unsteady.md). Read for every
+/// scene, used by wind.kind = "unsteady" only.
+struct UnsteadySection {
+    sim::UnsteadySettings settings;  ///< time step, advection, viscosity, gusts, whirlwinds
+    double duration_s = 10.0;        ///< `gale solve`: simulated time, seconds
+    double outputEvery_s = 1.0;      ///< `gale solve`: a .vdb every this many seconds
+};
+
 struct OutputSection {
     int width = 640;
     int height = 480;
@@ -85,6 +96,7 @@ struct Scene {
     GrassSection grass;
     WindSection wind;
     SolverSection solver;
+    UnsteadySection unsteady;
     render::Lighting lighting;
     render::Camera camera;
     OutputSection output;

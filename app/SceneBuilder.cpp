@@ -13,6 +13,7 @@
 #include "coupling/FieldWind.h"
 #include "coupling/PointSourceWind.h"
 #include "coupling/SteadyGustWind.h"
+#include "coupling/UnsteadyFieldWind.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "coupling/TerrainMeshBuilder.h"
@@ -144,6 +145,40 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// wind.kind = "unsteady": the steady field as initial state and mean flow, stepped in time by
+/// sim::UnsteadyWindSolver inside a coupling::UnsteadyFieldWind as the frames ask (DESIGN 4.2).
+void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
+    const auto start = std::chrono::steady_clock::now();
+    auto domain = std::make_unique<sim::AirDomain>(
+        [&]() -> sim::AirDomain {
+            try {
+                return sim::AirDomain(built.heightfield, scene.solver.domain);
+            } catch (const std::invalid_argument& e) {
+                failAt(scene, "solver", e.what());
+            }
+        }());
+    built.domainSummary = describeDomain(*domain);
+    if (!options.solveWind) return;
+    if (options.progress) options.progress("solving the steady wind (initial state): " + built.domainSummary);
+    sim::SteadyWindResult result;
+    try {
+        result = sim::solveSteadyWind(*domain, scene.wind.ambient, scene.solver.weights, scene.solver.settings);
+    } catch (const std::invalid_argument& e) {
+        failAt(scene, "wind", e.what());
+    }
+    built.solve = result.report;
+    const double sampleHeight_m = scene.wind.sampleHeight_m >= 0.0 ? scene.wind.sampleHeight_m
+                                                                    : double(scene.grass.params.height_m);
+    try {
+        built.wind = std::make_unique<coupling::UnsteadyFieldWind>(
+            built.mesh, std::move(domain), result.field, scene.unsteady.settings, scene.wind.ambient.speed_mps,
+            scene.wind.response, sampleHeight_m);
+    } catch (const std::invalid_argument& e) {
+        failAt(scene, "unsteady", e.what());
+    }
+    built.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace
 
 sim::Heightfield buildHeightfield(const Scene& scene) {
@@ -220,6 +255,8 @@ BuiltScene buildScene(const Scene& scene, const BuildOptions& options) {
 
     if (scene.wind.kind == WindKind::Solved)
         buildSolvedWind(scene, options, built);
+    else if (scene.wind.kind == WindKind::Unsteady)
+        buildUnsteadyWind(scene, options, built);
     else
         buildPointSourceWind(scene, built);
     built.build_ms =

@@ -499,6 +499,68 @@ void readGrass(Context& ctx, Section s) {
     }
 }
 
+/// [[wind.gusts]] and [[wind.whirlwinds]]: events of the unsteady wind (sim/Gusts.h,
+/// sim/Vortices.h; docs/unsteady.md). Read for every kind, noted as unused unless "unsteady".
+void readGustsAndWhirlwinds(Context& ctx, Section& s) {
+    WindSection& w = ctx.scene->wind;
+    sim::UnsteadySettings& u = ctx.scene->unsteady.settings;
+    const bool unsteady = w.kind == WindKind::Unsteady;
+    for (Section& gs : s.tables("gusts")) {
+        sim::GustEvent g;
+        g.start_s = gs.number("start_s", 0.0, closed(0.0, 1e9));
+        g.direction_deg = gs.number("direction_deg", w.ambient.direction_deg, anyFinite());
+        g.peak_mps = gs.number("peak_mps", 3.0, closed(-1000.0, 1000.0));
+        g.duration_s = gs.number("duration_s", 4.0, above(0.0, 1e9));
+        const std::string env = gs.string("envelope", "spline");
+        try {
+            g.envelope = sim::gustEnvelopeFromName(env);
+        } catch (const std::invalid_argument& e) {
+            gs.failKey("envelope", e.what());
+        }
+        g.attack_s = gs.number("attack_s", -1.0, above(0.0, 1e9));
+        if (!gs.given("attack_s")) g.attack_s = -1.0;
+        gs.finish();
+        if (gs.given("attack_s") && g.envelope != sim::GustEnvelope::Spline)
+            ctx.scene->notes.push_back(ctx.scene->where(gs.full("attack_s")) + ": only the spline envelope has an attack time (ignored)");
+        if (g.attack_s > 0.0 && !(g.attack_s < g.duration_s))
+            gs.failKey("attack_s", "must be shorter than duration_s = " + Limit::num(g.duration_s) + " (got " +
+                                       Limit::num(g.attack_s) + ")");
+        u.gusts.push_back(g);
+        if (!unsteady) ctx.scene->notes.push_back(ctx.file + ":" + std::to_string(gs.line()) + ": " + gs.name() + ": gusts are used by kind \"unsteady\" only (ignored)");
+    }
+    for (Section& ws : s.tables("whirlwinds")) {
+        sim::Whirlwind v;
+        if (!ws.take("position_m")) ws.fail(ws.line(), "", "missing key position_m (required: [x, y] of the axis)");
+        v.wsPosition_m = ws.vec<2>("position_m", {0, 0}, anyFinite());
+        v.coreRadius_m = ws.number("core_radius_m", 3.0, above(0.0, 1e6));
+        const bool hasGamma = ws.take("circulation_m2ps") != nullptr, hasPeak = ws.take("peak_speed_mps") != nullptr;
+        v.circulation_m2ps = ws.number("circulation_m2ps", 0.0, closed(-1e7, 1e7));
+        v.peakSpeed_mps = ws.number("peak_speed_mps", 0.0, closed(-1000.0, 1000.0));
+        if (hasGamma && hasPeak) ws.failKey("peak_speed_mps", "give either circulation_m2ps or peak_speed_mps, not both");
+        if (!hasGamma && !hasPeak) ws.fail(ws.line(), "", "missing key circulation_m2ps or peak_speed_mps (one is required)");
+        if ((hasPeak && v.peakSpeed_mps == 0.0) || (hasGamma && v.circulation_m2ps == 0.0))
+            ws.failKey(hasPeak ? "peak_speed_mps" : "circulation_m2ps", "must not be 0 (the sign gives the sense of rotation)");
+        const std::string profile = ws.string("profile", "lamb_oseen");
+        try {
+            v.profile = sim::vortexProfileFromName(profile);
+        } catch (const std::invalid_argument& e) {
+            ws.failKey("profile", e.what());
+        }
+        v.updraft_mps = ws.number("updraft_mps", 0.0, closed(0.0, 1000.0));
+        v.start_s = ws.number("start_s", 0.0, closed(0.0, 1e9));
+        v.lifetime_s = ws.number("lifetime_s", 1e30, above(0.0));
+        v.forced = ws.boolean("forced", false);
+        v.height_m = ws.number("height_m", 0.0, closed(0.0, 1e6));
+        ws.finish();
+        if (ws.given("lifetime_s") && !v.forced)
+            ctx.scene->notes.push_back(ctx.scene->where(ws.full("lifetime_s")) +
+                                       ": the lifetime ends the forcing, and forced = false (ignored)");
+        u.whirlwinds.push_back(v);
+        if (!unsteady)
+            ctx.scene->notes.push_back(ctx.file + ":" + std::to_string(ws.line()) + ": " + ws.name() + ": whirlwinds are used by kind \"unsteady\" only (ignored)");
+    }
+}
+
 void readWind(Context& ctx, Section s) {
     WindSection& w = ctx.scene->wind;
     const std::string kind = s.string("kind", "point_source");
@@ -506,8 +568,10 @@ void readWind(Context& ctx, Section s) {
         w.kind = WindKind::PointSource;
     else if (kind == "solved")
         w.kind = WindKind::Solved;
+    else if (kind == "unsteady")
+        w.kind = WindKind::Unsteady;
     else
-        s.failKey("kind", "expected \"point_source\" or \"solved\" (got \"" + kind + "\")");
+        s.failKey("kind", "expected \"point_source\", \"solved\" or \"unsteady\" (got \"" + kind + "\")");
     coupling::PointSourceSpec& p = w.pointSource;
     w.autoSource = !s.take("source_m");
     if (!w.autoSource) p.wsSource_m = toVec3(s.vec<3>("source_m", {0, 0, 0}, anyFinite()));
@@ -555,11 +619,11 @@ void readWind(Context& ctx, Section s) {
     } catch (const std::invalid_argument& e) {
         s.failKey(s.given("grouping") ? "grouping" : "response", e.what());
     }
-    const bool solved = w.kind == WindKind::Solved;
+    const bool solved = w.kind != WindKind::PointSource;
     for (const char* key : {"source_m", "steps", "step_delay_s", "blow_away"})
         if (solved && s.given(key))
-            ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) +
-                                       ": not used by kind \"solved\" (ignored)");
+            ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) + ": not used by kind \"" + kind +
+                                       "\" (ignored)");
     for (const char* key : {"response", "grouping", "groups", "bend_speed_mps", "max_intensity",
                             "frequency_hz", "damping_ratio", "sample_height_m", "arrival_bands",
                             "levels"})
@@ -567,8 +631,14 @@ void readWind(Context& ctx, Section s) {
             ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) +
                                        ": not used by kind \"point_source\" (ignored)");
 
+    readGustsAndWhirlwinds(ctx, s);
+
     Section g = s.table("gust");
     w.gusts = g.present();
+    if (w.gusts && w.kind == WindKind::Unsteady)
+        ctx.scene->notes.push_back(ctx.scene->where("wind.gust") +
+                                   ": the kinematic gust curve is not used by kind \"unsteady\" (its gusts are "
+                                   "[[wind.gusts]]) (ignored)");
     const double period_s = g.number("period_s", 4.0, above(0.0, 1e6));
     const toml::node* keys = g.take("keys");
     const bool shaped = g.take("base") || g.take("peak") || g.take("attack_s") || g.take("decay_s");
@@ -642,6 +712,33 @@ void readSolver(Context& ctx, Section s) {
     v.settings.relativeTolerance = s.number("tolerance", 1e-6, above(0.0, 0.5));
     v.settings.maxIterations = static_cast<int>(s.integer("max_iterations", 100, 1, 100000));
     s.finish();
+}
+
+/// [unsteady]: time stepping of wind.kind = "unsteady" (docs/unsteady.md).
+void readUnsteady(Context& ctx, Section s) {
+    UnsteadySection& u = ctx.scene->unsteady;
+    sim::UnsteadySettings& v = u.settings;
+    u.duration_s = s.number("duration_s", 10.0, above(0.0, 1e7));
+    v.dt_s = s.number("dt_s", 0.0, above(0.0, 1e6));
+    if (!s.given("dt_s")) v.dt_s = 0.0;
+    v.cfl = s.number("cfl", 2.0, above(0.0, 1000.0));
+    if (s.given("dt_s") && s.given("cfl")) s.failKey("cfl", "give either dt_s (fixed step) or cfl (adaptive), not both");
+    v.maxDt_s = s.number("max_dt_s", 1.0, above(0.0, 1e6));
+    const std::string adv = s.string("advection", "semi_lagrangian");
+    try {
+        v.advection = sim::advectionSchemeFromName(adv);
+    } catch (const std::invalid_argument& e) {
+        s.failKey("advection", e.what());
+    }
+    v.viscosity_m2ps = s.number("viscosity_m2ps", 0.0, closed(0.0, 1e6));
+    v.vorticityConfinement = s.number("vorticity_confinement", 0.0, closed(0.0, 100.0));
+    v.openTop = s.boolean("open_top", false);
+    v.projection.relativeTolerance = s.number("tolerance", 1e-5, above(0.0, 0.5));
+    v.projection.maxIterations = static_cast<int>(s.integer("max_iterations", 60, 1, 100000));
+    u.outputEvery_s = s.number("output_every_s", 1.0, above(0.0, 1e7));
+    s.finish();
+    if (s.present() && ctx.scene->wind.kind != WindKind::Unsteady)
+        ctx.scene->notes.push_back(ctx.scene->where("unsteady") + ": used by wind.kind = \"unsteady\" only (ignored)");
 }
 
 void readLighting(Context& ctx, Section s) {
@@ -786,6 +883,7 @@ Scene parseSceneString(const std::string& text, const std::string& pathForMessag
     readGrass(ctx, top.table("grass"));
     readWind(ctx, top.table("wind"));
     readSolver(ctx, top.table("solver"));
+    readUnsteady(ctx, top.table("unsteady"));
     readLighting(ctx, top.table("lighting"));
     readCamera(ctx, top.table("camera"));
     readOutput(ctx, top.table("output"));
