@@ -1,0 +1,60 @@
+/// \file UnsteadyFieldWind.cpp
+#include "coupling/UnsteadyFieldWind.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "coupling/FieldSampling.h"
+
+namespace gale::coupling {
+
+UnsteadyFieldWind::UnsteadyFieldWind(const render::TerrainMesh& mesh, std::unique_ptr<sim::AirDomain> domain,
+                                     const sim::WindField& steady, const sim::UnsteadySettings& settings,
+                                     double referenceSpeed_mps, const FieldWindSpec& response, double sampleHeight_m)
+    : mMesh(mesh), mDomain(std::move(domain)), mWind(mesh, response), mSampleHeight_m(sampleHeight_m) {
+    mSolver = std::make_unique<sim::UnsteadyWindSolver>(*mDomain, steady, settings, referenceSpeed_mps);
+    mWind.addFieldStep(0.0, sampleAtGrass(mSolver->field(), mMesh, mSampleHeight_m));
+}
+
+void UnsteadyFieldWind::advanceTo(double t_s) {
+    using Clock = std::chrono::steady_clock;
+    while (mSolver->time_s() < t_s) {
+        const auto t0 = Clock::now();
+        const sim::StepReport r = mSolver->step(mSolver->nextDt_s());
+        const auto t1 = Clock::now();
+        mWind.addFieldStep(r.t_s, sampleAtGrass(mSolver->field(), mMesh, mSampleHeight_m));
+        mStats.sampling_s += std::chrono::duration<double>(Clock::now() - t1).count();
+        mStats.solve_s += std::chrono::duration<double>(t1 - t0).count();
+        ++mStats.steps;
+        mStats.simulated_s = r.t_s;
+        mStats.maxCfl = std::max(mStats.maxCfl, r.cfl);
+        mStats.maxDivergenceScaled = std::max(mStats.maxDivergenceScaled, r.maxDivergenceScaled);
+        mStats.maxProjectionIterations = std::max(mStats.maxProjectionIterations, r.projection.iterations);
+        mStats.allConverged = mStats.allConverged && r.projection.converged;
+        if (!r.finite) {
+            // A non-finite field would freeze the grass with garbage; stop stepping and say so.
+            mStats.allFinite = false;
+            std::fprintf(stderr, "unsteady wind: non-finite velocity at t = %.3f s; the field stops here\n", r.t_s);
+            break;
+        }
+    }
+}
+
+void UnsteadyFieldWind::update(double t_s, render::GrassWind& wind) {
+    if (mStats.allFinite) advanceTo(t_s);
+    mWind.dropStepsBefore(t_s);
+    mWind.update(t_s, wind);
+}
+
+std::string UnsteadyFieldWind::describe() const {
+    const sim::UnsteadySettings& s = mSolver->settings();
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "unsteady field (%s advection, %s, %zu gusts, %zu whirlwinds); grass: %s",
+                  sim::advectionSchemeName(s.advection),
+                  s.dt_s > 0 ? ("dt " + std::to_string(s.dt_s) + " s").c_str() : ("CFL " + std::to_string(s.cfl)).c_str(),
+                  s.gusts.size(), s.whirlwinds.size(), mWind.describe().c_str());
+    return buf;
+}
+
+}  // namespace gale::coupling

@@ -1,0 +1,68 @@
+#pragma once
+/// \file UnsteadyFieldWind.h
+/// Grass wind from the unsteady solver (DESIGN 4.2 -> 5): owns the air domain and the
+/// sim::UnsteadyWindSolver, advances it as update(t) asks, samples the field at grass height after
+/// every solver step (coupling::sampleAtGrass) and hands the samples to a coupling::FieldWind,
+/// which interpolates frames between steps and groups the vertices. Steps older than the frame
+/// are dropped, so memory stays flat however long the run.
+///
+/// Time runs forward only: a frame earlier than the solver's time sees the interpolation of the
+/// steps still held (the renderer asks in increasing order). Work per update: the solver steps
+/// up to t, one O(vertices) sampling per step, then FieldWind's O(K) per frame.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "coupling/FieldWind.h"
+#include "coupling/WindSource.h"
+#include "render/GrassInput.h"
+#include "sim/AirDomain.h"
+#include "sim/UnsteadyWind.h"
+#include "sim/WindField.h"
+
+namespace gale::coupling {
+
+/// Totals over the steps done so far, for reports.
+struct UnsteadyRunStats {
+    int steps = 0;
+    double simulated_s = 0;
+    double maxCfl = 0;
+    double maxDivergenceScaled = 0;
+    int maxProjectionIterations = 0;
+    bool allConverged = true;
+    bool allFinite = true;
+    double solve_s = 0;     ///< wall time inside the solver's steps
+    double sampling_s = 0;  ///< wall time sampling at grass height
+};
+
+class UnsteadyFieldWind : public WindSource {
+public:
+    /// Takes the domain and the steady field (the initial state and mean flow). sampleHeight_m:
+    /// height above the ground where the grass reads the field. Throws std::invalid_argument on
+    /// bad settings (naming the key) or a bad response spec.
+    UnsteadyFieldWind(const render::TerrainMesh& mesh, std::unique_ptr<sim::AirDomain> domain,
+                      const sim::WindField& steady, const sim::UnsteadySettings& settings, double referenceSpeed_mps,
+                      const FieldWindSpec& response, double sampleHeight_m);
+
+    int groupCount() const override { return mWind.groupCount(); }
+    void update(double t_s, render::GrassWind& wind) override;
+    std::string describe() const override;
+    /// The solver's current field (views of the field); valid until the next update().
+    const sim::WindField* currentField() const { return &mSolver->field(); }
+
+    const sim::UnsteadyWindSolver& solver() const { return *mSolver; }
+    const UnsteadyRunStats& stats() const { return mStats; }
+
+private:
+    void advanceTo(double t_s);
+
+    const render::TerrainMesh& mMesh;
+    std::unique_ptr<sim::AirDomain> mDomain;
+    std::unique_ptr<sim::UnsteadyWindSolver> mSolver;
+    FieldWind mWind;
+    double mSampleHeight_m;
+    UnsteadyRunStats mStats;
+};
+
+}  // namespace gale::coupling
