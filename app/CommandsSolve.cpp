@@ -1,5 +1,6 @@
 /// \file CommandsSolve.cpp
-/// `gale solve SCENE [-o FILE.vdb]`: the scene's steady wind as a .vdb field and a JSON report
+/// `gale solve SCENE [-o FILE.vdb]`: the scene's steady wind as a .vdb field and a JSON report; for
+/// wind.kind = "unsteady" a .vdb sequence <stem>_0000.vdb ... with per-step reports
 /// (the work is in SolveCommand.cpp; this builds the request from the scene).
 
 #include <filesystem>
@@ -27,6 +28,9 @@ int runSolveVerb(const SolveVerbOptions& options) {
     request.weights = scene.solver.weights;
     request.solver = scene.solver.settings;
     request.sceneName = scene.name;
+    if (scene.wind.kind == WindKind::Unsteady)
+        request.unsteady = UnsteadySolveRequest{scene.unsteady.settings, scene.unsteady.duration_s,
+                                                scene.unsteady.outputEvery_s};
     request.vdbPath = options.vdbPath.empty()
                           ? (fs::path(scene.output.folder) / (scene.output.prefix + "_wind.vdb")).string()
                           : options.vdbPath;
