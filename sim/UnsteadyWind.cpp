@@ -353,12 +353,17 @@ StepReport UnsteadyWindSolver::step(double dt) {
     rep.advection_s = since(t);
 
     if (!mSettings.openTop) closeLid();
-    // 3. forces.
+    // 3. forces (the energy they add is measured only when they run).
     t = Clock::now();
+    const bool forcing = std::any_of(mSettings.whirlwinds.begin(), mSettings.whirlwinds.end(),
+                                     [](const Whirlwind& w) { return w.forced; }) ||
+                         mSettings.vorticityConfinement > 0.0;
+    const double keBeforeForces = forcing ? kineticEnergy_m5ps2() : 0.0;
     if (!mSettings.whirlwinds.empty()) applyForcing(t0, dt);
     if (mSettings.vorticityConfinement > 0.0)
         addVorticityConfinement(mGrid, mDomain.airFlags(), mSettings.vorticityConfinement, dt, mField.u_mps(),
                                 mField.v_mps(), mField.w_mps());
+    if (forcing) rep.forcingEnergy_m5ps2 = kineticEnergy_m5ps2() - keBeforeForces;
     rep.forcing_s += since(t);
 
     // 4. viscosity.

@@ -82,6 +82,9 @@ struct [[nodiscard]] StepReport {
     bool finite = true;                 ///< no NaN/Inf in any velocity after the step
     SolveReport projection;             ///< the elliptic solve of step 5
     int viscosityIterations = 0;        ///< CG iterations of the viscous step (0: none)
+    /// Kinetic energy the forces of step 3 changed (whirlwind forcing, confinement), m^5/s^2;
+    /// 0 when no force runs. Seeding is not forcing: it happens before the step's advection.
+    double forcingEnergy_m5ps2 = 0;
     double advection_s = 0, forcing_s = 0, viscosity_s = 0, projection_s = 0, total_s = 0;  ///< wall times
 };
 
