@@ -157,6 +157,7 @@ struct Level {
         double weight;
     };
     std::vector<Redirect> redirects;
+    std::vector<size_t> redirectSlab;  // redirects of fine slab k: [redirectSlab[k], redirectSlab[k+1])
 
     void resize(int nx_, int ny_, int nz_) {
         nx = nx_, ny = ny_, nz = nz_;
@@ -331,8 +332,12 @@ struct PoissonSolver::Impl {
     // fromZero: start from x = 0 (first colour = b/d, other colour 0) without reading x.
     // residualOut: also r = b - A x, three slabs behind, where every neighbour is final.
     // The result equals the unpipelined red-black sweep exactly, serial or threaded.
+    // C, xc: first add the coarse correction P xc (prolongation fused into the sweep, one slab
+    // ahead of the colour-A update that first reads it). dotOut: also sum b . x over the final x
+    // (row partial sums added in row order: deterministic).
     static void fusedSweep(const Level& L, double* x, const double* b, int first, bool fromZero,
-                           double* residualOut) {
+                           double* residualOut, const Level* C = nullptr, const double* xc = nullptr,
+                           double* dotOut = nullptr) {
         const size_t sx = L.sx, sxy = L.sxy;
         const float *wx = L.wx.data(), *wy = L.wy.data(), *wz = L.wz.data();
         const double bx = L.bx, by = L.by, bz = L.bz, D = L.uniformDiag, invD = L.uniformInvDiag;
@@ -392,16 +397,48 @@ struct PoissonSolver::Impl {
                 },
                 [&](int i0, int i1) { detail::uniformApply(x, b, residualOut, p0, i0, i1, sx, sxy, bx, by, bz, D); });
         };
+        std::vector<double> rowDots;  // shared by the row tasks, one slot per row
+        if (dotOut) rowDots.assign(size_t(L.ny) * L.nz, 0.0);
+        auto dotRow = [&](int j, int k) {
+            const size_t p0 = L.at(0, j, k);
+            double acc = 0.0;
+            for (size_t p = p0; p < p0 + size_t(L.nx); ++p) acc += b[p] * x[p];
+            rowDots[L.rowIndex(j, k)] = acc;
+        };
+        auto prolongSlab = [&](int k, bool serialRows) {
+            for (size_t n = L.redirectSlab[k]; n < L.redirectSlab[k + 1]; ++n) {
+                const Level::Redirect& r = L.redirects[n];
+                x[r.fine] += r.weight * xc[r.home];
+            }
+            if (serialRows) {
+                for (int j = 0; j < L.ny; ++j) prolongRow(*C, xc, L, x, j, k);
+            } else {
+                tbb::parallel_for(tbb::blocked_range<int>(0, L.ny, 16), [&](const tbb::blocked_range<int>& r) {
+                    for (int j = r.begin(); j < r.end(); ++j) prolongRow(*C, xc, L, x, j, k);
+                });
+            }
+        };
         const int steps = L.nz + (residualOut ? 3 : 1);
         const bool serial = L.cells() < detail::PARALLEL_MIN_CELLS;
+        if (C) prolongSlab(0, serial);
         for (int s = 0; s < steps; ++s) {
+            const bool prolongNext = C && s + 1 < L.nz;
+            if (prolongNext)  // redirects touch scattered rows: serially, before the row tasks
+                for (size_t n = L.redirectSlab[s + 1]; n < L.redirectSlab[s + 2]; ++n) {
+                    const Level::Redirect& r = L.redirects[n];
+                    x[r.fine] += r.weight * xc[r.home];
+                }
             auto rows = [&](int j0, int j1) {
                 for (int j = j0; j < j1; ++j) {
+                    if (prolongNext) prolongRow(*C, xc, L, x, j, s + 1);
                     if (s < L.nz) {
                         if (fromZero) startRow(j, s);
                         else update(j, s, first);
                     }
-                    if (s >= 1 && s - 1 < L.nz) update(j, s - 1, 1 - first);
+                    if (s >= 1 && s - 1 < L.nz) {
+                        update(j, s - 1, 1 - first);
+                        if (dotOut) dotRow(j, s - 1);
+                    }
                     if (residualOut && s >= 3 && s - 3 < L.nz) residualRow(j, s - 3);
                 }
             };
@@ -411,6 +448,11 @@ struct PoissonSolver::Impl {
                 tbb::parallel_for(tbb::blocked_range<int>(0, L.ny, 16),
                                   [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
             }
+        }
+        if (dotOut) {
+            double acc = 0.0;
+            for (double v : rowDots) acc += v;
+            *dotOut = acc;
         }
     }
 
@@ -437,28 +479,25 @@ struct PoissonSolver::Impl {
         for (const Level::Redirect& r : F.redirects) bc[r.home] += r.weight * rf[r.fine];
     }
 
-    // x_fine += P x_coarse. Inactive fine cells may receive values; they are decoupled (all their
-    // weights are 0) and the solver masks them on output.
-    static void prolongAdd(const Level& C, const double* xc, const Level& F, double* xf) {
-        detail::forRows(F, [&](int j, int k) {
-            thread_local std::vector<double> t;
-            t.assign(size_t(C.sx), 0.0);
-            const int kc[2] = {F.tz.c0[k], F.tz.c1[k]};
-            const double kw[2] = {F.tz.w0[k], F.tz.w1[k]};
-            const int jc[2] = {F.ty.c0[j], F.ty.c1[j]};
-            const double jw[2] = {F.ty.w0[j], F.ty.w1[j]};
-            for (int a = 0; a < 2; ++a)
-                for (int b = 0; b < 2; ++b) {
-                    const double w = kw[a] * jw[b];
-                    if (w == 0.0) continue;
-                    const double* row = xc + C.at(-1, jc[b], kc[a]);
-                    for (int I = 0; I < C.sx; ++I) t[I] += w * row[I];
-                }
-            const size_t p0 = F.at(0, j, k);
-            for (int i = 0; i < F.nx; ++i)
-                xf[p0 + i] += F.tx.w0[i] * t[F.tx.c0[i] + 1] + F.tx.w1[i] * t[F.tx.c1[i] + 1];
-        });
-        for (const Level::Redirect& r : F.redirects) xf[r.fine] += r.weight * xc[r.home];
+    // x_fine += P x_coarse on fine row (j, k), trilinear part only (the redirects are added by
+    // the caller). Inactive fine cells may receive values; they are decoupled (all their weights
+    // are 0) and the solver masks them on output.
+    static void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, int j, int k) {
+        thread_local std::vector<double> t;
+        t.assign(size_t(C.sx), 0.0);
+        const int kc[2] = {F.tz.c0[k], F.tz.c1[k]};
+        const double kw[2] = {F.tz.w0[k], F.tz.w1[k]};
+        const int jc[2] = {F.ty.c0[j], F.ty.c1[j]};
+        const double jw[2] = {F.ty.w0[j], F.ty.w1[j]};
+        for (int a = 0; a < 2; ++a)
+            for (int b = 0; b < 2; ++b) {
+                const double w = kw[a] * jw[b];
+                if (w == 0.0) continue;
+                const double* row = xc + C.at(-1, jc[b], kc[a]);
+                for (int I = 0; I < C.sx; ++I) t[I] += w * row[I];
+            }
+        const size_t p0 = F.at(0, j, k);
+        for (int i = 0; i < F.nx; ++i) xf[p0 + i] += F.tx.w0[i] * t[F.tx.c0[i] + 1] + F.tx.w1[i] * t[F.tx.c1[i] + 1];
     }
 
     // Which fine cells lose trilinear weight to inactive coarse cells or Neumann ghosts.
@@ -519,7 +558,12 @@ struct PoissonSolver::Impl {
                     if (lost > 0.0) out.push_back({p, C.at(ci[0], cj[0], ck[0]), lost});
                 }
         });
-        for (const auto& v : perSlab) F.redirects.insert(F.redirects.end(), v.begin(), v.end());
+        F.redirectSlab.assign(size_t(F.nz) + 1, 0);
+        for (int k = 0; k < F.nz; ++k) {
+            F.redirectSlab[k] = F.redirects.size();
+            F.redirects.insert(F.redirects.end(), perSlab[k].begin(), perSlab[k].end());
+        }
+        F.redirectSlab[F.nz] = F.redirects.size();
     }
 
     void coarseSolve(const Level& L, const double* b, double* x) {
@@ -542,10 +586,16 @@ struct PoissonSolver::Impl {
     }
 
     // One symmetric V(n, n) cycle: x = M^{-1} b on level l (x is overwritten).
-    void vcycle(size_t l, const double* b, double* x, double* scratch) {
+    // One symmetric V(n, n) cycle: x = M^{-1} b on level l (x is overwritten). dotOut: b . x.
+    void vcycle(size_t l, const double* b, double* x, double* scratch, double* dotOut = nullptr) {
         Level& L = levels[l];
         if (l + 1 == levels.size()) {
             coarseSolve(L, b, x);
+            if (dotOut) {
+                double acc = 0.0;
+                for (size_t p = 0; p < L.total; ++p) acc += b[p] * x[p];
+                *dotOut = acc;
+            }
             return;
         }
         // Pre-smoothing V(n, .) in red-black order; the last sweep also forms the residual.
@@ -554,10 +604,12 @@ struct PoissonSolver::Impl {
         Level& C = levels[l + 1];
         restrictTo(L, scratch, C);
         vcycle(l + 1, C.b.data(), C.x.data(), C.r.data());
-        prolongAdd(C, C.x.data(), L, x);
         // Post-smoothing in black-red order: the adjoint of the pre-smoother, so the V-cycle is a
-        // symmetric preconditioner as CG requires.
-        for (int s = 0; s < sweeps; ++s) fusedSweep(L, x, b, /*first=*/1, /*fromZero=*/false, nullptr);
+        // symmetric preconditioner as CG requires. The first post-sweep adds the coarse
+        // correction as it goes; the last one sums b . x.
+        for (int s = 0; s < sweeps; ++s)
+            fusedSweep(L, x, b, /*first=*/1, /*fromZero=*/false, nullptr, s == 0 ? &C : nullptr,
+                       s == 0 ? C.x.data() : nullptr, s + 1 == sweeps ? dotOut : nullptr);
     }
 
     void buildCoarse(const Level& F, Level& C) {
@@ -767,13 +819,13 @@ double PoissonSolver::bytesPerCellPerIteration(int n, double uniformFraction) {
     //   each later sweep (both colours): read x, b, w, write x                     36
     //   the residual fused into the last pre-sweep: write r                        8
     //   restriction: read the fine residual                                        8
-    //   prolongation: read + write x                                               16
+    //   prolongation: fused into the first post-sweep, no extra stream             0
     // Uniform (full-open) cells never read their weights: 12 B less per sweep for them.
     const double u = std::clamp(uniformFraction, 0.0, 1.0);
-    const double vcycleLevel = 28 + 36.0 * (2 * n - 1) + 8 + 8 + 16 - 12.0 * (2 * n) * u;
+    const double vcycleLevel = 28 + 36.0 * (2 * n - 1) + 8 + 8 - 12.0 * (2 * n) * u;
     //   PCG on level 0: q = A p (+dot): read p, w, write q 28; x += a p, r -= a q (+max): 48;
-    //   r.z: 16; p = z + b p: 24.
-    const double pcg = 28 + 48 + 16 + 24 - 12.0 * u;
+    //   r.z fused into the last post-sweep: 0; p = z + b p: 24.
+    const double pcg = 28 + 48 + 24 - 12.0 * u;
     // Coarser levels hold 1/8 + 1/64 + ... = 1/7 of the cells.
     return pcg + vcycleLevel * (1.0 + 1.0 / 7.0);
 }
@@ -893,7 +945,9 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
     }
     auto precondition = [&]() {
         if (settings.useMultigrid) {
-            m.vcycle(0, r, z, q);
+            double rz = 0.0;
+            m.vcycle(0, r, z, q, &rz);  // r . z summed inside the last sweep
+            return rz;
         } else {
             detail::forRows(L, [&](int j, int k) {
                 const size_t p0 = L.at(0, j, k);
