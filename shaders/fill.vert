@@ -1,5 +1,6 @@
 #version 450 core
-// Baseline for benchmarks: the same shells as shell.vert (instance i = shell i, extruded i S along
+// Baseline for benchmarks: the same shells as shell.vert, in the same top-first order (shell
+// i = N - gl_InstanceID, extruded i S along
 // the normal) without bend or lighting, so its cost is geometry plus a textured alpha-tested fill.
 
 layout(location = 0) in vec3 aPosition;
@@ -14,7 +15,7 @@ out vec2 vUv;
 flat out float vThreshold;
 
 void main() {
-    int i = gl_InstanceID;
+    int i = uShells - gl_InstanceID;
     gl_Position = uClipFromWorld * vec4(aPosition + aNormal * (float(i) * uShellSpacing), 1.0);
     vUv = aUv;
     float halfStep = 0.5 / 255.0;

@@ -1,6 +1,7 @@
 #version 450 core
 // Shell grass vertex shader (Bakay, Lalonde, Heidrich 2002; Bakay 2003, chapter 3).
-// One instance per shell: gl_InstanceID = i, 0 = ground, N = top. Everything here is world space,
+// One instance per shell, drawn top first: shell i = N - gl_InstanceID (0 = ground, N = top); see
+// ShellRenderer::draw for why. Everything here is world space,
 // metres; lighting is evaluated per vertex, as in the thesis, so the fragment stage stays a texture
 // fetch, an alpha test and a multiply.
 
@@ -39,7 +40,7 @@ vec3 shellPosition(int i) {
 }
 
 void main() {
-    int i = gl_InstanceID;
+    int i = uShells - gl_InstanceID;
     vec3 pos = shellPosition(i);
     gl_Position = uClipFromWorld * vec4(pos, 1.0);
     vUv = aUv;
