@@ -17,6 +17,7 @@
 #include <system_error>
 #include <vector>
 
+#include "app/AtomicFile.h"
 #include "render/RenderBench.h"
 
 namespace gale::app {
@@ -39,31 +40,6 @@ constexpr PaperRow kPaperRows[] = {
 // least 0.7 of the trivial fill (the lighting should stay nearly free, as the thesis found).
 constexpr double kTargetRatioToPaper = 2.0;
 constexpr double kTargetRatioToTrivial = 0.7;
-
-void writeTextAtomicLocal(const std::string& path, const std::string& text) {
-    namespace fs = std::filesystem;
-    const fs::path target(path);
-    fs::path temp = target.parent_path();
-    temp /= "." + target.filename().string() + ".tmp" + std::to_string(::getpid());
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            fs::remove(temp, ignored);
-            throw std::runtime_error("cannot write '" + path + "': cannot write temporary file '" +
-                                     temp.string() + "'");
-        }
-    }
-    std::error_code ec;
-    fs::rename(temp, target, ec);
-    if (ec) {
-        std::error_code ignored;
-        fs::remove(temp, ignored);
-        throw std::runtime_error("cannot write '" + path + "': " + ec.message());
-    }
-}
 
 }  // namespace
 
@@ -154,7 +130,7 @@ int runBenchRender(const BenchRenderOptions& options) {
                           {"ratio_to_trivial_min", kTargetRatioToTrivial},
                           {"ratio_to_paper_met", allPaper},
                           {"ratio_to_trivial_met", allTrivial}};
-        writeTextAtomicLocal(options.jsonPath, doc.dump(2) + "\n");
+        writeTextAtomic(options.jsonPath, doc.dump(2) + "\n");
         std::fprintf(stderr, "bench render: wrote %s\n", options.jsonPath.c_str());
     }
     return 0;
