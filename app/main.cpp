@@ -16,6 +16,7 @@
 
 #include "app/BenchRender.h"
 #include "app/BenchCoupling.h"
+#include "app/BenchUnsteady.h"
 #include "app/BenchSolve.h"
 #include "app/Commands.h"
 #include "app/Errors.h"
@@ -177,6 +178,26 @@ int main(int argc, char** argv) {
     benchCoupling->add_option("--json", couplingOptions.jsonPath, "Also write the tables as JSON");
     benchCoupling->footer(EXIT_CODES_FOOTER);
 
+    BenchStabilityOptions stabilityOptions;
+    CLI::App* benchStability = bench->add_subcommand(
+        "stability", "The unsteady wind's extreme cases (CFL 50, 0 and 100 m/s, cliff, spike, sub-cell "
+                     "vortex, nu dt/h^2 = 1000, step gust): finite, divergence-free, energy bounded");
+    benchStability->add_flag("--quick", stabilityOptions.quick, "Only the fast subset (what sim_tests runs)");
+    benchStability->add_option("--json", stabilityOptions.jsonPath, "Also write the table as JSON");
+    benchStability->footer(EXIT_CODES_FOOTER);
+
+    BenchUnsteadyOptions unsteadyOptions;
+    CLI::App* benchUnsteady = bench->add_subcommand(
+        "unsteady", "Error against run time of the unsteady solver on the exact viscous Lamb-Oseen vortex "
+                    "(CSV, SVG, orders) per advection scheme, and the time per step and its parts");
+    benchUnsteady->add_option("--out", unsteadyOptions.outputFolder,
+                              "Folder for unsteady_accuracy.csv and unsteady_accuracy.svg")
+        ->capture_default_str();
+    benchUnsteady->add_flag("--quick", unsteadyOptions.quick,
+                            "2 and 4 cells per core, a 48x48x16 timing box (a CI smoke run)");
+    benchUnsteady->add_option("--json", unsteadyOptions.jsonPath, "Also write the tables as JSON");
+    benchUnsteady->footer(EXIT_CODES_FOOTER);
+
     SolveVerbOptions solveOptions;
     CLI::App* solve = app.add_subcommand(
         "solve", "Solve a scene's steady wind over its terrain; write the field as .vdb and a "
@@ -218,7 +239,7 @@ int main(int argc, char** argv) {
         std::string hint = " (see 'gale --help')";
         for (CLI::App* verb : {check, render, solve, blade, bench, terrain})
             if (verb->parsed()) hint = " (see 'gale " + verb->get_name() + " --help')";
-        for (CLI::App* verb : {benchRender, benchAccuracy, benchSolve, benchCoupling})
+        for (CLI::App* verb : {benchRender, benchAccuracy, benchSolve, benchCoupling, benchStability, benchUnsteady})
             if (verb->parsed()) hint = " (see 'gale bench " + verb->get_name() + " --help')";
         return reportError(e.what() + hint, EXIT_BAD_INPUT);
     }
@@ -239,6 +260,8 @@ int main(int argc, char** argv) {
         if (solve->parsed()) return runSolveVerb(solveOptions);
         if (benchAccuracy->parsed()) return runBenchAccuracy(accuracyOptions);
         if (benchCoupling->parsed()) return runBenchCoupling(couplingOptions);
+        if (benchStability->parsed()) return runBenchStability(stabilityOptions);
+        if (benchUnsteady->parsed()) return runBenchUnsteady(unsteadyOptions);
         if (benchSolve->parsed()) {
             solveBenchOptions.openVdb = !noOpenVdb;
             for (const std::string& text : solveBenchSizes) {
