@@ -485,6 +485,14 @@ int runBenchSolve(const BenchSolveOptions& optIn) {
     const int sweeps = sim::SolverSettings{}.smoothingSweeps;
     const double bytesGeneral = sim::PoissonSolver::bytesPerCellPerIteration(sweeps, 0.0);
 
+    // Timings on a shared machine mean little without its load: report it before and after.
+    auto loadAverage = [] {
+        std::ifstream f("/proc/loadavg");
+        double l1 = -1;
+        f >> l1;
+        return l1;
+    };
+    const double loadBefore = loadAverage();
     std::fprintf(stderr, "bench solve: measuring triad bandwidth...\n");
     const RunResult triad = inChild(runTriad);
     const double bw = triad.triad_Bps > 0 ? triad.triad_Bps : 1e10;
@@ -563,6 +571,12 @@ int runBenchSolve(const BenchSolveOptions& optIn) {
                              {"floor_s", floorS}, {"bytes_per_cell_per_iteration", r.bytesPerCellIteration}, {"solution_difference", r.solutionDifference},
                              {"message", r.message}});
     }
+    const double loadAfter = loadAverage();
+    std::printf("\nLoad average (1 min) before / after: %.2f / %.2f on %ld cores: above the core count, times are\n"
+                "inflated for every solver alike, and the floor ratio grows.\n",
+                loadBefore, loadAfter, sysconf(_SC_NPROCESSORS_ONLN));
+    j["load_average_before"] = loadBefore;
+    j["load_average_after"] = loadAfter;
     if (itsFirst > 0)
         std::printf("\nIteration growth smallest -> largest: %d -> %d (%.2fx; target <= 1.5x)\n", itsFirst, itsLast,
                     double(itsLast) / itsFirst);
