@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <filesystem>
@@ -373,6 +374,25 @@ TEST(WindField, SamplingIsZeroBelowTheTerrainAndOutsideTheBox) {
         EXPECT_EQ(outside[c], 0.0);
     }
     EXPECT_GT(above[0], 5.0);  // speed-up over the crest
+}
+
+TEST(WindField, ConcurrentSamplingMatchesSerialSampling) {
+    AirDomain domain(gaussianHill(2.0), DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    const SteadyWindResult res = solveSteadyWind(domain, AmbientWind{}, {}, SolverSettings{});
+    std::vector<std::array<double, 3>> pts, serial, parallel(4000);
+    for (int n = 0; n < 4000; ++n) pts.push_back({(n * 37) % 100 + 0.3, (n * 53) % 100 + 0.7, 5.0 + (n % 40)});
+    for (const auto& p : pts) serial.push_back(res.field.velocityAt_mps(p[0], p[1], p[2]));
+    tbb::parallel_for(0, 4000, [&](int n) { parallel[n] = res.field.velocityAt_mps(pts[n][0], pts[n][1], pts[n][2]); });
+    EXPECT_EQ(serial, parallel);  // bit-identical: sampling is a pure function of the field
+}
+
+TEST(SteadyWind, DirectionIsWhereTheWindBlowsTowardsCounterClockwiseFromX) {
+    AirDomain domain(flat(40.0, 2.0), DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    const SteadyWindResult res = solveSteadyWind(domain, uniformWind(5.0, 90.0), {}, SolverSettings{});
+    const auto u = res.field.velocityAt_mps(20.0, 20.0, 10.0);
+    constexpr double REL_TOL = 1e-6;  // as for uniform flow: the solve leaves u0 unchanged
+    EXPECT_NEAR(u[0], 0.0, REL_TOL * 5.0);
+    EXPECT_NEAR(u[1], 5.0, REL_TOL * 5.0);
 }
 
 TEST(WindField, WritesAVdbWithVelocityAndSpeedGrids) {
