@@ -177,6 +177,29 @@ int runCheck(const SceneRunOptions& options) {
                        fmt(c.fovY_deg) + " deg, near " + fmt(c.near_m) + " m, far " + fmt(c.far_m) +
                        " m");
 
+    const coupling::OverlaySpec& ov = scene.overlay;
+    if (ov.any()) {
+        std::string views;
+        auto add = [&](bool on, const std::string& what) {
+            if (on) views += (views.empty() ? "" : ", ") + what;
+        };
+        add(ov.arrows, "arrows every " +
+                           (ov.arrowSpacing_m > 0 ? fmt(ov.arrowSpacing_m) + " m" : std::string("1/16 of the terrain")) +
+                           " at " + (ov.arrowHeight_m >= 0 ? fmt(ov.arrowHeight_m) + " m" : std::string("grass height")));
+        add(ov.slice, "terrain-following slice " + fmt(ov.sliceHeight_m) + " m up");
+        add(ov.streamlines, std::to_string(ov.streamlineCount) + " streamlines from the upstream edge");
+        add(ov.vortexCores, "vortex cores (Q > " +
+                                (ov.vortexQ_per_s2 > 0 ? fmt(ov.vortexQ_per_s2) + " 1/s^2" : std::string("auto")) + ")");
+        line("overlay", views + "; colour map viridis up to " +
+                            (ov.speedMax_mps > 0 ? fmt(ov.speedMax_mps) + " m/s" : std::string("the largest speed")) +
+                            (ov.legend ? ", with legend" : ", no legend"));
+        if (!solved && (ov.slice || ov.streamlines || ov.vortexCores))
+            line("", "note: the point source has no velocity field: only arrows (direction x "
+                     "intensity) are drawn");
+    } else {
+        line("overlay", "none (an [overlay] section draws arrows, a slice, streamlines, vortex cores)");
+    }
+
     const double endTime_s = out.startTime_s + (out.frames - 1) / out.fps;
     line("output", std::to_string(out.frames) + " frames of " + std::to_string(out.width) + " x " +
                        std::to_string(out.height) + " at " + fmt(out.fps) +

@@ -20,8 +20,10 @@
 #include "app/SceneBuilder.h"
 #include "app/SceneParser.h"
 #include "app/Version.h"
+#include "coupling/FieldOverlayBuilder.h"
 #include "render/GlContext.h"
 #include "render/Animation.h"
+#include "render/FieldOverlay.h"
 #include "render/ImageIO.h"
 #include "render/ShellRenderer.h"
 
@@ -49,6 +51,12 @@ void removeOutputs(const std::vector<std::string>& files, const std::string& fol
     std::error_code ec;
     for (const std::string& f : files) fs::remove(f, ec);
     if (createdFolder) fs::remove(folder, ec);  // only removes it if empty
+}
+
+/// framePath with the extension of output.format (".png" or ".exr").
+std::string framePathAs(const std::string& folder, const std::string& prefix, int k,
+                        const std::string& format) {
+    return fs::path(framePath(folder, prefix, k)).replace_extension("." + format).string();
 }
 
 std::string utcNow() {
@@ -100,6 +108,8 @@ int runRender(const SceneRunOptions& options) {
     renderer.setGrass(scene.grass.params, built.texture);
     renderer.setLighting(scene.lighting);
     const std::string glDescription = context->description();
+    std::unique_ptr<render::FieldOverlay> overlay;
+    if (scene.overlay.any()) overlay = std::make_unique<render::FieldOverlay>(*context);
 
     // Everything is validated: only now does anything appear on disk.
     const bool createdFolder = prepareOutputFolder(out.folder, folderWhere);
@@ -133,8 +143,12 @@ int runRender(const SceneRunOptions& options) {
             const double t_s = out.startTime_s + k / out.fps;
             built.wind->update(t_s, wind);
             const render::FrameStats stats = renderer.draw(built.camera, wind);
+            if (overlay)
+                overlay->draw(built.camera,
+                              coupling::buildOverlay(*built.wind, wind, built.mesh, scene.overlay,
+                                                     scene.grass.params.height_m));
             context->readPixels(image);
-            const std::string path = framePath(out.folder, out.prefix, k);
+            const std::string path = framePathAs(out.folder, out.prefix, k, out.format);
             render::writeImageAtomic(image, path);
             written.push_back(path);
             animationWriter.addFrame(image, k);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/FieldOverlayBuilder.h"
 #include "coupling/FieldWind.h"
 #include "coupling/GustCurve.h"
 #include "coupling/PointSourceWind.h"
@@ -86,6 +87,7 @@ struct OutputSection {
     std::string prefix = "frame";      ///< frame files are <prefix>_0000.png ...
     bool contactSheet = true;          ///< <prefix>_sheet.png: a grid of evenly spaced frames
     bool gif = true;                   ///< <prefix>.gif: the frames as an animated GIF
+    std::string format = "png";        ///< frame files: "png" (8-bit) or "exr" (half float, linear)
 };
 
 struct Scene {
@@ -100,6 +102,7 @@ struct Scene {
     render::Lighting lighting;
     render::Camera camera;
     OutputSection output;
+    coupling::OverlaySpec overlay;  ///< [overlay]: views of the field drawn over the grass
 
     bool autoCameraPosition = true;  ///< camera.position_m not given: a 3/4 view of the terrain
     bool autoCameraTarget = true;    ///< camera.target_m not given: the terrain's centre

@@ -118,8 +118,10 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
     const double sampleHeight_m = scene.wind.sampleHeight_m >= 0.0
                                       ? scene.wind.sampleHeight_m
                                       : double(scene.grass.params.height_m);
+    // Kept alive in the wind source for views of the field (coupling/FieldOverlayBuilder).
+    auto field = std::make_shared<const sim::WindField>(std::move(result.field));
     const std::vector<glm::vec3> velocity =
-        coupling::sampleAtGrass(result.field, built.mesh, sampleHeight_m);
+        coupling::sampleAtGrass(*field, built.mesh, sampleHeight_m);
     try {
         if (scene.wind.gusts) {
             coupling::SteadyGustSpec spec;
@@ -131,11 +133,14 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
             spec.convection_mps = std::max(0.5, scene.wind.ambient.speed_mps);
             const double a = scene.wind.ambient.direction_deg * PI / 180.0;
             spec.wsDirection = glm::vec3(std::cos(a), std::sin(a), 0.0f);
-            built.wind = std::make_unique<coupling::SteadyGustWind>(built.mesh, velocity, spec,
-                                                                     gustCurve(scene));
+            auto wind = std::make_unique<coupling::SteadyGustWind>(built.mesh, velocity, spec,
+                                                                    gustCurve(scene));
+            wind->keepField(field);
+            built.wind = std::move(wind);
         } else {
             auto wind = std::make_unique<coupling::FieldWind>(built.mesh, scene.wind.response);
             wind->addFieldStep(0.0, velocity);
+            wind->keepField(field);
             built.wind = std::move(wind);
         }
     } catch (const std::invalid_argument& e) {

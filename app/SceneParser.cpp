@@ -797,7 +797,10 @@ void readOutput(Context& ctx, Section s) {
     o.prefix = s.string("prefix", "frame");
     o.contactSheet = s.boolean("contact_sheet", true);
     o.gif = s.boolean("gif", true);
+    o.format = s.string("format", "png");
     s.finish();
+    if (o.format != "png" && o.format != "exr")
+        s.failKey("format", "must be \"png\" or \"exr\" (got \"" + o.format + "\")");
     if (o.folder.empty()) s.failKey("folder", "must name a folder (got \"\")");
     const bool prefixOk =
         !o.prefix.empty() && o.prefix.size() <= 100 &&
@@ -808,6 +811,22 @@ void readOutput(Context& ctx, Section s) {
         s.failKey("prefix",
                   "must be 1-100 letters, digits, '_', '-' or '.' (got \"" + o.prefix + "\")");
     if (auto problem = outputBudgetProblem(o)) s.failKey(problem->key, problem->reason);
+}
+
+void readOverlay(Context& ctx, Section s) {
+    coupling::OverlaySpec& o = ctx.scene->overlay;
+    o.arrows = s.boolean("arrows", false);
+    o.arrowSpacing_m = s.number("arrow_spacing_m", 0.0, closed(0.0, 1e6));
+    o.arrowHeight_m = s.number("arrow_height_m", -1.0, closed(-1.0, 1e6));
+    o.slice = s.boolean("slice", false);
+    o.sliceHeight_m = s.number("slice_height_m", 2.0, above(0.0, 1e6));
+    o.streamlines = s.boolean("streamlines", false);
+    o.streamlineCount = static_cast<int>(s.integer("streamline_count", 12, 1, 1000));
+    o.vortexCores = s.boolean("vortex_cores", false);
+    o.vortexQ_per_s2 = s.number("vortex_q_per_s2", 0.0, closed(0.0, 1e12));
+    o.legend = s.boolean("legend", true);
+    o.speedMax_mps = s.number("speed_max_mps", 0.0, closed(0.0, 1e6));
+    s.finish();
 }
 
 }  // namespace
@@ -887,6 +906,7 @@ Scene parseSceneString(const std::string& text, const std::string& pathForMessag
     readLighting(ctx, top.table("lighting"));
     readCamera(ctx, top.table("camera"));
     readOutput(ctx, top.table("output"));
+    readOverlay(ctx, top.table("overlay"));
     top.finish();
     return scene;
 }

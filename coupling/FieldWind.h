@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,10 @@ public:
     /// Frames before the first step see the first step; after the last, the last.
     void update(double t_s, render::GrassWind& wind) override;
     std::string describe() const override;
+    /// Keeps the solved field the step velocities were sampled from, so views of the field can
+    /// show it (currentField()); the source itself never reads it.
+    void keepField(std::shared_ptr<const sim::WindField> field) { mField = std::move(field); }
+    const sim::WindField* currentField() const override { return mField.get(); }
 
     size_t vertexCount() const { return mNormal.size(); }
     /// Per-vertex static intensity at time t_s along the direction the renderer gets (the exact
@@ -93,6 +98,7 @@ public:
     static std::vector<float> shownIntensity(const render::GrassWind& wind);
 
 private:
+    std::shared_ptr<const sim::WindField> mField;
     struct Step {
         double t_s;
         std::vector<glm::vec3> wsVelocity_mps;

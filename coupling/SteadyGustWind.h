@@ -12,6 +12,7 @@
 /// intensity is its mean steady intensity times g(t - its mean arrival time), or that drive
 /// through a damped oscillator per group. Per frame: O(K). Once: O(vertices).
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -42,11 +43,16 @@ public:
     int groupCount() const override { return static_cast<int>(mGroupBase.size()); }
     void update(double t_s, render::GrassWind& wind) override;
     std::string describe() const override;
+    /// Keeps the solved field the step velocities were sampled from, so views of the field can
+    /// show it (currentField()); the source itself never reads it.
+    void keepField(std::shared_ptr<const sim::WindField> field) { mField = std::move(field); }
+    const sim::WindField* currentField() const override { return mField.get(); }
 
     /// Arrival delay of vertex v, seconds; for tests.
     double arrival_s(size_t v) const { return mArrival_s[v]; }
 
 private:
+    std::shared_ptr<const sim::WindField> mField;
     SteadyGustSpec mSpec;
     GustCurve mCurve;
     std::vector<glm::vec3> mDirection;

@@ -8,6 +8,10 @@
 
 #include "render/GrassInput.h"
 
+namespace gale::sim {
+class WindField;  // sim/WindField.h (no OpenVDB there either)
+}
+
 namespace gale::coupling {
 
 class WindSource {
@@ -21,6 +25,10 @@ public:
     virtual void update(double t_s, render::GrassWind& wind) = 0;
     /// One line for `gale check` and reports.
     virtual std::string describe() const = 0;
+    /// The velocity field (world axes, m/s) behind the wind at the last update, for views of the
+    /// field (coupling/FieldOverlayBuilder); nullptr when the source has none (the point source).
+    /// Valid until the next update() or the source's destruction.
+    virtual const sim::WindField* currentField() const { return nullptr; }
 };
 
 }  // namespace gale::coupling

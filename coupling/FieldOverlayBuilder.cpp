@@ -1,0 +1,320 @@
+#include "coupling/FieldOverlayBuilder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+namespace gale::coupling {
+namespace {
+
+/// Default arrow height, in grass heights: just above the tips, so the grass does not hide them.
+constexpr double ARROW_ABOVE_GRASS = 1.25;
+/// Arrows reach this fraction of their grid spacing at the top of the colour map.
+constexpr double ARROW_LENGTH_OF_SPACING = 0.85;
+/// Arrow grids default to this many arrows along the terrain's larger side.
+constexpr double DEFAULT_ARROWS_ALONG = 16.0;
+/// Slice grid: 4 quads per arrow spacing, at most this many points a side.
+constexpr int MAX_SLICE_SIDE = 128;
+/// At most this many vortex-core markers, the strongest.
+constexpr size_t MAX_VORTEX_MARKERS = 64;
+/// Streamline step, in voxels.
+constexpr double STREAMLINE_STEP_VOXELS = 0.5;
+
+glm::dvec3 toD(const std::array<double, 3>& a) { return glm::dvec3(a[0], a[1], a[2]); }
+
+double defaultSpacing(const MeshHeight& h, const OverlaySpec& spec) {
+    if (spec.arrowSpacing_m > 0.0) return spec.arrowSpacing_m;
+    return std::max(h.maxX() - h.minX(), h.maxY() - h.minY()) / DEFAULT_ARROWS_ALONG;
+}
+
+/// Grid coordinates inset half a spacing from both ends of [lo, hi].
+std::vector<double> insetGrid(double lo, double hi, double spacing) {
+    const int n = std::max(1, int(std::floor((hi - lo) / spacing + 1e-9)));
+    const double first = lo + 0.5 * ((hi - lo) - (n - 1) * spacing);
+    std::vector<double> out;
+    for (int k = 0; k < n; ++k) out.push_back(first + k * spacing);
+    return out;
+}
+
+render::OverlaySlice buildSlice(const MeshHeight& ground, double spacing, double height_m,
+                                const VelocityFn& velocity) {
+    render::OverlaySlice s;
+    const double sx = ground.maxX() - ground.minX(), sy = ground.maxY() - ground.minY();
+    const double cell = spacing / 4.0;
+    s.nx = std::clamp(int(std::ceil(sx / cell)) + 1, 2, MAX_SLICE_SIDE);
+    s.ny = std::clamp(int(std::ceil(sy / cell)) + 1, 2, MAX_SLICE_SIDE);
+    for (int j = 0; j < s.ny; ++j)
+        for (int i = 0; i < s.nx; ++i) {
+            const double x = ground.minX() + sx * i / (s.nx - 1);
+            const double y = ground.minY() + sy * j / (s.ny - 1);
+            const glm::dvec3 p(x, y, ground.at(x, y) + height_m);
+            s.wsPosition_m.emplace_back(p);
+            s.speed.push_back(float(glm::length(velocity(p))));
+        }
+    return s;
+}
+
+}  // namespace
+
+void validate(const OverlaySpec& spec) {
+    auto bad = [](const std::string& key, const std::string& what, double got) {
+        throw std::invalid_argument("overlay." + key + ": " + what + " (got " +
+                                    std::to_string(got) + ")");
+    };
+    if (!(spec.arrowSpacing_m >= 0.0) || !std::isfinite(spec.arrowSpacing_m))
+        bad("arrow_spacing_m", "must be >= 0 (0: automatic)", spec.arrowSpacing_m);
+    if (!std::isfinite(spec.arrowHeight_m)) bad("arrow_height_m", "must be finite", spec.arrowHeight_m);
+    if (!(spec.sliceHeight_m > 0.0) || !std::isfinite(spec.sliceHeight_m))
+        bad("slice_height_m", "must be > 0", spec.sliceHeight_m);
+    if (spec.streamlineCount < 1 || spec.streamlineCount > 1000)
+        bad("streamline_count", "must be in 1..1000", spec.streamlineCount);
+    if (!(spec.vortexQ_per_s2 >= 0.0) || !std::isfinite(spec.vortexQ_per_s2))
+        bad("vortex_q_per_s2", "must be >= 0 (0: automatic)", spec.vortexQ_per_s2);
+    if (!(spec.speedMax_mps >= 0.0) || !std::isfinite(spec.speedMax_mps))
+        bad("speed_max_mps", "must be >= 0 (0: automatic)", spec.speedMax_mps);
+}
+
+MeshHeight::MeshHeight(const render::TerrainMesh& mesh) : mMesh(mesh) {
+    if (mesh.nx < 2 || mesh.ny < 2 ||
+        mesh.wsPosition_m.size() != size_t(mesh.nx) * size_t(mesh.ny))
+        throw std::invalid_argument("MeshHeight: the mesh must be a grid of nx, ny >= 2");
+    mX0 = mesh.wsPosition_m.front().x;
+    mY0 = mesh.wsPosition_m.front().y;
+    mX1 = mesh.wsPosition_m.back().x;
+    mY1 = mesh.wsPosition_m.back().y;
+}
+
+double MeshHeight::at(double x, double y) const {
+    const double fx = std::clamp((x - mX0) / (mX1 - mX0), 0.0, 1.0) * (mMesh.nx - 1);
+    const double fy = std::clamp((y - mY0) / (mY1 - mY0), 0.0, 1.0) * (mMesh.ny - 1);
+    const int i = std::min(int(fx), mMesh.nx - 2), j = std::min(int(fy), mMesh.ny - 2);
+    const double tx = fx - i, ty = fy - j;
+    auto z = [&](int a, int b) { return double(mMesh.wsPosition_m[size_t(b) * mMesh.nx + a].z); };
+    return (1 - ty) * ((1 - tx) * z(i, j) + tx * z(i + 1, j)) +
+           ty * ((1 - tx) * z(i, j + 1) + tx * z(i + 1, j + 1));
+}
+
+glm::dvec3 rk2Step(const VelocityFn& velocity, const glm::dvec3& x, double dt_s) {
+    const glm::dvec3 mid = x + 0.5 * dt_s * velocity(x);
+    return x + dt_s * velocity(mid);
+}
+
+std::vector<glm::dvec3> traceStreamline(const VelocityFn& velocity, const glm::dvec3& seed,
+                                        double step_m, int maxPoints, double minSpeed_mps) {
+    std::vector<glm::dvec3> points{seed};
+    glm::dvec3 x = seed;
+    while (int(points.size()) < maxPoints) {
+        const double speed = glm::length(velocity(x));
+        if (!(speed >= minSpeed_mps)) break;
+        const glm::dvec3 next = rk2Step(velocity, x, step_m / speed);
+        if (!(glm::length(velocity(next)) >= minSpeed_mps)) break;  // left the field
+        points.push_back(next);
+        x = next;
+    }
+    return points;
+}
+
+double qCriterion(const std::array<std::array<double, 3>, 3>& g) {
+    double omega2 = 0.0, strain2 = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const double s = 0.5 * (g[i][j] + g[j][i]);
+            const double w = 0.5 * (g[i][j] - g[j][i]);
+            strain2 += s * s;
+            omega2 += w * w;
+        }
+    return 0.5 * (omega2 - strain2);
+}
+
+float niceSpeedMax(float maxSpeed) {
+    if (!(maxSpeed > 0.0f) || !std::isfinite(maxSpeed)) return 1.0f;
+    const std::vector<float> ticks = render::FieldOverlay::legendTicks(maxSpeed);
+    const float step = ticks.size() > 1 ? ticks[1] : maxSpeed;
+    return step * std::ceil(maxSpeed / step - 1e-6f);
+}
+
+render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
+                                           const render::TerrainMesh& mesh,
+                                           const OverlaySpec& spec, double grassHeight_m) {
+    validate(spec);
+    const MeshHeight ground(mesh);
+    const VelocityFn velocity = [&field](const glm::dvec3& p) {
+        return toD(field.velocityAt_mps(p.x, p.y, p.z));
+    };
+    const double spacing = defaultSpacing(ground, spec);
+    const double arrowHeight = spec.arrowHeight_m >= 0.0 ? spec.arrowHeight_m : ARROW_ABOVE_GRASS * grassHeight_m;
+    render::FieldOverlayData data;
+    data.legend = spec.legend;
+    float maxSpeed = 0.0f;
+
+    std::vector<glm::dvec3> arrowVelocity;
+    if (spec.arrows)
+        for (double y : insetGrid(ground.minY(), ground.maxY(), spacing))
+            for (double x : insetGrid(ground.minX(), ground.maxX(), spacing)) {
+                const glm::dvec3 base(x, y, ground.at(x, y) + arrowHeight);
+                const glm::dvec3 u = velocity(base);
+                render::OverlayArrow a;
+                a.wsBase_m = glm::vec3(base);
+                a.speed = float(glm::length(u));
+                data.arrows.push_back(a);
+                arrowVelocity.push_back(u);
+                maxSpeed = std::max(maxSpeed, a.speed);
+            }
+    if (spec.slice || spec.streamlines) {
+        render::OverlaySlice slice = buildSlice(ground, spacing, spec.sliceHeight_m, velocity);
+        glm::dvec3 mean(0.0);
+        for (size_t v = 0; v < slice.speed.size(); ++v) {
+            mean += velocity(glm::dvec3(slice.wsPosition_m[v]));
+            if (spec.slice) maxSpeed = std::max(maxSpeed, slice.speed[v]);
+        }
+        if (spec.slice) data.slice = std::move(slice);
+        if (spec.streamlines && glm::length(glm::dvec2(mean)) > 0.0) {
+            // Seeds along the edge the mean wind comes from, a quarter voxel inside the terrain.
+            const bool alongX = std::fabs(mean.x) >= std::fabs(mean.y);
+            const double inset = 0.25 * field.voxelSize_m();
+            const double step = STREAMLINE_STEP_VOXELS * field.voxelSize_m();
+            const double extent = (ground.maxX() - ground.minX()) + (ground.maxY() - ground.minY());
+            const int maxPoints = int(std::min(100000.0, 4.0 * extent / step));
+            for (int k = 0; k < spec.streamlineCount; ++k) {
+                const double f = (k + 0.5) / spec.streamlineCount;
+                double x, y;
+                if (alongX) {
+                    x = mean.x > 0 ? ground.minX() + inset : ground.maxX() - inset;
+                    y = ground.minY() + f * (ground.maxY() - ground.minY());
+                } else {
+                    y = mean.y > 0 ? ground.minY() + inset : ground.maxY() - inset;
+                    x = ground.minX() + f * (ground.maxX() - ground.minX());
+                }
+                const glm::dvec3 seed(x, y, ground.at(x, y) + spec.sliceHeight_m);
+                render::OverlayPolyline line;
+                for (const glm::dvec3& p : traceStreamline(velocity, seed, step, maxPoints)) {
+                    line.wsPoint_m.emplace_back(p);
+                    line.speed.push_back(float(glm::length(velocity(p))));
+                    maxSpeed = std::max(maxSpeed, line.speed.back());
+                }
+                if (line.wsPoint_m.size() >= 2) data.streamlines.push_back(std::move(line));
+            }
+        }
+    }
+    if (spec.vortexCores) {
+        const int nx = field.nx(), ny = field.ny(), nz = field.nz();
+        const double h = field.voxelSize_m();
+        const auto idx = [&](int i, int j, int k) { return size_t(i) + size_t(nx) * (j + size_t(ny) * k); };
+        std::vector<double> q(size_t(nx) * ny * nz, -1e300);
+        double qMax = 0.0, uMax = 0.0;
+        for (int k = 1; k + 1 < nz; ++k)
+            for (int j = 1; j + 1 < ny; ++j)
+                for (int i = 1; i + 1 < nx; ++i) {
+                    if (!field.isAir(i, j, k)) continue;
+                    const auto c = field.cellVelocity_mps(i, j, k);
+                    uMax = std::max(uMax, glm::length(toD(c)));
+                    // Cells within two of the terrain or the box sides read extrapolated faces:
+                    // their differences are boundary artefacts, not vortices.
+                    if (i < 2 || j < 2 || k < 2 || i + 2 >= nx || j + 2 >= ny || k + 2 >= nz)
+                        continue;
+                    bool nearSolid = false;
+                    for (int dk = -2; dk <= 2 && !nearSolid; ++dk)
+                        for (int dj = -2; dj <= 2 && !nearSolid; ++dj)
+                            for (int di = -2; di <= 2 && !nearSolid; ++di)
+                                nearSolid = !field.isAir(i + di, j + dj, k + dk);
+                    if (nearSolid) continue;
+                    const int n[3][3] = {{i - 1, j, k}, {i, j - 1, k}, {i, j, k - 1}};
+                    const int p[3][3] = {{i + 1, j, k}, {i, j + 1, k}, {i, j, k + 1}};
+                    bool ok = true;
+                    std::array<std::array<double, 3>, 3> g{};
+                    for (int d = 0; d < 3 && ok; ++d) {
+                        ok = field.isAir(n[d][0], n[d][1], n[d][2]) &&
+                             field.isAir(p[d][0], p[d][1], p[d][2]);
+                        if (!ok) break;
+                        const auto up = field.cellVelocity_mps(p[d][0], p[d][1], p[d][2]);
+                        const auto dn = field.cellVelocity_mps(n[d][0], n[d][1], n[d][2]);
+                        for (int comp = 0; comp < 3; ++comp)
+                            g[comp][d] = (up[comp] - dn[comp]) / (2.0 * h);
+                    }
+                    if (!ok) continue;
+                    q[idx(i, j, k)] = qCriterion(g);
+                    qMax = std::max(qMax, q[idx(i, j, k)]);
+                }
+        const double threshold =
+            spec.vortexQ_per_s2 > 0.0
+                ? spec.vortexQ_per_s2
+                : std::max(0.25 * qMax, (0.1 * uMax / h) * (0.1 * uMax / h));
+        std::vector<std::pair<double, size_t>> cores;
+        for (int k = 1; k + 1 < nz; ++k)
+            for (int j = 1; j + 1 < ny; ++j)
+                for (int i = 1; i + 1 < nx; ++i) {
+                    const double qc = q[idx(i, j, k)];
+                    if (!(qc > threshold)) continue;
+                    bool peak = true;
+                    for (int dk = -1; dk <= 1 && peak; ++dk)
+                        for (int dj = -1; dj <= 1 && peak; ++dj)
+                            for (int di = -1; di <= 1 && peak; ++di)
+                                if ((di || dj || dk) && q[idx(i + di, j + dj, k + dk)] > qc) peak = false;
+                    if (peak) cores.emplace_back(qc, idx(i, j, k));
+                }
+        std::sort(cores.begin(), cores.end(), [](auto& a, auto& b) { return a.first > b.first; });
+        if (cores.size() > MAX_VORTEX_MARKERS) cores.resize(MAX_VORTEX_MARKERS);
+        const auto origin = field.wsMin_m();
+        for (const auto& [qc, n] : cores) {
+            const int i = int(n % nx), j = int((n / nx) % ny), k = int(n / (size_t(nx) * ny));
+            render::OverlayMarker m;
+            m.wsPosition_m = glm::vec3(origin[0] + (i + 0.5) * h, origin[1] + (j + 0.5) * h,
+                                       origin[2] + (k + 0.5) * h);
+            m.size_m = float(1.5 * h);
+            data.vortexCores.push_back(m);
+        }
+    }
+    data.speedMax = spec.speedMax_mps > 0.0 ? float(spec.speedMax_mps) : niceSpeedMax(maxSpeed);
+    const double arrowScale = ARROW_LENGTH_OF_SPACING * spacing / data.speedMax;
+    for (size_t a = 0; a < data.arrows.size(); ++a)
+        data.arrows[a].wsVector_m = glm::vec3(arrowVelocity[a] * arrowScale);
+    return data;
+}
+
+render::FieldOverlayData buildGrassWindOverlay(const render::GrassWind& wind,
+                                               const render::TerrainMesh& mesh,
+                                               const OverlaySpec& spec, double grassHeight_m) {
+    validate(spec);
+    const MeshHeight ground(mesh);
+    render::FieldOverlayData data;
+    data.legend = spec.legend;
+    data.unit = "intensity";
+    data.speedMax = spec.speedMax_mps > 0.0 ? float(spec.speedMax_mps) : 1.0f;
+    if (!spec.arrows || wind.wsDirection.size() != mesh.wsPosition_m.size() ||
+        wind.group.size() != mesh.wsPosition_m.size())
+        return data;
+    const double spacing = defaultSpacing(ground, spec);
+    const double arrowHeight = spec.arrowHeight_m >= 0.0 ? spec.arrowHeight_m : ARROW_ABOVE_GRASS * grassHeight_m;
+    const double arrowScale = ARROW_LENGTH_OF_SPACING * spacing / data.speedMax;
+    for (double y : insetGrid(ground.minY(), ground.maxY(), spacing))
+        for (double x : insetGrid(ground.minX(), ground.maxX(), spacing)) {
+            const int i = int(std::lround((x - ground.minX()) / (ground.maxX() - ground.minX()) * (mesh.nx - 1)));
+            const int j = int(std::lround((y - ground.minY()) / (ground.maxY() - ground.minY()) * (mesh.ny - 1)));
+            const size_t v = size_t(j) * mesh.nx + size_t(i);
+            const uint32_t g = wind.group[v];
+            const float intensity = g < wind.groupIntensity.size() ? wind.groupIntensity[g] : 0.0f;
+            render::OverlayArrow a;
+            a.wsBase_m = glm::vec3(x, y, ground.at(x, y) + arrowHeight);
+            a.wsVector_m = wind.wsDirection[v] * float(intensity * arrowScale);
+            a.speed = std::fabs(intensity);
+            data.arrows.push_back(a);
+        }
+    return data;
+}
+
+render::FieldOverlayData buildOverlay(const WindSource& source, const render::GrassWind& wind,
+                                      const render::TerrainMesh& mesh, const OverlaySpec& spec,
+                                      double grassHeight_m) {
+    if (!spec.any()) {
+        render::FieldOverlayData none;
+        none.legend = false;
+        return none;
+    }
+    if (const sim::WindField* field = source.currentField())
+        return buildFieldOverlay(*field, mesh, spec, grassHeight_m);
+    return buildGrassWindOverlay(wind, mesh, spec, grassHeight_m);
+}
+
+}  // namespace gale::coupling
