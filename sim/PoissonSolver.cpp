@@ -188,12 +188,11 @@ struct Level {
         bx = bx_, by = by_, bz = bz_;
         uniformDiag = 2.0 * (double(bx) + by + bz);
         uniformInvDiag = uniformDiag > 0 ? 1.0 / uniformDiag : 0.0;
-        rowRuns.assign(size_t(ny) * nz + 1, 0);
-        runs.clear();
-        uniformCells = 0;
-        for (int k = 0; k < nz; ++k)
+        // Rows in parallel (slab by slab into separate lists), concatenated in row order.
+        std::vector<std::vector<std::array<int, 2>>> perSlab(static_cast<size_t>(nz));
+        std::vector<uint32_t> count(size_t(ny) * nz, 0);
+        tbb::parallel_for(0, nz, [&](int k) {
             for (int j = 0; j < ny; ++j) {
-                rowRuns[rowIndex(j, k)] = uint32_t(runs.size());
                 int start = -1;
                 for (int i = 0; i <= nx; ++i) {
                     bool u = false;
@@ -204,18 +203,29 @@ struct Level {
                     }
                     if (u && start < 0) start = i;
                     if (!u && start >= 0) {
-                        if (i - start >= MIN_RUN) runs.push_back({start, i}), uniformCells += size_t(i - start);
+                        if (i - start >= MIN_RUN) perSlab[size_t(k)].push_back({start, i}), ++count[rowIndex(j, k)];
                         start = -1;
                     }
                 }
             }
-        rowRuns[size_t(ny) * nz] = uint32_t(runs.size());
+        });
+        rowRuns.assign(size_t(ny) * nz + 1, 0);
+        runs.clear();
+        uint32_t acc = 0;
+        for (size_t r = 0; r < count.size(); ++r) rowRuns[r] = acc, acc += count[r];
+        rowRuns[count.size()] = acc;
+        uniformCells = 0;
+        for (const auto& v : perSlab) {
+            runs.insert(runs.end(), v.begin(), v.end());
+            for (const auto& run : v) uniformCells += size_t(run[1] - run[0]);
+        }
     }
     void markActive() {
         active.assign(total, 0);
-        for (int k = 0; k < nz; ++k)
+        tbb::parallel_for(0, nz, [&](int k) {
             for (int j = 0; j < ny; ++j)
                 for (int i = 0; i < nx; ++i) active[at(i, j, k)] = diag(at(i, j, k)) > 0.0;
+        });
     }
     double diag(size_t p) const {
         return double(wx[p]) + wx[p + 1] + wy[p] + wy[p + sx] + wz[p] + wz[p + sxy];
@@ -740,27 +750,36 @@ PoissonSolver::PoissonSolver(const PoissonSystem& sys) : mImpl(std::make_unique<
                 L.wy[L.at(i, j, k)] = s * sys.weightY[sys.faceYIndex(i, j, k)];
             }
     });
-    for (int k = 0; k <= sys.nz; ++k)
+    tbb::parallel_for(0, sys.nz + 1, [&](int k) {
         for (int j = 0; j < sys.ny; ++j)
             for (int i = 0; i < sys.nx; ++i) {
                 const float s = k == 0 ? boundaryScale(SIDE_ZMIN) : k == sys.nz ? boundaryScale(SIDE_ZMAX) : 1.f;
                 L.wz[L.at(i, j, k)] = s * sys.weightZ[sys.faceZIndex(i, j, k)];
             }
-    for (int k = 0; k < sys.nz; ++k)
-        for (int j = 0; j < sys.ny; ++j)
-            for (int i = 0; i < sys.nx; ++i) m.activeCells += L.diag(L.at(i, j, k)) > 0.0;
+    });
     L.markActive();
     {
-        // Full-open weights: the largest interior face weight per direction.
-        float bx = 0, by = 0, bz = 0;
-        for (int k = 0; k < sys.nz; ++k)
+        // Full-open weights: the largest interior face weight per direction (per-slab maxima,
+        // then the maximum of those: exact, so deterministic).
+        std::vector<std::array<float, 3>> slabMax(size_t(sys.nz), {0.f, 0.f, 0.f});
+        std::vector<size_t> slabActive(size_t(sys.nz), 0);
+        tbb::parallel_for(0, sys.nz, [&](int k) {
+            std::array<float, 3>& mx = slabMax[size_t(k)];
             for (int j = 0; j < sys.ny; ++j)
                 for (int i = 0; i < sys.nx; ++i) {
                     const size_t p = L.at(i, j, k);
-                    if (i > 0) bx = std::max(bx, L.wx[p]);
-                    if (j > 0) by = std::max(by, L.wy[p]);
-                    if (k > 0) bz = std::max(bz, L.wz[p]);
+                    if (i > 0) mx[0] = std::max(mx[0], L.wx[p]);
+                    if (j > 0) mx[1] = std::max(mx[1], L.wy[p]);
+                    if (k > 0) mx[2] = std::max(mx[2], L.wz[p]);
+                    slabActive[size_t(k)] += L.active[p];
                 }
+        });
+        float bx = 0, by = 0, bz = 0;
+        for (int k = 0; k < sys.nz; ++k) {
+            bx = std::max(bx, slabMax[size_t(k)][0]), by = std::max(by, slabMax[size_t(k)][1]);
+            bz = std::max(bz, slabMax[size_t(k)][2]);
+            m.activeCells += slabActive[size_t(k)];
+        }
         L.findUniformRuns(bx, by, bz);
     }
 
