@@ -2,9 +2,12 @@
 /// MGPCG after McAdams, Sifakis, Teran 2010 ("A parallel multigrid Poisson solver for fluids
 /// simulation on large grids"): conjugate gradients preconditioned by one symmetric V-cycle,
 /// red-black Gauss-Seidel smoothing, trilinear prolongation with its transpose as restriction.
-/// Differences from the paper: the coarsest level is solved exactly (dense Cholesky), and the
-/// coarse weights are the averaged fine open fractions (weights), so cut-cell boundaries
-/// (Batty, Bertails, Bridson 2007) coarsen without cell-type rules.
+/// Differences from the paper: the coarsest level is solved exactly (dense Cholesky); the coarse
+/// weights are the averaged fine open fractions (weights), slivers counted as at least
+/// COARSE_MIN_OPEN_FRACTION open, so cut-cell boundaries (Batty, Bertails, Bridson 2007) coarsen
+/// without cell-type rules; interpolation weight from rock or Neumann ghosts goes to the fine
+/// cell's own parent (and restriction is its transpose). Sweeps are pipelined slab by slab with
+/// the residual, the prolongation and PCG's r.z fused in (docs/solver.md, "The linear solver").
 ///
 /// Layout: every level stores its arrays padded by one ghost cell per side, so the stencil needs no
 /// bounds tests. Ghost entries of solution-like arrays stay 0 (homogeneous Dirichlet data), and the
