@@ -74,6 +74,40 @@ Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, c
 
 namespace {
 
+/// Trilinear sampling of one placement in index space with its sizes and offsets hoisted out of
+/// the per-sample work (the hot loop of the advection); same arithmetic as sampleAt.
+struct IndexSampler {
+    const double* a;
+    int n[3];
+    double off[3];
+    IndexSampler(const MacGrid& g, Placement p, const std::vector<double>& q) : a(q.data()) {
+        const auto d = g.dims(p);
+        for (int k = 0; k < 3; ++k) n[k] = d[k], off[k] = offset(p, k);
+    }
+    double operator()(const double* is, double* lo = nullptr, double* hi = nullptr) const {
+        int i0[3];
+        double t[3];
+        for (int k = 0; k < 3; ++k) {
+            double f = is[k] - off[k];
+            f = f < 0.0 ? 0.0 : (f > n[k] - 1 ? double(n[k] - 1) : f);
+            int i = int(f);
+            if (i > n[k] - 2) i = n[k] > 1 ? n[k] - 2 : 0;
+            i0[k] = i;
+            t[k] = n[k] > 1 ? f - i : 0.0;
+        }
+        const size_t sx = n[0] > 1 ? 1 : 0, sy = n[1] > 1 ? size_t(n[0]) : 0, sz = n[2] > 1 ? size_t(n[0]) * n[1] : 0;
+        const double* p = a + size_t(i0[0]) + size_t(n[0]) * (i0[1] + size_t(n[1]) * i0[2]);
+        const double a000 = p[0], a100 = p[sx], a010 = p[sy], a110 = p[sx + sy];
+        const double a001 = p[sz], a101 = p[sx + sz], a011 = p[sy + sz], a111 = p[sx + sy + sz];
+        if (lo) *lo = std::min({a000, a100, a010, a110, a001, a101, a011, a111});
+        if (hi) *hi = std::max({a000, a100, a010, a110, a001, a101, a011, a111});
+        const double c00 = a000 + (a100 - a000) * t[0], c10 = a010 + (a110 - a010) * t[0];
+        const double c01 = a001 + (a101 - a001) * t[0], c11 = a011 + (a111 - a011) * t[0];
+        const double c0 = c00 + (c10 - c00) * t[1], c1 = c01 + (c11 - c01) * t[1];
+        return c0 + (c1 - c0) * t[2];
+    }
+};
+
 /// One semi-Lagrangian pass; optionally records the min/max of the interpolation neighbours and
 /// whether the departure point left the box.
 void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
@@ -82,6 +116,19 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
     const auto n = g.dims(p);
     out.resize(q.size());
     if (lo) lo->resize(q.size()), hi->resize(q.size());
+    const IndexSampler Su(g, Placement::FaceX, *vel.u), Sv(g, Placement::FaceY, *vel.v), Sw(g, Placement::FaceZ, *vel.w);
+    const IndexSampler Q(g, p, q);
+    auto outsideIs = [&](const double* is) {
+        return !(is[0] >= 0.0 && is[0] <= g.nx && is[1] >= 0.0 && is[1] <= g.ny && is[2] <= g.nz);
+    };
+    auto velocityIs = [&](const double* is, double* u) {
+        if (far && outsideIs(is)) {
+            const Vec3d f = far(g.wsFromIs({is[0], is[1], is[2]}));
+            u[0] = f[0], u[1] = f[1], u[2] = f[2];
+            return;
+        }
+        u[0] = Su(is), u[1] = Sv(is), u[2] = Sw(is);
+    };
     tbb::parallel_for(0, n[2], [&](int k) {
         for (int j = 0; j < n[1]; ++j)
             for (int i = 0; i < n[0]; ++i) {
@@ -91,14 +138,21 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;
                     continue;
                 }
-                const Vec3d dep = traceBack(g, vel, far, g.wsPosition(p, i, j, k), dt);
-                if (outside && g.outside(dep)) {
-                    out[idx] = outside(dep);
+                // The midpoint trace of traceBack(), in index space: displacements in cells are
+                // dt u / h through MacGrid::cellsFromMetres.
+                const double x0[3] = {i + offset(p, 0), j + offset(p, 1), k + offset(p, 2)};
+                double u0[3], xm[3], u1[3], dep[3];
+                velocityIs(x0, u0);
+                for (int a = 0; a < 3; ++a) xm[a] = x0[a] - g.cellsFromMetres(0.5 * dt * u0[a]);
+                velocityIs(xm, u1);
+                for (int a = 0; a < 3; ++a) dep[a] = x0[a] - g.cellsFromMetres(dt * u1[a]);
+                if (outside && outsideIs(dep)) {
+                    out[idx] = outside(g.wsFromIs({dep[0], dep[1], dep[2]}));
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;  // no limiter on inflow
                 } else if (lo) {
-                    out[idx] = sampleAt(g, p, q, dep, &(*lo)[idx], &(*hi)[idx]);
+                    out[idx] = Q(dep, &(*lo)[idx], &(*hi)[idx]);
                 } else {
-                    out[idx] = sampleAt(g, p, q, dep);
+                    out[idx] = Q(dep);
                 }
             }
     });

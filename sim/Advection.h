@@ -51,10 +51,13 @@ struct MacGrid {
     double voxelSize_m = 1.0;  ///< h, metres
     Vec3d wsMin_m{};           ///< world position of the minimum corner of cell (0, 0, 0)
 
-    /// World metres -> index space (cells): (ws - wsMin) / h. The only world-to-cell conversion.
+    /// A length in metres as a length in cells: l / h. The only metres-to-cells conversion;
+    /// isFromWs and the advection's traces go through it.
+    double cellsFromMetres(double l_m) const { return l_m / voxelSize_m; }
+    /// World metres -> index space (cells): (ws - wsMin) / h.
     Vec3d isFromWs(const Vec3d& ws) const {
-        return {(ws[0] - wsMin_m[0]) / voxelSize_m, (ws[1] - wsMin_m[1]) / voxelSize_m,
-                (ws[2] - wsMin_m[2]) / voxelSize_m};
+        return {cellsFromMetres(ws[0] - wsMin_m[0]), cellsFromMetres(ws[1] - wsMin_m[1]),
+                cellsFromMetres(ws[2] - wsMin_m[2])};
     }
     /// Index space -> world metres.
     Vec3d wsFromIs(const Vec3d& is) const {

@@ -1,0 +1,80 @@
+// Scenes of the unsteady wind: the examples parse with their gusts and whirlwinds, defaults apply,
+// and bad [unsteady] / [[wind.gusts]] / [[wind.whirlwinds]] keys are errors naming FILE:LINE and key.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "AppTestSupport.h"
+#include "app/Errors.h"
+#include "app/SceneParser.h"
+
+namespace gale::app {
+namespace {
+
+std::string errorOf(const std::string& text) {
+    try {
+        parseSceneString(text, "scene.toml");
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+const char* const BASE = "[wind]\nkind = \"unsteady\"\nspeed_mps = 4.0\n";
+
+TEST(UnsteadyScene, ExamplesParseWithTheirEvents) {
+    const Scene gust = parseSceneFile(test::sourcePath("examples/gust_ridge_valley.toml"));
+    EXPECT_EQ(gust.wind.kind, WindKind::Unsteady);
+    ASSERT_EQ(gust.unsteady.settings.gusts.size(), 1u);
+    EXPECT_EQ(gust.unsteady.settings.gusts[0].envelope, sim::GustEnvelope::Spline);
+    const Scene whirl = parseSceneFile(test::sourcePath("examples/whirlwind_meadow.toml"));
+    ASSERT_EQ(whirl.unsteady.settings.whirlwinds.size(), 1u);
+    EXPECT_TRUE(whirl.unsteady.settings.whirlwinds[0].forced);
+    EXPECT_EQ(whirl.unsteady.settings.advection, sim::AdvectionScheme::MacCormack);
+}
+
+TEST(UnsteadyScene, DefaultsApply) {
+    const Scene s = parseSceneString(std::string(BASE) + "[[wind.gusts]]\npeak_mps = 2.0\n", "scene.toml");
+    EXPECT_EQ(s.unsteady.settings.dt_s, 0.0);  // adaptive
+    EXPECT_EQ(s.unsteady.settings.cfl, 2.0);
+    EXPECT_FALSE(s.unsteady.settings.openTop);
+    EXPECT_EQ(s.unsteady.settings.gusts[0].direction_deg, 0.0);
+    EXPECT_EQ(s.unsteady.settings.gusts[0].duration_s, 4.0);
+}
+
+TEST(UnsteadyScene, BadKeysNameFileLineAndKey) {
+    std::string m = errorOf(std::string(BASE) + "[unsteady]\ncfl = -2\n");
+    EXPECT_NE(m.find("scene.toml:5: unsteady.cfl"), std::string::npos) << m;
+    m = errorOf(std::string(BASE) + "[unsteady]\ndt_s = 0.1\ncfl = 2\n");
+    EXPECT_NE(m.find("not both"), std::string::npos) << m;
+    m = errorOf(std::string(BASE) + "[unsteady]\nadvection = \"rk4\"\n");
+    EXPECT_NE(m.find("unsteady.advection"), std::string::npos) << m;
+    m = errorOf(std::string(BASE) + "[[wind.gusts]]\nenvelope = \"square\"\n");
+    EXPECT_NE(m.find("wind.gusts[0].envelope"), std::string::npos) << m;
+    m = errorOf(std::string(BASE) + "[[wind.gusts]]\npeak = 3\n");
+    EXPECT_NE(m.find("unknown key"), std::string::npos) << m;
+    m = errorOf(std::string(BASE) + "[[wind.whirlwinds]]\ncore_radius_m = 2\npeak_speed_mps = 3\n");
+    EXPECT_NE(m.find("position_m"), std::string::npos) << m;
+    m = errorOf(std::string(BASE) + "[[wind.whirlwinds]]\nposition_m = [1, 2]\n");
+    EXPECT_NE(m.find("circulation_m2ps or peak_speed_mps"), std::string::npos) << m;
+    m = errorOf(std::string(BASE) + "[[wind.whirlwinds]]\nposition_m = [1, 2]\npeak_speed_mps = 3\ncirculation_m2ps = 4\n");
+    EXPECT_NE(m.find("not both"), std::string::npos) << m;
+    m = errorOf(std::string(BASE) + "[[wind.whirlwinds]]\nposition_m = [1, 2]\npeak_speed_mps = 3\nprofile = \"tornado\"\n");
+    EXPECT_NE(m.find("wind.whirlwinds[0].profile"), std::string::npos) << m;
+}
+
+TEST(UnsteadyScene, EventsOfAnotherKindAreNotedAsIgnored) {
+    const Scene s = parseSceneString("[wind]\nkind = \"solved\"\n[[wind.gusts]]\npeak_mps = 1\n[unsteady]\ncfl = 3\n",
+                                     "scene.toml");
+    ASSERT_GE(s.notes.size(), 2u);
+    bool gustNote = false, unsteadyNote = false;
+    for (const std::string& n : s.notes) {
+        gustNote = gustNote || n.find("wind.gusts[0]") != std::string::npos;
+        unsteadyNote = unsteadyNote || n.find("unsteady") != std::string::npos;
+    }
+    EXPECT_TRUE(gustNote);
+    EXPECT_TRUE(unsteadyNote);
+}
+
+}  // namespace
+}  // namespace gale::app
