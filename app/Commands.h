@@ -48,6 +48,18 @@ int runCheck(const SceneRunOptions& options);
 /// `gale render SCENE`: renders the frames headless into the output folder, with a run report.
 int runRender(const SceneRunOptions& options);
 
+/// `gale view SCENE`: the scene in a window (docs/cli.md).
+struct ViewOptions {
+    std::string scenePath;
+    std::optional<int> frames;   ///< render this many frames at exact times, then exit (tests)
+    std::optional<int> width;    ///< window size; default output.width / output.height
+    std::optional<int> height;
+    std::string screenshotPath;  ///< save the last frame here (without the heads-up line)
+};
+/// Opens the window, runs until closed (or --frames), returns 0. Throws std::runtime_error
+/// "no display: ..." when there is no display (exit 1).
+int runView(const ViewOptions& options);
+
 struct BladeOptions {
     int shells = 16;
     double intensity = 0.5;

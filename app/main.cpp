@@ -100,6 +100,26 @@ int main(int argc, char** argv) {
                                "FOLDER/<prefix>_report.json.") +
                    EXIT_CODES_FOOTER);
 
+    ViewOptions viewOptions;
+    CLI::App* view = app.add_subcommand(
+        "view", "Show a scene in a window: mouse camera, play/pause, overlays (needs a display)");
+    view->add_option("scene", viewOptions.scenePath, "Scene file")->required();
+    view->add_option("--frames", viewOptions.frames,
+                     "Draw this many frames at the scene's frame times, then exit")
+        ->check(CLI::Range(1, MAX_FRAMES));
+    view->add_option("--screenshot", viewOptions.screenshotPath,
+                     "Save the last frame (without the heads-up line) to this PNG");
+    view->add_option("--width", viewOptions.width, "Window width in pixels (default output.width)")
+        ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
+    view->add_option("--height", viewOptions.height,
+                     "Window height in pixels (default output.height)")
+        ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
+    view->footer(std::string("\nKeys: space play/pause, right arrow step, +/- speed, R reset camera, "
+                             "G grass, T terrain, O overlays, [ ] shells, S screenshot, H heads-up, "
+                             "Esc/Q quit. Mouse: left drag orbit, right drag pan, scroll zoom. "
+                             "Without a display: exit 1, use 'gale render'.") +
+                 EXIT_CODES_FOOTER);
+
     BladeOptions bladeOptions;
     CLI::App* blade = app.add_subcommand(
         "blade",
@@ -224,11 +244,11 @@ int main(int argc, char** argv) {
     if (argc > 1 && argv[1][0] != '-') {
         const std::string verb = argv[1];
         bool known = false;
-        for (CLI::App* v : {check, render, solve, blade, bench, terrain})
+        for (CLI::App* v : {check, render, view, solve, blade, bench, terrain})
             known |= v->get_name() == verb;
         if (!known)
             return reportError("unknown verb '" + verb +
-                                   "' (expected check, render, solve, blade, bench or terrain; see 'gale "
+                                   "' (expected check, render, view, solve, blade, bench or terrain; see 'gale "
                                    "--help')",
                                EXIT_BAD_INPUT);
     }
@@ -237,7 +257,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
         std::string hint = " (see 'gale --help')";
-        for (CLI::App* verb : {check, render, solve, blade, bench, terrain})
+        for (CLI::App* verb : {check, render, view, solve, blade, bench, terrain})
             if (verb->parsed()) hint = " (see 'gale " + verb->get_name() + " --help')";
         for (CLI::App* verb : {benchRender, benchAccuracy, benchSolve, benchCoupling, benchStability, benchUnsteady})
             if (verb->parsed()) hint = " (see 'gale bench " + verb->get_name() + " --help')";
@@ -248,6 +268,7 @@ int main(int argc, char** argv) {
         const auto threadLimit = threadLimitFromEnvironment();
         if (check->parsed()) return runCheck(checkOptions);
         if (render->parsed()) return runRender(renderOptions);
+        if (view->parsed()) return runView(viewOptions);
         if (blade->parsed()) return runBlade(bladeOptions);
         if (benchRender->parsed()) {
             try {

@@ -75,7 +75,7 @@ struct ShellRenderer::Impl {
 
     // Uniform locations of shell.vert / shell.frag.
     struct {
-        GLint clipFromWorld, eyePos, shells, bend, grass;
+        GLint clipFromWorld, eyePos, shells, topShell, bend, grass;
         GLint lightCount, lightPos, lightColor, lightAtten;
         GLint ambient, specularPower, specularStrength, shadowMin;
     } shellLoc{};
@@ -134,6 +134,7 @@ void ShellRenderer::Impl::init() {
     shellLoc.clipFromWorld = uniform(sp, "uClipFromWorld");
     shellLoc.eyePos = uniform(sp, "uEyePos");
     shellLoc.shells = uniform(sp, "uShells");
+    shellLoc.topShell = uniform(sp, "uTopShell");
     shellLoc.bend = uniform(sp, "uBend");
     shellLoc.grass = uniform(sp, "uGrass");
     shellLoc.lightCount = uniform(sp, "uLightCount");
@@ -513,6 +514,23 @@ void ShellRenderer::setLighting(const Lighting& lighting) {
 }
 
 FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind) {
+    return draw(camera, wind, DrawOptions{});
+}
+
+void ShellRenderer::setShellCount(int shells) {
+    Impl& m = *mImpl;
+    if (!m.haveGrass) throw std::logic_error("ShellRenderer::setShellCount before setGrass");
+    if (shells < 0 || shells > kMaxShells)
+        throw std::invalid_argument("ShellRenderer::setShellCount: shells must be in 0.." +
+                                    std::to_string(kMaxShells) + ", got " +
+                                    std::to_string(shells));
+    m.grass.shells = shells;
+}
+
+int ShellRenderer::shellCount() const { return mImpl->grass.shells; }
+
+FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
+                               const DrawOptions& options) {
     Impl& m = *mImpl;
     m.requireReady("draw");
     const auto cpuStart = Clock::now();
@@ -531,13 +549,19 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind) {
     glUniformMatrix4fv(m.shellLoc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(clipFromWorldM));
     glUniform3fv(m.shellLoc.eyePos, 1, glm::value_ptr(camera.wsPosition_m));
     glUniform1i(m.shellLoc.shells, m.grass.shells);
+    // The viewer's toggles: without grass the top shell is the ground; without terrain the
+    // ground (shell 0) is left out.
+    const int top = options.grass ? m.grass.shells : 0;
+    const int bottom = options.terrain ? 0 : 1;
+    glUniform1i(m.shellLoc.topShell, top);
     glBindVertexArray(m.vao.get());
-    // Instance k is shell N - k: top shell first, ground last. The thesis (3.1) draws bottom to top
-    // because its shells were blended; ours are alpha-tested and opaque with the depth test on, so
-    // the image does not depend on the order, and top first lets the early depth test discard the
-    // lower shells' fragments hidden under blades (measured +5-18 % fill rate on llvmpipe).
-    glDrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
-                            m.grass.shells + 1);
+    // Instance k is shell top - k: top shell first, ground last. The thesis (3.1) draws bottom to
+    // top because its shells were blended; ours are alpha-tested and opaque with the depth test on,
+    // so the image does not depend on the order, and top first lets the early depth test discard
+    // the lower shells' fragments hidden under blades (measured +5-18 % fill rate on llvmpipe).
+    if (top >= bottom)
+        glDrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
+                                top - bottom + 1);
     glBindVertexArray(0);
     glUseProgram(0);
     glFinish();

@@ -17,6 +17,12 @@ struct FrameStats {
     double gpu_ms = 0.0;  ///< draw calls through glFinish
 };
 
+/// What draw() shows; the viewer's toggles. Both off draws only the sky.
+struct DrawOptions {
+    bool terrain = true;  ///< shell 0, the ground
+    bool grass = true;    ///< shells 1..N
+};
+
 class ShellRenderer {
 public:
     /// Compiles the shaders (throws std::runtime_error naming the shader file and its log).
@@ -49,6 +55,13 @@ public:
     /// arrays may be empty). Intensities must be finite. Throws std::invalid_argument naming the
     /// field. Clears to the sky colour, draws, and ends with glFinish.
     FrameStats draw(const Camera& camera, const GrassWind& wind);
+    /// draw() with parts left out (the viewer's terrain and grass toggles); same preconditions.
+    FrameStats draw(const Camera& camera, const GrassWind& wind, const DrawOptions& options);
+    /// Changes N without re-uploading the texture: 0..kMaxShells, else std::invalid_argument.
+    /// Requires setGrass first (std::logic_error otherwise).
+    void setShellCount(int shells);
+    /// The current N.
+    int shellCount() const;
 
     /// Benchmark baseline: the same terrain, shell count and texture with a minimal shader
     /// (shells extruded straight along the normal, texture fetch and alpha test, no bend, no

@@ -1,6 +1,7 @@
 #version 450 core
 // Shell grass vertex shader (Bakay, Lalonde, Heidrich 2002; Bakay 2003, chapter 3).
-// One instance per shell, drawn top first: shell i = N - gl_InstanceID (0 = ground, N = top); see
+// One instance per shell, drawn top first: shell i = uTopShell - gl_InstanceID (0 = ground, N =
+// top; uTopShell = N unless the viewer hides the grass); see
 // ShellRenderer::draw for why. Everything here is world space,
 // metres; lighting is evaluated per vertex, as in the thesis, so the fragment stage stays a texture
 // fetch, an alpha test and a multiply.
@@ -17,6 +18,7 @@ layout(location = 4) in uint aGroup;     // animation-step group (row of uBend)
 uniform mat4 uClipFromWorld;
 uniform vec3 uEyePos;          // camera position
 uniform int uShells;           // N
+uniform int uTopShell;         // shell of instance 0: N, or 0 when the grass is hidden (viewer)
 // Bend table (thesis Table 3.2: n_i, w_i once per frame, per group, per shell): texel (i, g) holds
 // (n_i, w_i) in metres for shell i of group g (DESIGN 5.1).
 uniform sampler2D uBend;
@@ -40,7 +42,7 @@ vec3 shellPosition(int i) {
 }
 
 void main() {
-    int i = uShells - gl_InstanceID;
+    int i = uTopShell - gl_InstanceID;
     vec3 pos = shellPosition(i);
     gl_Position = uClipFromWorld * vec4(pos, 1.0);
     vUv = aUv;

@@ -1,0 +1,88 @@
+// `gale view`: under a virtual display (ctest runs View.* under xvfb-run) it opens a window,
+// draws N frames, saves a screenshot and exits; the screenshot is the headless render of the same
+// frame. Without a display it fails with a message pointing to `gale render`.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "../render/RenderTestUtil.h"
+#include "AppTestSupport.h"
+#include "render/ImageIO.h"
+
+namespace gale::app::test {
+namespace {
+
+// The window's context is OSMesa too (DESIGN 7), so the pixels should be those of `gale render`;
+// the same slack as the reference-image tests covers any difference in the copy to the window.
+constexpr int kChannelTolerance = 8;
+constexpr double kMaxDifferingFraction = 0.005;
+// A blank (one-colour) frame has variance 0; sky over grass has thousands (8-bit levels squared).
+constexpr double kMinPixelVariance = 100.0;
+
+double lumaVariance(const render::Image& image) {
+    double sum = 0.0, sum2 = 0.0;
+    const size_t n = size_t(image.width) * image.height;
+    for (size_t p = 0; p < n; ++p) {
+        const double y = 0.2126 * image.rgba[p * 4] + 0.7152 * image.rgba[p * 4 + 1] +
+                         0.0722 * image.rgba[p * 4 + 2];
+        sum += y;
+        sum2 += y * y;
+    }
+    const double mean = sum / double(n);
+    return sum2 / double(n) - mean * mean;
+}
+
+TEST(View, UnderXvfbScreenshotMatchesHeadlessRenderOfTheSameFrame) {
+    if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no display; ctest runs this under xvfb-run";
+    TempDir dir;
+    const std::string scene = sourcePath("tests/data/scenes/tiny.toml");
+    const std::string shot = dir / "view.png";
+    const RunResult view = runGale({"view", scene, "--frames", "3", "--screenshot", shot,
+                                    "--width", "160", "--height", "120"});
+    ASSERT_EQ(view.exitCode, 0) << view.err;
+    EXPECT_NE(view.out.find("viewed 3 frames"), std::string::npos) << view.out;
+    const RunResult render = runGale({"render", scene, "-o", dir / "frames", "--frames", "3",
+                                      "--width", "160", "--height", "120"});
+    ASSERT_EQ(render.exitCode, 0) << render.err;
+
+    const render::Image actual = render::readImageRgba8(shot);
+    const render::Image expected = render::readImageRgba8(dir / "frames/frame_0002.png");
+    EXPECT_GT(lumaVariance(actual), kMinPixelVariance) << "the screenshot is blank";
+    ASSERT_EQ(actual.width, expected.width);
+    ASSERT_EQ(actual.height, expected.height);
+    const render::test::ImageDiff diff =
+        render::test::compareImages(actual, expected, kChannelTolerance);
+    if (diff.differingFraction > kMaxDifferingFraction) {
+        const fs::path out = fs::path(GALE_BINARY_DIR) / "app_test_output";
+        fs::create_directories(out);
+        render::writeImageAtomic(actual, (out / "view.actual.png").string());
+        render::writeImageAtomic(expected, (out / "view.expected.png").string());
+        render::writeImageAtomic(diff.diff, (out / "view.diff.png").string());
+        ADD_FAILURE() << diff.differingFraction * 100.0 << "% of pixels differ by more than "
+                      << kChannelTolerance << "/255 (max " << diff.maxChannelDiff
+                      << "); images in " << out;
+    }
+}
+
+TEST(View, WithoutADisplaySaysUseGaleRenderAndFails) {
+    const char* saved = std::getenv("DISPLAY");
+    const std::string display = saved ? saved : "";
+    ::unsetenv("DISPLAY");
+    const RunResult r = runGale({"view", sourcePath("tests/data/scenes/tiny.toml"), "--frames", "1"});
+    if (saved) ::setenv("DISPLAY", display.c_str(), 1);
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("gale: error: no display"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("gale render"), std::string::npos) << r.err;
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+}
+
+TEST(View, BadSceneIsBadInputEvenWithoutADisplay) {
+    const RunResult r = runGale({"view", sourcePath("tests/data/scenes/unknown_key.toml")});
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+}
+
+}  // namespace
+}  // namespace gale::app::test
