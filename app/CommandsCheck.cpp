@@ -2,6 +2,7 @@
 /// `gale check` and the scene loading shared by the scene verbs.
 
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include "app/Commands.h"
@@ -123,7 +124,9 @@ int runCheck(const SceneRunOptions& options) {
             const sim::GustEvent& g = us.gusts[i];
             line("", "gust " + std::to_string(i) + ": " + sim::gustEnvelopeName(g.envelope) + " envelope, " + fmt(g.peak_mps) +
                          " m/s towards " + fmt(g.direction_deg) + " deg, from t = " + fmt(g.start_s) + " s for " + fmt(g.duration_s) +
-                         " s, entering through the inflow boundary");
+                         " s, " +
+                         (g.entry == sim::GustEntry::Inflow ? std::string("entering through the inflow boundary")
+                                                            : "as a moving forcing region of " + fmt(g.regionRadius_m) + " m radius"));
         }
         for (size_t i = 0; i < us.whirlwinds.size(); ++i) {
             const sim::Whirlwind& v = us.whirlwinds[i];
@@ -185,7 +188,7 @@ int runCheck(const SceneRunOptions& options) {
         };
         add(ov.arrows, "arrows every " +
                            (ov.arrowSpacing_m > 0 ? fmt(ov.arrowSpacing_m) + " m" : std::string("1/16 of the terrain")) +
-                           " at " + (ov.arrowHeight_m >= 0 ? fmt(ov.arrowHeight_m) + " m" : std::string("grass height")));
+                           " at " + (ov.arrowHeight_m >= 0 ? fmt(ov.arrowHeight_m) + " m" : std::string("1.25 x grass height")));
         add(ov.slice, "terrain-following slice " + fmt(ov.sliceHeight_m) + " m up");
         add(ov.streamlines, std::to_string(ov.streamlineCount) + " streamlines from the upstream edge");
         add(ov.vortexCores, "vortex cores (Q > " +
@@ -204,9 +207,12 @@ int runCheck(const SceneRunOptions& options) {
     line("output", std::to_string(out.frames) + " frames of " + std::to_string(out.width) + " x " +
                        std::to_string(out.height) + " at " + fmt(out.fps) +
                        " fps (t = " + fmt(out.startTime_s) + " .. " + fmt(endTime_s, 4) + " s)");
-    std::string where =
-        framePath(out.folder, out.prefix, 0) + " .. " +
-        framePath(out.folder, out.prefix, out.frames - 1).substr(out.folder.size() + 1);
+    auto named = [&](int k) {  // output.format picks the extension
+        return std::filesystem::path(framePath(out.folder, out.prefix, k))
+            .replace_extension("." + out.format)
+            .string();
+    };
+    std::string where = named(0) + " .. " + named(out.frames - 1).substr(out.folder.size() + 1);
     where += folder.exists ? " (folder exists, " + std::to_string(folder.existingFiles) + " files)"
                            : " (folder will be created)";
     line("", where);

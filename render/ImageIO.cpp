@@ -6,6 +6,8 @@
 #include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -69,7 +71,13 @@ void writeImageAtomic(const Image& image, const std::string& path) {
     }
     // Formats without alpha (JPEG ...) get RGB only.
     const int channels = out->supports("alpha") ? 4 : 3;
-    OIIO::ImageSpec spec(image.width, image.height, channels, OIIO::TypeDesc::UINT8);
+    // OpenEXR holds linear light in half floats: decode the frame's sRGB (IEC 61966-2-1) to linear
+    // (alpha stays as it is), rather than let OIIO store the 8-bit codes as if they were linear.
+    std::string ext = target.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool linearHalf = ext == ".exr";
+    OIIO::ImageSpec spec(image.width, image.height, channels,
+                         linearHalf ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
     if (channels == 4) spec.alpha_channel = 3;
     // Our alpha is data (blade height) beside straight colour: tell OIIO not to un-premultiply.
     spec.attribute("oiio:UnassociatedAlpha", 1);
@@ -79,7 +87,19 @@ void writeImageAtomic(const Image& image, const std::string& path) {
         failWrite(path, "cannot open '" + temp.string() + "': " + reason, temp);
     }
     bool ok = true;
-    if (channels == 4) {
+    if (linearHalf) {
+        float decode[256];
+        for (int v = 0; v < 256; ++v) {
+            const float c = static_cast<float>(v) / 255.0f;
+            decode[v] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+        }
+        std::vector<float> pixels(static_cast<size_t>(image.width) * image.height * channels);
+        for (size_t t = 0, n = pixels.size() / channels; t < n; ++t) {
+            for (int c = 0; c < 3; ++c) pixels[t * channels + c] = decode[image.rgba[t * 4 + c]];
+            if (channels == 4) pixels[t * 4 + 3] = static_cast<float>(image.rgba[t * 4 + 3]) / 255.0f;
+        }
+        ok = out->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
+    } else if (channels == 4) {
         ok = out->write_image(OIIO::TypeDesc::UINT8, image.rgba.data());
     } else {
         std::vector<uint8_t> rgb(static_cast<size_t>(image.width) * image.height * 3u);

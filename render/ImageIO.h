@@ -9,7 +9,8 @@
 
 namespace gale::render {
 
-/// Writes `image` to `path` (format from the extension: .png, .exr, .jpg ...). Throws
+/// Writes `image` to `path` (format from the extension: .png, .exr, .jpg ...). An .exr gets half
+/// floats of linear light (the sRGB codes decoded; alpha / 255), the OpenEXR convention. Throws
 /// std::runtime_error naming the path and the reason.
 void writeImageAtomic(const Image& image, const std::string& path);
 
