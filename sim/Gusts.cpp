@@ -40,6 +40,14 @@ GustEnvelope gustEnvelopeFromName(const std::string& name) {
     throw std::invalid_argument("envelope must be one of spline, iec_eog, one_minus_cosine, step (got \"" + name + "\")");
 }
 
+const char* gustEntryName(GustEntry e) { return e == GustEntry::Region ? "region" : "inflow"; }
+
+GustEntry gustEntryFromName(const std::string& name) {
+    if (name == "inflow") return GustEntry::Inflow;
+    if (name == "region") return GustEntry::Region;
+    throw std::invalid_argument("entry must be one of inflow, region (got \"" + name + "\")");
+}
+
 void GustEvent::validate() const {
     if (!std::isfinite(start_s)) throw std::invalid_argument("gust.start_s must be finite, got " + num(start_s));
     if (!std::isfinite(direction_deg)) throw std::invalid_argument("gust.direction_deg must be finite");
@@ -47,6 +55,10 @@ void GustEvent::validate() const {
         throw std::invalid_argument("gust.peak_mps must be in [-1000, 1000], got " + num(peak_mps));
     if (!(duration_s > 0.0) || !std::isfinite(duration_s))
         throw std::invalid_argument("gust.duration_s must be > 0, got " + num(duration_s));
+    if (entry == GustEntry::Region && (!(regionRadius_m > 0.0) || !std::isfinite(regionRadius_m)))
+        throw std::invalid_argument("gust.region_radius_m must be > 0, got " + num(regionRadius_m));
+    if (entry == GustEntry::Region && (!(regionSpeed_mps >= 0.0) || !std::isfinite(regionSpeed_mps)))
+        throw std::invalid_argument("gust.region_speed_mps must be >= 0, got " + num(regionSpeed_mps));
     if (envelope == GustEnvelope::Spline && attack_s >= 0.0 && !(attack_s > 0.0 && attack_s < duration_s))
         throw std::invalid_argument("gust.attack_s must be in (0, duration_s = " + num(duration_s) + "), got " +
                                     num(attack_s));

@@ -26,6 +26,18 @@ namespace gale::sim {
 
 enum class GustEnvelope { Spline, IecEog, OneMinusCosine, Step };
 
+/// How a gust enters the domain: through the inflow boundary (the far field, default), or as a
+/// moving forcing region: a disc of radius regionRadius_m whose centre starts at regionStart_m
+/// when the gust starts and moves along the gust's direction at regionSpeed_mps; inside it the
+/// horizontal velocity relaxes towards the mean flow plus G(t) with time scale
+/// REGION_RELAXATION_S (full strength out to half the radius, a smoothstep to zero at the radius).
+/// Only while the envelope runs; the energy it adds is reported as forcing.
+enum class GustEntry { Inflow, Region };
+
+/// "inflow", "region" and back; fromName throws std::invalid_argument.
+const char* gustEntryName(GustEntry e);
+GustEntry gustEntryFromName(const std::string& name);
+
 /// "spline", "iec_eog", "one_minus_cosine", "step" and back; fromName throws
 /// std::invalid_argument listing the valid names.
 const char* gustEnvelopeName(GustEnvelope e);
@@ -38,6 +50,14 @@ struct GustEvent {
     double duration_s = 4.0;     ///< length of the envelope, seconds, > 0
     GustEnvelope envelope = GustEnvelope::Spline;
     double attack_s = -1.0;      ///< Spline only: rise time, in (0, duration_s); < 0: 0.15 duration
+    GustEntry entry = GustEntry::Inflow;
+    std::array<double, 2> regionStart_m{0.0, 0.0};  ///< Region: centre at start_s, world metres
+    bool regionStartGiven = false;   ///< false: the solver puts it on the upwind side of the domain
+    double regionRadius_m = 10.0;    ///< Region: radius of the disc, metres, > 0
+    double regionSpeed_mps = 0.0;    ///< Region: speed of the disc, m/s; 0: the mean wind's reference speed
+
+    /// Relaxation time of the region forcing, seconds.
+    static constexpr double REGION_RELAXATION_S = 0.5;
 
     /// Throws std::invalid_argument naming the field when a value is out of range or not finite.
     void validate() const;

@@ -147,6 +147,7 @@ Vec3d UnsteadyWindSolver::farField_mps(const Vec3d& ws, double t) const {
     const double s = std::sqrt(m[0] * m[0] + m[1] * m[1]);
     const double factor = mRefSpeed_mps > 0.0 && mMeanMax_mps > 0.0 ? std::min(1.0, s / mRefSpeed_mps) : 1.0;
     for (const GustEvent& g : mSettings.gusts) {
+        if (g.entry != GustEntry::Inflow) continue;  // region gusts are forcing, not far field
         const auto a = g.velocityAt_mps(t);
         m[0] += factor * a[0], m[1] += factor * a[1];
     }
@@ -263,6 +264,57 @@ SolveReport UnsteadyWindSolver::project() {
     return rep;
 }
 
+std::array<double, 2> UnsteadyWindSolver::regionCentre_m(const GustEvent& g, double t) const {
+    const double a = g.direction_deg * M_PI / 180.0, dx = std::cos(a), dy = std::sin(a);
+    std::array<double, 2> c = g.regionStart_m;
+    if (!g.regionStartGiven) {
+        // On the upwind side: from the box centre back along the direction to the box edge.
+        const auto o = mGrid.wsMin_m;
+        const double hx = 0.5 * mGrid.nx * mGrid.voxelSize_m, hy = 0.5 * mGrid.ny * mGrid.voxelSize_m;
+        const double sx = std::abs(dx) > 1e-12 ? hx / std::abs(dx) : 1e300, sy = std::abs(dy) > 1e-12 ? hy / std::abs(dy) : 1e300;
+        const double back = std::min(sx, sy);
+        c = {o[0] + hx - back * dx, o[1] + hy - back * dy};
+    }
+    const double speed = g.regionSpeed_mps > 0.0 ? g.regionSpeed_mps : mRefSpeed_mps;
+    const double travelled = speed * std::max(0.0, t - g.start_s);
+    return {c[0] + travelled * dx, c[1] + travelled * dy};
+}
+
+void UnsteadyWindSolver::applyRegionGusts(double t, double dt) {
+    const double beta = 1.0 - std::exp(-dt / GustEvent::REGION_RELAXATION_S);
+    std::vector<double>* arrays[2] = {&mField.u_mps(), &mField.v_mps()};
+    const std::vector<double>* means[2] = {&mMeanU, &mMeanV};
+    const std::vector<uint8_t>* masks[2] = {&mOkX, &mOkY};
+    for (const GustEvent& g : mSettings.gusts) {
+        if (g.entry != GustEntry::Region || t < g.start_s || t > g.start_s + g.duration_s) continue;
+        const auto c = regionCentre_m(g, t);
+        const auto G = g.velocityAt_mps(t);
+        const double R = g.regionRadius_m;
+        for (int comp = 0; comp < 2; ++comp) {
+            const Placement p = Placement(comp);
+            const auto n = mGrid.dims(p);
+            std::vector<double>& a = *arrays[comp];
+            tbb::parallel_for(0, n[2], [&](int k) {
+                for (int j = 0; j < n[1]; ++j)
+                    for (int i = 0; i < n[0]; ++i) {
+                        const size_t idx = size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k);
+                        if (!(*masks[comp])[idx]) continue;
+                        const Vec3d ws = mGrid.wsPosition(p, i, j, k);
+                        const double r = std::hypot(ws[0] - c[0], ws[1] - c[1]);
+                        if (r >= R) continue;
+                        const double x = std::clamp((r - 0.5 * R) / (0.5 * R), 0.0, 1.0);
+                        const double w = 1.0 - x * x * (3.0 - 2.0 * x);
+                        // The gust scales with height like the mean flow, as at the inflow.
+                        const Vec3d m{sampleAt(mGrid, Placement::FaceX, mMeanU, ws), sampleAt(mGrid, Placement::FaceY, mMeanV, ws), 0.0};
+                        const double f = mMeanMax_mps > 0.0 ? std::min(1.0, std::hypot(m[0], m[1]) / mRefSpeed_mps) : 1.0;
+                        const double target = (*means[comp])[idx] + f * G[comp];
+                        a[idx] += beta * w * (target - a[idx]);
+                    }
+            });
+        }
+    }
+}
+
 void UnsteadyWindSolver::closeLid() {
     std::vector<double>& W = mField.w_mps();
     for (int j = 0; j < mGrid.ny; ++j)
@@ -355,10 +407,14 @@ StepReport UnsteadyWindSolver::step(double dt) {
     if (!mSettings.openTop) closeLid();
     // 3. forces (the energy they add is measured only when they run).
     t = Clock::now();
+    const bool regionGust = std::any_of(mSettings.gusts.begin(), mSettings.gusts.end(), [&](const GustEvent& g) {
+        return g.entry == GustEntry::Region && t1 >= g.start_s && t0 <= g.start_s + g.duration_s;
+    });
     const bool forcing = std::any_of(mSettings.whirlwinds.begin(), mSettings.whirlwinds.end(),
                                      [](const Whirlwind& w) { return w.forced; }) ||
-                         mSettings.vorticityConfinement > 0.0;
+                         mSettings.vorticityConfinement > 0.0 || regionGust;
     const double keBeforeForces = forcing ? kineticEnergy_m5ps2() : 0.0;
+    if (regionGust) applyRegionGusts(t1, dt);
     if (!mSettings.whirlwinds.empty()) applyForcing(t0, dt);
     if (mSettings.vorticityConfinement > 0.0)
         addVorticityConfinement(mGrid, mDomain.airFlags(), mSettings.vorticityConfinement, dt, mField.u_mps(),

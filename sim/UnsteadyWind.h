@@ -12,7 +12,8 @@
 ///     read the far field: the steady field (clamped to the box) plus the gusts' added velocity
 ///     at the end of the step (sim/Gusts.h). That makes every side an inflow where the air comes
 ///     in and zero-gradient where it goes out;
-///  3. forces: whirlwind forcing during a forced whirlwind's lifetime (relaxes its circulation
+///  3. forces: region gusts (GustEntry::Region: a moving disc relaxing the flow towards the mean
+///     plus the gust), whirlwind forcing during a forced whirlwind's lifetime (relaxes its circulation
 ///     at 2 r_c back to the seeded one; injects, never removes), vorticity confinement
 ///     (Fedkiw, Stam, Jensen 2001);
 ///  4. optional implicit viscosity (sim/Viscosity.h: backward Euler, unconditionally stable);
@@ -128,6 +129,13 @@ private:
     void applyForcing(double t0, double dt);
     void extrapolateClosedFaces();
     void closeLid();
+    void applyRegionGusts(double t, double dt);
+
+public:
+    /// Centre of a region gust's forcing disc at time t_s, world metres (GustEntry::Region).
+    std::array<double, 2> regionCentre_m(const GustEvent& g, double t_s) const;
+
+private:
 
     const AirDomain& mDomain;
     MacGrid mGrid;
