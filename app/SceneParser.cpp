@@ -519,7 +519,20 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
         }
         g.attack_s = gs.number("attack_s", -1.0, above(0.0, 1e9));
         if (!gs.given("attack_s")) g.attack_s = -1.0;
+        const std::string entry = gs.string("entry", "inflow");
+        try {
+            g.entry = sim::gustEntryFromName(entry);
+        } catch (const std::invalid_argument& e) {
+            gs.failKey("entry", e.what());
+        }
+        g.regionStartGiven = gs.take("region_start_m") != nullptr;
+        g.regionStart_m = gs.vec<2>("region_start_m", {0.0, 0.0}, anyFinite());
+        g.regionRadius_m = gs.number("region_radius_m", 10.0, above(0.0, 1e6));
+        g.regionSpeed_mps = gs.number("region_speed_mps", 0.0, closed(0.0, 1000.0));
         gs.finish();
+        for (const char* key : {"region_start_m", "region_radius_m", "region_speed_mps"})
+            if (gs.given(key) && g.entry != sim::GustEntry::Region)
+                ctx.scene->notes.push_back(ctx.scene->where(gs.full(key)) + ": used by entry = \"region\" only (ignored)");
         if (gs.given("attack_s") && g.envelope != sim::GustEnvelope::Spline)
             ctx.scene->notes.push_back(ctx.scene->where(gs.full("attack_s")) + ": only the spline envelope has an attack time (ignored)");
         if (g.attack_s > 0.0 && !(g.attack_s < g.duration_s))

@@ -220,8 +220,8 @@ int main(int argc, char** argv) {
 
     SolveVerbOptions solveOptions;
     CLI::App* solve = app.add_subcommand(
-        "solve", "Solve a scene's steady wind over its terrain; write the field as .vdb and a "
-                 "JSON report");
+        "solve", "Solve a scene's wind over its terrain (steady; unsteady scenes as a .vdb "
+                 "sequence); write the field as .vdb and a JSON report");
     solve->add_option("scene", solveOptions.scenePath, "Scene file")->required();
     solve->add_option("-o,--output", solveOptions.vdbPath,
                       "The .vdb file (default: <output.folder>/<prefix>_wind.vdb)")
