@@ -3,10 +3,12 @@
 /// 4.1; Bakay, Lalonde, Heidrich 2002, Table 2) and against a trivial fill on the same machine.
 
 #include "app/BenchRender.h"
+#include "app/Progress.h"
 
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -54,8 +56,11 @@ int runBenchRender(const BenchRenderOptions& options) {
     std::vector<render::ShellFillResult> results;
     std::string rendererName;
     int index = 0;
+    // One updating line with ETA on a terminal, one line per row in logs (app/Progress.h).
+    Progress progress("row", static_cast<int>(std::size(kPaperRows)));
     for (const PaperRow& row : kPaperRows) {
         ++index;
+        const auto rowStart = std::chrono::steady_clock::now();
         render::ShellFillCase c;
         c.width = row.width;
         c.height = row.height;
@@ -67,10 +72,11 @@ int runBenchRender(const BenchRenderOptions& options) {
         const render::ShellFillResult r = render::measureShellFill(c);
         rendererName = r.renderer;
         results.push_back(r);
-        std::fprintf(
-            stderr, "bench render: row %d/%zu: %d shells at %dx%d: %.1f fps (trivial %.1f)\n",
-            index, std::size(kPaperRows), r.layers, r.width, r.height, r.fps, r.baselineFps);
+        progress.step(index, std::chrono::duration<double, std::milli>(
+                                 std::chrono::steady_clock::now() - rowStart)
+                                 .count());
     }
+    progress.finish();
 
     std::printf(
         "Shell grass, paper Table 2 layout (Bakay, Lalonde, Heidrich 2002; thesis Table "
