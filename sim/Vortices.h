@@ -12,8 +12,9 @@
 ///  - Lamb-Oseen: v = Gamma / (2 pi r) (1 - exp(-r^2 / r_c^2)); peak 0.6382 Gamma / (2 pi r_c) at
 ///    r = 1.1209 r_c. Under viscosity nu it spreads as r_c^2(t) = r_c^2(0) + 4 nu t.
 ///  - Burgers: the Lamb-Oseen profile, which Burgers' vortex holds steady by an axial strain
-///    a = 4 nu / r_c^2; we seed that strain as the updraft in the core (updraft_mps, or
-///    a * height if updraft_mps is 0) and the projection supplies the radial inflow at the ground.
+///    a (r_c^2 = 4 nu / a). We seed the strain as the core updraft, updraft_mps, or when that is
+///    0 the w = a z of a strain a = v_peak / r_c (one core turnover) taken at mid-column,
+///    a min(column, 4 r_c) / 2; the projection supplies the radial inflow at the ground.
 /// Optional updraft: w = updraft_mps exp(-r^2 / r_c^2) inside the column.
 /// The seeded field is windowed: full out to outerRadiusFactor r_c, then a smoothstep to zero at
 /// 1.5 times that (a 1/r tail over the whole domain would fight the open boundaries); vertically

@@ -255,6 +255,36 @@ TEST(UnsteadyWind, LambOseenVortexDecaysAsTheExactViscousSolution) {
     EXPECT_LT(maxErr, LAMB_OSEEN_TOLERANCE_OF_PEAK * w.peakSpeed_mps);
 }
 
+TEST(UnsteadyWind, VorticityConfinementKeepsAVortexCoreStronger) {
+    // Semi-Lagrangian advection smears a 2-cell core; confinement (Fedkiw et al. 2001) puts the
+    // lost vorticity back near the core, so the peak stays higher than without it.
+    const Heightfield hf = terrain(TerrainKind::Flat, 48, 48);
+    AirDomain d(hf, {2.0, std::optional<double>(8.0), 1e9});
+    const auto steady = solveSteadyWind(d, uniform(0.0), {}, tight());
+    double peak[2] = {0, 0};
+    for (int run = 0; run < 2; ++run) {
+        UnsteadySettings s;
+        s.dt_s = 0.5;
+        s.vorticityConfinement = run == 0 ? 0.0 : 0.5;
+        s.whirlwinds.push_back([] {
+            Whirlwind w;
+            w.wsPosition_m = {24.0, 24.0};
+            w.coreRadius_m = 4.0;
+            w.peakSpeed_mps = 4.0;
+            return w;
+        }());
+        UnsteadyWindSolver solver(d, steady.field, s, 1.0);
+        for (const StepReport& r : solver.advanceTo(10.0)) ASSERT_TRUE(r.finite);
+        peak[run] = strongestVortex(solver, 1, true).omega;
+    }
+    std::printf("peak vorticity after 10 s: %.3f 1/s without confinement, %.3f 1/s with\n", peak[0], peak[1]);
+    // At least 10 % stronger (measured 3.5 times: 2.30 against 0.66 1/s; the seeded peak is 3.1),
+    // and confinement must not overshoot the seeded vortex.
+    constexpr double CONFINEMENT_GAIN = 1.1;
+    EXPECT_GT(peak[1], peak[0] * CONFINEMENT_GAIN);
+    EXPECT_LT(peak[1], 3.2);
+}
+
 TEST(UnsteadyWind, SceneWithoutWhirlwindsRunsNoVortexCode) {
     const Heightfield hf = terrain(TerrainKind::Flat, 20, 20);
     AirDomain d(hf, {2.0, {}, 1e9});
