@@ -55,6 +55,9 @@ struct ViewOptions {
     std::optional<int> width;    ///< window size; default output.width / output.height
     std::optional<int> height;
     std::string screenshotPath;  ///< save the last frame here (without the heads-up line)
+    /// Key presses to replay, one per frame from the first ('>' right arrow, ' ' space, '.' none,
+    /// letters and + - [ ] as on the keyboard): for tests and demos without a person at the keys.
+    std::string keys;
 };
 /// Opens the window, runs until closed (or --frames), returns 0. Throws std::runtime_error
 /// "no display: ..." when there is no display (exit 1).

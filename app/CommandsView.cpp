@@ -8,6 +8,7 @@
 #include <GLFW/glfw3.h>  // key codes only: the window itself is render::GlfwWindow
 
 #include <algorithm>
+#include <cctype>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -18,6 +19,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "app/Commands.h"
 #include "app/Errors.h"
@@ -210,6 +212,23 @@ private:
     std::thread mThread;  // last: starts after everything above is constructed
 };
 
+/// --keys: one character per frame stands for a key press ('>' the right arrow, ' ' space).
+render::InputEvent scriptedKey(char c) {
+    render::InputEvent e;
+    e.kind = render::InputEvent::Kind::Key;
+    switch (c) {
+        case '>': e.key = GLFW_KEY_RIGHT; break;
+        case ' ': e.key = GLFW_KEY_SPACE; break;
+        case '+': e.key = GLFW_KEY_EQUAL; break;
+        case '-': e.key = GLFW_KEY_MINUS; break;
+        case '[': e.key = GLFW_KEY_LEFT_BRACKET; break;
+        case ']': e.key = GLFW_KEY_RIGHT_BRACKET; break;
+        case '.': e.key = GLFW_KEY_UNKNOWN; break;  // no key this frame
+        default: e.key = std::toupper(static_cast<unsigned char>(c)); break;  // GLFW_KEY_A.. = 'A'..
+    }
+    return e;
+}
+
 std::string fmt(const char* format, double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, format, v);
@@ -292,7 +311,9 @@ int runView(const ViewOptions& options) {
     while (!window->closeRequested()) {
         const auto frameStart = Clock::now();
         bool quit = false;
-        for (const render::InputEvent& e : window->pollEvents()) {
+        std::vector<render::InputEvent> events = window->pollEvents();
+        if (size_t(frames) < options.keys.size()) events.push_back(scriptedKey(options.keys[frames]));
+        for (const render::InputEvent& e : events) {
             using K = render::InputEvent::Kind;
             if (e.kind == K::Close) quit = true;
             if (e.kind == K::MouseDrag) {

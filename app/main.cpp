@@ -109,6 +109,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, MAX_FRAMES));
     view->add_option("--screenshot", viewOptions.screenshotPath,
                      "Save the last frame (without the heads-up line) to this PNG");
+    view->add_option("--keys", viewOptions.keys,
+                     "Replay key presses, one character per frame ('>' right arrow, ' ' space, "
+                     "'.' none): for tests and demos");
     view->add_option("--width", viewOptions.width, "Window width in pixels (default output.width)")
         ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
     view->add_option("--height", viewOptions.height,

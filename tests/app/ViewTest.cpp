@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "../render/RenderTestUtil.h"
 #include "AppTestSupport.h"
@@ -65,6 +66,64 @@ TEST(View, UnderXvfbScreenshotMatchesHeadlessRenderOfTheSameFrame) {
                       << kChannelTolerance << "/255 (max " << diff.maxChannelDiff
                       << "); images in " << out;
     }
+}
+
+TEST(View, UnderXvfbKeysToggleGrassAndSaveAScreenshotWithTheHeadsUpLine) {
+    if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no display; ctest runs this under xvfb-run";
+    TempDir dir;
+    const std::string scene = sourcePath("tests/data/scenes/tiny.toml");
+    const std::vector<std::string> size = {"--width", "160", "--height", "120"};
+    auto view = [&](const std::string& keys, const std::string& shot) {
+        std::vector<std::string> args = {"view", scene, "--frames", "3", "--screenshot", shot,
+                                         "--keys", keys};
+        args.insert(args.end(), size.begin(), size.end());
+        return runGale(args, dir.path().string());
+    };
+    // Frame 0 presses S (saved into the current folder, heads-up line included), frame 1 G.
+    const RunResult withGrass = view("...", dir / "grass.png");
+    const RunResult noGrass = view("sg.", dir / "nograss.png");
+    ASSERT_EQ(withGrass.exitCode, 0) << withGrass.err;
+    ASSERT_EQ(noGrass.exitCode, 0) << noGrass.err;
+    EXPECT_TRUE(fs::exists(dir / "gale_view_0.png")) << noGrass.err;
+    const render::Image a = render::readImageRgba8(dir / "grass.png");
+    const render::Image b = render::readImageRgba8(dir / "nograss.png");
+    // Hiding the shells leaves the bare ground: a large part of the frame changes.
+    constexpr double kMinChangedFraction = 0.05;
+    EXPECT_GT(render::test::compareImages(a, b, kChannelTolerance).differingFraction,
+              kMinChangedFraction);
+}
+
+TEST(OverlayRender, HeadlessRenderDrawsTheSceneOverlaysAndCheckListsThem) {
+    TempDir dir;
+    const std::string base = readFile(sourcePath("tests/data/scenes/tiny.toml"));
+    writeFile(dir / "plain.toml", base);
+    writeFile(dir / "views.toml", base + "\n[overlay]\narrows = true\narrow_spacing_m = 2.0\n");
+    const RunResult check = runGale({"check", dir / "views.toml"});
+    ASSERT_EQ(check.exitCode, 0) << check.err;
+    EXPECT_NE(check.out.find("overlay   arrows every 2 m"), std::string::npos) << check.out;
+    for (const char* name : {"plain", "views"}) {
+        const RunResult r = runGale({"render", dir / (std::string(name) + ".toml"), "-o",
+                                     dir / name, "--frames", "1", "--width", "160", "--height",
+                                     "120"});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    const render::Image plain = render::readImageRgba8(dir / "plain/frame_0000.png");
+    const render::Image views = render::readImageRgba8(dir / "views/frame_0000.png");
+    // Arrows and the legend cover a visible part of the frame.
+    constexpr double kMinOverlayFraction = 0.01;
+    EXPECT_GT(render::test::compareImages(plain, views, kChannelTolerance).differingFraction,
+              kMinOverlayFraction);
+}
+
+TEST(OverlayRender, ExrFormatWritesExrFrames) {
+    TempDir dir;
+    std::string text = readFile(sourcePath("tests/data/scenes/tiny.toml"));
+    text.replace(text.find("[output]"), 8, "[output]\nformat = \"exr\"");
+    writeFile(dir / "exr.toml", text);
+    const RunResult r = runGale({"render", dir / "exr.toml", "-o", dir / "out", "--frames", "2"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "out/frame_0001.exr"));
+    EXPECT_FALSE(fs::exists(dir / "out/frame_0001.png"));
 }
 
 TEST(View, WithoutADisplaySaysUseGaleRenderAndFails) {
