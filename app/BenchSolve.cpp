@@ -74,6 +74,7 @@ struct Hemisphere {
 
 struct AccuracyRow {
     int cellsPerRadius = 0;
+    bool cutCells = true;  ///< false: the stair-step comparison rows
     double tolerance = 0;
     size_t boxCells = 0, activeCells = 0;
     int iterations = 0;
@@ -124,19 +125,26 @@ int runBenchAccuracy(const BenchAccuracyOptions& opt) {
     const sim::BoundaryPotential farField = [&](double x, double y, double z) { return H.phi(x, y, z); };
 
     std::vector<AccuracyRow> rows;
+    // The full run adds stair-step rows (every open fraction rounded to 0 or 1) at the tightest
+    // tolerance: the same study without cut cells.
+    const std::vector<bool> boundaryModes = opt.quick ? std::vector<bool>{true} : std::vector<bool>{true, false};
+    for (bool cut : boundaryModes)
     for (int N : resolutions) {
         const auto t0 = Clock::now();
-        sim::AirDomain domain(hf, sim::DomainSpec{H.R / N, /*top_m=*/H.top, /*memoryLimit_bytes=*/8e9});
+        sim::DomainSpec spec{H.R / N, /*top_m=*/H.top, /*memoryLimit_bytes=*/8e9};
+        spec.cutCells = cut;
+        sim::AirDomain domain(hf, spec);
         const double domainSeconds = since(t0);
         sim::SteadyWindSolver solver(domain);
         for (double tol : tolerances) {
+            if (!cut && tol != tolerances.back()) continue;
             solver.setWarmStart({});  // every row from a cold start: its time is its own
             sim::SolverSettings set;
             set.relativeTolerance = tol;
             set.maxIterations = 200;
             const sim::SteadyWindResult res = solver.solve(ambient, set, farField);
             AccuracyRow r;
-            r.cellsPerRadius = N, r.tolerance = tol;
+            r.cellsPerRadius = N, r.tolerance = tol, r.cutCells = cut;
             r.boxCells = domain.boxCellCount(), r.activeCells = domain.activeCellCount();
             r.iterations = res.report.iterations, r.converged = res.report.converged;
             r.relativeResidual = res.report.relativeResidual, r.maxDivergenceScaled = res.report.maxDivergenceScaled;
@@ -177,26 +185,29 @@ int runBenchAccuracy(const BenchAccuracyOptions& opt) {
                     }
             r.domainL2 = std::sqrt(d2 / m2), r.domainFaces = faces;
             rows.push_back(r);
-            std::fprintf(stderr, "bench accuracy: %d cells/R, tol %.0e: %d its, near L2 %.2e, %.2f s\n", N, tol,
-                         r.iterations, r.nearL2, r.totalSeconds);
+            std::fprintf(stderr, "bench accuracy: %s, %d cells/R, tol %.0e: %d its, near L2 %.2e, %.2f s\n",
+                         cut ? "cut cells" : "stair-steps", N, tol, r.iterations, r.nearL2, r.totalSeconds);
         }
     }
 
     // ---- tables --------------------------------------------------------------------------------
     std::printf("Hemisphere R = 1 m on flat ground, uniform U = 1 m/s, potential flow (a_h = a_v);\n"
-                "box 6R x 6R x 3R with the exact potential on its open faces; cut cells.\n"
+                "box 6R x 6R x 3R with the exact potential on its open faces; cut cells (stair-step rows for comparison).\n"
                 "near = 193 fixed points 0.1 R above the surface; domain = every fully open face.\n\n");
-    std::printf("%5s %7s %9s %4s %9s %10s %10s %10s %10s %8s %8s\n", "N/R", "tol", "cells", "its", "rel.res",
-                "near L2", "near max", "dom L2", "dom max", "solve s", "total s");
+    std::printf("%-6s %5s %7s %9s %4s %9s %10s %10s %10s %10s %8s %8s\n", "bound.", "N/R", "tol", "cells", "its",
+                "rel.res", "near L2", "near max", "dom L2", "dom max", "solve s", "total s");
     for (const AccuracyRow& r : rows)
-        std::printf("%5d %7.0e %9zu %4d %9.1e %10.3e %10.3e %10.3e %10.3e %8.3f %8.3f%s\n", r.cellsPerRadius,
+        std::printf("%-6s %5d %7.0e %9zu %4d %9.1e %10.3e %10.3e %10.3e %10.3e %8.3f %8.3f%s\n",
+                    r.cutCells ? "cut" : "stair", r.cellsPerRadius,
                     r.tolerance, r.boxCells, r.iterations, r.relativeResidual, r.nearL2, r.nearMax, r.domainL2,
                     r.domainMax, r.setupSeconds + r.solveSeconds, r.totalSeconds, r.converged ? "" : "  NOT CONVERGED");
     // Orders at the tightest tolerance.
     const double tightest = tolerances.back();
-    std::vector<std::pair<int, double>> nearL2, nearMax, domL2, domMax;
+    std::vector<std::pair<int, double>> nearL2, nearMax, domL2, domMax, stairL2;
     for (const AccuracyRow& r : rows)
-        if (r.tolerance == tightest) {
+        if (!r.cutCells) stairL2.push_back({r.cellsPerRadius, r.nearL2});
+    for (const AccuracyRow& r : rows)
+        if (r.tolerance == tightest && r.cutCells) {
             nearL2.push_back({r.cellsPerRadius, r.nearL2}), nearMax.push_back({r.cellsPerRadius, r.nearMax});
             domL2.push_back({r.cellsPerRadius, r.domainL2}), domMax.push_back({r.cellsPerRadius, r.domainMax});
         }
@@ -211,6 +222,10 @@ int runBenchAccuracy(const BenchAccuracyOptions& opt) {
     printOrders("near max", nearMax);
     printOrders("dom L2", domL2);
     printOrders("dom max", domMax);
+    if (!stairL2.empty()) {
+        std::printf("Stair-steps (every fraction rounded to 0 or 1), same tolerance:\n");
+        printOrders("near L2", stairL2);
+    }
     double nearAt16 = -1;
     for (const auto& [N, e] : nearL2)
         if (N == 16) nearAt16 = e;
@@ -222,11 +237,11 @@ int runBenchAccuracy(const BenchAccuracyOptions& opt) {
     // ---- files ---------------------------------------------------------------------------------
     std::filesystem::create_directories(opt.outputFolder);
     std::ostringstream csv;
-    csv << "cells_per_radius,tolerance,box_cells,active_cells,iterations,converged,relative_residual,"
+    csv << "boundary,cells_per_radius,tolerance,box_cells,active_cells,iterations,converged,relative_residual,"
            "max_div_scaled,near_rel_l2,near_max_rel,domain_rel_l2,domain_max_rel,domain_s,setup_s,solve_s,"
            "assembly_s,total_s\n";
     for (const AccuracyRow& r : rows)
-        csv << r.cellsPerRadius << "," << r.tolerance << "," << r.boxCells << "," << r.activeCells << ","
+        csv << (r.cutCells ? "cut" : "stair") << "," << r.cellsPerRadius << "," << r.tolerance << "," << r.boxCells << "," << r.activeCells << ","
             << r.iterations << "," << r.converged << "," << r.relativeResidual << "," << r.maxDivergenceScaled << ","
             << r.nearL2 << "," << r.nearMax << "," << r.domainL2 << "," << r.domainMax << "," << r.domainSeconds << ","
             << r.setupSeconds << "," << r.solveSeconds << "," << r.assemblySeconds << "," << r.totalSeconds << "\n";
@@ -237,7 +252,7 @@ int runBenchAccuracy(const BenchAccuracyOptions& opt) {
         Series l2{"near L2, tol " + fmt(tolerances[t], 1), colours[t % 5], false, {}, {}};
         Series mx{"near max, tol " + fmt(tolerances[t], 1), colours[t % 5], true, {}, {}};
         for (const AccuracyRow& r : rows)
-            if (r.tolerance == tolerances[t]) {
+            if (r.tolerance == tolerances[t] && r.cutCells) {
                 l2.xy.push_back({r.totalSeconds, r.nearL2}), l2.labels.push_back(std::to_string(r.cellsPerRadius) + "/R");
                 mx.xy.push_back({r.totalSeconds, r.nearMax});
             }
@@ -245,8 +260,12 @@ int runBenchAccuracy(const BenchAccuracyOptions& opt) {
     }
     Series dom{"domain L2, tol " + fmt(tightest, 1), colours[3], false, {}, {}};
     for (const AccuracyRow& r : rows)
-        if (r.tolerance == tightest) dom.xy.push_back({r.totalSeconds, r.domainL2});
+        if (r.tolerance == tightest && r.cutCells) dom.xy.push_back({r.totalSeconds, r.domainL2});
     series.push_back(dom);
+    Series stair{"near L2, stair-steps, tol " + fmt(tightest, 1), colours[4], true, {}, {}};
+    for (const AccuracyRow& r : rows)
+        if (!r.cutCells) stair.xy.push_back({r.totalSeconds, r.nearL2}), stair.labels.push_back(std::to_string(r.cellsPerRadius) + "/R");
+    if (!stair.xy.empty()) series.push_back(stair);
     writeTextAtomic(opt.outputFolder + "/accuracy.svg",
                     logLogSvg("Hemisphere: velocity error against wall time", "wall time (domain + solve), s",
                               "relative error", series));
@@ -257,10 +276,12 @@ int runBenchAccuracy(const BenchAccuracyOptions& opt) {
         j["observed_order_near_l2"] = order;
         j["observed_order_near_max"] = observedOrder(nearMax);
         j["observed_order_domain_l2"] = observedOrder(domL2);
+        if (!stairL2.empty()) j["observed_order_near_l2_stair_steps"] = observedOrder(stairL2);
         j["near_l2_at_16"] = nearAt16;
         j["targets_met"] = ok;
         for (const AccuracyRow& r : rows)
-            j["rows"].push_back({{"cells_per_radius", r.cellsPerRadius}, {"tolerance", r.tolerance},
+            j["rows"].push_back({{"boundary", r.cutCells ? "cut" : "stair"}, {"cells_per_radius", r.cellsPerRadius},
+                                 {"tolerance", r.tolerance},
                                  {"box_cells", r.boxCells}, {"active_cells", r.activeCells},
                                  {"iterations", r.iterations}, {"converged", r.converged},
                                  {"relative_residual", r.relativeResidual}, {"max_div_scaled", r.maxDivergenceScaled},

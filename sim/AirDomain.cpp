@@ -51,7 +51,8 @@ double fractionBelow(double g0, double g1, double level) {
     return b0 ? t : 1.0 - t;
 }
 
-float cleanFraction(double f) {
+float cleanFraction(double f, bool cutCells) {
+    if (!cutCells) return f >= 0.5 ? 1.f : 0.f;
     if (f < AirDomain::MIN_OPEN_FRACTION) return 0.f;
     if (f > 1.0 - 1e-6) return 1.f;
     return float(f);
@@ -136,7 +137,7 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
         if (z1 <= lineMin) return 0.f;
         double s = 0.0;
         for (int b = 0; b < S; ++b) s += detail::meanClampedLinear(z1 - line[b], z1 - line[b + 1], h);
-        return detail::cleanFraction(s / (S * h));
+        return detail::cleanFraction(s / (S * h), spec.cutCells);
     };
     tbb::parallel_for(tbb::blocked_range<int>(0, ny), [&](const tbb::blocked_range<int>& rj) {
         std::vector<double> H(size_t(S + 1) * (S + 1)), line(S + 1), mid(S + 1);
@@ -179,7 +180,7 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                             for (int a = 0; a <= S; ++a) mid[a] = 0.5 * (Hat(a, b) + Hat(a, b + 1));
                             for (int a = 0; a < S; ++a) s += detail::fractionBelow(mid[a], mid[a + 1], zf);
                         }
-                        f = detail::cleanFraction(s / (S * S));
+                        f = detail::cleanFraction(s / (S * S), spec.cutCells);
                     }
                     mOpenZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = f;
                 }
