@@ -8,8 +8,8 @@
 #include <GLFW/glfw3.h>  // key codes only: the window itself is render::GlfwWindow
 
 #include <algorithm>
-#include <cctype>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -54,26 +54,44 @@ double msSince(Clock::time_point t) {
 enum class OverlayMode { Scene, None, Arrows, Slice, Streamlines, All, Count };
 const char* overlayModeName(OverlayMode m) {
     switch (m) {
-        case OverlayMode::Scene: return "scene overlays";
-        case OverlayMode::None: return "no overlays";
-        case OverlayMode::Arrows: return "arrows";
-        case OverlayMode::Slice: return "slice";
-        case OverlayMode::Streamlines: return "streamlines";
-        case OverlayMode::All: return "all overlays";
-        default: return "?";
+        case OverlayMode::Scene:
+            return "scene overlays";
+        case OverlayMode::None:
+            return "no overlays";
+        case OverlayMode::Arrows:
+            return "arrows";
+        case OverlayMode::Slice:
+            return "slice";
+        case OverlayMode::Streamlines:
+            return "streamlines";
+        case OverlayMode::All:
+            return "all overlays";
+        default:
+            return "?";
     }
 }
 coupling::OverlaySpec overlayFor(OverlayMode m, const coupling::OverlaySpec& scene) {
     coupling::OverlaySpec s = scene;
     s.arrows = s.slice = s.streamlines = s.vortexCores = false;
     switch (m) {
-        case OverlayMode::Scene: return scene;
-        case OverlayMode::None: break;
-        case OverlayMode::Arrows: s.arrows = true; break;
-        case OverlayMode::Slice: s.slice = true; break;
-        case OverlayMode::Streamlines: s.streamlines = true; break;
-        case OverlayMode::All: s.arrows = s.slice = s.streamlines = s.vortexCores = true; break;
-        default: break;
+        case OverlayMode::Scene:
+            return scene;
+        case OverlayMode::None:
+            break;
+        case OverlayMode::Arrows:
+            s.arrows = true;
+            break;
+        case OverlayMode::Slice:
+            s.slice = true;
+            break;
+        case OverlayMode::Streamlines:
+            s.streamlines = true;
+            break;
+        case OverlayMode::All:
+            s.arrows = s.slice = s.streamlines = s.vortexCores = true;
+            break;
+        default:
+            break;
     }
     return s;
 }
@@ -91,10 +109,9 @@ struct Snapshot {
 /// source there and publishes a snapshot; the main thread copies the latest one (take) without
 /// ever waiting for a step, unless it asks to (waitFor, used by --frames for exact frames).
 class WindWorker {
-public:
+  public:
     WindWorker(coupling::WindSource& source, const render::TerrainMesh& mesh, double grassHeight_m)
-        : mSource(source), mMesh(mesh), mGrassHeight_m(grassHeight_m),
-          mThread([this] { run(); }) {}
+        : mSource(source), mMesh(mesh), mGrassHeight_m(grassHeight_m), mThread([this] { run(); }) {}
     ~WindWorker() {
         {
             std::lock_guard<std::mutex> lock(mMutex);
@@ -131,7 +148,7 @@ public:
         rethrowLocked();
     }
 
-private:
+  private:
     bool copyLocked(Snapshot& out) {
         if (mLatest.serial == out.serial) return false;
         if (mLatest.wind.revision != out.wind.revision) {
@@ -160,8 +177,9 @@ private:
             {
                 std::unique_lock<std::mutex> lock(mMutex);
                 mWake.wait(lock, [&] {
-                    return mStop || (mRequested_s && (!(*mRequested_s == done_s) ||
-                                                      !doneOverlaySet || !sameOverlay(mOverlay, doneOverlay)));
+                    return mStop ||
+                           (mRequested_s && (!(*mRequested_s == done_s) || !doneOverlaySet ||
+                                             !sameOverlay(mOverlay, doneOverlay)));
                 });
                 if (mStop) return;
                 t_s = *mRequested_s;
@@ -217,14 +235,30 @@ render::InputEvent scriptedKey(char c) {
     render::InputEvent e;
     e.kind = render::InputEvent::Kind::Key;
     switch (c) {
-        case '>': e.key = GLFW_KEY_RIGHT; break;
-        case ' ': e.key = GLFW_KEY_SPACE; break;
-        case '+': e.key = GLFW_KEY_EQUAL; break;
-        case '-': e.key = GLFW_KEY_MINUS; break;
-        case '[': e.key = GLFW_KEY_LEFT_BRACKET; break;
-        case ']': e.key = GLFW_KEY_RIGHT_BRACKET; break;
-        case '.': e.key = GLFW_KEY_UNKNOWN; break;  // no key this frame
-        default: e.key = std::toupper(static_cast<unsigned char>(c)); break;  // GLFW_KEY_A.. = 'A'..
+        case '>':
+            e.key = GLFW_KEY_RIGHT;
+            break;
+        case ' ':
+            e.key = GLFW_KEY_SPACE;
+            break;
+        case '+':
+            e.key = GLFW_KEY_EQUAL;
+            break;
+        case '-':
+            e.key = GLFW_KEY_MINUS;
+            break;
+        case '[':
+            e.key = GLFW_KEY_LEFT_BRACKET;
+            break;
+        case ']':
+            e.key = GLFW_KEY_RIGHT_BRACKET;
+            break;
+        case '.':
+            e.key = GLFW_KEY_UNKNOWN;
+            break;  // no key this frame
+        default:
+            e.key = std::toupper(static_cast<unsigned char>(c));
+            break;  // GLFW_KEY_A.. = 'A'..
     }
     return e;
 }
@@ -263,8 +297,8 @@ int runView(const ViewOptions& options) {
     if (built.solve) {
         const sim::SolveReport& r = *built.solve;
         char buf[160];
-        std::snprintf(buf, sizeof buf, "solve %s %d it res %.1e", r.converged ? "ok" : "NOT CONVERGED",
-                      r.iterations, r.relativeResidual);
+        std::snprintf(buf, sizeof buf, "solve %s %d it res %.1e",
+                      r.converged ? "ok" : "NOT CONVERGED", r.iterations, r.relativeResidual);
         solveLine = buf;
         std::fprintf(stderr, "gale: steady wind %s\n", buf);
     }
@@ -312,7 +346,8 @@ int runView(const ViewOptions& options) {
         const auto frameStart = Clock::now();
         bool quit = false;
         std::vector<render::InputEvent> events = window->pollEvents();
-        if (size_t(frames) < options.keys.size()) events.push_back(scriptedKey(options.keys[frames]));
+        if (size_t(frames) < options.keys.size())
+            events.push_back(scriptedKey(options.keys[frames]));
         for (const render::InputEvent& e : events) {
             using K = render::InputEvent::Kind;
             if (e.kind == K::Close) quit = true;
@@ -324,20 +359,36 @@ int runView(const ViewOptions& options) {
             if (e.kind != K::Key) continue;
             switch (e.key) {
                 case GLFW_KEY_ESCAPE:
-                case GLFW_KEY_Q: quit = true; break;
-                case GLFW_KEY_SPACE: playing = !playing; break;
+                case GLFW_KEY_Q:
+                    quit = true;
+                    break;
+                case GLFW_KEY_SPACE:
+                    playing = !playing;
+                    break;
                 case GLFW_KEY_RIGHT:
                     playing = false;
                     simClock_s += 1.0 / out.fps;
                     break;
                 case GLFW_KEY_EQUAL:
-                case GLFW_KEY_KP_ADD: speed = std::min(MAX_SPEED, speed * 2.0); break;
+                case GLFW_KEY_KP_ADD:
+                    speed = std::min(MAX_SPEED, speed * 2.0);
+                    break;
                 case GLFW_KEY_MINUS:
-                case GLFW_KEY_KP_SUBTRACT: speed = std::max(MIN_SPEED, speed / 2.0); break;
-                case GLFW_KEY_R: orbit.reset(); break;
-                case GLFW_KEY_G: drawOptions.grass = !drawOptions.grass; break;
-                case GLFW_KEY_T: drawOptions.terrain = !drawOptions.terrain; break;
-                case GLFW_KEY_H: showHud = !showHud; break;
+                case GLFW_KEY_KP_SUBTRACT:
+                    speed = std::max(MIN_SPEED, speed / 2.0);
+                    break;
+                case GLFW_KEY_R:
+                    orbit.reset();
+                    break;
+                case GLFW_KEY_G:
+                    drawOptions.grass = !drawOptions.grass;
+                    break;
+                case GLFW_KEY_T:
+                    drawOptions.terrain = !drawOptions.terrain;
+                    break;
+                case GLFW_KEY_H:
+                    showHud = !showHud;
+                    break;
                 case GLFW_KEY_O:
                     overlayMode = OverlayMode((int(overlayMode) + 1) % int(OverlayMode::Count));
                     if (overlayMode == OverlayMode::Scene && !scene.overlay.any())
@@ -351,13 +402,15 @@ int runView(const ViewOptions& options) {
                     renderer.setShellCount(std::min(render::kMaxShells, renderer.shellCount() + 1));
                     break;
                 case GLFW_KEY_S: {
-                    const std::string path = "gale_view_" + std::to_string(screenshotCount++) + ".png";
+                    const std::string path =
+                        "gale_view_" + std::to_string(screenshotCount++) + ".png";
                     window->readPixels(image);  // the last frame, with its heads-up line
                     render::writeImageAtomic(image, path);
                     note("saved " + path);
                     break;
                 }
-                default: break;
+                default:
+                    break;
             }
         }
         if (quit) break;
@@ -392,32 +445,37 @@ int runView(const ViewOptions& options) {
         }
 
         // The heads-up line: frame rate, sim time, the wind step's cost, and lag.
-        const double lag_s = (shown.serial > 0 ? simClock_s - shown.t_s : simClock_s - out.startTime_s);
+        const double lag_s =
+            (shown.serial > 0 ? simClock_s - shown.t_s : simClock_s - out.startTime_s);
         const bool behind = lag_s > BEHIND_FRAMES / out.fps;
-        std::string hud = fmt("%.1f fps", fpsSmoothed) + "  " + fmt("%.1f ms", frame_ms) +
-                          "  t " + fmt("%.2f s", shown.serial > 0 ? shown.t_s : 0.0) + "  step " +
-                          fmt("%.1f ms", shown.step_ms) + "  x" + fmt("%g", speed) +
-                          (playing ? "" : "  paused") + "  shells " +
-                          std::to_string(renderer.shellCount());
-        if (!solveLine.empty()) hud += "  " + solveLine;
+        // Two lines, the state that changes first, so a narrow window still shows the lag.
+        std::string hud = fmt("%.1f fps", fpsSmoothed) + "  " + fmt("%.0f ms", frame_ms) + "  t " +
+                          fmt("%.2f s", shown.serial > 0 ? shown.t_s : 0.0) + "  step " +
+                          fmt("%.1f ms", shown.step_ms);
         if (behind) hud += "  simulation behind by " + fmt("%.2f s", lag_s);
-        if (Clock::now() < messageUntil) hud += "  " + hudMessage;
+        std::string hud2 = "x" + fmt("%g", speed) + (playing ? "" : "  paused") + "  shells " +
+                           std::to_string(renderer.shellCount());
+        if (!solveLine.empty()) hud2 += "  " + solveLine;
+        if (Clock::now() < messageUntil) hud2 += "  " + hudMessage;
         if (showHud) {
             const int scale = out.height >= 600 ? 2 : 1;
-            overlay.drawText(hud, 6 * scale, out.height - 14 * scale, scale, glm::vec3(1.0f));
+            overlay.drawText(hud, 6 * scale, out.height - 26 * scale, scale, glm::vec3(1.0f));
+            overlay.drawText(hud2, 6 * scale, out.height - 13 * scale, scale, glm::vec3(1.0f));
         }
         window->present();
-        window->setTitle("gale view " + scene.name + "  " + hud);
+        window->setTitle("gale view " + scene.name + "  " + hud + "  " + hud2);
 
         ++frames;
         frame_ms = msSince(frameStart);
-        fpsSmoothed = fpsSmoothed > 0.0 ? 0.9 * fpsSmoothed + 0.1 * 1000.0 / std::max(frame_ms, 1e-3)
-                                        : 1000.0 / std::max(frame_ms, 1e-3);
+        fpsSmoothed = fpsSmoothed > 0.0
+                          ? 0.9 * fpsSmoothed + 0.1 * 1000.0 / std::max(frame_ms, 1e-3)
+                          : 1000.0 / std::max(frame_ms, 1e-3);
         if (lastFrame) break;
         if (!scripted) {
             const double budget_ms = 1000.0 / MAX_INTERACTIVE_FPS;
             if (frame_ms < budget_ms)
-                std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(budget_ms - frame_ms));
+                std::this_thread::sleep_for(
+                    std::chrono::duration<double, std::milli>(budget_ms - frame_ms));
         }
     }
     const double total_s = msSince(start) / 1000.0;

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-
 #include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+#include <stdexcept>
 
 namespace gale::coupling {
 namespace {
@@ -18,7 +18,10 @@ constexpr double DEFAULT_ARROWS_ALONG = 16.0;
 /// Slice grid: 4 quads per arrow spacing, at most this many points a side.
 constexpr int MAX_SLICE_SIDE = 128;
 /// At most this many vortex-core markers, the strongest.
-constexpr size_t MAX_VORTEX_MARKERS = 64;
+constexpr size_t MAX_VORTEX_MARKERS = 24;
+/// Vortex-core maxima closer than this many cells (in every axis) to a stronger one are the same
+/// core.
+constexpr int MARKER_SEPARATION = 4;
 /// Streamline step, in voxels.
 constexpr double STREAMLINE_STEP_VOXELS = 0.5;
 
@@ -65,7 +68,8 @@ void validate(const OverlaySpec& spec) {
     };
     if (!(spec.arrowSpacing_m >= 0.0) || !std::isfinite(spec.arrowSpacing_m))
         bad("arrow_spacing_m", "must be >= 0 (0: automatic)", spec.arrowSpacing_m);
-    if (!std::isfinite(spec.arrowHeight_m)) bad("arrow_height_m", "must be finite", spec.arrowHeight_m);
+    if (!std::isfinite(spec.arrowHeight_m))
+        bad("arrow_height_m", "must be finite", spec.arrowHeight_m);
     if (!(spec.sliceHeight_m > 0.0) || !std::isfinite(spec.sliceHeight_m))
         bad("slice_height_m", "must be > 0", spec.sliceHeight_m);
     if (spec.streamlineCount < 1 || spec.streamlineCount > 1000)
@@ -77,8 +81,7 @@ void validate(const OverlaySpec& spec) {
 }
 
 MeshHeight::MeshHeight(const render::TerrainMesh& mesh) : mMesh(mesh) {
-    if (mesh.nx < 2 || mesh.ny < 2 ||
-        mesh.wsPosition_m.size() != size_t(mesh.nx) * size_t(mesh.ny))
+    if (mesh.nx < 2 || mesh.ny < 2 || mesh.wsPosition_m.size() != size_t(mesh.nx) * size_t(mesh.ny))
         throw std::invalid_argument("MeshHeight: the mesh must be a grid of nx, ny >= 2");
     mX0 = mesh.wsPosition_m.front().x;
     mY0 = mesh.wsPosition_m.front().y;
@@ -136,15 +139,16 @@ float niceSpeedMax(float maxSpeed) {
 }
 
 render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
-                                           const render::TerrainMesh& mesh,
-                                           const OverlaySpec& spec, double grassHeight_m) {
+                                           const render::TerrainMesh& mesh, const OverlaySpec& spec,
+                                           double grassHeight_m) {
     validate(spec);
     const MeshHeight ground(mesh);
     const VelocityFn velocity = [&field](const glm::dvec3& p) {
         return toD(field.velocityAt_mps(p.x, p.y, p.z));
     };
     const double spacing = defaultSpacing(ground, spec);
-    const double arrowHeight = spec.arrowHeight_m >= 0.0 ? spec.arrowHeight_m : ARROW_ABOVE_GRASS * grassHeight_m;
+    const double arrowHeight =
+        spec.arrowHeight_m >= 0.0 ? spec.arrowHeight_m : ARROW_ABOVE_GRASS * grassHeight_m;
     render::FieldOverlayData data;
     data.legend = spec.legend;
     float maxSpeed = 0.0f;
@@ -201,7 +205,9 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
     if (spec.vortexCores) {
         const int nx = field.nx(), ny = field.ny(), nz = field.nz();
         const double h = field.voxelSize_m();
-        const auto idx = [&](int i, int j, int k) { return size_t(i) + size_t(nx) * (j + size_t(ny) * k); };
+        const auto idx = [&](int i, int j, int k) {
+            return size_t(i) + size_t(nx) * (j + size_t(ny) * k);
+        };
         std::vector<double> q(size_t(nx) * ny * nz, -1e300);
         double qMax = 0.0, uMax = 0.0;
         for (int k = 1; k + 1 < nz; ++k)
@@ -237,10 +243,9 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
                     q[idx(i, j, k)] = qCriterion(g);
                     qMax = std::max(qMax, q[idx(i, j, k)]);
                 }
-        const double threshold =
-            spec.vortexQ_per_s2 > 0.0
-                ? spec.vortexQ_per_s2
-                : std::max(0.25 * qMax, (0.1 * uMax / h) * (0.1 * uMax / h));
+        const double threshold = spec.vortexQ_per_s2 > 0.0
+                                     ? spec.vortexQ_per_s2
+                                     : std::max(0.25 * qMax, (0.1 * uMax / h) * (0.1 * uMax / h));
         std::vector<std::pair<double, size_t>> cores;
         for (int k = 1; k + 1 < nz; ++k)
             for (int j = 1; j + 1 < ny; ++j)
@@ -251,14 +256,24 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
                     for (int dk = -1; dk <= 1 && peak; ++dk)
                         for (int dj = -1; dj <= 1 && peak; ++dj)
                             for (int di = -1; di <= 1 && peak; ++di)
-                                if ((di || dj || dk) && q[idx(i + di, j + dj, k + dk)] > qc) peak = false;
+                                if ((di || dj || dk) && q[idx(i + di, j + dj, k + dk)] > qc)
+                                    peak = false;
                     if (peak) cores.emplace_back(qc, idx(i, j, k));
                 }
         std::sort(cores.begin(), cores.end(), [](auto& a, auto& b) { return a.first > b.first; });
-        if (cores.size() > MAX_VORTEX_MARKERS) cores.resize(MAX_VORTEX_MARKERS);
         const auto origin = field.wsMin_m();
+        std::vector<glm::ivec3> kept;
         for (const auto& [qc, n] : cores) {
+            if (kept.size() >= MAX_VORTEX_MARKERS) break;
             const int i = int(n % nx), j = int((n / nx) % ny), k = int(n / (size_t(nx) * ny));
+            // One marker per core: skip maxima within MARKER_SEPARATION cells of a stronger one.
+            bool near = false;
+            for (const glm::ivec3& o : kept)
+                near = near || (std::abs(o.x - i) <= MARKER_SEPARATION &&
+                                std::abs(o.y - j) <= MARKER_SEPARATION &&
+                                std::abs(o.z - k) <= MARKER_SEPARATION);
+            if (near) continue;
+            kept.emplace_back(i, j, k);
             render::OverlayMarker m;
             m.wsPosition_m = glm::vec3(origin[0] + (i + 0.5) * h, origin[1] + (j + 0.5) * h,
                                        origin[2] + (k + 0.5) * h);
@@ -286,12 +301,15 @@ render::FieldOverlayData buildGrassWindOverlay(const render::GrassWind& wind,
         wind.group.size() != mesh.wsPosition_m.size())
         return data;
     const double spacing = defaultSpacing(ground, spec);
-    const double arrowHeight = spec.arrowHeight_m >= 0.0 ? spec.arrowHeight_m : ARROW_ABOVE_GRASS * grassHeight_m;
+    const double arrowHeight =
+        spec.arrowHeight_m >= 0.0 ? spec.arrowHeight_m : ARROW_ABOVE_GRASS * grassHeight_m;
     const double arrowScale = ARROW_LENGTH_OF_SPACING * spacing / data.speedMax;
     for (double y : insetGrid(ground.minY(), ground.maxY(), spacing))
         for (double x : insetGrid(ground.minX(), ground.maxX(), spacing)) {
-            const int i = int(std::lround((x - ground.minX()) / (ground.maxX() - ground.minX()) * (mesh.nx - 1)));
-            const int j = int(std::lround((y - ground.minY()) / (ground.maxY() - ground.minY()) * (mesh.ny - 1)));
+            const int i = int(
+                std::lround((x - ground.minX()) / (ground.maxX() - ground.minX()) * (mesh.nx - 1)));
+            const int j = int(
+                std::lround((y - ground.minY()) / (ground.maxY() - ground.minY()) * (mesh.ny - 1)));
             const size_t v = size_t(j) * mesh.nx + size_t(i);
             const uint32_t g = wind.group[v];
             const float intensity = g < wind.groupIntensity.size() ? wind.groupIntensity[g] : 0.0f;

@@ -8,13 +8,12 @@
 
 #include <array>
 #include <functional>
+#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
 
-#include <glm/vec3.hpp>
-
-#include "render/FieldOverlay.h"
 #include "coupling/WindSource.h"
+#include "render/FieldOverlay.h"
 #include "render/GrassInput.h"
 #include "sim/WindField.h"
 
@@ -23,16 +22,18 @@ namespace gale::coupling {
 /// The scene's [overlay] section (docs/scene-format.md). Heights are above the local ground.
 struct OverlaySpec {
     bool arrows = false;
-    double arrowSpacing_m = 0.0;   ///< grid spacing of the arrows; 0: 1/16 of the terrain's larger side
-    double arrowHeight_m = -1.0;   ///< arrow bases this high above the ground; < 0: 1.25 x grass height
+    double arrowSpacing_m =
+        0.0;  ///< grid spacing of the arrows; 0: 1/16 of the terrain's larger side
+    double arrowHeight_m =
+        -1.0;  ///< arrow bases this high above the ground; < 0: 1.25 x grass height
     bool slice = false;
-    double sliceHeight_m = 2.0;    ///< terrain-following slice this high above the ground, > 0
+    double sliceHeight_m = 2.0;  ///< terrain-following slice this high above the ground, > 0
     bool streamlines = false;
-    int streamlineCount = 12;      ///< seeds along the upstream edge, 1..1000
+    int streamlineCount = 12;  ///< seeds along the upstream edge, 1..1000
     bool vortexCores = false;
-    double vortexQ_per_s2 = 0.0;   ///< Q threshold, 1/s^2; 0: automatic (see buildFieldOverlay)
+    double vortexQ_per_s2 = 0.0;  ///< Q threshold, 1/s^2; 0: automatic (see buildFieldOverlay)
     bool legend = true;
-    double speedMax_mps = 0.0;     ///< top of the colour map; 0: the largest speed shown, rounded up
+    double speedMax_mps = 0.0;  ///< top of the colour map; 0: the largest speed shown, rounded up
 
     bool any() const { return arrows || slice || streamlines || vortexCores; }
 };
@@ -43,7 +44,7 @@ void validate(const OverlaySpec& spec);
 /// The terrain's height under a point, by bilinear interpolation of a render mesh (a regular grid
 /// in x and y, i fastest); points outside are clamped to the edge.
 class MeshHeight {
-public:
+  public:
     explicit MeshHeight(const render::TerrainMesh& mesh);
     double at(double wsX_m, double wsY_m) const;
     double minX() const { return mX0; }
@@ -51,7 +52,7 @@ public:
     double minY() const { return mY0; }
     double maxY() const { return mY1; }
 
-private:
+  private:
     const render::TerrainMesh& mMesh;
     double mX0, mX1, mY0, mY1;
 };
@@ -82,12 +83,13 @@ double qCriterion(const std::array<std::array<double, 3>, 3>& gradient);
 /// terrain's upstream edge (the side the mean wind on the slice comes from) at sliceHeight_m,
 /// traced with RK2 in steps of half a voxel. Vortex cores: air cells whose Q (central differences
 /// of cell-centre velocities) exceeds the threshold and is a local maximum of its 3 x 3 x 3
-/// neighbours, the strongest 64; the automatic threshold is max(0.25 max Q, (0.1 U / h)^2), U
-/// the largest speed and h the voxel size, and cells within two of the terrain are skipped (their
-/// differences read extrapolated faces), so an irrotational field marks nothing. Thread-safe for a const field.
+/// neighbours, the strongest 24 at least 5 cells apart; the automatic threshold is
+/// max(0.25 max Q, (0.1 U / h)^2), U the largest speed and h the voxel size, and cells within two
+/// of the terrain are skipped (their differences read extrapolated faces), so an irrotational
+/// field marks nothing. Thread-safe for a const field.
 render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
-                                           const render::TerrainMesh& mesh,
-                                           const OverlaySpec& spec, double grassHeight_m);
+                                           const render::TerrainMesh& mesh, const OverlaySpec& spec,
+                                           double grassHeight_m);
 
 /// Overlays of a wind without a velocity field (the point source): arrows only, along each
 /// nearest vertex's wind direction, coloured and scaled by its group's |intensity| (unit

@@ -4,10 +4,9 @@
 /// (baseline under row 6, row 7 for descenders), digits, lower-case letters (upper case is drawn
 /// lower case) and . , - + / : % ( ) = and space. The glyphs are our own, drawn for this file.
 
+#include <glm/vec2.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/vec2.hpp>
 
 namespace gale::render {
 

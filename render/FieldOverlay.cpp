@@ -6,11 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <stdexcept>
-
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
+#include <stdexcept>
 
 #include "render/BitmapFont.h"
 #include "render/CameraMath.h"
@@ -61,8 +60,8 @@ void pushTriangle(std::vector<Vertex>& out, const glm::vec3& a, const glm::vec3&
     pushVertex(out, c, color);
 }
 
-void pushQuad(std::vector<Vertex>& out, const glm::vec3& a, const glm::vec3& b,
-              const glm::vec3& c, const glm::vec3& d, const glm::vec4& color) {
+void pushQuad(std::vector<Vertex>& out, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+              const glm::vec3& d, const glm::vec4& color) {
     pushTriangle(out, a, b, c, color);
     pushTriangle(out, a, c, d, color);
 }
@@ -97,8 +96,8 @@ void pushArrowOutline(std::vector<Vertex>& out, const OverlayArrow& a) {
     const glm::vec3 neck = tip - d * (ARROW_HEAD_LENGTH * length);
     const glm::vec3 s = side * (ARROW_SHAFT_HALF_WIDTH * length);
     const glm::vec3 h = side * (ARROW_HEAD_HALF_WIDTH * length);
-    const glm::vec3 loop[7] = {a.wsBase_m - s, a.wsBase_m + s, neck + s, neck + h,
-                               tip,            neck - h,       neck - s};
+    const glm::vec3 loop[7] = {a.wsBase_m - s, a.wsBase_m + s, neck + s, neck + h, tip,
+                               neck - h,       neck - s};
     const glm::vec4 color(ARROW_OUTLINE_GREY, ARROW_OUTLINE_GREY, ARROW_OUTLINE_GREY, 1.0f);
     for (int k = 0; k < 7; ++k) {
         pushVertex(out, loop[k], color);
@@ -147,7 +146,8 @@ void pushMarker(std::vector<Vertex>& out, const OverlayMarker& m, const Camera& 
     if (glm::length(right) < 1e-3f) right = glm::vec3(1.0f, 0.0f, 0.0f);
     right = glm::normalize(right);
     const glm::vec3 up = glm::normalize(glm::cross(right, view));
-    const glm::vec4 color(kVortexMarkerColor[0], kVortexMarkerColor[1], kVortexMarkerColor[2], 1.0f);
+    const glm::vec4 color(kVortexMarkerColor[0], kVortexMarkerColor[1], kVortexMarkerColor[2],
+                          1.0f);
     const float halfWidth = 0.5f * (LINE_WIDTH_PX + 1.0f) * screen.at(m.wsPosition_m);
     const float r0 = std::max(0.0f, m.size_m - halfWidth), r1 = m.size_m + halfWidth;
     for (int s = 0; s < MARKER_SEGMENTS; ++s) {
@@ -183,8 +183,8 @@ struct FieldOverlay::Impl {
     }
     void pushText(const std::string& text, int x, int y, int scale, const glm::vec4& color) {
         for (const glm::ivec2& p : textPixels(text, scale))
-            pushRect(float(x + p.x), float(y + p.y), float(x + p.x + scale),
-                     float(y + p.y + scale), color);
+            pushRect(float(x + p.x), float(y + p.y), float(x + p.x + scale), float(y + p.y + scale),
+                     color);
     }
     void pushLegend(const FieldOverlayData& data);
 
@@ -192,8 +192,8 @@ struct FieldOverlay::Impl {
                    GLenum mode = GL_TRIANGLES) {
         if (vertices.empty()) return;
         glBindBuffer(GL_ARRAY_BUFFER, vbo.get());
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(Vertex)),
-                     vertices.data(), GL_STREAM_DRAW);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(),
+                     GL_STREAM_DRAW);
         glUniformMatrix4fv(clipFromWorldLoc, 1, GL_FALSE, glm::value_ptr(clipFromWorld));
         glDrawArrays(mode, 0, GLsizei(vertices.size()));
     }
@@ -222,7 +222,8 @@ void FieldOverlay::Impl::pushLegend(const FieldOverlayData& data) {
     const std::vector<float> ticks = legendTicks(data.speedMax);
     const float step = ticks.size() > 1 ? ticks[1] - ticks[0] : data.speedMax;
     int labelWidth = textWidth_px(data.unit, scale);
-    for (float t : ticks) labelWidth = std::max(labelWidth, textWidth_px(tickLabel(t, step), scale));
+    for (float t : ticks)
+        labelWidth = std::max(labelWidth, textWidth_px(tickLabel(t, step), scale));
     const int margin = LEGEND_MARGIN_PX * scale, barWidth = LEGEND_BAR_WIDTH_PX * scale;
     const int textHeight = kGlyphHeight_px * scale;
     const int boxWidth = margin + barWidth + margin / 2 + 2 * scale + labelWidth + margin;
@@ -231,8 +232,8 @@ void FieldOverlay::Impl::pushLegend(const FieldOverlayData& data) {
     pushRect(float(x0), float(y0), float(x0 + boxWidth), float(y0 + boxHeight),
              glm::vec4(0.0f, 0.0f, 0.0f, BACKDROP_ALPHA));
     const glm::vec4 white(1.0f);
-    pushText(data.unit, x0 + boxWidth - margin - textWidth_px(data.unit, scale), y0 + margin,
-             scale, white);
+    pushText(data.unit, x0 + boxWidth - margin - textWidth_px(data.unit, scale), y0 + margin, scale,
+             white);
     // The bar: bottom = 0, top = speedMax.
     const float barTop = float(y0 + 2 * margin + textHeight);
     const float barBottom = float(y0 + boxHeight - margin - textHeight / 2);
@@ -285,11 +286,12 @@ void FieldOverlay::draw(const Camera& camera, const FieldOverlayData& data) {
     const size_t sliceN = size_t(std::max(0, slice.nx)) * size_t(std::max(0, slice.ny));
     if (slice.nx != 0 && (slice.nx < 2 || slice.ny < 2 || slice.wsPosition_m.size() != sliceN ||
                           slice.speed.size() != sliceN))
-        throw std::invalid_argument("OverlaySlice needs nx, ny >= 2 and nx * ny positions and "
-                                    "speeds, got " + std::to_string(slice.nx) + " x " +
-                                    std::to_string(slice.ny) + " with " +
-                                    std::to_string(slice.wsPosition_m.size()) + " positions, " +
-                                    std::to_string(slice.speed.size()) + " speeds");
+        throw std::invalid_argument(
+            "OverlaySlice needs nx, ny >= 2 and nx * ny positions and "
+            "speeds, got " +
+            std::to_string(slice.nx) + " x " + std::to_string(slice.ny) + " with " +
+            std::to_string(slice.wsPosition_m.size()) + " positions, " +
+            std::to_string(slice.speed.size()) + " speeds");
     for (const OverlayPolyline& line : data.streamlines)
         if (line.speed.size() != line.wsPoint_m.size())
             throw std::invalid_argument("OverlayPolyline has " +
@@ -302,9 +304,9 @@ void FieldOverlay::draw(const Camera& camera, const FieldOverlayData& data) {
     Impl& m = *mImpl;
     const float aspect = float(m.context.width()) / float(m.context.height());
     const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
-    ScreenScale screen{camera.wsPosition_m,
-                       2.0f * std::tan(0.5f * camera.fovY_deg * float(PI) / 180.0f) /
-                           float(m.context.height())};
+    ScreenScale screen{
+        camera.wsPosition_m,
+        2.0f * std::tan(0.5f * camera.fovY_deg * float(PI) / 180.0f) / float(m.context.height())};
 
     m.begin();
     glEnable(GL_DEPTH_TEST);
@@ -331,7 +333,8 @@ void FieldOverlay::draw(const Camera& camera, const FieldOverlayData& data) {
     m.world.clear();
     for (const OverlayArrow& a : data.arrows)
         pushArrow(m.world, a, speedColor(a.speed, data.speedMax));
-    for (const OverlayPolyline& line : data.streamlines) pushRibbon(m.world, line, data.speedMax, screen);
+    for (const OverlayPolyline& line : data.streamlines)
+        pushRibbon(m.world, line, data.speedMax, screen);
     for (const OverlayMarker& marker : data.vortexCores)
         if (finite3(marker.wsPosition_m)) pushMarker(m.world, marker, camera, screen);
     m.drawBatch(m.world, clipFromWorldM);
@@ -357,7 +360,8 @@ void FieldOverlay::drawText(const std::string& text, int x_px, int y_px, int sca
     if (backdrop)
         m.pushRect(float(x_px - 2 * scale), float(y_px - 2 * scale),
                    float(x_px + textWidth_px(text, scale) + 2 * scale),
-                   float(y_px + kGlyphHeight_px * scale + scale), glm::vec4(0, 0, 0, BACKDROP_ALPHA));
+                   float(y_px + kGlyphHeight_px * scale + scale),
+                   glm::vec4(0, 0, 0, BACKDROP_ALPHA));
     m.pushText(text, x_px, y_px, scale, glm::vec4(color, 1.0f));
     m.drawBatch(m.screen, glm::mat4(1.0f));
     m.end();
@@ -373,7 +377,8 @@ std::vector<float> FieldOverlay::legendTicks(float speedMax) {
         if (double(speedMax) / step <= 5.0 + 1e-9) break;
     }
     std::vector<float> ticks;
-    for (int k = 0; k * step <= double(speedMax) * (1.0 + 1e-6); ++k) ticks.push_back(float(k * step));
+    for (int k = 0; k * step <= double(speedMax) * (1.0 + 1e-6); ++k)
+        ticks.push_back(float(k * step));
     return ticks;
 }
 

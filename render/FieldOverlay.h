@@ -13,12 +13,11 @@
 /// context.readPixels(image);
 /// @endcode
 
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
-#include <glm/vec4.hpp>
 
 #include "render/GlContext.h"
 #include "render/GrassInput.h"
@@ -56,20 +55,20 @@ struct OverlayMarker {
 
 struct FieldOverlayData {
     std::vector<OverlayArrow> arrows;
-    OverlaySlice slice;                      ///< nx == 0: no slice
+    OverlaySlice slice;  ///< nx == 0: no slice
     std::vector<OverlayPolyline> streamlines;
     std::vector<OverlayMarker> vortexCores;
-    float speedMax = 1.0f;       ///< speed at the top of the colour map (> 0); 0 maps to the bottom
-    std::string unit = "m/s";    ///< label of the legend
-    bool legend = true;          ///< draw the legend bar (only when something is coloured)
-    float sliceOpacity = 0.7f;   ///< alpha of the slice, [0, 1]
+    float speedMax = 1.0f;      ///< speed at the top of the colour map (> 0); 0 maps to the bottom
+    std::string unit = "m/s";   ///< label of the legend
+    bool legend = true;         ///< draw the legend bar (only when something is coloured)
+    float sliceOpacity = 0.7f;  ///< alpha of the slice, [0, 1]
 };
 
 /// Colour of the vortex-core markers: red, which viridis never uses.
 inline constexpr float kVortexMarkerColor[3] = {0.93f, 0.16f, 0.16f};
 
 class FieldOverlay {
-public:
+  public:
     /// Compiles shaders/overlay.vert and overlay.frag (throws std::runtime_error naming them).
     /// The context must be current and outlive the overlay.
     explicit FieldOverlay(GlContext& context);
@@ -95,7 +94,7 @@ public:
     /// A tick's label: as few decimals as the tick step needs ("0", "2.5", "0.25").
     static std::string tickLabel(float value, float step);
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };

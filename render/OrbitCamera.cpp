@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -16,7 +15,8 @@ constexpr double ZOOM_PER_STEP = 0.85;
 
 glm::dvec3 offsetOf(double azimuth_deg, double elevation_deg, double distance_m) {
     const double a = azimuth_deg * PI / 180.0, e = elevation_deg * PI / 180.0;
-    return distance_m * glm::dvec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
+    return distance_m *
+           glm::dvec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
 }
 
 }  // namespace
@@ -37,8 +37,8 @@ void OrbitCamera::orbit(double dx_px, double dy_px) {
     mAtHome = false;
     // Dragging right swings the eye left around the target (the scene turns with the mouse).
     mAzimuth_deg = std::fmod(mAzimuth_deg - DEG_PER_PIXEL * dx_px, 360.0);
-    mElevation_deg = std::clamp(mElevation_deg + DEG_PER_PIXEL * dy_px, -MAX_ELEVATION_DEG,
-                                MAX_ELEVATION_DEG);
+    mElevation_deg =
+        std::clamp(mElevation_deg + DEG_PER_PIXEL * dy_px, -MAX_ELEVATION_DEG, MAX_ELEVATION_DEG);
 }
 
 void OrbitCamera::pan(double dx_px, double dy_px, int viewportHeight_px) {

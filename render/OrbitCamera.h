@@ -9,7 +9,7 @@
 namespace gale::render {
 
 class OrbitCamera {
-public:
+  public:
     /// Starts from `home` (position, target, fov, near, far); reset() returns there.
     explicit OrbitCamera(const Camera& home);
 
@@ -32,7 +32,7 @@ public:
     double elevation_deg() const { return mElevation_deg; }
     double distance_m() const { return mDistance_m; }
 
-private:
+  private:
     Camera mHome;
     glm::dvec3 mTarget_m;
     double mAzimuth_deg = 0.0, mElevation_deg = 0.0, mDistance_m = 1.0;

@@ -37,12 +37,13 @@ double lumaVariance(const render::Image& image) {
 }
 
 TEST(View, UnderXvfbScreenshotMatchesHeadlessRenderOfTheSameFrame) {
-    if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no display; ctest runs this under xvfb-run";
+    if (std::getenv("DISPLAY") == nullptr)
+        GTEST_SKIP() << "no display; ctest runs this under xvfb-run";
     TempDir dir;
     const std::string scene = sourcePath("tests/data/scenes/tiny.toml");
     const std::string shot = dir / "view.png";
-    const RunResult view = runGale({"view", scene, "--frames", "3", "--screenshot", shot,
-                                    "--width", "160", "--height", "120"});
+    const RunResult view = runGale({"view", scene, "--frames", "3", "--screenshot", shot, "--width",
+                                    "160", "--height", "120"});
     ASSERT_EQ(view.exitCode, 0) << view.err;
     EXPECT_NE(view.out.find("viewed 3 frames"), std::string::npos) << view.out;
     const RunResult render = runGale({"render", scene, "-o", dir / "frames", "--frames", "3",
@@ -63,19 +64,20 @@ TEST(View, UnderXvfbScreenshotMatchesHeadlessRenderOfTheSameFrame) {
         render::writeImageAtomic(expected, (out / "view.expected.png").string());
         render::writeImageAtomic(diff.diff, (out / "view.diff.png").string());
         ADD_FAILURE() << diff.differingFraction * 100.0 << "% of pixels differ by more than "
-                      << kChannelTolerance << "/255 (max " << diff.maxChannelDiff
-                      << "); images in " << out;
+                      << kChannelTolerance << "/255 (max " << diff.maxChannelDiff << "); images in "
+                      << out;
     }
 }
 
 TEST(View, UnderXvfbKeysToggleGrassAndSaveAScreenshotWithTheHeadsUpLine) {
-    if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no display; ctest runs this under xvfb-run";
+    if (std::getenv("DISPLAY") == nullptr)
+        GTEST_SKIP() << "no display; ctest runs this under xvfb-run";
     TempDir dir;
     const std::string scene = sourcePath("tests/data/scenes/tiny.toml");
     const std::vector<std::string> size = {"--width", "160", "--height", "120"};
     auto view = [&](const std::string& keys, const std::string& shot) {
-        std::vector<std::string> args = {"view", scene, "--frames", "3", "--screenshot", shot,
-                                         "--keys", keys};
+        std::vector<std::string> args = {"view",         scene, "--frames", "3",
+                                         "--screenshot", shot,  "--keys",   keys};
         args.insert(args.end(), size.begin(), size.end());
         return runGale(args, dir.path().string());
     };
@@ -102,9 +104,9 @@ TEST(OverlayRender, HeadlessRenderDrawsTheSceneOverlaysAndCheckListsThem) {
     ASSERT_EQ(check.exitCode, 0) << check.err;
     EXPECT_NE(check.out.find("overlay   arrows every 2 m"), std::string::npos) << check.out;
     for (const char* name : {"plain", "views"}) {
-        const RunResult r = runGale({"render", dir / (std::string(name) + ".toml"), "-o",
-                                     dir / name, "--frames", "1", "--width", "160", "--height",
-                                     "120"});
+        const RunResult r =
+            runGale({"render", dir / (std::string(name) + ".toml"), "-o", dir / name, "--frames",
+                     "1", "--width", "160", "--height", "120"});
         ASSERT_EQ(r.exitCode, 0) << r.err;
     }
     const render::Image plain = render::readImageRgba8(dir / "plain/frame_0000.png");
@@ -130,7 +132,8 @@ TEST(View, WithoutADisplaySaysUseGaleRenderAndFails) {
     const char* saved = std::getenv("DISPLAY");
     const std::string display = saved ? saved : "";
     ::unsetenv("DISPLAY");
-    const RunResult r = runGale({"view", sourcePath("tests/data/scenes/tiny.toml"), "--frames", "1"});
+    const RunResult r =
+        runGale({"view", sourcePath("tests/data/scenes/tiny.toml"), "--frames", "1"});
     if (saved) ::setenv("DISPLAY", display.c_str(), 1);
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("gale: error: no display"), std::string::npos) << r.err;

@@ -4,9 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <memory>
-
 #include <glm/geometric.hpp>
+#include <memory>
 
 #include "coupling/FieldOverlayBuilder.h"
 #include "coupling/TerrainMeshBuilder.h"
@@ -103,7 +102,8 @@ TEST(FieldOverlayBuilder, StreamlineInSolidBodyRotationStaysOnItsCircle) {
     };
     const auto line = coupling::traceStreamline(rotation, glm::dvec3(4.0, 0.0, 1.0), 0.05, 500);
     ASSERT_EQ(line.size(), 500u);
-    for (const glm::dvec3& p : line) EXPECT_NEAR(std::hypot(p.x, p.y), 4.0, ROTATION_RADIUS_TOL * 4.0);
+    for (const glm::dvec3& p : line)
+        EXPECT_NEAR(std::hypot(p.x, p.y), 4.0, ROTATION_RADIUS_TOL * 4.0);
 }
 
 TEST(FieldOverlayBuilder, QCriterionIsRotationSquaredForSolidBodyAndNegativeForStrain) {

@@ -1,7 +1,6 @@
 // EXR frames (output.format = "exr"): half floats of linear light, decoded from the frame's sRGB.
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 

@@ -2,12 +2,12 @@
 // reference image of arrows and a slice for uniform wind over flat ground.
 //
 // Regenerating the reference image: run
-//   GALE_UPDATE_REFERENCES=1 ./render_tests --gtest_filter='Overlay.UniformWindArrowsAndSliceMatchReferenceImage'
+//   GALE_UPDATE_REFERENCES=1 ./render_tests
+//   --gtest_filter='Overlay.UniformWindArrowsAndSliceMatchReferenceImage'
 // from the build folder; it rewrites tests/data/render/overlay_uniform.png in the source tree.
 // Look at the new image before committing it.
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -118,7 +118,8 @@ struct UniformScene {
             data.slice.nx = data.slice.ny = 9;
             for (int j = 0; j < 9; ++j)
                 for (int i = 0; i < 9; ++i) {
-                    data.slice.wsPosition_m.emplace_back(-3.0f + 0.75f * i, -3.0f + 0.75f * j, 0.2f);
+                    data.slice.wsPosition_m.emplace_back(-3.0f + 0.75f * i, -3.0f + 0.75f * j,
+                                                         0.2f);
                     data.slice.speed.push_back(kSpeed_mps);
                 }
         }
