@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -122,10 +123,13 @@ sim::Heightfield loadHeightmap(const HeightmapSpec& spec) {
                                     " pixel at column " + std::to_string(col) + ", row " +
                                     std::to_string(row) + " (heights must be finite)");
             const double z = spec.heightOffset_m + spec.heightScale_m * static_cast<double>(v);
-            if (!std::isfinite(z) || std::abs(z) > 1e7)
+            if (!std::isfinite(z) || std::abs(z) > 1e7) {
+                char shown[32];
+                std::snprintf(shown, sizeof shown, "%.6g", z);
                 fail(spec.path, "pixel at column " + std::to_string(col) + ", row " +
-                                    std::to_string(row) + " gives an absurd height of " +
-                                    std::to_string(z) + " m");
+                                    std::to_string(row) + " gives an absurd height of " + shown +
+                                    " m (at most 1e7 m)");
+            }
             height_m[static_cast<size_t>(j) * h.width + col] = static_cast<float>(z);
         }
     }
