@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/AtomicFile.h"
+#include "app/Progress.h"
 
 namespace gale::app {
 namespace {
@@ -217,7 +218,11 @@ int runUnsteadySolve(const SolveRequest& req) {
     const int outputs = int(std::ceil(u.duration_s / u.outputEvery_s - 1e-9));
     double maxCfl = 0, maxDiv = 0, solveSeconds = 0;
     int maxIt = 0, stepCount = 0;
+    // One updating line with ETA on a terminal, one line per output in logs (app/Progress.h); the
+    // run's CFL and divergence are in the summary line and the report.
+    Progress progress("output", outputs);
     for (int n = 1; n <= outputs && finite; ++n) {
+        const auto outputStart = std::chrono::steady_clock::now();
         const double target = std::min(u.duration_s, n * u.outputEvery_s);
         for (const sim::StepReport& r : solver.advanceTo(target)) {
             ++stepCount;
@@ -243,10 +248,12 @@ int runUnsteadySolve(const SolveRequest& req) {
                              {"projection_s", r.projection_s},
                              {"step_s", r.total_s}});
         }
-        std::fprintf(stderr, "solve: t = %.2f s, %d steps, max CFL %.2f, max|div u| h/U %.1e\n", solver.time_s(),
-                     stepCount, maxCfl, maxDiv);
         writeFrame(n);
+        progress.step(n, std::chrono::duration<double, std::milli>(
+                             std::chrono::steady_clock::now() - outputStart)
+                             .count());
     }
+    progress.finish();
     j["steps"] = steps;
     j["outputs"] = {{"vdb_sequence", frames},
                     {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
