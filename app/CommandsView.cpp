@@ -102,6 +102,7 @@ struct Snapshot {
     render::GrassWind wind;
     render::FieldOverlayData overlay;
     double step_ms = 0.0;  ///< wall time of the wind update (and overlay build) for t_s
+    std::string report;    ///< the source's stepReport() after that update
     uint64_t serial = 0;   ///< increments with every snapshot
 };
 
@@ -159,6 +160,7 @@ class WindWorker {
         out.overlay = mLatest.overlay;
         out.t_s = mLatest.t_s;
         out.step_ms = mLatest.step_ms;
+        out.report = mLatest.report;
         out.serial = mLatest.serial;
         return true;
     }
@@ -199,6 +201,7 @@ class WindWorker {
                 mLatest.overlay = std::move(data);
                 mLatest.t_s = t_s;
                 mLatest.step_ms = step_ms;
+                mLatest.report = mSource.stepReport();
                 ++mLatest.serial;
             } catch (...) {
                 std::lock_guard<std::mutex> lock(mMutex);
@@ -455,7 +458,10 @@ int runView(const ViewOptions& options) {
         if (behind) hud += "  simulation behind by " + fmt("%.2f s", lag_s);
         std::string hud2 = "x" + fmt("%g", speed) + (playing ? "" : "  paused") + "  shells " +
                            std::to_string(renderer.shellCount());
-        if (!solveLine.empty()) hud2 += "  " + solveLine;
+        if (!shown.report.empty())
+            hud2 += "  " + shown.report;
+        else if (!solveLine.empty())
+            hud2 += "  " + solveLine;
         if (Clock::now() < messageUntil) hud2 += "  " + hudMessage;
         if (showHud) {
             const int scale = out.height >= 600 ? 2 : 1;

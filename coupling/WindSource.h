@@ -29,6 +29,9 @@ public:
     /// field (coupling/FieldOverlayBuilder); nullptr when the source has none (the point source).
     /// Valid until the next update() or the source's destruction.
     virtual const sim::WindField* currentField() const { return nullptr; }
+    /// One short line on the solver work of the last update (steps, iterations, residual, CFL),
+    /// for the viewer's heads-up line; empty when the source solves nothing per update.
+    virtual std::string stepReport() const { return {}; }
 };
 
 }  // namespace gale::coupling
