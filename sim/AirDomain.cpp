@@ -2,6 +2,7 @@
 /// Open fractions of cut cells over a heightfield, and the OpenVDB air mask.
 
 #include "sim/AirDomain.h"
+#include "sim/Format.h"
 
 #include <openvdb/openvdb.h>
 #include <tbb/parallel_for.h>
@@ -24,11 +25,7 @@ struct AirDomain::Vdb {
 namespace detail {
 namespace {
 
-std::string num(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+using detail::num;
 
 /// Mean over t in [0, 1] of clamp(f0 + (f1 - f0) t, 0, D): exact for a linear f.
 double meanClampedLinear(double f0, double f1, double D) {

@@ -1,5 +1,6 @@
 /// \file AmbientWind.cpp
 #include "sim/AmbientWind.h"
+#include "sim/Format.h"
 
 #include <cmath>
 #include <sstream>
@@ -8,11 +9,7 @@
 namespace gale::sim {
 namespace {
 constexpr double PI = 3.14159265358979323846;
-std::string num(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+using detail::num;
 }  // namespace
 
 const char* windProfileName(WindProfile profile) {

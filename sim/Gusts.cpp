@@ -1,5 +1,6 @@
 /// \file Gusts.cpp
 #include "sim/Gusts.h"
+#include "sim/Format.h"
 
 #include <cmath>
 #include <sstream>
@@ -13,13 +14,9 @@ constexpr double DEFAULT_ATTACK_FRACTION = 0.15;
 /// Peak of the un-normalised IEC EOG shape -0.37 sin(3 pi s)(1 - cos(2 pi s)), at s = 1/2.
 constexpr double IEC_EOG_PEAK = 0.74;
 
-double smoothstep(double x) { return x <= 0 ? 0.0 : x >= 1 ? 1.0 : x * x * (3.0 - 2.0 * x); }
+using detail::smoothstep;
 
-std::string num(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+using detail::num;
 }  // namespace
 
 const char* gustEnvelopeName(GustEnvelope e) {

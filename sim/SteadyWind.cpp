@@ -1,6 +1,9 @@
 /// \file SteadyWind.cpp
 /// Assembly of Sherman's (1978) mass-consistent problem on cut cells, and the velocity update.
 #include "sim/SteadyWind.h"
+#include "sim/Format.h"
+
+#include "sim/FaceExtrapolation.h"
 
 #include <tbb/parallel_for.h>
 
@@ -13,11 +16,7 @@
 namespace gale::sim {
 namespace {
 
-std::string num(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+using detail::num;
 
 double checkedRatio(const MassConsistentWeights& w) {
     if (!(w.alphaH > 0.0) || !std::isfinite(w.alphaH))
@@ -33,33 +32,6 @@ double checkedRatio(const MassConsistentWeights& w) {
     return r;
 }
 
-// Fill faces without a value (valid == 0) from valid neighbours in the same face grid.
-void extrapolate(std::vector<double>& a, std::vector<uint8_t>& valid, int n0, int n1, int n2, int layers) {
-    std::vector<uint8_t> next;
-    for (int layer = 0; layer < layers; ++layer) {
-        next = valid;
-        tbb::parallel_for(0, n2, [&](int k) {
-            for (int j = 0; j < n1; ++j)
-                for (int i = 0; i < n0; ++i) {
-                    const size_t p = size_t(i) + size_t(n0) * (j + size_t(n1) * k);
-                    if (valid[p]) continue;
-                    double s = 0.0;
-                    int c = 0;
-                    auto take = [&](int ii, int jj, int kk) {
-                        if (ii < 0 || jj < 0 || kk < 0 || ii >= n0 || jj >= n1 || kk >= n2) return;
-                        const size_t q = size_t(ii) + size_t(n0) * (jj + size_t(n1) * kk);
-                        if (valid[q]) s += a[q], ++c;
-                    };
-                    take(i - 1, j, k), take(i + 1, j, k), take(i, j - 1, k);
-                    take(i, j + 1, k), take(i, j, k - 1), take(i, j, k + 1);
-                    if (c > 0) a[p] = s / c, next[p] = 1;
-                }
-        });
-        valid.swap(next);
-    }
-    for (size_t p = 0; p < a.size(); ++p)
-        if (!valid[p]) a[p] = 0.0;
-}
 
 }  // namespace
 
@@ -207,9 +179,9 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
                 }
             }
     });
-    extrapolate(U, okX, nx + 1, ny, nz, EXTRAPOLATION_LAYERS);
-    extrapolate(V, okY, nx, ny + 1, nz, EXTRAPOLATION_LAYERS);
-    extrapolate(W, okZ, nx, ny, nz + 1, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(U, okX, nx + 1, ny, nz, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(V, okY, nx, ny + 1, nz, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(W, okZ, nx, ny, nz + 1, EXTRAPOLATION_LAYERS);
 
     // --- divergence of the open fluxes, per air cell, scaled by h / U ----------------------
     const double Uref = ambient.speed_mps > 0.0 ? ambient.speed_mps : 1.0;
@@ -235,5 +207,37 @@ SteadyWindResult solveSteadyWind(const AirDomain& domain, const AmbientWind& amb
     SteadyWindSolver solver(domain, weights);
     return solver.solve(ambient, settings, boundary);
 }
+
+namespace detail {
+
+void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid0, int n0, int n1,
+                      int n2, int layers) {
+    std::vector<uint8_t> valid = valid0, next;
+    for (int layer = 0; layer < layers; ++layer) {
+        next = valid;
+        tbb::parallel_for(0, n2, [&](int k) {
+            for (int j = 0; j < n1; ++j)
+                for (int i = 0; i < n0; ++i) {
+                    const size_t p = size_t(i) + size_t(n0) * (j + size_t(n1) * k);
+                    if (valid[p]) continue;
+                    double s = 0.0;
+                    int c = 0;
+                    auto take = [&](int ii, int jj, int kk) {
+                        if (ii < 0 || jj < 0 || kk < 0 || ii >= n0 || jj >= n1 || kk >= n2) return;
+                        const size_t q = size_t(ii) + size_t(n0) * (jj + size_t(n1) * kk);
+                        if (valid[q]) s += a[q], ++c;
+                    };
+                    take(i - 1, j, k), take(i + 1, j, k), take(i, j - 1, k);
+                    take(i, j + 1, k), take(i, j, k - 1), take(i, j, k + 1);
+                    if (c > 0) a[p] = s / c, next[p] = 1;
+                }
+        });
+        valid.swap(next);
+    }
+    for (size_t p = 0; p < a.size(); ++p)
+        if (!valid[p]) a[p] = 0.0;
+}
+
+}  // namespace detail
 
 }  // namespace gale::sim

@@ -1,6 +1,7 @@
 /// \file UnsteadyWind.cpp
 /// Operator-split incompressible steps on the MAC grid (Stam 1999; projection as SteadyWind.cpp).
 #include "sim/UnsteadyWind.h"
+#include "sim/Format.h"
 
 #include <tbb/parallel_for.h>
 
@@ -10,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sim/FaceExtrapolation.h"
 #include "sim/SteadyWind.h"
 #include "sim/Viscosity.h"
 
@@ -19,11 +21,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-std::string num(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+using detail::num;
 
 /// Layers of closed faces refilled from their neighbours after each projection (as SteadyWind).
 constexpr int EXTRAPOLATION_LAYERS = SteadyWindSolver::EXTRAPOLATION_LAYERS;
@@ -32,32 +30,6 @@ constexpr double MIN_FORCING_STEPS = 1.0;
 /// Forcing and circulation are measured on a ring of this many core radii (at least 2 cells).
 constexpr double FORCING_RING_CORES = 2.0;
 
-void extrapolate(std::vector<double>& a, const std::vector<uint8_t>& valid0, int n0, int n1, int n2, int layers) {
-    std::vector<uint8_t> valid = valid0, next;
-    for (int layer = 0; layer < layers; ++layer) {
-        next = valid;
-        tbb::parallel_for(0, n2, [&](int k) {
-            for (int j = 0; j < n1; ++j)
-                for (int i = 0; i < n0; ++i) {
-                    const size_t p = size_t(i) + size_t(n0) * (j + size_t(n1) * k);
-                    if (valid[p]) continue;
-                    double s = 0.0;
-                    int c = 0;
-                    auto take = [&](int ii, int jj, int kk) {
-                        if (ii < 0 || jj < 0 || kk < 0 || ii >= n0 || jj >= n1 || kk >= n2) return;
-                        const size_t q = size_t(ii) + size_t(n0) * (jj + size_t(n1) * kk);
-                        if (valid[q]) s += a[q], ++c;
-                    };
-                    take(i - 1, j, k), take(i + 1, j, k), take(i, j - 1, k);
-                    take(i, j + 1, k), take(i, j, k - 1), take(i, j, k + 1);
-                    if (c > 0) a[p] = s / c, next[p] = 1;
-                }
-        });
-        valid.swap(next);
-    }
-    for (size_t p = 0; p < a.size(); ++p)
-        if (!valid[p]) a[p] = 0.0;
-}
 
 /// The steady solve's operator with A = I; the top closed by a lid unless it is open.
 PoissonSystem projectionSystem(const AirDomain& domain, bool openTop) {
@@ -207,9 +179,9 @@ double UnsteadyWindSolver::maxDivergenceScaled() const {
 }
 
 void UnsteadyWindSolver::extrapolateClosedFaces() {
-    extrapolate(mField.u_mps(), mOkX, mGrid.nx + 1, mGrid.ny, mGrid.nz, EXTRAPOLATION_LAYERS);
-    extrapolate(mField.v_mps(), mOkY, mGrid.nx, mGrid.ny + 1, mGrid.nz, EXTRAPOLATION_LAYERS);
-    extrapolate(mField.w_mps(), mOkZ, mGrid.nx, mGrid.ny, mGrid.nz + 1, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(mField.u_mps(), mOkX, mGrid.nx + 1, mGrid.ny, mGrid.nz, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(mField.v_mps(), mOkY, mGrid.nx, mGrid.ny + 1, mGrid.nz, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(mField.w_mps(), mOkZ, mGrid.nx, mGrid.ny, mGrid.nz + 1, EXTRAPOLATION_LAYERS);
 }
 
 SolveReport UnsteadyWindSolver::project() {

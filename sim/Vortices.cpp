@@ -1,6 +1,7 @@
 /// \file Vortices.cpp
 /// Rankine, Lamb-Oseen and Burgers whirlwinds; vorticity confinement (Fedkiw, Stam, Jensen 2001).
 #include "sim/Vortices.h"
+#include "sim/Format.h"
 
 #include <tbb/parallel_for.h>
 
@@ -19,12 +20,8 @@ constexpr double WINDOW_END_FACTOR = 1.5;
 /// Below this radius the axis itself: v = 0 (the profile's limit for every core).
 constexpr double AXIS_EPS_M = 1e-12;
 
-double smoothstep(double x) { return x <= 0 ? 0.0 : x >= 1 ? 1.0 : x * x * (3.0 - 2.0 * x); }
-std::string num(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+using detail::smoothstep;
+using detail::num;
 }  // namespace
 
 const char* vortexProfileName(VortexProfile p) {

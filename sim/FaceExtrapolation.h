@@ -1,0 +1,17 @@
+#pragma once
+/// \file FaceExtrapolation.h
+/// Values for MAC faces that carry none (closed by the terrain), so that interpolating the field
+/// near the ground stays smooth. Shared by the steady and unsteady solvers.
+
+#include <cstdint>
+#include <vector>
+
+namespace gale::sim::detail {
+
+/// Fills faces with valid == 0 in the face grid `a` (n0 * n1 * n2 values, first index fastest) by
+/// the mean of their valid face neighbours, `layers` times outwards; faces still without a value
+/// get 0. Velocities, m/s; `valid` is not changed.
+void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid, int n0, int n1,
+                      int n2, int layers);
+
+}  // namespace gale::sim::detail
