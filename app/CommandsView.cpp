@@ -41,8 +41,8 @@ using Clock = std::chrono::steady_clock;
 /// Interactive frames are paced to at most this rate, so drawing leaves CPU to the wind worker
 /// (llvmpipe and the solver share the same cores).
 constexpr double MAX_INTERACTIVE_FPS = 60.0;
-/// The heads-up line reports the wind as behind when it lags the clock by more than this many
-/// frame intervals.
+/// The heads-up line reports the wind as behind when the step drawn is older than the previous
+/// frame's request and lags the clock by more than this many output frame intervals.
 constexpr double BEHIND_FRAMES = 1.5;
 constexpr double MIN_SPEED = 1.0 / 16.0, MAX_SPEED = 16.0;
 
@@ -331,6 +331,9 @@ int runView(const ViewOptions& options) {
     auto last = Clock::now();
     const auto start = Clock::now();
     int frames = 0;
+    int behindFrames = 0;  // frames drawn while the wind lagged the clock
+    double maxLag_s = 0.0;
+    double previousRequest_s = out.startTime_s;
     std::string hudMessage;  // a transient note (screenshot saved, overlay mode)
     auto messageUntil = Clock::now();
     auto note = [&](const std::string& text) {
@@ -450,7 +453,12 @@ int runView(const ViewOptions& options) {
         // The heads-up line: frame rate, sim time, the wind step's cost, and lag.
         const double lag_s =
             (shown.serial > 0 ? simClock_s - shown.t_s : simClock_s - out.startTime_s);
-        const bool behind = lag_s > BEHIND_FRAMES / out.fps;
+        // The snapshot drawn answers at best the previous frame's request (one frame of pipeline
+        // latency); older than that, the wind cannot keep up with the clock.
+        const bool behind =
+            !scripted && shown.t_s < previousRequest_s - 1e-9 && lag_s > BEHIND_FRAMES / out.fps;
+        previousRequest_s = simClock_s;
+        if (behind) ++behindFrames, maxLag_s = std::max(maxLag_s, lag_s);
         // Two lines, the state that changes first, so a narrow window still shows the lag.
         std::string hud = fmt("%.1f fps", fpsSmoothed) + "  " + fmt("%.0f ms", frame_ms) + "  t " +
                           fmt("%.2f s", shown.serial > 0 ? shown.t_s : 0.0) + "  step " +
@@ -485,10 +493,14 @@ int runView(const ViewOptions& options) {
         }
     }
     const double total_s = msSince(start) / 1000.0;
-    std::printf("viewed %d frames in %.2f s (%.1f fps at %d x %d)%s%s\n", frames, total_s,
+    std::string behindNote;
+    if (behindFrames > 0)
+        behindNote = "; the wind lagged the clock in " + std::to_string(behindFrames) +
+                     " frames (at most " + fmt("%.2f s", maxLag_s) + ")";
+    std::printf("viewed %d frames in %.2f s (%.1f fps at %d x %d)%s%s%s\n", frames, total_s,
                 frames / std::max(total_s, 1e-9), out.width, out.height,
                 options.screenshotPath.empty() ? "" : "; screenshot ",
-                options.screenshotPath.c_str());
+                options.screenshotPath.c_str(), behindNote.c_str());
     return EXIT_OK;
 }
 
