@@ -42,9 +42,27 @@ void UnsteadyFieldWind::advanceTo(double t_s) {
 }
 
 void UnsteadyFieldWind::update(double t_s, render::GrassWind& wind) {
+    const UnsteadyRunStats before = mStats;
     if (mStats.allFinite) advanceTo(t_s);
+    mLastUpdate = mStats;
+    mLastUpdate.steps = mStats.steps - before.steps;
+    mLastUpdate.solve_s = mStats.solve_s - before.solve_s;
+    mLastUpdate.sampling_s = mStats.sampling_s - before.sampling_s;
     mWind.dropStepsBefore(t_s);
     mWind.update(t_s, wind);
+}
+
+std::string UnsteadyFieldWind::stepReport() const {
+    if (mLastUpdate.steps == 0) return "no solver step this frame";
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "%d step%s, <= %d projection its%s, CFL <= %.2f, div %.1e, %.0f ms solve + %.0f ms "
+                  "sampling",
+                  mLastUpdate.steps, mLastUpdate.steps == 1 ? "" : "s",
+                  mStats.maxProjectionIterations, mStats.allConverged ? "" : " (NOT converged)",
+                  mStats.maxCfl, mStats.maxDivergenceScaled, mLastUpdate.solve_s * 1e3,
+                  mLastUpdate.sampling_s * 1e3);
+    return buf;
 }
 
 std::string UnsteadyFieldWind::describe() const {

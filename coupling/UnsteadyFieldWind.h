@@ -49,7 +49,9 @@ public:
     void update(double t_s, render::GrassWind& wind) override;
     std::string describe() const override;
     /// The solver's current field (views of the field); valid until the next update().
-    const sim::WindField* currentField() const { return &mSolver->field(); }
+    const sim::WindField* currentField() const override { return &mSolver->field(); }
+    /// The last update's solver work: steps, projection iterations, CFL, divergence, wall time.
+    std::string stepReport() const override;
 
     const sim::UnsteadyWindSolver& solver() const { return *mSolver; }
     const UnsteadyRunStats& stats() const { return mStats; }
@@ -63,6 +65,7 @@ private:
     FieldWind mWind;
     double mSampleHeight_m;
     UnsteadyRunStats mStats;
+    UnsteadyRunStats mLastUpdate;  // the same totals over the last update() only
 };
 
 }  // namespace gale::coupling
