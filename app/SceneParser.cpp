@@ -123,6 +123,23 @@ std::string show(const toml::node& n) {
     }
 }
 
+/// `s` with control characters written as \xNN: keys and strings from the scene (`kind =
+/// "a\nb"`) must not break the one-line message or send escape codes to the terminal.
+std::string printable(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u == 0x7f) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02x", u);
+            out += buf;
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
 size_t editDistance(const std::string& a, const std::string& b) {
     std::vector<size_t> row(b.size() + 1);
     for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -213,7 +230,8 @@ class Section {
     [[noreturn]] void fail(int line, const std::string& key, const std::string& reason) const {
         std::string where = mCtx.file;
         if (line > 0) where += ":" + std::to_string(line);
-        throw SceneError(where + ": " + (key.empty() ? mName : full(key)) + ": " + reason);
+        throw SceneError(where + ": " +
+                         printable((key.empty() ? mName : full(key)) + ": " + reason));
     }
     [[noreturn]] void failValue(const toml::node& n, const std::string& key,
                                 const std::string& reason) const {
