@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -101,9 +102,10 @@ Transfer1D makeTransfer(int nFine, int nCoarse, int factor) {
 
 /// tmp[i - i0] = (b + sum of weighted neighbours) / D for i in [i0, i1): the Gauss-Seidel value of
 /// every cell of the run, from the current x (the caller keeps one colour).
+/// The strides are signed so that xr[i - sx] steps back (an unsigned i - sx wraps: UB, UBSan).
 GALE_VECTOR_CLONES
 void uniformCandidates(const double* __restrict x, const double* __restrict b, double* __restrict tmp, size_t p0,
-                       int i0, int i1, size_t sx, size_t sxy, double bx, double by, double bz, double invD) {
+                       int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx, double by, double bz, double invD) {
     const double* xr = x + p0;
     const double* br = b + p0;
     for (int i = i0; i < i1; ++i)
@@ -115,7 +117,7 @@ void uniformCandidates(const double* __restrict x, const double* __restrict b, d
 /// out = b - A x on a run (residual), or out = A x with b == nullptr; returns sum out * x.
 GALE_VECTOR_CLONES
 double uniformApply(const double* __restrict x, const double* __restrict b, double* __restrict out, size_t p0, int i0,
-                    int i1, size_t sx, size_t sxy, double bx, double by, double bz, double D) {
+                    int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx, double by, double bz, double D) {
     const double* xr = x + p0;
     double* o = out + p0;
     double acc = 0.0;
