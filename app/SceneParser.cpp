@@ -213,7 +213,7 @@ class Section {
 
     /// The node at `key`, or nullptr; marks the key as known and records its line.
     const toml::node* take(const std::string& key) {
-        mKnown.push_back(key);
+        if (std::find(mKnown.begin(), mKnown.end(), key) == mKnown.end()) mKnown.push_back(key);
         if (!mTable) return nullptr;
         auto it = mTable->find(key);
         if (it == mTable->end()) return nullptr;
