@@ -12,44 +12,15 @@
 #include <string>
 #include <vector>
 
+#include "TestFiles.h"
+
 namespace gale::app::test {
 
 namespace fs = std::filesystem;
 
-/// A new empty folder under the system temp folder, removed with everything in it at scope end.
-class TempDir {
-  public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        mPath = fs::temp_directory_path() /
-                ("gale_app_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-        fs::remove_all(mPath);
-        fs::create_directories(mPath);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(mPath, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return mPath; }
-    std::string operator/(const std::string& name) const { return (mPath / name).string(); }
-
-  private:
-    fs::path mPath;
-};
-
-inline std::string readFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-inline void writeFile(const std::string& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-}
+using gale::test::TempDir;
+using gale::test::readFile;
+using gale::test::writeFile;
 
 inline std::string quote(const std::string& s) {
     std::string out = "'";
@@ -79,9 +50,7 @@ inline RunResult runGale(const std::vector<std::string>& args, const std::string
     return r;
 }
 
-inline std::string sourcePath(const std::string& relative) {
-    return (fs::path(GALE_SOURCE_DIR) / relative).string();
-}
+using gale::test::sourcePath;
 
 inline int countLines(const std::string& text) {
     int n = 0;

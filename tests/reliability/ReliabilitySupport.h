@@ -22,56 +22,17 @@
 #include <thread>
 #include <vector>
 
+#include "TestFiles.h"
+
 namespace gale::reliability {
 
 namespace fs = std::filesystem;
 
-/// A new empty folder under the system temp folder, removed with everything in it at scope end.
-class TempDir {
-  public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        mPath = fs::temp_directory_path() / ("gale_reliability_" + std::to_string(::getpid()) +
-                                             "_" + std::to_string(counter++));
-        fs::remove_all(mPath);
-        fs::create_directories(mPath);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        // Folders a test made read-only must become writable again to be removed.
-        for (auto it = fs::recursive_directory_iterator(mPath, ec);
-             !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
-            if (it->is_directory(ec)) fs::permissions(it->path(), fs::perms::owner_all, ec);
-        fs::permissions(mPath, fs::perms::owner_all, ec);
-        fs::remove_all(mPath, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return mPath; }
-    std::string str() const { return mPath.string(); }
-    std::string operator/(const std::string& name) const { return (mPath / name).string(); }
+using gale::test::TempDir;
+using gale::test::readFile;
+using gale::test::writeFile;
+using gale::test::sourcePath;
 
-  private:
-    fs::path mPath;
-};
-
-inline std::string readFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-inline void writeFile(const std::string& path, const std::string& bytes) {
-    std::ofstream out(path, std::ios::binary);
-    out << bytes;
-}
-
-inline std::string sourcePath(const std::string& relative) {
-    return (fs::path(GALE_SOURCE_DIR) / relative).string();
-}
-
-/// Every path under `folder` (relative to it) with its size; empty if `folder` does not exist.
 inline std::map<std::string, uintmax_t> listTree(const std::string& folder) {
     std::map<std::string, uintmax_t> out;
     std::error_code ec;
