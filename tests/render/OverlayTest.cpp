@@ -30,10 +30,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Same tolerances as ShellRenderer.MatchesReferenceImage, for the same reasons (llvmpipe is
-// deterministic per Mesa build; a few levels absorb CPU code paths; edge pixels may flip).
-constexpr int kReferenceChannelTolerance = 8;
-constexpr double kReferenceMaxDifferingFraction = 0.005;
 // The ten viridis stops are given as 8-bit hex codes: half a level of rounding.
 constexpr float kStopTolerance = 0.5f / 255.0f;
 // L* steps between neighbouring samples of a 1000-sample sweep must not fall by more than this
@@ -148,27 +144,7 @@ TEST(Overlay, UniformWindArrowsAndSliceMatchReferenceImage) {
     Image actual;
     context->readPixels(actual);
 
-    const fs::path reference = fs::path(GALE_SOURCE_DIR) / "tests/data/render/overlay_uniform.png";
-    const char* update = std::getenv("GALE_UPDATE_REFERENCES");
-    if (update != nullptr && std::string(update) == "1") {
-        writeImageAtomic(actual, reference.string());
-        GTEST_SKIP() << "reference rewritten: " << reference;
-    }
-    const Image expected = readImageRgba8(reference.string());
-    ASSERT_EQ(expected.width, actual.width);
-    ASSERT_EQ(expected.height, actual.height);
-    const test::ImageDiff diff = test::compareImages(actual, expected, kReferenceChannelTolerance);
-    if (diff.differingFraction > kReferenceMaxDifferingFraction) {
-        const fs::path out = fs::path(GALE_BINARY_DIR) / "render_test_output";
-        fs::create_directories(out);
-        writeImageAtomic(actual, (out / "overlay_uniform.actual.png").string());
-        writeImageAtomic(diff.diff, (out / "overlay_uniform.diff.png").string());
-        ADD_FAILURE() << diff.differingFraction * 100.0 << "% of pixels differ by more than "
-                      << kReferenceChannelTolerance << "/255 (max " << diff.maxChannelDiff
-                      << "); actual: " << (out / "overlay_uniform.actual.png")
-                      << ", diff: " << (out / "overlay_uniform.diff.png")
-                      << ", expected: " << reference;
-    }
+    test::expectMatchesReference(actual, "overlay_uniform");
 }
 
 TEST(Overlay, UniformWindArrowsShareOneColourAndPointDownwind) {

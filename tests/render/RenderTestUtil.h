@@ -7,11 +7,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <glm/geometric.hpp>
+#include <gtest/gtest.h>
 #include <string>
 #include <vector>
 
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"
+#include "render/ImageIO.h"
 
 namespace gale::render::test {
 
@@ -112,6 +114,40 @@ inline ImageDiff compareImages(const Image& a, const Image& b, int channelTolera
     }
     result.differingFraction = pixels ? static_cast<double>(differing) / pixels : 0.0;
     return result;
+}
+
+// llvmpipe is deterministic for one Mesa build (DESIGN 7); a few levels of slack per channel
+// absorb differences between CPU instruction sets (AVX2 / AVX-512 code paths) and Mesa updates.
+constexpr int kReferenceChannelTolerance = 8;
+// A handful of pixels on blade edges may flip between blade and ground under such differences.
+constexpr double kReferenceMaxDifferingFraction = 0.005;
+
+/// Compares `actual` with tests/data/render/<name>.png within the tolerances above. With
+/// GALE_UPDATE_REFERENCES=1 it rewrites the reference instead and skips. On failure it writes
+/// <name>.actual.png and <name>.diff.png under the build folder and names them.
+inline void expectMatchesReference(const Image& actual, const std::string& name) {
+    namespace fs = std::filesystem;
+    const fs::path reference = fs::path(GALE_SOURCE_DIR) / "tests/data/render" / (name + ".png");
+    const char* update = std::getenv("GALE_UPDATE_REFERENCES");
+    if (update != nullptr && std::string(update) == "1") {
+        writeImageAtomic(actual, reference.string());
+        GTEST_SKIP() << "reference rewritten: " << reference;
+    }
+    const Image expected = readImageRgba8(reference.string());
+    ASSERT_EQ(expected.width, actual.width);
+    ASSERT_EQ(expected.height, actual.height);
+    const ImageDiff diff = compareImages(actual, expected, kReferenceChannelTolerance);
+    if (diff.differingFraction > kReferenceMaxDifferingFraction) {
+        const fs::path out = fs::path(GALE_BINARY_DIR) / "render_test_output";
+        fs::create_directories(out);
+        const fs::path actualPath = out / (name + ".actual.png"), diffPath = out / (name + ".diff.png");
+        writeImageAtomic(actual, actualPath.string());
+        writeImageAtomic(diff.diff, diffPath.string());
+        ADD_FAILURE() << diff.differingFraction * 100.0 << "% of pixels differ by more than "
+                      << kReferenceChannelTolerance << "/255 (max " << diff.maxChannelDiff
+                      << "); actual: " << actualPath << ", diff: " << diffPath
+                      << ", expected: " << reference;
+    }
 }
 
 }  // namespace gale::render::test

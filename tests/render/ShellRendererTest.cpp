@@ -23,11 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// llvmpipe is deterministic for one Mesa build (DESIGN 7); a few levels of slack per channel
-// absorb differences between CPU instruction sets (AVX2 / AVX-512 code paths) and Mesa updates.
-constexpr int kReferenceChannelTolerance = 8;
-// A handful of pixels on blade edges may flip between blade and ground under such differences.
-constexpr double kReferenceMaxDifferingFraction = 0.005;
 
 struct ReferenceScene {
     TerrainMesh mesh = test::makeHillMesh();
@@ -78,27 +73,7 @@ Image renderReference(const GrassWind& wind) {
 TEST(ShellRenderer, MatchesReferenceImage) {
     ReferenceScene scene;
     const Image actual = renderReference(scene.wind(0.35f, 0.9f));
-    const fs::path reference = fs::path(GALE_SOURCE_DIR) / "tests/data/render/reference_shells.png";
-    const char* update = std::getenv("GALE_UPDATE_REFERENCES");
-    if (update != nullptr && std::string(update) == "1") {
-        writeImageAtomic(actual, reference.string());
-        GTEST_SKIP() << "reference rewritten: " << reference;
-    }
-    const Image expected = readImageRgba8(reference.string());
-    ASSERT_EQ(expected.width, actual.width);
-    ASSERT_EQ(expected.height, actual.height);
-    const test::ImageDiff diff = test::compareImages(actual, expected, kReferenceChannelTolerance);
-    if (diff.differingFraction > kReferenceMaxDifferingFraction) {
-        const fs::path out = fs::path(GALE_BINARY_DIR) / "render_test_output";
-        fs::create_directories(out);
-        writeImageAtomic(actual, (out / "reference_shells.actual.png").string());
-        writeImageAtomic(diff.diff, (out / "reference_shells.diff.png").string());
-        ADD_FAILURE() << diff.differingFraction * 100.0 << "% of pixels differ by more than "
-                      << kReferenceChannelTolerance << "/255 (max " << diff.maxChannelDiff
-                      << "); actual: " << (out / "reference_shells.actual.png")
-                      << ", diff: " << (out / "reference_shells.diff.png")
-                      << ", expected: " << reference;
-    }
+    test::expectMatchesReference(actual, "reference_shells");
 }
 
 TEST(ShellRenderer, BendingMovesPixels) {
