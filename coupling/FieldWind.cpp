@@ -8,12 +8,15 @@
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "coupling/PointSourceWind.h"
 
 namespace gale::coupling {
 namespace {
 
+// Vertices per chunk of the group sums (fixed, so the sums do not depend on the threads).
+constexpr size_t SUM_CHUNK = 65536;
 // Below this many vertices a loop runs serially: TBB's overhead would dominate.
 constexpr size_t PARALLEL_GRAIN = 4096;
 
@@ -177,11 +180,21 @@ void FieldWind::enterInterval(size_t first) {
     if (mSpec.grouping == Grouping::Levels) {
         // K equal bins over the range the interval's mid-interval drives actually span, so no
         // level is spent on intensities no vertex has.
-        float lo = maxI, hi = -maxI;
-        for (size_t v = 0; v < count; ++v) {
-            const float mid = 0.5f * (mDrive0[v] + mDrive1[v]);
-            lo = std::min(lo, mid), hi = std::max(hi, mid);
-        }
+        // Min and max are exact whatever the order, so the parallel reduction is deterministic.
+        using MinMax = std::pair<float, float>;
+        const MinMax range = tbb::parallel_reduce(
+            tbb::blocked_range<size_t>(0, count, PARALLEL_GRAIN), MinMax{float(maxI), float(-maxI)},
+            [&](const tbb::blocked_range<size_t>& r, MinMax acc) {
+                for (size_t v = r.begin(); v != r.end(); ++v) {
+                    const float mid = 0.5f * (mDrive0[v] + mDrive1[v]);
+                    acc.first = std::min(acc.first, mid), acc.second = std::max(acc.second, mid);
+                }
+                return acc;
+            },
+            [](MinMax x, MinMax y) {
+                return MinMax{std::min(x.first, y.first), std::max(x.second, y.second)};
+            });
+        const float lo = range.first, hi = range.second;
         const double width = std::max(double(hi) - lo, 1e-9);
         forEachVertex(count, [&](size_t v) {
             const double mid = 0.5 * (double(mDrive0[v]) + mDrive1[v]);
@@ -189,13 +202,35 @@ void FieldWind::enterInterval(size_t first) {
             mGroup[v] = static_cast<uint32_t>(std::clamp(level, 0, mGroupCount - 1));
         });
     }
-    // Group means at both ends (serial: K accumulators, one pass).
+    // Group means at both ends. Sums over fixed chunks of vertices, added in chunk order: the
+    // same bits whatever the thread count. One group per vertex has nothing to sum.
     std::vector<double> sum0(mGroupCount, 0.0), sum1(mGroupCount, 0.0);
     std::vector<uint32_t> members(mGroupCount, 0);
-    for (size_t v = 0; v < count; ++v) {
-        sum0[mGroup[v]] += mDrive0[v];
-        sum1[mGroup[v]] += mDrive1[v];
-        ++members[mGroup[v]];
+    const size_t chunks = (count + SUM_CHUNK - 1) / SUM_CHUNK;
+    if (mSpec.grouping == Grouping::PerVertex || chunks < 2) {
+        for (size_t v = 0; v < count; ++v) {
+            sum0[mGroup[v]] += mDrive0[v];
+            sum1[mGroup[v]] += mDrive1[v];
+            ++members[mGroup[v]];
+        }
+    } else {
+        struct Partial {
+            std::vector<double> s0, s1;
+            std::vector<uint32_t> n;
+        };
+        std::vector<Partial> partial(chunks);
+        tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+            Partial& p = partial[c];
+            p.s0.assign(mGroupCount, 0.0), p.s1.assign(mGroupCount, 0.0), p.n.assign(mGroupCount, 0);
+            for (size_t v = c * SUM_CHUNK; v < std::min(count, (c + 1) * SUM_CHUNK); ++v) {
+                p.s0[mGroup[v]] += mDrive0[v];
+                p.s1[mGroup[v]] += mDrive1[v];
+                ++p.n[mGroup[v]];
+            }
+        });
+        for (const Partial& p : partial)
+            for (int g = 0; g < mGroupCount; ++g)
+                sum0[g] += p.s0[g], sum1[g] += p.s1[g], members[g] += p.n[g];
     }
     mGroupDrive0.assign(mGroupCount, 0.0);
     mGroupDrive1.assign(mGroupCount, 0.0);
