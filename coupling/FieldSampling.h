@@ -2,6 +2,7 @@
 /// \file FieldSampling.h
 /// Reads a solved sim::WindField where the grass lives (DESIGN 5, step 1).
 
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -11,11 +12,41 @@
 
 namespace gale::coupling {
 
-/// World velocity, m/s, at sampleHeight_m straight above every mesh vertex (vertical, not along
-/// the normal: the field's log profile is measured from the ground vertically), by the field's
-/// staggered trilinear interpolation. Vertices outside the field's box, or whose sample point is
-/// below its terrain, get zero (WindField::velocityAt_mps's fallback), so the grass there stands
-/// still rather than reading garbage. Multithreaded; O(vertices).
+/// Samples fields at sampleHeight_m straight above every vertex of a fixed mesh (vertical, not
+/// along the normal: the field's log profile is measured from the ground vertically), by the
+/// field's staggered trilinear interpolation (WindField::velocityAt_mps). Vertices outside the
+/// field's box, or whose sample point is below its terrain, get zero, so the grass there stands
+/// still rather than reading garbage.
+///
+/// Made for a run that samples one field geometry step after step: whether a sample point is
+/// below the terrain depends only on the geometry, so that test is made once per geometry and
+/// kept (1 byte per vertex); a field step is then the trilinear reads alone. Multithreaded;
+/// O(vertices). One sampler serves one caller at a time.
+class GrassSampler {
+public:
+    /// Copies the vertex positions. Throws std::invalid_argument unless sampleHeight_m is finite and
+    /// >= 0 (wind.sample_height_m).
+    GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_m);
+
+    /// World velocity, m/s, at every sample point into `out` (resized to the vertex count; its
+    /// storage is reused).
+    void sample(const sim::WindField& field, std::vector<glm::vec3>& out);
+    std::vector<glm::vec3> sample(const sim::WindField& field) {
+        std::vector<glm::vec3> out;
+        sample(field, out);
+        return out;
+    }
+
+    size_t vertexCount() const { return mVertex.size(); }
+
+private:
+    std::vector<glm::vec3> mVertex;  // world metres
+    double mHeight_m;
+    sim::WindField::Geometry mMaskGeometry;
+    std::vector<uint8_t> mBelowTerrain;  // per vertex, for mMaskGeometry; empty: not made yet
+};
+
+/// One-off sampling: GrassSampler(mesh, sampleHeight_m).sample(field).
 std::vector<glm::vec3> sampleAtGrass(const sim::WindField& field, const render::TerrainMesh& mesh,
                                      double sampleHeight_m);
 

@@ -56,18 +56,6 @@ void requirePositive(double v, const char* field) {
     }
 }
 
-template <class F>
-void forEachVertex(size_t count, F&& f) {
-    if (count < PARALLEL_GRAIN) {
-        for (size_t v = 0; v < count; ++v) f(v);
-        return;
-    }
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, PARALLEL_GRAIN),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                          for (size_t v = r.begin(); v != r.end(); ++v) f(v);
-                      });
-}
-
 glm::vec3 finiteOrZero(const glm::vec3& v) {
     return (std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) ? v : glm::vec3(0.0f);
 }
@@ -108,6 +96,11 @@ FieldWind::FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec)
                                     " positions but " + std::to_string(mesh.wsNormal.size()) +
                                     " normals");
     mNormal = mesh.wsNormal;
+    // The per-interval buffers, sized once here rather than at the first field step.
+    mDirection.resize(count);
+    mDrive0.resize(count);
+    mDrive1.resize(count);
+    mGroup.resize(count);
     if (spec.grouping == Grouping::PerVertex) {
         mGroupCount = static_cast<int>(count);
         mTile.resize(count);
@@ -146,6 +139,7 @@ void FieldWind::addFieldStep(double t_s, std::vector<glm::vec3> wsVelocity_mps) 
 
 void FieldWind::dropStepsBefore(double t_s) {
     while (mSteps.size() > 2 && mSteps[1].t_s <= t_s) {
+        mSpare = std::move(mSteps.front().wsVelocity_mps);
         mSteps.pop_front();
         if (mHaveInterval) {
             if (mIntervalFirst == 0) mHaveInterval = false;
@@ -159,85 +153,97 @@ void FieldWind::enterInterval(size_t first) {
     const Step& a = mSteps[first];
     const Step& b = mSteps[last];
     const size_t count = mNormal.size();
-    mDirection.resize(count);
-    mDrive0.resize(count);
-    mDrive1.resize(count);
-    mGroup.resize(count);
+    const bool levels = mSpec.grouping == Grouping::Levels;
     const double maxI = mSpec.maxIntensity;
     const double invBend = 1.0 / mSpec.bendSpeed_mps;
-    forEachVertex(count, [&](size_t v) {
-        const glm::vec3 wa = finiteOrZero(a.wsVelocity_mps[v]);
-        const glm::vec3 wb = finiteOrZero(b.wsVelocity_mps[v]);
-        // One direction for the interval: the tangent part of the mean wind (DESIGN 5, step 2);
-        // a wind that reverses within one step has no mean direction and gets none.
-        const glm::vec3 dir = tangentWindDirection(wa + wb, mNormal[v]);
-        mDirection[v] = dir;
-        // Static response along that direction: signed tangent speed over the bend speed.
-        mDrive0[v] = static_cast<float>(std::clamp(glm::dot(wa, dir) * invBend, -maxI, maxI));
-        mDrive1[v] = static_cast<float>(std::clamp(glm::dot(wb, dir) * invBend, -maxI, maxI));
-        mGroup[v] = mSpec.grouping == Grouping::Levels ? 0u : mTile[v];
-    });
-    if (mSpec.grouping == Grouping::Levels) {
-        // K equal bins over the range the interval's mid-interval drives actually span, so no
-        // level is spent on intensities no vertex has.
-        // Min and max are exact whatever the order, so the parallel reduction is deterministic.
-        using MinMax = std::pair<float, float>;
-        const MinMax range = tbb::parallel_reduce(
-            tbb::blocked_range<size_t>(0, count, PARALLEL_GRAIN), MinMax{float(maxI), float(-maxI)},
-            [&](const tbb::blocked_range<size_t>& r, MinMax acc) {
-                for (size_t v = r.begin(); v != r.end(); ++v) {
-                    const float mid = 0.5f * (mDrive0[v] + mDrive1[v]);
-                    acc.first = std::min(acc.first, mid), acc.second = std::max(acc.second, mid);
-                }
-                return acc;
-            },
-            [](MinMax x, MinMax y) {
-                return MinMax{std::min(x.first, y.first), std::max(x.second, y.second)};
-            });
-        const float lo = range.first, hi = range.second;
-        const double width = std::max(double(hi) - lo, 1e-9);
-        forEachVertex(count, [&](size_t v) {
-            const double mid = 0.5 * (double(mDrive0[v]) + mDrive1[v]);
-            const int level = static_cast<int>((mid - lo) / width * mGroupCount);
-            mGroup[v] = static_cast<uint32_t>(std::clamp(level, 0, mGroupCount - 1));
-        });
-    }
-    // Group means at both ends. Sums over fixed chunks of vertices, added in chunk order: the
-    // same bits whatever the thread count. One group per vertex has nothing to sum.
-    std::vector<double> sum0(mGroupCount, 0.0), sum1(mGroupCount, 0.0);
-    std::vector<uint32_t> members(mGroupCount, 0);
-    const size_t chunks = (count + SUM_CHUNK - 1) / SUM_CHUNK;
-    if (mSpec.grouping == Grouping::PerVertex || chunks < 2) {
-        for (size_t v = 0; v < count; ++v) {
-            sum0[mGroup[v]] += mDrive0[v];
-            sum1[mGroup[v]] += mDrive1[v];
-            ++members[mGroup[v]];
+
+    // Pass 1, per vertex: direction and drives at both ends; for levels, the range of the
+    // mid-interval drives (min and max are exact in any order: the reduction is deterministic).
+    using MinMax = std::pair<float, float>;
+    auto directionsAndDrives = [&](size_t begin, size_t end, MinMax acc) {
+        for (size_t v = begin; v != end; ++v) {
+            const glm::vec3 wa = finiteOrZero(a.wsVelocity_mps[v]);
+            const glm::vec3 wb = finiteOrZero(b.wsVelocity_mps[v]);
+            // One direction for the interval: the tangent part of the mean wind (DESIGN 5, step
+            // 2); a wind that reverses within one step has no mean direction and gets none.
+            const glm::vec3 dir = tangentWindDirection(wa + wb, mNormal[v]);
+            mDirection[v] = dir;
+            // Static response along that direction: signed tangent speed over the bend speed.
+            const float d0 = static_cast<float>(std::clamp(glm::dot(wa, dir) * invBend, -maxI, maxI));
+            const float d1 = static_cast<float>(std::clamp(glm::dot(wb, dir) * invBend, -maxI, maxI));
+            mDrive0[v] = d0, mDrive1[v] = d1;
+            const float mid = 0.5f * (d0 + d1);
+            acc.first = std::min(acc.first, mid), acc.second = std::max(acc.second, mid);
         }
-    } else {
-        struct Partial {
-            std::vector<double> s0, s1;
-            std::vector<uint32_t> n;
-        };
-        std::vector<Partial> partial(chunks);
-        tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
-            Partial& p = partial[c];
-            p.s0.assign(mGroupCount, 0.0), p.s1.assign(mGroupCount, 0.0), p.n.assign(mGroupCount, 0);
-            for (size_t v = c * SUM_CHUNK; v < std::min(count, (c + 1) * SUM_CHUNK); ++v) {
-                p.s0[mGroup[v]] += mDrive0[v];
-                p.s1[mGroup[v]] += mDrive1[v];
-                ++p.n[mGroup[v]];
+        return acc;
+    };
+    const MinMax empty{float(maxI), float(-maxI)};
+    const MinMax range =
+        count < PARALLEL_GRAIN
+            ? directionsAndDrives(0, count, empty)
+            : tbb::parallel_reduce(
+                  tbb::blocked_range<size_t>(0, count, PARALLEL_GRAIN), empty,
+                  [&](const tbb::blocked_range<size_t>& r, MinMax acc) {
+                      return directionsAndDrives(r.begin(), r.end(), acc);
+                  },
+                  [](MinMax x, MinMax y) {
+                      return MinMax{std::min(x.first, y.first), std::max(x.second, y.second)};
+                  });
+
+    // Pass 2, per chunk of SUM_CHUNK vertices: groups (levels: K equal bins over the range the
+    // mid-interval drives span, so no level is spent on intensities no vertex has; otherwise the
+    // fixed tiles) and each chunk's sums of the drives per group. The chunk sums are added in
+    // chunk order: the same bits whatever the thread count.
+    const float lo = range.first;
+    const double binsPerDrive = mGroupCount / std::max(double(range.second) - lo, 1e-9);
+    const bool perVertex = mSpec.grouping == Grouping::PerVertex;
+    const size_t chunks = (count + SUM_CHUNK - 1) / SUM_CHUNK;
+    struct Partial {
+        std::vector<double> s0, s1;
+        std::vector<uint32_t> n;
+    };
+    std::vector<Partial> partial(perVertex ? 0 : chunks);
+    auto groupChunk = [&](size_t c) {
+        const size_t begin = c * SUM_CHUNK, end = std::min(count, begin + SUM_CHUNK);
+        for (size_t v = begin; v != end; ++v) {
+            if (levels) {
+                const double mid = 0.5 * (double(mDrive0[v]) + mDrive1[v]);
+                const int level = static_cast<int>((mid - lo) * binsPerDrive);
+                mGroup[v] = static_cast<uint32_t>(std::clamp(level, 0, mGroupCount - 1));
+            } else {
+                mGroup[v] = mTile[v];
             }
-        });
+        }
+        if (perVertex) return;  // one group per vertex: nothing to sum
+        Partial& p = partial[c];
+        p.s0.assign(mGroupCount, 0.0), p.s1.assign(mGroupCount, 0.0), p.n.assign(mGroupCount, 0);
+        for (size_t v = begin; v != end; ++v) {
+            p.s0[mGroup[v]] += mDrive0[v];
+            p.s1[mGroup[v]] += mDrive1[v];
+            ++p.n[mGroup[v]];
+        }
+    };
+    if (chunks < 2) {
+        for (size_t c = 0; c < chunks; ++c) groupChunk(c);
+    } else {
+        tbb::parallel_for(size_t(0), chunks, groupChunk);
+    }
+
+    mGroupDrive0.assign(mGroupCount, 0.0);
+    mGroupDrive1.assign(mGroupCount, 0.0);
+    if (perVertex) {
+        for (size_t v = 0; v < count; ++v) mGroupDrive0[v] = mDrive0[v], mGroupDrive1[v] = mDrive1[v];
+    } else {
+        std::vector<double> sum0(mGroupCount, 0.0), sum1(mGroupCount, 0.0);
+        std::vector<uint32_t> members(mGroupCount, 0);
         for (const Partial& p : partial)
             for (int g = 0; g < mGroupCount; ++g)
                 sum0[g] += p.s0[g], sum1[g] += p.s1[g], members[g] += p.n[g];
-    }
-    mGroupDrive0.assign(mGroupCount, 0.0);
-    mGroupDrive1.assign(mGroupCount, 0.0);
-    for (int g = 0; g < mGroupCount; ++g) {
-        if (members[g] == 0) continue;
-        mGroupDrive0[g] = sum0[g] / members[g];
-        mGroupDrive1[g] = sum1[g] / members[g];
+        for (int g = 0; g < mGroupCount; ++g) {
+            if (members[g] == 0) continue;
+            mGroupDrive0[g] = sum0[g] / members[g];
+            mGroupDrive1[g] = sum1[g] / members[g];
+        }
     }
     mIntervalFirst = first;
     mIntervalT0_s = a.t_s;

@@ -80,6 +80,10 @@ public:
     void addFieldStep(double t_s, std::vector<glm::vec3> wsVelocity_mps);
     /// Forgets steps older than t_s except the one bracketing it (streaming runs keep memory flat).
     void dropStepsBefore(double t_s);
+    /// The storage of the last step dropped (its contents are stale; empty if none), for the next
+    /// step's samples: a run then reuses one buffer instead of asking the system for fresh pages
+    /// at every step (12 MB at a million vertices).
+    std::vector<glm::vec3> spareStepBuffer() { return std::move(mSpare); }
 
     int groupCount() const override { return mGroupCount; }
     /// Frames before the first step see the first step; after the last, the last.
@@ -112,6 +116,7 @@ private:
     std::vector<glm::vec3> mNormal;
     std::vector<uint32_t> mTile;  // fixed groups for Tiles / PerVertex
     std::deque<Step> mSteps;
+    std::vector<glm::vec3> mSpare;  // a dropped step's storage
     double mDroppedBefore_s = -1e300;
 
     // The interval [mSteps[mInterval], mSteps[mInterval + 1]] the per-vertex data describe.

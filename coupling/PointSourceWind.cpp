@@ -11,30 +11,11 @@
 namespace gale::coupling {
 namespace {
 
-// Below this fraction of |W| the tangential part is rounding noise: the wind is along the normal
-// and has no direction in the tangent plane (DESIGN 5, step 2).
-constexpr double DEGENERATE_TANGENT_FRACTION = 1e-6;
-
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
 }  // namespace
-
-glm::vec3 tangentWindDirection(const glm::vec3& wsWind, const glm::vec3& wsNormal) {
-    if (!finite(wsWind) || !finite(wsNormal)) return glm::vec3(0.0f);
-    // In double, so the result is perpendicular to N to ~1e-7 even on near-vertical slopes, and
-    // squaring cannot overflow for any finite float input.
-    const glm::dvec3 w(wsWind), nRaw(wsNormal);
-    const double windLength = glm::length(w), normalLength = glm::length(nRaw);
-    if (windLength == 0.0 || normalLength < 1e-12) return glm::vec3(0.0f);
-    const glm::dvec3 n = nRaw / normalLength;
-    // Paper section 3: V = W - (W.N) N.
-    const glm::dvec3 v = w - glm::dot(w, n) * n;
-    const double vLength = glm::length(v);
-    if (!(vLength > DEGENERATE_TANGENT_FRACTION * windLength)) return glm::vec3(0.0f);
-    return glm::vec3(v / vLength);
-}
 
 PointSourceWind::PointSourceWind(const render::TerrainMesh& mesh, const PointSourceSpec& spec,
                                  GustCurve curve)

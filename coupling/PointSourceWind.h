@@ -7,6 +7,7 @@
 /// This is the baseline the solved field replaces.
 
 #include "coupling/GustCurve.h"
+#include "coupling/TangentWind.h"
 #include "coupling/WindSource.h"
 #include "render/GrassInput.h"
 
@@ -20,10 +21,6 @@ struct PointSourceSpec {
     double stepDelay_s = 0.15;   ///< delay of the gust between neighbouring rings, seconds
     bool blowAway = true;        ///< true: grass bends away from the source (a gust from there)
 };
-
-/// V = W - (W.N)N for unit N, normalised; zero when |V| is below 1e-6 |W| (wind along the normal)
-/// or W is zero. Never NaN for finite input; a zero or non-finite N gives zero.
-glm::vec3 tangentWindDirection(const glm::vec3& wsWind, const glm::vec3& wsNormal);
 
 class PointSourceWind : public WindSource {
 public:

@@ -12,9 +12,9 @@ namespace gale::coupling {
 UnsteadyFieldWind::UnsteadyFieldWind(const render::TerrainMesh& mesh, std::unique_ptr<sim::AirDomain> domain,
                                      const sim::WindField& steady, const sim::UnsteadySettings& settings,
                                      double referenceSpeed_mps, const FieldWindSpec& response, double sampleHeight_m)
-    : mMesh(mesh), mDomain(std::move(domain)), mWind(mesh, response), mSampleHeight_m(sampleHeight_m) {
+    : mDomain(std::move(domain)), mWind(mesh, response), mSampler(mesh, sampleHeight_m) {
     mSolver = std::make_unique<sim::UnsteadyWindSolver>(*mDomain, steady, settings, referenceSpeed_mps);
-    mWind.addFieldStep(0.0, sampleAtGrass(mSolver->field(), mMesh, mSampleHeight_m));
+    mWind.addFieldStep(0.0, mSampler.sample(mSolver->field()));
 }
 
 void UnsteadyFieldWind::advanceTo(double t_s) {
@@ -23,7 +23,9 @@ void UnsteadyFieldWind::advanceTo(double t_s) {
         const auto t0 = Clock::now();
         const sim::StepReport r = mSolver->step(mSolver->nextDt_s());
         const auto t1 = Clock::now();
-        mWind.addFieldStep(r.t_s, sampleAtGrass(mSolver->field(), mMesh, mSampleHeight_m));
+        std::vector<glm::vec3> velocity = mWind.spareStepBuffer();
+        mSampler.sample(mSolver->field(), velocity);
+        mWind.addFieldStep(r.t_s, std::move(velocity));
         mStats.sampling_s += std::chrono::duration<double>(Clock::now() - t1).count();
         mStats.solve_s += std::chrono::duration<double>(t1 - t0).count();
         ++mStats.steps;

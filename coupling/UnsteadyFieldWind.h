@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/FieldSampling.h"
 #include "coupling/FieldWind.h"
 #include "coupling/WindSource.h"
 #include "render/GrassInput.h"
@@ -59,11 +60,10 @@ public:
 private:
     void advanceTo(double t_s);
 
-    const render::TerrainMesh& mMesh;
     std::unique_ptr<sim::AirDomain> mDomain;
     std::unique_ptr<sim::UnsteadyWindSolver> mSolver;
     FieldWind mWind;
-    double mSampleHeight_m;
+    GrassSampler mSampler;
     UnsteadyRunStats mStats;
     UnsteadyRunStats mLastUpdate;  // the same totals over the last update() only
 };

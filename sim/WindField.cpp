@@ -16,33 +16,62 @@ WindField::WindField(int nx, int ny, int nz, double voxelSize_m, std::array<doub
 }
 
 namespace {
-// Trilinear interpolation on a grid of n0 x n1 x n2 samples (index 0 fastest) at fractional
-// index coordinates, clamped to the grid.
-double trilinear(const std::vector<double>& a, int n0, int n1, int n2, double f0, double f1, double f2) {
-    f0 = std::clamp(f0, 0.0, double(n0 - 1));
-    f1 = std::clamp(f1, 0.0, double(n1 - 1));
-    f2 = std::clamp(f2, 0.0, double(n2 - 1));
-    const int i = std::min(int(f0), std::max(n0 - 2, 0)), j = std::min(int(f1), std::max(n1 - 2, 0)),
-              k = std::min(int(f2), std::max(n2 - 2, 0));
-    const double t0 = n0 > 1 ? f0 - i : 0.0, t1 = n1 > 1 ? f1 - j : 0.0, t2 = n2 > 1 ? f2 - k : 0.0;
-    const int i1 = std::min(i + 1, n0 - 1), j1 = std::min(j + 1, n1 - 1), k1 = std::min(k + 1, n2 - 1);
-    auto at = [&](int x, int y, int z) { return a[size_t(x) + size_t(n0) * (y + size_t(n1) * z)]; };
-    const double c00 = at(i, j, k) * (1 - t0) + at(i1, j, k) * t0;
-    const double c10 = at(i, j1, k) * (1 - t0) + at(i1, j1, k) * t0;
-    const double c01 = at(i, j, k1) * (1 - t0) + at(i1, j, k1) * t0;
-    const double c11 = at(i, j1, k1) * (1 - t0) + at(i1, j1, k1) * t0;
-    return (c00 * (1 - t1) + c10 * t1) * (1 - t2) + (c01 * (1 - t1) + c11 * t1) * t2;
+
+// One axis of a trilinear stencil on a lattice of n samples: the lower sample, the upper one and
+// the weight of the upper, for a fractional index coordinate f clamped to the lattice.
+struct AxisWeights {
+    size_t i0, i1;
+    double t;
+};
+
+AxisWeights axisWeights(double f, int n) {
+    f = std::clamp(f, 0.0, double(n - 1));
+    const int i = std::min(static_cast<int>(f), std::max(n - 2, 0));
+    return {size_t(i), size_t(std::min(i + 1, n - 1)), n > 1 ? f - i : 0.0};
 }
+
+// Trilinear interpolation of a grid of n0 x n1 x n2 samples (index 0 fastest).
+double trilinear(const std::vector<double>& a, size_t n0, size_t n1, const AxisWeights& x,
+                 const AxisWeights& y, const AxisWeights& z) {
+    const double* lo = a.data() + n0 * n1 * z.i0;
+    const double* hi = a.data() + n0 * n1 * z.i1;
+    auto lerpX = [&](const double* plane, size_t j) {
+        const double* row = plane + n0 * j;
+        return row[x.i0] + (row[x.i1] - row[x.i0]) * x.t;
+    };
+    auto lerpXY = [&](const double* plane) {
+        const double a = lerpX(plane, y.i0), b = lerpX(plane, y.i1);
+        return a + (b - a) * y.t;
+    };
+    const double c0 = lerpXY(lo), c1 = lerpXY(hi);
+    return c0 + (c1 - c0) * z.t;
+}
+
 }  // namespace
 
+bool WindField::belowTerrain(double x, double y, double z) const {
+    return mTerrain && z < mTerrain->sample(x, y);
+}
+
 std::array<double, 3> WindField::velocityAt_mps(double x, double y, double z) const {
+    if (belowTerrain(x, y, z)) return {0, 0, 0};
+    return velocityAboveTerrainAt_mps(x, y, z);
+}
+
+std::array<double, 3> WindField::velocityAboveTerrainAt_mps(double x, double y, double z) const {
     if (mNx == 0) return {0, 0, 0};
     const double X = (x - mWsMin[0]) / mH, Y = (y - mWsMin[1]) / mH, Z = (z - mWsMin[2]) / mH;
     if (!(X >= 0.0 && X <= mNx && Y >= 0.0 && Y <= mNy && Z >= 0.0 && Z <= mNz)) return {0, 0, 0};
-    if (mTerrain && z < mTerrain->sample(x, y)) return {0, 0, 0};
-    return {trilinear(mU, mNx + 1, mNy, mNz, X, Y - 0.5, Z - 0.5),
-            trilinear(mV, mNx, mNy + 1, mNz, X - 0.5, Y, Z - 0.5),
-            trilinear(mW, mNx, mNy, mNz + 1, X - 0.5, Y - 0.5, Z)};
+    // Each component lives on its own faces: along its own axis on the face lattice (index X),
+    // along the other two on the cell-centre lattice (index X - 1/2). Six axis stencils serve
+    // the three components.
+    const AxisWeights faceX = axisWeights(X, mNx + 1), centreX = axisWeights(X - 0.5, mNx);
+    const AxisWeights faceY = axisWeights(Y, mNy + 1), centreY = axisWeights(Y - 0.5, mNy);
+    const AxisWeights faceZ = axisWeights(Z, mNz + 1), centreZ = axisWeights(Z - 0.5, mNz);
+    const size_t nx = size_t(mNx), ny = size_t(mNy);
+    return {trilinear(mU, nx + 1, ny, faceX, centreY, centreZ),
+            trilinear(mV, nx, ny + 1, centreX, faceY, centreZ),
+            trilinear(mW, nx, ny, centreX, centreY, faceZ)};
 }
 
 }  // namespace gale::sim

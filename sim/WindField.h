@@ -57,6 +57,26 @@ public:
     /// below the terrain surface (the Heightfield's bilinear h(x, y)). Const and lock-free: safe
     /// for any number of concurrent readers.
     std::array<double, 3> velocityAt_mps(double wsX_m, double wsY_m, double wsZ_m) const;
+    /// velocityAt_mps without the terrain test, for a caller that has made it once for points it
+    /// samples in many fields of the same geometry (coupling's grass sampler). Zero outside the box.
+    std::array<double, 3> velocityAboveTerrainAt_mps(double wsX_m, double wsY_m, double wsZ_m) const;
+    /// True when the point lies below the terrain surface (never for a field without terrain).
+    bool belowTerrain(double wsX_m, double wsY_m, double wsZ_m) const;
+
+    /// What a point's place in the field depends on: cells, box and terrain. Two fields with equal
+    /// geometries answer belowTerrain alike and share every interpolation stencil.
+    struct Geometry {
+        int nx = 0, ny = 0, nz = 0;
+        double voxelSize_m = 0.0;
+        std::array<double, 3> wsMin_m{};
+        const Heightfield* terrain = nullptr;
+        bool operator==(const Geometry& o) const {
+            return nx == o.nx && ny == o.ny && nz == o.nz && voxelSize_m == o.voxelSize_m &&
+                   wsMin_m == o.wsMin_m && terrain == o.terrain;
+        }
+        bool operator!=(const Geometry& o) const { return !(*this == o); }
+    };
+    Geometry geometry() const { return {mNx, mNy, mNz, mH, mWsMin, mTerrain.get()}; }
 
     /// Cell-centred velocity: the average of the two faces of each component, m/s.
     std::array<double, 3> cellVelocity_mps(int i, int j, int k) const {
