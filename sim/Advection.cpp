@@ -33,6 +33,19 @@ namespace {
 /// axis and at half cells across it.
 constexpr double offset(Placement p, int axis) { return int(p) == axis ? 0.0 : 0.5; }
 
+/// Trilinear interpolation between the 8 values c[x + 2 y + 4 z] around a sample at fractions
+/// t (lerp along x, then y, then z); if lo/hi are given they receive the min/max of the 8 (the
+/// MacCormack and BFECC limiter's bounds, Selle et al. 2008). The one blend of sampleAt and
+/// IndexSampler, so both keep the same arithmetic.
+inline double blendCorners(const double (&c)[8], const double* t, double* lo, double* hi) {
+    if (lo) *lo = std::min({c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]});
+    if (hi) *hi = std::max({c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]});
+    const double c00 = c[0] + (c[1] - c[0]) * t[0], c10 = c[2] + (c[3] - c[2]) * t[0];
+    const double c01 = c[4] + (c[5] - c[4]) * t[0], c11 = c[6] + (c[7] - c[6]) * t[0];
+    const double c0 = c00 + (c10 - c00) * t[1], c1 = c01 + (c11 - c01) * t[1];
+    return c0 + (c1 - c0) * t[2];
+}
+
 }  // namespace
 
 double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, const Vec3d& ws, double* lo, double* hi) {
@@ -47,16 +60,10 @@ double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, con
     }
     const int i1 = std::min(i0[0] + 1, n[0] - 1), j1 = std::min(i0[1] + 1, n[1] - 1), k1 = std::min(i0[2] + 1, n[2] - 1);
     auto at = [&](int x, int y, int z) { return q[size_t(x) + size_t(n[0]) * (y + size_t(n[1]) * z)]; };
-    const double a000 = at(i0[0], i0[1], i0[2]), a100 = at(i1, i0[1], i0[2]);
-    const double a010 = at(i0[0], j1, i0[2]), a110 = at(i1, j1, i0[2]);
-    const double a001 = at(i0[0], i0[1], k1), a101 = at(i1, i0[1], k1);
-    const double a011 = at(i0[0], j1, k1), a111 = at(i1, j1, k1);
-    if (lo) *lo = std::min({a000, a100, a010, a110, a001, a101, a011, a111});
-    if (hi) *hi = std::max({a000, a100, a010, a110, a001, a101, a011, a111});
-    const double c00 = a000 + (a100 - a000) * t[0], c10 = a010 + (a110 - a010) * t[0];
-    const double c01 = a001 + (a101 - a001) * t[0], c11 = a011 + (a111 - a011) * t[0];
-    const double c0 = c00 + (c10 - c00) * t[1], c1 = c01 + (c11 - c01) * t[1];
-    return c0 + (c1 - c0) * t[2];
+    const double c[8] = {at(i0[0], i0[1], i0[2]), at(i1, i0[1], i0[2]), at(i0[0], j1, i0[2]),
+                         at(i1, j1, i0[2]),       at(i0[0], i0[1], k1), at(i1, i0[1], k1),
+                         at(i0[0], j1, k1),       at(i1, j1, k1)};
+    return blendCorners(c, t, lo, hi);
 }
 
 Vec3d velocityAt(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& ws) {
@@ -97,14 +104,9 @@ struct IndexSampler {
         }
         const size_t sx = n[0] > 1 ? 1 : 0, sy = n[1] > 1 ? size_t(n[0]) : 0, sz = n[2] > 1 ? size_t(n[0]) * n[1] : 0;
         const double* p = a + size_t(i0[0]) + size_t(n[0]) * (i0[1] + size_t(n[1]) * i0[2]);
-        const double a000 = p[0], a100 = p[sx], a010 = p[sy], a110 = p[sx + sy];
-        const double a001 = p[sz], a101 = p[sx + sz], a011 = p[sy + sz], a111 = p[sx + sy + sz];
-        if (lo) *lo = std::min({a000, a100, a010, a110, a001, a101, a011, a111});
-        if (hi) *hi = std::max({a000, a100, a010, a110, a001, a101, a011, a111});
-        const double c00 = a000 + (a100 - a000) * t[0], c10 = a010 + (a110 - a010) * t[0];
-        const double c01 = a001 + (a101 - a001) * t[0], c11 = a011 + (a111 - a011) * t[0];
-        const double c0 = c00 + (c10 - c00) * t[1], c1 = c01 + (c11 - c01) * t[1];
-        return c0 + (c1 - c0) * t[2];
+        const double c[8] = {p[0],  p[sx],      p[sy],      p[sx + sy],
+                             p[sz], p[sx + sz], p[sy + sz], p[sx + sy + sz]};
+        return blendCorners(c, t, lo, hi);
     }
 };
 
