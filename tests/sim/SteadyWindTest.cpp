@@ -10,12 +10,16 @@
 #include <filesystem>
 #include <string>
 
+#include "SimTestUtil.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/VdbIO.h"
 
 namespace gale::sim {
 namespace {
+
+using test::tight;
+using test::uniformWind;
 
 constexpr double PI = 3.14159265358979323846;
 
@@ -27,21 +31,6 @@ Heightfield flat(double size_m, double spacing_m, double height_m = 0.0) {
     Heightfield hf = makeTerrain(s);
     for (float& z : hf.height_m) z = float(height_m);
     return hf;
-}
-
-AmbientWind uniformWind(double speed_mps, double direction_deg) {
-    AmbientWind a;
-    a.profile = WindProfile::Uniform;
-    a.speed_mps = speed_mps;
-    a.direction_deg = direction_deg;
-    return a;
-}
-
-SolverSettings tight() {
-    SolverSettings s;
-    s.relativeTolerance = 1e-9;
-    s.maxIterations = 200;
-    return s;
 }
 
 template <class F>

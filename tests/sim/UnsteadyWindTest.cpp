@@ -7,12 +7,16 @@
 #include <cstdio>
 #include <vector>
 
+#include "SimTestUtil.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
 
 namespace gale::sim {
 namespace {
+
+using test::tight;
+using test::uniformWind;
 
 constexpr double PI = 3.14159265358979323846;
 
@@ -26,19 +30,15 @@ Heightfield terrain(TerrainKind kind, double sx, double sy, double height_m = 0.
     return makeTerrain(s);
 }
 
-AmbientWind uniform(double speed_mps) {
-    AmbientWind a;
-    a.profile = WindProfile::Uniform;
-    a.speed_mps = speed_mps;
-    return a;
-}
-
-SolverSettings tight() {
-    SolverSettings s;
-    s.relativeTolerance = 1e-9;
-    s.maxIterations = 200;
-    return s;
-}
+/// Flat ground of sx x sy metres under a uniform wind of speed_mps, its domain (2 m cells, the
+/// automatic top) and the steady field an unsteady run starts from.
+struct FlatGroundWind {
+    FlatGroundWind(double sx, double sy, double speed_mps)
+        : domain(terrain(TerrainKind::Flat, sx, sy), {2.0, {}, 1e9}),
+          steady(solveSteadyWind(domain, uniformWind(speed_mps), {}, tight())) {}
+    AirDomain domain;
+    SteadyWindResult steady;
+};
 
 /// Divergence after a projection, |div u| h / U: the solve stops at 1e-7 relative residual here,
 /// so the flux imbalance is far below this.
@@ -46,12 +46,10 @@ constexpr double DIVERGENCE_TOLERANCE = 1e-4;
 
 TEST(UnsteadyWind, UniformFlowOverFlatGroundStaysUniform) {
     // The steady field is the mean flow and the far field: with nothing else the state is fixed.
-    const Heightfield hf = terrain(TerrainKind::Flat, 40, 20);
-    AirDomain d(hf, {2.0, {}, 1e9});
-    const auto steady = solveSteadyWind(d, uniform(5.0), {}, tight());
+    const FlatGroundWind flow(40, 20, 5.0);
     UnsteadySettings s;
     s.dt_s = 0.7;  // CFL 1.75
-    UnsteadyWindSolver solver(d, steady.field, s, 5.0);
+    UnsteadyWindSolver solver(flow.domain, flow.steady.field, s, 5.0);
     for (int n = 0; n < 5; ++n) {
         const StepReport r = solver.step(solver.nextDt_s());
         EXPECT_TRUE(r.finite);
@@ -66,7 +64,7 @@ TEST(UnsteadyWind, UniformFlowOverFlatGroundStaysUniform) {
 TEST(UnsteadyWind, ProjectionKeepsEveryStepDivergenceFreeOverAHillAtLargeCfl) {
     const Heightfield hf = terrain(TerrainKind::GaussianHill, 48, 32, 8.0, 6.0);
     AirDomain d(hf, {2.0, {}, 1e9});
-    const auto steady = solveSteadyWind(d, uniform(6.0), {}, tight());
+    const auto steady = solveSteadyWind(d, uniformWind(6.0), {}, tight());
     UnsteadySettings s;
     s.cfl = 10.0;
     s.maxDt_s = 100.0;
@@ -88,16 +86,14 @@ TEST(UnsteadyWind, GustFrontArrivesAtDistanceOverMeanSpeed) {
     // Flat ground, uniform 5 m/s: a weak 1-cosine gust (0.5 m/s, so it travels with the mean
     // speed rather than its own) enters at x = 0 at t = 0. Its peak passes two probes 100 m apart
     // at grass height 20 s apart.
-    const Heightfield hf = terrain(TerrainKind::Flat, 200, 24);
-    AirDomain d(hf, {2.0, {}, 1e9});
     const double U = 5.0;
-    const auto steady = solveSteadyWind(d, uniform(U), {}, tight());
+    const FlatGroundWind flow(200, 24, U);
     UnsteadySettings s;
     s.dt_s = 0.4;
     GustEvent g;
     g.peak_mps = 0.5, g.duration_s = 6.0, g.envelope = GustEnvelope::OneMinusCosine;
     s.gusts.push_back(g);
-    UnsteadyWindSolver solver(d, steady.field, s, U);
+    UnsteadyWindSolver solver(flow.domain, flow.steady.field, s, U);
     const double x1 = 50.0, x2 = 150.0, y = 12.0, z = 1.0;
     double peak1 = -1, peak2 = -1, t1 = 0, t2 = 0;
     while (solver.time_s() < 45.0) {
@@ -125,17 +121,15 @@ TEST(UnsteadyWind, GustFrontArrivesAtDistanceOverMeanSpeed) {
 TEST(UnsteadyWind, RegionGustMovesAtItsSpeedAndArrivesLaterDownstream) {
     // A gust that enters as a moving forcing disc (radius 12 m) rather than through the inflow:
     // its disc travels at 5 m/s, so the peak passes probes 60 m apart about 12 s apart.
-    const Heightfield hf = terrain(TerrainKind::Flat, 160, 40);
-    AirDomain d(hf, {2.0, {}, 1e9});
     const double U = 5.0;
-    const auto steady = solveSteadyWind(d, uniform(U), {}, tight());
+    const FlatGroundWind flow(160, 40, U);
     UnsteadySettings s;
     s.dt_s = 0.5;
     GustEvent g;
     g.entry = GustEntry::Region, g.regionRadius_m = 12.0, g.peak_mps = 3.0, g.duration_s = 30.0;
     g.envelope = GustEnvelope::Step;
     s.gusts.push_back(g);
-    UnsteadyWindSolver solver(d, steady.field, s, U);
+    UnsteadyWindSolver solver(flow.domain, flow.steady.field, s, U);
     const auto c0 = solver.regionCentre_m(g, 0.0);
     EXPECT_NEAR(c0[0], 0.0, 1e-9);  // the upwind edge, through the centre
     EXPECT_NEAR(c0[1], 20.0, 1e-9);
@@ -185,7 +179,7 @@ TEST(UnsteadyWind, WhirlwindIsCarriedByTheWindWithItsSenseOfRotation) {
     const Heightfield hf = terrain(TerrainKind::Flat, 120, 60);
     AirDomain d(hf, {2.0, std::optional<double>(16.0), 1e9});
     const double U = 3.0, T = 10.0;
-    const auto steady = solveSteadyWind(d, uniform(U), {}, tight());
+    const auto steady = solveSteadyWind(d, uniformWind(U), {}, tight());
     for (double sense : {+1.0, -1.0}) {
         UnsteadySettings s;
         s.advection = AdvectionScheme::MacCormack;
@@ -226,7 +220,7 @@ TEST(UnsteadyWind, LambOseenVortexDecaysAsTheExactViscousSolution) {
     // Calm air, a lid 4 m up, the vortex resolved by 6 cells per core radius.
     const Heightfield hf = terrain(TerrainKind::Flat, 72, 72);
     AirDomain d(hf, {1.0, std::optional<double>(4.0), 1e9});
-    const auto steady = solveSteadyWind(d, uniform(0.0), {}, tight());
+    const auto steady = solveSteadyWind(d, uniformWind(0.0), {}, tight());
     const double r0 = 6.0, nu = 1.0, T = 4.0;
     UnsteadySettings s;
     s.advection = AdvectionScheme::MacCormack;
@@ -260,7 +254,7 @@ TEST(UnsteadyWind, VorticityConfinementKeepsAVortexCoreStronger) {
     // lost vorticity back near the core, so the peak stays higher than without it.
     const Heightfield hf = terrain(TerrainKind::Flat, 48, 48);
     AirDomain d(hf, {2.0, std::optional<double>(8.0), 1e9});
-    const auto steady = solveSteadyWind(d, uniform(0.0), {}, tight());
+    const auto steady = solveSteadyWind(d, uniformWind(0.0), {}, tight());
     double peak[2] = {0, 0};
     for (int run = 0; run < 2; ++run) {
         UnsteadySettings s;
@@ -286,10 +280,8 @@ TEST(UnsteadyWind, VorticityConfinementKeepsAVortexCoreStronger) {
 }
 
 TEST(UnsteadyWind, SceneWithoutWhirlwindsRunsNoVortexCode) {
-    const Heightfield hf = terrain(TerrainKind::Flat, 20, 20);
-    AirDomain d(hf, {2.0, {}, 1e9});
-    const auto steady = solveSteadyWind(d, uniform(2.0), {}, tight());
-    UnsteadyWindSolver solver(d, steady.field, UnsteadySettings{}, 2.0);
+    const FlatGroundWind flow(20, 20, 2.0);
+    UnsteadyWindSolver solver(flow.domain, flow.steady.field, UnsteadySettings{}, 2.0);
     EXPECT_FALSE(solver.usesVortexCode());
 }
 

@@ -1,0 +1,29 @@
+#pragma once
+/// \file SimTestUtil.h
+/// Ambient winds and solver settings shared by the steady and unsteady wind tests.
+
+#include "sim/AmbientWind.h"
+#include "sim/PoissonSolver.h"
+
+namespace gale::sim::test {
+
+/// A height-independent wind of speed_mps (m/s) blowing towards direction_deg (degrees
+/// counter-clockwise from +x, as AmbientWind; 0 blows along +x).
+inline AmbientWind uniformWind(double speed_mps, double direction_deg = 0.0) {
+    AmbientWind a;
+    a.profile = WindProfile::Uniform;
+    a.speed_mps = speed_mps;
+    a.direction_deg = direction_deg;
+    return a;
+}
+
+/// Steady solve to 1e-9 relative residual in at most 200 iterations (the defaults are 1e-6 and
+/// 100), so the solve's own error stays well below what the tests compare.
+inline SolverSettings tight() {
+    SolverSettings s;
+    s.relativeTolerance = 1e-9;
+    s.maxIterations = 200;
+    return s;
+}
+
+}  // namespace gale::sim::test
