@@ -137,7 +137,7 @@ int runBenchCoupling(const BenchCouplingOptions& options) {
             ++frames;
             const auto exact = wind.exactStaticIntensity(t);
             for (size_t v = 0; v < exact.size(); ++v) {
-                const double e = glm::length(tip(out.groupIntensity[out.group[v]]) - tip(exact[v]));
+                const double e = glm::length(tip(out.groupIntensity[out.group()[v]]) - tip(exact[v]));
                 sum2 += e * e;
                 maxErr = std::max(maxErr, e);
                 ++count;

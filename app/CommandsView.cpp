@@ -130,8 +130,8 @@ class WindWorker {
         }
         mWake.notify_all();
     }
-    /// Copies the latest snapshot into `out` if it is newer than out.serial; per-vertex arrays
-    /// only when their revision changed. Returns true if it copied.
+    /// Copies the latest snapshot into `out` if it is newer than out.serial (the per-vertex wind
+    /// is shared, not copied: GrassWind::vertex). Returns true if it copied.
     bool take(Snapshot& out) {
         std::lock_guard<std::mutex> lock(mMutex);
         return copyLocked(out);
@@ -152,11 +152,7 @@ class WindWorker {
   private:
     bool copyLocked(Snapshot& out) {
         if (mLatest.serial == out.serial) return false;
-        if (mLatest.wind.revision != out.wind.revision) {
-            out.wind = mLatest.wind;
-        } else {
-            out.wind.groupIntensity = mLatest.wind.groupIntensity;
-        }
+        out.wind = mLatest.wind;
         out.overlay = mLatest.overlay;
         out.t_s = mLatest.t_s;
         out.step_ms = mLatest.step_ms;
@@ -194,10 +190,7 @@ class WindWorker {
                     coupling::buildOverlay(mSource, wind, mMesh, overlay, mGrassHeight_m);
                 const double step_ms = msSince(start);
                 std::lock_guard<std::mutex> lock(mMutex);
-                if (wind.revision != mLatest.wind.revision)
-                    mLatest.wind = wind;
-                else
-                    mLatest.wind.groupIntensity = wind.groupIntensity;
+                mLatest.wind = wind;
                 mLatest.overlay = std::move(data);
                 mLatest.t_s = t_s;
                 mLatest.step_ms = step_ms;

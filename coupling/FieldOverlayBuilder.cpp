@@ -297,8 +297,10 @@ render::FieldOverlayData buildGrassWindOverlay(const render::GrassWind& wind,
     data.legend = spec.legend;
     data.unit = "intensity";
     data.speedMax = spec.speedMax_mps > 0.0 ? float(spec.speedMax_mps) : 1.0f;
-    if (!spec.arrows || wind.wsDirection.size() != mesh.wsPosition_m.size() ||
-        wind.group.size() != mesh.wsPosition_m.size())
+    const std::vector<glm::vec3>& direction = wind.wsDirection();
+    const std::vector<uint32_t>& group = wind.group();
+    if (!spec.arrows || direction.size() != mesh.wsPosition_m.size() ||
+        group.size() != mesh.wsPosition_m.size())
         return data;
     const double spacing = defaultSpacing(ground, spec);
     const double arrowHeight =
@@ -311,11 +313,11 @@ render::FieldOverlayData buildGrassWindOverlay(const render::GrassWind& wind,
             const int j = int(
                 std::lround((y - ground.minY()) / (ground.maxY() - ground.minY()) * (mesh.ny - 1)));
             const size_t v = size_t(j) * mesh.nx + size_t(i);
-            const uint32_t g = wind.group[v];
+            const uint32_t g = group[v];
             const float intensity = g < wind.groupIntensity.size() ? wind.groupIntensity[g] : 0.0f;
             render::OverlayArrow a;
             a.wsBase_m = glm::vec3(x, y, ground.at(x, y) + arrowHeight);
-            a.wsVector_m = wind.wsDirection[v] * float(intensity * arrowScale);
+            a.wsVector_m = direction[v] * float(intensity * arrowScale);
             a.speed = std::fabs(intensity);
             data.arrows.push_back(a);
         }

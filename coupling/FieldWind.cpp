@@ -1,6 +1,7 @@
 #include "coupling/FieldWind.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -97,10 +98,9 @@ FieldWind::FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec)
                                     " normals");
     mNormal = mesh.wsNormal;
     // The per-interval buffers, sized once here rather than at the first field step.
-    mDirection.resize(count);
     mDrive0.resize(count);
     mDrive1.resize(count);
-    mGroup.resize(count);
+    mVertexPool.push_back(newVertexBuffer(count));
     if (spec.grouping == Grouping::PerVertex) {
         mGroupCount = static_cast<int>(count);
         mTile.resize(count);
@@ -148,11 +148,41 @@ void FieldWind::dropStepsBefore(double t_s) {
     }
 }
 
+std::shared_ptr<render::VertexWind> FieldWind::newVertexBuffer(size_t count) {
+    auto buffer = std::make_shared<render::VertexWind>();
+    buffer->wsDirection.resize(count);
+    buffer->group.resize(count);
+    return buffer;
+}
+
+std::shared_ptr<render::VertexWind> FieldWind::freeVertexBuffer() {
+    // A buffer only the pool holds is written by nobody else and read by nobody: reuse it. (The
+    // current interval's buffer is never reused: update() may still hand it out.)
+    for (const auto& buffer : mVertexPool) {
+        if (buffer != mVertex && buffer.use_count() == 1) {
+            // use_count() reads the count relaxed; the last other holder released its reference
+            // with release semantics: this fence orders its reads of the buffer before our writes.
+            std::atomic_thread_fence(std::memory_order_acquire);
+            return buffer;
+        }
+    }
+    // All held elsewhere (a viewer's snapshots): the pool lets go of those, its holders free them
+    // when done, and the pool gets a fresh buffer. So the pool never outgrows what is in use.
+    mVertexPool.erase(std::remove_if(mVertexPool.begin(), mVertexPool.end(),
+                                     [&](const auto& b) { return b != mVertex && b.use_count() > 1; }),
+                      mVertexPool.end());
+    mVertexPool.push_back(newVertexBuffer(mNormal.size()));
+    return mVertexPool.back();
+}
+
 void FieldWind::enterInterval(size_t first) {
     const size_t last = std::min(first + 1, mSteps.size() - 1);
     const Step& a = mSteps[first];
     const Step& b = mSteps[last];
     const size_t count = mNormal.size();
+    const std::shared_ptr<render::VertexWind> next = freeVertexBuffer();
+    std::vector<glm::vec3>& direction = next->wsDirection;
+    std::vector<uint32_t>& group = next->group;
     const bool levels = mSpec.grouping == Grouping::Levels;
     const double maxI = mSpec.maxIntensity;
     const double invBend = 1.0 / mSpec.bendSpeed_mps;
@@ -167,7 +197,7 @@ void FieldWind::enterInterval(size_t first) {
             // One direction for the interval: the tangent part of the mean wind (DESIGN 5, step
             // 2); a wind that reverses within one step has no mean direction and gets none.
             const glm::vec3 dir = tangentWindDirection(wa + wb, mNormal[v]);
-            mDirection[v] = dir;
+            direction[v] = dir;
             // Static response along that direction: signed tangent speed over the bend speed.
             const float d0 = static_cast<float>(std::clamp(glm::dot(wa, dir) * invBend, -maxI, maxI));
             const float d1 = static_cast<float>(std::clamp(glm::dot(wb, dir) * invBend, -maxI, maxI));
@@ -209,18 +239,18 @@ void FieldWind::enterInterval(size_t first) {
             if (levels) {
                 const double mid = 0.5 * (double(mDrive0[v]) + mDrive1[v]);
                 const int level = static_cast<int>((mid - lo) * binsPerDrive);
-                mGroup[v] = static_cast<uint32_t>(std::clamp(level, 0, mGroupCount - 1));
+                group[v] = static_cast<uint32_t>(std::clamp(level, 0, mGroupCount - 1));
             } else {
-                mGroup[v] = mTile[v];
+                group[v] = mTile[v];
             }
         }
         if (perVertex) return;  // one group per vertex: nothing to sum
         Partial& p = partial[c];
         p.s0.assign(mGroupCount, 0.0), p.s1.assign(mGroupCount, 0.0), p.n.assign(mGroupCount, 0);
         for (size_t v = begin; v != end; ++v) {
-            p.s0[mGroup[v]] += mDrive0[v];
-            p.s1[mGroup[v]] += mDrive1[v];
-            ++p.n[mGroup[v]];
+            p.s0[group[v]] += mDrive0[v];
+            p.s1[group[v]] += mDrive1[v];
+            ++p.n[group[v]];
         }
     };
     if (chunks < 2) {
@@ -249,6 +279,7 @@ void FieldWind::enterInterval(size_t first) {
     mIntervalT0_s = a.t_s;
     mIntervalT1_s = b.t_s;
     mHaveInterval = true;
+    mVertex = next;
     ++mRevision;
 }
 
@@ -277,9 +308,8 @@ void FieldWind::update(double t_s, render::GrassWind& wind) {
         }
     }
     if (!mHaveInterval || mIntervalFirst != first) enterInterval(first);
-    if (wind.revision != mRevision || wind.wsDirection.size() != mDirection.size()) {
-        wind.wsDirection = mDirection;
-        wind.group = mGroup;
+    if (wind.revision != mRevision || wind.vertex != mVertex) {
+        wind.vertex = mVertex;  // shared, not copied: it is never written while handed out
         wind.revision = mRevision;
     }
     wind.groupIntensity.resize(mGroupCount);
@@ -306,8 +336,9 @@ std::vector<float> FieldWind::exactStaticIntensity(double t_s) {
 }
 
 std::vector<float> FieldWind::shownIntensity(const render::GrassWind& wind) {
-    std::vector<float> out(wind.group.size());
-    for (size_t v = 0; v < out.size(); ++v) out[v] = wind.groupIntensity[wind.group[v]];
+    const std::vector<uint32_t>& group = wind.group();
+    std::vector<float> out(group.size());
+    for (size_t v = 0; v < out.size(); ++v) out[v] = wind.groupIntensity[group[v]];
     return out;
 }
 

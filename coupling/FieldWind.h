@@ -124,9 +124,13 @@ private:
     size_t mIntervalFirst = 0;
     double mIntervalT0_s = 0.0, mIntervalT1_s = 0.0;
     uint64_t mRevision = 0;
-    std::vector<glm::vec3> mDirection;
+    // The interval's directions and groups, handed to every GrassWind by pointer (never copied,
+    // never written while anyone else holds them), and the buffers to write the next one into.
+    std::shared_ptr<render::VertexWind> mVertex;
+    std::vector<std::shared_ptr<render::VertexWind>> mVertexPool;
+    static std::shared_ptr<render::VertexWind> newVertexBuffer(size_t count);
+    std::shared_ptr<render::VertexWind> freeVertexBuffer();
     std::vector<float> mDrive0, mDrive1;   // per-vertex static intensity at both ends
-    std::vector<uint32_t> mGroup;
     std::vector<double> mGroupDrive0, mGroupDrive1;  // per-group mean drive at both ends
 
     GroupOscillators mOscillators;

@@ -33,31 +33,31 @@ PointSourceWind::PointSourceWind(const render::TerrainMesh& mesh, const PointSou
         throw std::invalid_argument("terrain mesh has " + std::to_string(count) +
                                     " positions but " + std::to_string(mesh.wsNormal.size()) +
                                     " normals");
-    mDirection.resize(count);
-    mGroup.resize(count);
+    render::VertexWind vertex;
+    vertex.wsDirection.resize(count);
+    vertex.group.resize(count);
     std::vector<float> distance_m(count);
     float maxDistance_m = 0.0f;
     for (size_t v = 0; v < count; ++v) {
         // W points from the vertex to the source (paper); a gust blowing from the source pushes
         // the grass the other way.
         const glm::vec3 toSource = spec.wsSource_m - mesh.wsPosition_m[v];
-        mDirection[v] = tangentWindDirection(spec.blowAway ? -toSource : toSource, mesh.wsNormal[v]);
+        vertex.wsDirection[v] = tangentWindDirection(spec.blowAway ? -toSource : toSource, mesh.wsNormal[v]);
         distance_m[v] = glm::length(toSource);
         maxDistance_m = std::max(maxDistance_m, distance_m[v]);
     }
     // Animation step = distance from the source in `steps` equal rings (paper section 3).
     const float ringWidth_m = maxDistance_m > 0.0f ? maxDistance_m / spec.steps : 1.0f;
     for (size_t v = 0; v < count; ++v)
-        mGroup[v] = static_cast<uint32_t>(
+        vertex.group[v] = static_cast<uint32_t>(
             std::min(spec.steps - 1, static_cast<int>(distance_m[v] / ringWidth_m)));
+    mVertex = std::make_shared<const render::VertexWind>(std::move(vertex));
 }
 
 void PointSourceWind::update(double t_s, render::GrassWind& wind) {
-    if (!mUploaded || wind.wsDirection.size() != mDirection.size()) {
-        wind.wsDirection = mDirection;
-        wind.group = mGroup;
+    if (wind.vertex != mVertex) {
+        wind.vertex = mVertex;
         ++wind.revision;
-        mUploaded = true;
     }
     wind.groupIntensity.resize(static_cast<size_t>(mSpec.steps));
     for (int g = 0; g < mSpec.steps; ++g)

@@ -12,6 +12,7 @@
 #include "render/GrassInput.h"
 
 #include <glm/vec3.hpp>
+#include <memory>
 
 namespace gale::coupling {
 
@@ -30,16 +31,14 @@ public:
     std::string describe() const override;
 
     /// The group (ring) of vertex v; for tests.
-    uint32_t groupOf(size_t v) const { return mGroup[v]; }
+    uint32_t groupOf(size_t v) const { return mVertex->group[v]; }
     /// Time delay of group g relative to group 0, seconds.
     double groupDelay_s(int g) const { return g * mSpec.stepDelay_s; }
 
 private:
     PointSourceSpec mSpec;
     GustCurve mCurve;
-    std::vector<glm::vec3> mDirection;
-    std::vector<uint32_t> mGroup;
-    bool mUploaded = false;
+    std::shared_ptr<const render::VertexWind> mVertex;  // directions and rings, fixed
 };
 
 }  // namespace gale::coupling

@@ -34,7 +34,8 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
     along = glm::length(along) > 0.0f ? glm::normalize(along) : glm::vec2(1.0f, 0.0f);
 
     // Per vertex: direction, steady intensity, distance downwind -> arrival time.
-    mDirection.resize(count);
+    render::VertexWind vertex;
+    vertex.wsDirection.resize(count);
     mArrival_s.resize(count);
     std::vector<float> base(count);
     float minAlong = 1e30f, maxAlong = -1e30f, minBase = 1e30f, maxBase = -1e30f;
@@ -42,8 +43,8 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
         const glm::vec3& w = wsVelocity_mps[v];
         const bool finite = std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z);
         const glm::vec3 wind = finite ? w : glm::vec3(0.0f);
-        mDirection[v] = tangentWindDirection(wind, mesh.wsNormal[v]);
-        base[v] = static_cast<float>(std::clamp(glm::dot(wind, mDirection[v]) / response.bendSpeed_mps,
+        vertex.wsDirection[v] = tangentWindDirection(wind, mesh.wsNormal[v]);
+        base[v] = static_cast<float>(std::clamp(glm::dot(wind, vertex.wsDirection[v]) / response.bendSpeed_mps,
                                                 -response.maxIntensity, response.maxIntensity));
         const float s = glm::dot(glm::vec2(mesh.wsPosition_m[v]), along);
         mArrival_s[v] = s;
@@ -53,7 +54,7 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
     const double spanAlong = std::max(double(maxAlong) - minAlong, 1e-9);
     const double spanBase = std::max(double(maxBase) - minBase, 1e-9);
     const int groups = spec.arrivalBands * spec.levels;
-    mGroup.resize(count);
+    vertex.group.resize(count);
     std::vector<double> sumBase(groups, 0.0), sumArrival(groups, 0.0);
     std::vector<uint32_t> members(groups, 0);
     for (size_t v = 0; v < count; ++v) {
@@ -62,7 +63,7 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
                                   static_cast<int>((mArrival_s[v] * spec.convection_mps) / spanAlong * spec.arrivalBands));
         const int level = std::min(spec.levels - 1, static_cast<int>((base[v] - minBase) / spanBase * spec.levels));
         const int g = band * spec.levels + level;
-        mGroup[v] = static_cast<uint32_t>(g);
+        vertex.group[v] = static_cast<uint32_t>(g);
         sumBase[g] += base[v];
         sumArrival[g] += mArrival_s[v];
         ++members[g];
@@ -74,14 +75,13 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
         mGroupBase[g] = sumBase[g] / members[g];
         mGroupArrival_s[g] = sumArrival[g] / members[g];
     }
+    mVertex = std::make_shared<const render::VertexWind>(std::move(vertex));
 }
 
 void SteadyGustWind::update(double t_s, render::GrassWind& wind) {
-    if (!mUploaded || wind.wsDirection.size() != mDirection.size()) {
-        wind.wsDirection = mDirection;
-        wind.group = mGroup;
+    if (wind.vertex != mVertex) {
+        wind.vertex = mVertex;
         ++wind.revision;
-        mUploaded = true;
     }
     const int groups = groupCount();
     // DESIGN 4.2's kinematic gust: the steady intensity scaled by the curve, delayed by arrival.

@@ -55,11 +55,9 @@ private:
     std::shared_ptr<const sim::WindField> mField;
     SteadyGustSpec mSpec;
     GustCurve mCurve;
-    std::vector<glm::vec3> mDirection;
-    std::vector<uint32_t> mGroup;
+    std::shared_ptr<const render::VertexWind> mVertex;  // directions and groups, fixed
     std::vector<float> mArrival_s;
     std::vector<double> mGroupBase, mGroupArrival_s;
-    bool mUploaded = false;
     std::optional<GroupOscillators> mOscillators;
 };
 

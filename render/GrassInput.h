@@ -5,6 +5,7 @@
 /// world space, metres, z up.
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,19 +23,39 @@ struct TerrainMesh {
     std::vector<glm::vec2> uv;            ///< grass texture coordinates (repeats across the terrain)
 };
 
+/// Per-vertex wind, one entry per terrain vertex.
+struct VertexWind {
+    /// Unit wind direction in the vertex's tangent plane, or zero where undefined (wind along the
+    /// normal, no wind). The bend moves the vertex along it.
+    std::vector<glm::vec3> wsDirection;
+    /// Animation-step group in [0, GrassWind::groupIntensity.size()).
+    std::vector<uint32_t> group;
+};
+
 /// The wind as the shell renderer consumes it (paper section 3, Table 1): a tangent-plane wind
 /// direction and an animation-step group per vertex, and one intensity per group per frame. Both
 /// the paper's point source and the solved field produce this; the renderer cannot tell them apart.
+///
+/// The per-vertex part is shared, read-only: a source hands one VertexWind to every GrassWind it
+/// fills and never writes into one it has handed out, so passing a million vertices' wind from
+/// the source to the renderer (or to the viewer's render thread) copies a pointer, not 16 MB.
 struct GrassWind {
-    /// Per vertex: unit wind direction in the vertex's tangent plane, or zero where undefined
-    /// (wind along the normal, no wind). The bend moves the vertex along it.
-    std::vector<glm::vec3> wsDirection;
-    /// Per vertex: animation-step group in [0, groupIntensity.size()).
-    std::vector<uint32_t> group;
-    /// Changes whenever wsDirection or group change, so the renderer re-uploads them only then.
+    /// Null: no per-vertex wind (every blade stands still).
+    std::shared_ptr<const VertexWind> vertex;
+    /// Changes whenever `vertex` changes, so the renderer re-uploads it only then.
     uint64_t revision = 0;
     /// Per group: intensity I this frame (unitless; |I| = 1 lays the tip flat, more over-bends).
     std::vector<float> groupIntensity;
+
+    /// The per-vertex arrays; empty when `vertex` is null.
+    const std::vector<glm::vec3>& wsDirection() const { return vertex ? vertex->wsDirection : none().wsDirection; }
+    const std::vector<uint32_t>& group() const { return vertex ? vertex->group : none().group; }
+
+private:
+    static const VertexWind& none() {
+        static const VertexWind empty;
+        return empty;
+    }
 };
 
 /// A point light (thesis 3.3): radiance scaled by 1 / (k_c + k_l d + k_q d^2), d in metres.

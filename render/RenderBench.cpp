@@ -34,17 +34,19 @@ GrassWind makeBenchWind(const TerrainMesh& mesh) {
     // The paper's point source: wind blowing away from a source beside the field, groups by
     // distance so gusts travel (paper section 3). Directions are already tangent on flat ground.
     const glm::vec3 source_m(-20.0f, -10.0f, 0.0f);
-    GrassWind wind;
     float maxDistance = 0.0f;
     for (const glm::vec3& p : mesh.wsPosition_m)
         maxDistance = std::max(maxDistance, glm::length(p - source_m));
+    auto vertex = std::make_shared<VertexWind>();
     for (const glm::vec3& p : mesh.wsPosition_m) {
         const glm::vec3 away = p - source_m;
         const float d = glm::length(away);
-        wind.wsDirection.push_back(d > 0.0f ? away / d : glm::vec3(0.0f));
+        vertex->wsDirection.push_back(d > 0.0f ? away / d : glm::vec3(0.0f));
         const int g = std::min(kWindGroups - 1, static_cast<int>(d / maxDistance * kWindGroups));
-        wind.group.push_back(static_cast<uint32_t>(g));
+        vertex->group.push_back(static_cast<uint32_t>(g));
     }
+    GrassWind wind;
+    wind.vertex = std::move(vertex);
     wind.revision = 1;
     wind.groupIntensity.assign(kWindGroups, 0.0f);
     return wind;

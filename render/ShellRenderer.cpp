@@ -268,8 +268,10 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
                                         (none ? " or 0 (no wind)" : ""));
         }
     };
-    checkSize("wsDirection", wind.wsDirection.size());
-    checkSize("group", wind.group.size());
+    const std::vector<glm::vec3>& direction = wind.wsDirection();
+    const std::vector<uint32_t>& group = wind.group();
+    checkSize("wsDirection", direction.size());
+    checkSize("group", group.size());
 
     const bool needUpload =
         !windUploaded || none != windWasNone || (!none && wind.revision != windRevision);
@@ -278,13 +280,13 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
         uint32_t maxGroup = 0;
         if (!none) {
             for (size_t v = 0; v < n; ++v) {
-                const glm::vec3& d = wind.wsDirection[v];
+                const glm::vec3& d = direction[v];
                 if (!finite3(d)) {
                     throw std::invalid_argument("GrassWind.wsDirection[" + std::to_string(v) +
                                                 "] is not finite");
                 }
-                data[v] = WindVertex{{d.x, d.y, d.z}, wind.group[v]};
-                maxGroup = std::max(maxGroup, wind.group[v]);
+                data[v] = WindVertex{{d.x, d.y, d.z}, group[v]};
+                maxGroup = std::max(maxGroup, group[v]);
             }
         }
         glBindBuffer(GL_ARRAY_BUFFER, windVbo.get());

@@ -49,8 +49,8 @@ public:
     /// Draws one frame: per-group (n_i, w_i) tables are built on the CPU from wind.groupIntensity
     /// (once per group per shell, never per vertex), directions and groups are re-uploaded only
     /// when wind.revision changed.
-    /// Requires setTerrain and setGrass first (std::logic_error otherwise). wind.wsDirection and
-    /// wind.group must each hold one entry per terrain vertex and every group must be below
+    /// Requires setTerrain and setGrass first (std::logic_error otherwise). wind.wsDirection() and
+    /// wind.group() must each hold one entry per terrain vertex and every group must be below
     /// wind.groupIntensity.size(); an empty groupIntensity means no wind (then the per-vertex
     /// arrays may be empty). Intensities must be finite. Throws std::invalid_argument naming the
     /// field. Clears to the sky colour, draws, and ends with glFinish.

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <functional>
+#include <memory>
+#include <set>
 
 #include <glm/geometric.hpp>
 
@@ -50,8 +52,8 @@ TEST(FieldWind, UniformWindOverFlatGroundBendsEveryVertexAlike) {
     wind.update(0.0, out);
     const std::vector<float> shown = FieldWind::shownIntensity(out);
     for (size_t v = 0; v < mesh.wsPosition_m.size(); ++v) {
-        EXPECT_NEAR(out.wsDirection[v].x, 1.0f, 1e-6f);
-        EXPECT_NEAR(out.wsDirection[v].y, 0.0f, 1e-6f);
+        EXPECT_NEAR(out.wsDirection()[v].x, 1.0f, 1e-6f);
+        EXPECT_NEAR(out.wsDirection()[v].y, 0.0f, 1e-6f);
         EXPECT_NEAR(shown[v], 0.6f, 1e-6f);  // 6 m/s over a 10 m/s bend speed
     }
 }
@@ -115,7 +117,7 @@ TEST(FieldWind, WhirlwindCirculatesWithItsSignAndPeaksNearTheCoreRadius) {
         const double r = std::hypot(d.x, d.y);
         if (r < 0.5 || r > 25.0) continue;
         // Counter-clockwise: the wind direction turns left of the outward radius, z of cross > 0.
-        EXPECT_GT(d.x * out.wsDirection[v].y - d.y * out.wsDirection[v].x, 0.0f);
+        EXPECT_GT(d.x * out.wsDirection()[v].y - d.y * out.wsDirection()[v].x, 0.0f);
         if (shown[v] > best) best = shown[v], bestR = r;
     }
     // Lamb-Oseen's speed peaks at r = 1.1209 rc; a 0.5 m grid places the best vertex within a cell.
@@ -133,7 +135,7 @@ TEST(FieldWind, DegenerateWindsGiveFiniteZeroBend) {
     render::GrassWind out;
     wind.update(0.0, out);
     for (size_t v = 0; v < w.size(); ++v) {
-        EXPECT_EQ(glm::length(out.wsDirection[v]), 0.0f) << v;
+        EXPECT_EQ(glm::length(out.wsDirection()[v]), 0.0f) << v;
         EXPECT_EQ(FieldWind::shownIntensity(out)[v], 0.0f) << v;
     }
 }
@@ -249,3 +251,42 @@ TEST(FieldWind, RejectsBadSpecsAndSteps) {
 }
 
 }  // namespace
+
+// The per-vertex wind reaches every GrassWind by pointer, and a buffer someone still holds (the
+// viewer's snapshot, the renderer's frame) is never written again; buffers nobody holds are
+// reused, so a long run does not allocate at every field step.
+TEST(FieldWind, SharesDirectionsWithoutCopiesAndNeverRewritesOnesStillHeld) {
+    const render::TerrainMesh mesh = flatMesh(10.0);
+    FieldWind wind(mesh, FieldWindSpec{});
+    // A wind turning 10 degrees per step: each interval has other directions.
+    auto turning = [](auto&, double t) {
+        const double a = 0.17 * t;
+        return glm::vec3(5.0 * std::cos(a), 5.0 * std::sin(a), 0.0);
+    };
+    for (int s = 0; s <= 40; ++s) wind.addFieldStep(s, sampleAll(mesh, turning, s));
+
+    render::GrassWind a, b;
+    wind.update(0.5, a);
+    wind.update(0.5, b);
+    ASSERT_TRUE(a.vertex);
+    EXPECT_EQ(a.vertex, b.vertex);  // one buffer, two holders
+    const render::VertexWind before = *a.vertex;
+    const std::shared_ptr<const render::VertexWind> held = b.vertex;
+    b = render::GrassWind{};
+    for (double t : {1.5, 2.5, 3.5}) {
+        wind.update(t, a);
+        EXPECT_NE(a.vertex, held);
+        EXPECT_EQ(held->wsDirection, before.wsDirection) << "a held buffer was rewritten at t = " << t;
+        EXPECT_EQ(held->group, before.group);
+    }
+    EXPECT_GT(glm::length(a.vertex->wsDirection[0] - before.wsDirection[0]), 0.1f);
+
+    // One consumer: the source alternates between two buffers.
+    std::set<const render::VertexWind*> seen;
+    for (int s = 5; s < 40; ++s) {
+        wind.update(s + 0.5, a);
+        seen.insert(a.vertex.get());
+        wind.dropStepsBefore(s);
+    }
+    EXPECT_LE(seen.size(), 2u);
+}

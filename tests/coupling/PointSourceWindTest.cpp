@@ -66,9 +66,9 @@ TEST(PointSourceWind, DirectionsLieInTheTangentPlaneAndPointAwayFromTheSource) {
     coupling::PointSourceWind wind(mesh, spec, coupling::GustCurve(1.0, {{0.0, 0.5}}));
     render::GrassWind out;
     wind.update(0.0, out);
-    ASSERT_EQ(out.wsDirection.size(), mesh.wsPosition_m.size());
+    ASSERT_EQ(out.wsDirection().size(), mesh.wsPosition_m.size());
     for (size_t v = 0; v < mesh.wsPosition_m.size(); ++v) {
-        const glm::vec3 d = out.wsDirection[v];
+        const glm::vec3 d = out.wsDirection()[v];
         EXPECT_LT(std::abs(glm::dot(d, mesh.wsNormal[v])), 1e-5f);
         EXPECT_NEAR(glm::length(d), 1.0f, 1e-5f);
         // Away from a source south of the terrain: northward component.
@@ -95,7 +95,7 @@ TEST(PointSourceWind, SourceOnAVertexGivesZeroDirectionNotNaN) {
     coupling::PointSourceWind wind(mesh, spec, coupling::GustCurve(1.0, {{0.0, 0.5}}));
     render::GrassWind out;
     wind.update(0.0, out);
-    EXPECT_EQ(glm::length(out.wsDirection[5]), 0.0f);
+    EXPECT_EQ(glm::length(out.wsDirection()[5]), 0.0f);
 }
 
 TEST(PointSourceWind, RejectsBadSpecs) {

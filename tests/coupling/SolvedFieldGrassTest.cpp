@@ -62,7 +62,7 @@ TEST(SolvedFieldGrass, UniformWindOverFlatGroundBendsEveryVertexAlike) {
         // Interior vertices: the sampler's clamping at the box sides is not what we test here.
         if (p.x < 2 || p.x > 62 || p.y < 2 || p.y > 62) continue;
         EXPECT_NEAR(shown[v], 0.6f, UNIFORM_INTENSITY_TOL);
-        EXPECT_NEAR(s.wind.wsDirection[v].x, 1.0f, 1e-5f);
+        EXPECT_NEAR(s.wind.wsDirection()[v].x, 1.0f, 1e-5f);
     }
 }
 

@@ -40,7 +40,7 @@ TEST(SteadyGustWind, FrontArrivesDownstreamAtDistanceOverConvectionSpeed) {
         double best = -1.0, bestT = 0.0;
         for (double t = 0.0; t < 15.0; t += 0.01) {
             wind.update(t, out);
-            const float shown = out.groupIntensity[out.group[row + i]];
+            const float shown = out.groupIntensity[out.group()[row + i]];
             if (shown > best) best = shown, bestT = t;
         }
         // Band width 1 m = 0.2 s of arrival; the group's mean arrival is within half of that.
@@ -68,7 +68,7 @@ TEST(SteadyGustWind, OscillatorStaysFiniteAndBoundedUnderAStepGust) {
             ASSERT_LE(std::abs(i), 2.0f * 1.3f + 1e-3f);
         }
     }
-    EXPECT_EQ(out.wsDirection[3], glm::vec3(0.0f));
+    EXPECT_EQ(out.wsDirection()[3], glm::vec3(0.0f));
 }
 
 }  // namespace

@@ -63,14 +63,16 @@ inline TerrainMesh makeHillMesh() {
 /// two groups split at x = 0.
 inline GrassWind makeUniformWind(const TerrainMesh& mesh, glm::vec3 wsGlobal, float intensityWest,
                                  float intensityEast) {
-    GrassWind wind;
+    auto vertex = std::make_shared<VertexWind>();
     for (size_t v = 0; v < mesh.wsPosition_m.size(); ++v) {
         const glm::vec3 n = mesh.wsNormal[v];
         const glm::vec3 t = wsGlobal - glm::dot(wsGlobal, n) * n;
         const float len = glm::length(t);
-        wind.wsDirection.push_back(len > 1e-6f ? t / len : glm::vec3(0.0f));
-        wind.group.push_back(mesh.wsPosition_m[v].x < 0.0f ? 0u : 1u);
+        vertex->wsDirection.push_back(len > 1e-6f ? t / len : glm::vec3(0.0f));
+        vertex->group.push_back(mesh.wsPosition_m[v].x < 0.0f ? 0u : 1u);
     }
+    GrassWind wind;
+    wind.vertex = std::move(vertex);
     wind.revision = 1;
     wind.groupIntensity = {intensityWest, intensityEast};
     return wind;

@@ -111,7 +111,9 @@ TEST(ShellRenderer, WindArraysAreReuploadedOnlyWhenRevisionChanges) {
     };
     GrassWind wind = scene.wind(1.0f, 1.0f);
     const Image first = frame(wind);
-    for (glm::vec3& d : wind.wsDirection) d = -d;  // new directions, same revision: not uploaded
+    auto flipped = std::make_shared<VertexWind>(*wind.vertex);
+    for (glm::vec3& d : flipped->wsDirection) d = -d;
+    wind.vertex = flipped;  // new directions, same revision: not uploaded
     EXPECT_EQ(frame(wind).rgba, first.rgba);
     ++wind.revision;  // now they are
     EXPECT_NE(frame(wind).rgba, first.rgba);
@@ -182,39 +184,41 @@ TEST(ShellRenderer, AllGroundTextureShowsOnlyShellZero) {
     EXPECT_EQ(countPixelsOff(image, groundShade), 0);
 }
 
-TEST(ShellRenderer, WrongWindArraySizesThrow) {
+// Draws the reference scene with `wind` and expects std::invalid_argument naming `expected`.
+void expectDrawRefuses(const GrassWind& wind, const std::string& expected) {
     auto context = createOsMesaContext(32, 24);
     ReferenceScene scene;
     ShellRenderer renderer(*context);
     renderer.setTerrain(scene.mesh);
     renderer.setGrass(scene.grass, scene.texture);
-    GrassWind wind = scene.wind(0.5f, 0.5f);
-    wind.wsDirection.pop_back();
     try {
         renderer.draw(scene.camera, wind);
-        FAIL() << "expected std::invalid_argument";
+        FAIL() << "expected std::invalid_argument naming " << expected;
     } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find("wsDirection"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
     }
-    wind = scene.wind(0.5f, 0.5f);
-    wind.group.resize(3);
-    EXPECT_THROW(renderer.draw(scene.camera, wind), std::invalid_argument);
+}
+
+// A copy of `wind` whose per-vertex arrays `change` edits.
+template <class F>
+GrassWind withVertexWind(GrassWind wind, F&& change) {
+    auto edited = std::make_shared<VertexWind>(*wind.vertex);
+    change(*edited);
+    wind.vertex = edited;
+    ++wind.revision;
+    return wind;
+}
+
+TEST(ShellRenderer, WrongWindArraySizesThrow) {
+    const GrassWind wind = ReferenceScene().wind(0.5f, 0.5f);
+    expectDrawRefuses(withVertexWind(wind, [](VertexWind& w) { w.wsDirection.pop_back(); }), "wsDirection");
+    expectDrawRefuses(withVertexWind(wind, [](VertexWind& w) { w.group.resize(3); }), "group");
 }
 
 TEST(ShellRenderer, GroupOutOfRangeThrows) {
-    auto context = createOsMesaContext(32, 24);
-    ReferenceScene scene;
-    ShellRenderer renderer(*context);
-    renderer.setTerrain(scene.mesh);
-    renderer.setGrass(scene.grass, scene.texture);
-    GrassWind wind = scene.wind(0.5f, 0.5f);
+    GrassWind wind = ReferenceScene().wind(0.5f, 0.5f);
     wind.groupIntensity.resize(1);  // vertices east of x = 0 name group 1
-    try {
-        renderer.draw(scene.camera, wind);
-        FAIL() << "expected std::invalid_argument";
-    } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find("group 1"), std::string::npos) << e.what();
-    }
+    expectDrawRefuses(wind, "group 1");
 }
 
 TEST(ShellRenderer, MoreLightsThanTheCapThrow) {
