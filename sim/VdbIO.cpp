@@ -37,6 +37,30 @@ openvdb::Vec3SGrid::Ptr velocityGrid(const WindField& f) {
     return grid;
 }
 
+openvdb::Vec3SGrid::Ptr staggeredVelocityGrid(const WindField& f) {
+    openvdb::initialize();
+    auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+    grid->setName("velocity_faces");
+    grid->setTransform(detail::cellCentredTransform(f.voxelSize_m(), f.wsMin_m()));
+    grid->setGridClass(openvdb::GRID_STAGGERED);
+    grid->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
+    grid->setIsInWorldSpace(true);
+    auto acc = grid->getAccessor();
+    // Voxel (i, j, k) holds the three faces on cell (i, j, k)'s low sides, as OpenVDB's staggered
+    // samplers expect; the layer i = nx (j = ny, k = nz) holds the high-side faces of the box.
+    const int nx = f.nx(), ny = f.ny(), nz = f.nz();
+    for (int k = 0; k <= nz; ++k)
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i <= nx; ++i) {
+                openvdb::Vec3s faces(0.f);
+                if (j < ny && k < nz) faces.x() = float(f.u(i, j, k));
+                if (i < nx && k < nz) faces.y() = float(f.v(i, j, k));
+                if (i < nx && j < ny) faces.z() = float(f.w(i, j, k));
+                acc.setValueOn(openvdb::Coord(i, j, k), faces);
+            }
+    return grid;
+}
+
 openvdb::FloatGrid::Ptr speedGrid(const WindField& f) {
     openvdb::initialize();
     auto grid = openvdb::FloatGrid::create(0.f);

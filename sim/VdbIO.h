@@ -27,6 +27,11 @@ openvdb::BoolGrid::ConstPtr airMaskGrid(const AirDomain& domain);
 /// "velocity": cell-centred averages of the MAC face velocities, m/s, world axes, active on air
 /// cells; GRID_UNKNOWN, VEC_CONTRAVARIANT_RELATIVE, isInWorldSpace = true.
 openvdb::Vec3SGrid::Ptr velocityGrid(const WindField& field);
+/// "velocity_faces": the MAC face velocities themselves, m/s, as a staggered grid (GRID_STAGGERED):
+/// voxel (i, j, k) holds (u, v, w) on cell (i, j, k)'s low x, y and z faces, so
+/// openvdb::tools::StaggeredBoxSampler reads it as WindField::velocityAt_mps does inside the box.
+/// Covers (nx+1) x (ny+1) x (nz+1) voxels, all active; float, so 1e-7 relative off the doubles.
+openvdb::Vec3SGrid::Ptr staggeredVelocityGrid(const WindField& field);
 /// "speed": |velocity| of the cell-centred average, m/s, active on air cells.
 openvdb::FloatGrid::Ptr speedGrid(const WindField& field);
 
