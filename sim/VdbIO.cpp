@@ -18,14 +18,22 @@ openvdb::math::Transform::Ptr cellCentredTransform(double h, const std::array<do
 }
 }  // namespace detail
 
-openvdb::Vec3SGrid::Ptr velocityGrid(const WindField& f) {
+namespace {
+// An empty world-space velocity grid (m/s) on the field's cells.
+openvdb::Vec3SGrid::Ptr emptyVelocityGrid(const WindField& f, const char* name, openvdb::GridClass gridClass) {
     openvdb::initialize();
     auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
-    grid->setName("velocity");
+    grid->setName(name);
     grid->setTransform(detail::cellCentredTransform(f.voxelSize_m(), f.wsMin_m()));
-    grid->setGridClass(openvdb::GRID_UNKNOWN);
+    grid->setGridClass(gridClass);
     grid->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
     grid->setIsInWorldSpace(true);
+    return grid;
+}
+}  // namespace
+
+openvdb::Vec3SGrid::Ptr velocityGrid(const WindField& f) {
+    auto grid = emptyVelocityGrid(f, "velocity", openvdb::GRID_UNKNOWN);
     auto acc = grid->getAccessor();
     for (int j = 0; j < f.ny(); ++j)
         for (int i = 0; i < f.nx(); ++i)
@@ -38,13 +46,7 @@ openvdb::Vec3SGrid::Ptr velocityGrid(const WindField& f) {
 }
 
 openvdb::Vec3SGrid::Ptr staggeredVelocityGrid(const WindField& f) {
-    openvdb::initialize();
-    auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
-    grid->setName("velocity_faces");
-    grid->setTransform(detail::cellCentredTransform(f.voxelSize_m(), f.wsMin_m()));
-    grid->setGridClass(openvdb::GRID_STAGGERED);
-    grid->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
-    grid->setIsInWorldSpace(true);
+    auto grid = emptyVelocityGrid(f, "velocity_faces", openvdb::GRID_STAGGERED);
     auto acc = grid->getAccessor();
     // Voxel (i, j, k) holds the three faces on cell (i, j, k)'s low sides, as OpenVDB's staggered
     // samplers expect; the layer i = nx (j = ny, k = nz) holds the high-side faces of the box.
