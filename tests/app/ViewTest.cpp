@@ -36,6 +36,13 @@ double lumaVariance(const render::Image& image) {
     return sum2 / double(n) - mean * mean;
 }
 
+/// Fraction of pixels of two same-size image files differing by more than kChannelTolerance.
+double differingFraction(const std::string& pathA, const std::string& pathB) {
+    const render::Image a = render::readImageRgba8(pathA);
+    const render::Image b = render::readImageRgba8(pathB);
+    return render::test::compareImages(a, b, kChannelTolerance).differingFraction;
+}
+
 TEST(View, UnderXvfbScreenshotMatchesHeadlessRenderOfTheSameFrame) {
     if (std::getenv("DISPLAY") == nullptr)
         GTEST_SKIP() << "no display; ctest runs this under xvfb-run";
@@ -87,12 +94,9 @@ TEST(View, UnderXvfbKeysToggleGrassAndSaveAScreenshotWithTheHeadsUpLine) {
     ASSERT_EQ(withGrass.exitCode, 0) << withGrass.err;
     ASSERT_EQ(noGrass.exitCode, 0) << noGrass.err;
     EXPECT_TRUE(fs::exists(dir / "gale_view_0.png")) << noGrass.err;
-    const render::Image a = render::readImageRgba8(dir / "grass.png");
-    const render::Image b = render::readImageRgba8(dir / "nograss.png");
     // Hiding the shells leaves the bare ground: a large part of the frame changes.
     constexpr double kMinChangedFraction = 0.05;
-    EXPECT_GT(render::test::compareImages(a, b, kChannelTolerance).differingFraction,
-              kMinChangedFraction);
+    EXPECT_GT(differingFraction(dir / "grass.png", dir / "nograss.png"), kMinChangedFraction);
 }
 
 TEST(OverlayRender, HeadlessRenderDrawsTheSceneOverlaysAndCheckListsThem) {
@@ -109,11 +113,9 @@ TEST(OverlayRender, HeadlessRenderDrawsTheSceneOverlaysAndCheckListsThem) {
                      "1", "--width", "160", "--height", "120"});
         ASSERT_EQ(r.exitCode, 0) << r.err;
     }
-    const render::Image plain = render::readImageRgba8(dir / "plain/frame_0000.png");
-    const render::Image views = render::readImageRgba8(dir / "views/frame_0000.png");
     // Arrows and the legend cover a visible part of the frame.
     constexpr double kMinOverlayFraction = 0.01;
-    EXPECT_GT(render::test::compareImages(plain, views, kChannelTolerance).differingFraction,
+    EXPECT_GT(differingFraction(dir / "plain/frame_0000.png", dir / "views/frame_0000.png"),
               kMinOverlayFraction);
 }
 
