@@ -67,6 +67,18 @@ void expectCompleteFrames(const std::string& folder, int n, int width, int heigh
     }
 }
 
+/// Waits until `ready` (asserting it comes within REACH_TIMEOUT_S), sends SIGINT and asserts
+/// that the child then exits by itself with code 130; `r` receives how it ended. Call under
+/// ASSERT_NO_FATAL_FAILURE so a failed assertion ends the test.
+void interruptWhenReady(Child& child, const std::function<bool()>& ready, RunResult& r) {
+    ASSERT_TRUE(waitFor(ready, REACH_TIMEOUT_S)) << child.errSoFar();
+    child.signal(SIGINT);
+    r = child.wait(STOP_TIMEOUT_S);
+    ASSERT_FALSE(r.timedOut) << r.describe();
+    ASSERT_EQ(r.signal, 0) << r.describe();
+    EXPECT_EQ(r.exitCode, EXIT_INTERRUPTED) << r.describe();
+}
+
 /// The tiny scene; the tests ask it for 100000 frames, far more than they let it finish.
 std::string longTinyScene() { return readFile(sourcePath("tests/data/scenes/tiny.toml")); }
 
@@ -77,14 +89,9 @@ TEST(Interrupt, CtrlCDuringRenderKeepsCompleteFramesNamesTheLastAndExits130) {
     options.cwd = cwd.str();
     Child child({"render", "scene.toml", "-o", "frames", "--frames", "100000"}, options);
     const std::string folder = cwd / "frames";
-    ASSERT_TRUE(waitFor([&] { return fs::exists(folder + "/" + frameName(FRAMES_BEFORE_INTERRUPT)); },
-                        REACH_TIMEOUT_S))
-        << child.errSoFar();
-    child.signal(SIGINT);
-    const RunResult r = child.wait(STOP_TIMEOUT_S);
-    ASSERT_FALSE(r.timedOut) << r.describe();
-    ASSERT_EQ(r.signal, 0) << r.describe();
-    EXPECT_EQ(r.exitCode, EXIT_INTERRUPTED) << r.describe();
+    RunResult r;
+    ASSERT_NO_FATAL_FAILURE(interruptWhenReady(
+        child, [&] { return fs::exists(folder + "/" + frameName(FRAMES_BEFORE_INTERRUPT)); }, r));
 
     const nlohmann::json report = nlohmann::json::parse(readFile(folder + "/frame_report.json"));
     const int done = report["frames"];
@@ -139,14 +146,9 @@ TEST(Interrupt, CtrlCDuringSolveWritesNoFieldSaysWhereAndExits130) {
     RunOptions options;
     options.cwd = cwd.str();
     Child child({"solve", "scene.toml", "-o", "field/wind.vdb"}, options);
-    ASSERT_TRUE(waitFor([&] { return child.errSoFar().find("solving") != std::string::npos; },
-                        REACH_TIMEOUT_S))
-        << child.errSoFar();
-    child.signal(SIGINT);
-    const RunResult r = child.wait(STOP_TIMEOUT_S);
-    ASSERT_FALSE(r.timedOut) << r.describe();
-    ASSERT_EQ(r.signal, 0) << r.describe();
-    EXPECT_EQ(r.exitCode, EXIT_INTERRUPTED) << r.describe();
+    RunResult r;
+    ASSERT_NO_FATAL_FAILURE(interruptWhenReady(
+        child, [&] { return child.errSoFar().find("solving") != std::string::npos; }, r));
     EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("nothing written"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(cwd / "field/wind.vdb"));
