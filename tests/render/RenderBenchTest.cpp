@@ -6,14 +6,21 @@
 namespace gale::render {
 namespace {
 
-TEST(RenderBench, SmallCaseFillsTheScreenAndCountsPaperPolygons) {
+/// A width x height pixel case drawing `layers` layers for one timed frame and no warm-up: enough
+/// to count triangles and coverage in milliseconds.
+ShellFillCase oneFrameCase(int width, int height, int layers) {
     ShellFillCase c;
-    c.width = 64;
-    c.height = 48;
-    c.layers = 9;
+    c.width = width;
+    c.height = height;
+    c.layers = layers;
     c.frames = 1;
     c.warmupFrames = 0;
-    const ShellFillResult r = measureShellFill(c);
+    return c;
+}
+
+TEST(RenderBench, SmallCaseFillsTheScreenAndCountsPaperPolygons) {
+    const ShellFillResult r =
+        measureShellFill(oneFrameCase(/*width=*/64, /*height=*/48, /*layers=*/9));
     EXPECT_EQ(r.triangles, 4608);  // the paper's 9-shell row: 512 base triangles x 9 layers
     EXPECT_DOUBLE_EQ(r.coverage, 1.0);
     EXPECT_GT(r.fps, 0.0);
@@ -22,13 +29,8 @@ TEST(RenderBench, SmallCaseFillsTheScreenAndCountsPaperPolygons) {
 }
 
 TEST(RenderBench, GroundOnlyRowDrawsOneLayer) {
-    ShellFillCase c;
-    c.width = 32;
-    c.height = 24;
-    c.layers = 1;
-    c.frames = 1;
-    c.warmupFrames = 0;
-    EXPECT_EQ(measureShellFill(c).triangles, 512);
+    const ShellFillCase groundOnly = oneFrameCase(/*width=*/32, /*height=*/24, /*layers=*/1);
+    EXPECT_EQ(measureShellFill(groundOnly).triangles, 512);
 }
 
 TEST(RenderBench, RejectsBadCase) {
