@@ -60,6 +60,4 @@ inline std::string sourcePath(const std::string& relative) {
     return (fs::path(GALE_SOURCE_DIR) / relative).string();
 }
 
-/// Every path under `folder` (relative to it) with its size; empty if `folder` does not exist.
-
 }  // namespace gale::test

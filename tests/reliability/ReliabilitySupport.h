@@ -33,6 +33,7 @@ using gale::test::readFile;
 using gale::test::writeFile;
 using gale::test::sourcePath;
 
+/// Every path under `folder` (relative to it) with its size; empty if `folder` does not exist.
 inline std::map<std::string, uintmax_t> listTree(const std::string& folder) {
     std::map<std::string, uintmax_t> out;
     std::error_code ec;
