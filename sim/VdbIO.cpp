@@ -30,18 +30,22 @@ openvdb::Vec3SGrid::Ptr emptyVelocityGrid(const WindField& f, const char* name, 
     grid->setIsInWorldSpace(true);
     return grid;
 }
+// Calls f(coord, cell-centred velocity) for every air cell, in the order the grids are filled.
+template <class F>
+void forEachAirCell(const WindField& field, F&& f) {
+    for (int j = 0; j < field.ny(); ++j)
+        for (int i = 0; i < field.nx(); ++i)
+            for (int k = 0; k < field.nz(); ++k)
+                if (field.isAir(i, j, k)) f(openvdb::Coord(i, j, k), field.cellVelocity_mps(i, j, k));
+}
 }  // namespace
 
 openvdb::Vec3SGrid::Ptr velocityGrid(const WindField& f) {
     auto grid = emptyVelocityGrid(f, "velocity", openvdb::GRID_UNKNOWN);
     auto acc = grid->getAccessor();
-    for (int j = 0; j < f.ny(); ++j)
-        for (int i = 0; i < f.nx(); ++i)
-            for (int k = 0; k < f.nz(); ++k) {
-                if (!f.isAir(i, j, k)) continue;
-                const auto v = f.cellVelocity_mps(i, j, k);
-                acc.setValueOn(openvdb::Coord(i, j, k), openvdb::Vec3s(float(v[0]), float(v[1]), float(v[2])));
-            }
+    forEachAirCell(f, [&](const openvdb::Coord& c, const std::array<double, 3>& v) {
+        acc.setValueOn(c, openvdb::Vec3s(float(v[0]), float(v[1]), float(v[2])));
+    });
     return grid;
 }
 
@@ -70,13 +74,9 @@ openvdb::FloatGrid::Ptr speedGrid(const WindField& f) {
     grid->setTransform(detail::cellCentredTransform(f.voxelSize_m(), f.wsMin_m()));
     grid->setGridClass(openvdb::GRID_UNKNOWN);
     auto acc = grid->getAccessor();
-    for (int j = 0; j < f.ny(); ++j)
-        for (int i = 0; i < f.nx(); ++i)
-            for (int k = 0; k < f.nz(); ++k) {
-                if (!f.isAir(i, j, k)) continue;
-                const auto v = f.cellVelocity_mps(i, j, k);
-                acc.setValueOn(openvdb::Coord(i, j, k), float(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])));
-            }
+    forEachAirCell(f, [&](const openvdb::Coord& c, const std::array<double, 3>& v) {
+        acc.setValueOn(c, float(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])));
+    });
     return grid;
 }
 
