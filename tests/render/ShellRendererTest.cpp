@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <string>
 
 #include "RenderTestUtil.h"
@@ -57,18 +58,26 @@ struct ReferenceScene {
     }
 };
 
-Image renderReference(const GrassWind& wind) {
-    auto context = createOsMesaContext(160, 120);
+// The reference scene set up in a renderer of its own, frame after frame.
+struct ReferenceRig {
+    std::unique_ptr<GlContext> context;
     ReferenceScene scene;
-    ShellRenderer renderer(*context);
-    renderer.setTerrain(scene.mesh);
-    renderer.setGrass(scene.grass, scene.texture);
-    renderer.setLighting(scene.lighting);
-    renderer.draw(scene.camera, wind);
-    Image image;
-    context->readPixels(image);
-    return image;
-}
+    ShellRenderer renderer;
+
+    ReferenceRig(int width, int height) : context(createOsMesaContext(width, height)), renderer(*context) {
+        renderer.setTerrain(scene.mesh);
+        renderer.setGrass(scene.grass, scene.texture);
+        renderer.setLighting(scene.lighting);
+    }
+    Image frame(const GrassWind& wind) {
+        renderer.draw(scene.camera, wind);
+        Image image;
+        context->readPixels(image);
+        return image;
+    }
+};
+
+Image renderReference(const GrassWind& wind) { return ReferenceRig(160, 120).frame(wind); }
 
 TEST(ShellRenderer, MatchesReferenceImage) {
     ReferenceScene scene;
@@ -97,19 +106,9 @@ TEST(ShellRenderer, EmptyGroupIntensityMeansNoWind) {
 }
 
 TEST(ShellRenderer, WindArraysAreReuploadedOnlyWhenRevisionChanges) {
-    auto context = createOsMesaContext(160, 120);
-    ReferenceScene scene;
-    ShellRenderer renderer(*context);
-    renderer.setTerrain(scene.mesh);
-    renderer.setGrass(scene.grass, scene.texture);
-    renderer.setLighting(scene.lighting);
-    auto frame = [&](const GrassWind& wind) {
-        renderer.draw(scene.camera, wind);
-        Image image;
-        context->readPixels(image);
-        return image;
-    };
-    GrassWind wind = scene.wind(1.0f, 1.0f);
+    ReferenceRig rig(160, 120);
+    auto frame = [&](const GrassWind& wind) { return rig.frame(wind); };
+    GrassWind wind = rig.scene.wind(1.0f, 1.0f);
     const Image first = frame(wind);
     auto flipped = std::make_shared<VertexWind>(*wind.vertex);
     for (glm::vec3& d : flipped->wsDirection) d = -d;
@@ -186,13 +185,9 @@ TEST(ShellRenderer, AllGroundTextureShowsOnlyShellZero) {
 
 // Draws the reference scene with `wind` and expects std::invalid_argument naming `expected`.
 void expectDrawRefuses(const GrassWind& wind, const std::string& expected) {
-    auto context = createOsMesaContext(32, 24);
-    ReferenceScene scene;
-    ShellRenderer renderer(*context);
-    renderer.setTerrain(scene.mesh);
-    renderer.setGrass(scene.grass, scene.texture);
+    ReferenceRig rig(32, 24);
     try {
-        renderer.draw(scene.camera, wind);
+        rig.frame(wind);
         FAIL() << "expected std::invalid_argument naming " << expected;
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
