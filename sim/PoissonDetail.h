@@ -1,0 +1,208 @@
+#pragma once
+/// \file PoissonDetail.h
+/// Internal to PoissonSolver, not part of gale_sim's interface: the multigrid level (padded
+/// arrays, uniform runs, transfers to the next level), the row loops every kernel runs on, and the
+/// kernels the solver's files share. MGPCG after McAdams, Sifakis, Teran 2010 ("A parallel
+/// multigrid Poisson solver for fluids simulation on large grids"); the parts live in
+///   PoissonLevels.cpp     the hierarchy: level 0 from the PoissonSystem, coarsening, uniform runs,
+///                         the dense Cholesky of the coarsest level;
+///   PoissonOperator.cpp   the 7-point operator: A x with x . A x, the residual, and the
+///                         constant-coefficient row kernels;
+///   PoissonSmoothing.cpp  the pipelined red-black Gauss-Seidel sweep (fusedSweep);
+///   PoissonTransfer.cpp   trilinear prolongation, restriction (its transpose), and the redirects;
+///   PoissonSolver.cpp     the public class, the V-cycle and the CG driver.
+///
+/// Layout: every level stores its arrays padded by one ghost cell per side, so the stencil needs no
+/// bounds tests. Ghost entries of solution-like arrays stay 0 (homogeneous Dirichlet data), and the
+/// weight of a face is stored in the padded cell on its high side: weight of the face between
+/// cells (i-1, j, k) and (i, j, k) is wx[at(i, j, k)], i in [0, nx].
+
+#include "sim/PoissonSolver.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace gale::sim::detail {
+
+/// Below this many cells a level runs serially: TBB's scheduling costs more than it saves.
+inline constexpr size_t PARALLEL_MIN_CELLS = 16 * 1024;
+
+/// Cell-centred linear transfer along one axis between a level and the next coarser one.
+struct Transfer1D {
+    // Prolongation: fine index i takes w0 * coarse[c0] + w1 * coarse[c1] (indices in [-1, N]).
+    std::vector<int> c0, c1;
+    std::vector<double> w0, w1;
+    // Restriction (transpose): coarse index I gathers sum over n < count of w[n] * fine[f[n]].
+    std::vector<std::array<int, 4>> f;
+    std::vector<std::array<double, 4>> w;
+    std::vector<int> count;
+};
+
+struct Level {
+    int nx = 0, ny = 0, nz = 0;
+    int sx = 0, sy = 0, sz = 0;  // padded sizes
+    size_t sxy = 0, total = 0;
+    std::vector<float> wx, wy, wz;  // padded, face on the low side of the cell
+    std::vector<double> x, b, r;    // levels >= 1 only (level 0 uses the PCG vectors)
+    std::vector<uint8_t> active;    // padded: 1 where the cell is an unknown (diag > 0)
+    /// Fast path: cells whose six weights equal the level's full-open values (bx, by, bz) form
+    /// runs along x; kernels treat them with constant coefficients and never read their weights.
+    float bx = 0, by = 0, bz = 0;
+    double uniformDiag = 0, uniformInvDiag = 0;
+    std::vector<uint32_t> rowRuns;           // runs of row (j, k) are runs[rowRuns[r] .. rowRuns[r+1])
+    std::vector<std::array<int, 2>> runs;    // [i0, i1)
+    size_t uniformCells = 0;
+    int cx = 1, cy = 1, cz = 1;     // coarsening factors to the next level
+    Transfer1D tx, ty, tz;          // transfers to the next level
+    /// Fine cells next to an inactive coarse cell or a Neumann side: the trilinear weight those
+    /// coarse values would carry goes to the cell's own coarse parent instead (constant
+    /// extrapolation, the discrete analogue of the no-flux condition). Restriction applies the
+    /// transpose, so the V-cycle stays symmetric.
+    struct Redirect {
+        size_t fine, home;
+        double weight;
+    };
+    std::vector<Redirect> redirects;
+    std::vector<size_t> redirectSlab;  // redirects of fine slab k: [redirectSlab[k], redirectSlab[k+1])
+
+    void resize(int nx_, int ny_, int nz_) {
+        nx = nx_, ny = ny_, nz = nz_;
+        sx = nx + 2, sy = ny + 2, sz = nz + 2;
+        sxy = size_t(sx) * sy;
+        total = sxy * sz;
+        wx.assign(total, 0.f);
+        wy.assign(total, 0.f);
+        wz.assign(total, 0.f);
+    }
+    size_t cells() const { return size_t(nx) * ny * nz; }
+    size_t at(int i, int j, int k) const { return size_t(i + 1) + sx * (size_t(j + 1) + sy * size_t(k + 1)); }
+    size_t rowIndex(int j, int k) const { return size_t(j) + size_t(ny) * k; }
+    /// Calls general(i0, i1) and uniform(i0, i1) over the segments of row (j, k), in order.
+    template <class G, class U>
+    void segments(int j, int k, const G& general, const U& uniform) const {
+        int i = 0;
+        const size_t r = rowIndex(j, k);
+        for (uint32_t n = rowRuns[r]; n < rowRuns[r + 1]; ++n) {
+            if (runs[n][0] > i) general(i, runs[n][0]);
+            uniform(runs[n][0], runs[n][1]);
+            i = runs[n][1];
+        }
+        if (i < nx) general(i, nx);
+    }
+    /// Sets the full-open weights (bx_, by_, bz_) and finds the runs of cells that have them on
+    /// all six faces (PoissonLevels.cpp).
+    void findUniformRuns(float bx_, float by_, float bz_);
+    /// active = diag > 0 on every cell (PoissonLevels.cpp).
+    void markActive();
+    double diag(size_t p) const {
+        return double(wx[p]) + wx[p + 1] + wy[p] + wy[p + sx] + wz[p] + wz[p + sxy];
+    }
+};
+
+/// Runs body(j, k) over every row of a level, in parallel when the level is big enough.
+template <class Body>
+void forRows(const Level& L, const Body& body) {
+    if (L.cells() < PARALLEL_MIN_CELLS) {
+        for (int k = 0; k < L.nz; ++k)
+            for (int j = 0; j < L.ny; ++j) body(j, k);
+        return;
+    }
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, L.nz, 1, 0, L.ny, 8),
+                      [&](const tbb::blocked_range2d<int>& r) {
+                          for (int k = r.rows().begin(); k < r.rows().end(); ++k)
+                              for (int j = r.cols().begin(); j < r.cols().end(); ++j) body(j, k);
+                      });
+}
+
+/// Deterministic reduction of body(j, k) -> double over rows (sum or max), so solves repeat
+/// bit for bit whatever the thread count does.
+template <class Body, class Join>
+double reduceRows(const Level& L, const Body& body, const Join& join) {
+    if (L.cells() < PARALLEL_MIN_CELLS) {
+        double acc = 0.0;
+        for (int k = 0; k < L.nz; ++k)
+            for (int j = 0; j < L.ny; ++j) acc = join(acc, body(j, k));
+        return acc;
+    }
+    return tbb::parallel_deterministic_reduce(
+        tbb::blocked_range2d<int>(0, L.nz, 1, 0, L.ny, 16), 0.0,
+        [&](const tbb::blocked_range2d<int>& r, double acc) {
+            for (int k = r.rows().begin(); k < r.rows().end(); ++k)
+                for (int j = r.cols().begin(); j < r.cols().end(); ++j) acc = join(acc, body(j, k));
+            return acc;
+        },
+        join);
+}
+
+inline constexpr auto SUM = [](double a, double b) { return a + b; };
+inline constexpr auto MAX = [](double a, double b) { return std::max(a, b); };
+
+// --- the hierarchy (PoissonLevels.cpp) ---------------------------------------------------------
+
+/// Builds level 0 from a validated system (boundary-face weights scaled: Dirichlet x 2, Neumann
+/// 0) and coarsens by 2 per axis until a level has few enough cells for the dense solve; levels
+/// on output holds them finest first, with the transfers between them. Returns the number of
+/// active cells of level 0.
+size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels);
+
+/// The coarsest level solved exactly: dense Cholesky factor over its active cells.
+struct CoarseSolver {
+    std::vector<size_t> cells;  // padded index of each active cell
+    std::vector<double> chol;   // m x m lower triangle, row-major
+    std::vector<double> tmp;
+    /// Factors the operator of L (singular pure-Neumann components pinned, see the definition).
+    void factor(const Level& L);
+    /// x = A^-1 b on L's active cells, 0 elsewhere (all of x is written).
+    void solve(const Level& L, const double* b, double* x);
+};
+
+// --- the operator (PoissonOperator.cpp) --------------------------------------------------------
+
+/// out = A in on level L; returns in . out (row partial sums in row order: deterministic).
+double applyDot(const Level& L, const double* in, double* out);
+
+/// r = b - A x on level L, 0 in inactive cells.
+void residual(const Level& L, const double* x, const double* b, double* r);
+
+/// tmp[i - i0] = (b + sum of weighted neighbours) / D for i in [i0, i1) of the uniform run that
+/// starts the row at padded index p0: the Gauss-Seidel value of every cell of the run, from the
+/// current x (the caller keeps one colour).
+void uniformCandidates(const double* __restrict x, const double* __restrict b, double* __restrict tmp, size_t p0,
+                       int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx, double by, double bz, double invD);
+
+/// out = b - A x on a uniform run (residual), or out = A x with b == nullptr; returns sum out * x
+/// (0 for the residual).
+double uniformApply(const double* __restrict x, const double* __restrict b, double* __restrict out, size_t p0, int i0,
+                    int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx, double by, double bz, double D);
+
+// --- smoothing (PoissonSmoothing.cpp) ----------------------------------------------------------
+
+/// One red-black Gauss-Seidel sweep on level L, pipelined slab by slab; optionally starting from
+/// x = 0, adding the coarse correction P xc first, forming the residual, and summing b . x. The
+/// result equals the unpipelined sweep exactly, serial or threaded (details at the definition).
+void fusedSweep(const Level& L, double* x, const double* b, int first, bool fromZero, double* residualOut,
+                const Level* C = nullptr, const double* xc = nullptr, double* dotOut = nullptr);
+
+// --- transfers (PoissonTransfer.cpp) -----------------------------------------------------------
+
+/// The 1-D transfer between nFine cells and nCoarse = ceil(nFine / factor) cells (factor 1 or 2).
+Transfer1D makeTransfer(int nFine, int nCoarse, int factor);
+
+/// F.redirects and F.redirectSlab: the fine cells that lose trilinear weight to inactive coarse
+/// cells or Neumann ghosts of C, sorted by fine index whatever the thread count.
+void buildRedirects(Level& F, const Level& C, const std::array<BoundaryKind, 6>& sides);
+
+/// C.b = P^T rf (the coarse right-hand side from the fine residual), 0 in inactive coarse cells.
+void restrictTo(const Level& F, const double* rf, Level& C);
+
+/// xf += P xc on fine row (j, k), trilinear part only (the caller adds the redirects).
+void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, int j, int k);
+
+}  // namespace gale::sim::detail
