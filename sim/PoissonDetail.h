@@ -171,6 +171,21 @@ double applyDot(const Level& L, const double* in, double* out);
 /// r = b - A x on level L, 0 in inactive cells.
 void residual(const Level& L, const double* x, const double* b, double* r);
 
+/// r = b - A x through each cell's own weights on padded cells [pBegin, pEnd) of one row, 0 in
+/// inactive cells. Inline: fusedSweep calls it on every segment between uniform runs.
+inline void residualSpan(const Level& L, const double* x, const double* b, double* r, size_t pBegin,
+                         size_t pEnd) {
+    const size_t sx = L.sx, sxy = L.sxy;
+    const float *wx = L.wx.data(), *wy = L.wy.data(), *wz = L.wz.data();
+    for (size_t p = pBegin; p < pEnd; ++p) {
+        const double d = double(wx[p]) + wx[p + 1] + wy[p] + wy[p + sx] + wz[p] + wz[p + sxy];
+        const double v = b[p] - (d * x[p] - (wx[p] * x[p - 1] + wx[p + 1] * x[p + 1] +
+                                             wy[p] * x[p - sx] + wy[p + sx] * x[p + sx] +
+                                             wz[p] * x[p - sxy] + wz[p + sxy] * x[p + sxy]));
+        r[p] = d > 0.0 ? v : 0.0;
+    }
+}
+
 /// tmp[i - i0] = (b + sum of weighted neighbours) / D for i in [i0, i1) of the uniform run that
 /// starts the row at padded index p0: the Gauss-Seidel value of every cell of the run, from the
 /// current x (the caller keeps one colour).
@@ -202,7 +217,10 @@ void buildRedirects(Level& F, const Level& C, const std::array<BoundaryKind, 6>&
 /// C.b = P^T rf (the coarse right-hand side from the fine residual), 0 in inactive coarse cells.
 void restrictTo(const Level& F, const double* rf, Level& C);
 
-/// xf += P xc on fine row (j, k), trilinear part only (the caller adds the redirects).
+/// xf += P xc on fine row (j, k), trilinear part only (prolongRedirects adds the rest).
 void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, int j, int k);
+
+/// xf += the redirected part of P xc on fine slab k, in redirect order.
+void prolongRedirects(const Level& F, const double* xc, double* xf, int k);
 
 }  // namespace gale::sim::detail

@@ -86,17 +86,9 @@ double applyDot(const Level& L, const double* in, double* out) {
 }
 
 void residual(const Level& L, const double* x, const double* b, double* r) {
-    const size_t sx = L.sx, sxy = L.sxy;
-    const float *wx = L.wx.data(), *wy = L.wy.data(), *wz = L.wz.data();
     forRows(L, [&](int j, int k) {
         const size_t p0 = L.at(0, j, k);
-        for (size_t p = p0; p < p0 + size_t(L.nx); ++p) {
-            const double d = double(wx[p]) + wx[p + 1] + wy[p] + wy[p + sx] + wz[p] + wz[p + sxy];
-            const double v = b[p] - (d * x[p] - (wx[p] * x[p - 1] + wx[p + 1] * x[p + 1] +
-                                                 wy[p] * x[p - sx] + wy[p + sx] * x[p + sx] +
-                                                 wz[p] * x[p - sxy] + wz[p + sxy] * x[p + sxy]));
-            r[p] = d > 0.0 ? v : 0.0;
-        }
+        residualSpan(L, x, b, r, p0, p0 + size_t(L.nx));
     });
 }
 

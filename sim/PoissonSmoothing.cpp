@@ -75,15 +75,7 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
         const size_t p0 = L.at(0, j, k);
         L.segments(
             j, k,
-            [&](int i0, int i1) {
-                for (size_t p = p0 + i0; p < p0 + size_t(i1); ++p) {
-                    const double d = double(wx[p]) + wx[p + 1] + wy[p] + wy[p + sx] + wz[p] + wz[p + sxy];
-                    const double v = b[p] - (d * x[p] - (wx[p] * x[p - 1] + wx[p + 1] * x[p + 1] +
-                                                         wy[p] * x[p - sx] + wy[p + sx] * x[p + sx] +
-                                                         wz[p] * x[p - sxy] + wz[p + sxy] * x[p + sxy]));
-                    residualOut[p] = d > 0.0 ? v : 0.0;
-                }
-            },
+            [&](int i0, int i1) { residualSpan(L, x, b, residualOut, p0 + i0, p0 + size_t(i1)); },
             [&](int i0, int i1) { uniformApply(x, b, residualOut, p0, i0, i1, sx, sxy, bx, by, bz, D); });
     };
     std::vector<double> rowDots;  // shared by the row tasks, one slot per row
@@ -95,10 +87,7 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
         rowDots[L.rowIndex(j, k)] = acc;
     };
     auto prolongSlab = [&](int k, bool serialRows) {
-        for (size_t n = L.redirectSlab[k]; n < L.redirectSlab[k + 1]; ++n) {
-            const Level::Redirect& r = L.redirects[n];
-            x[r.fine] += r.weight * xc[r.home];
-        }
+        prolongRedirects(L, xc, x, k);
         if (serialRows) {
             for (int j = 0; j < L.ny; ++j) prolongRow(*C, xc, L, x, j, k);
         } else {
@@ -113,10 +102,7 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
     for (int s = 0; s < steps; ++s) {
         const bool prolongNext = C && s + 1 < L.nz;
         if (prolongNext)  // redirects touch scattered rows: serially, before the row tasks
-            for (size_t n = L.redirectSlab[s + 1]; n < L.redirectSlab[s + 2]; ++n) {
-                const Level::Redirect& r = L.redirects[n];
-                x[r.fine] += r.weight * xc[r.home];
-            }
+            prolongRedirects(L, xc, x, s + 1);
         auto rows = [&](int j0, int j1) {
             for (int j = j0; j < j1; ++j) {
                 if (prolongNext) prolongRow(*C, xc, L, x, j, s + 1);

@@ -205,15 +205,19 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
             x[p0 + i] = (active && warm) ? solution[c0 + i] : 0.0;
         }
     });
-    const double normB = detail::reduceRows(
-        L,
-        [&](int j, int k) {
-            double mx = 0.0;
-            const size_t p0 = L.at(0, j, k);
-            for (int i = 0; i < L.nx; ++i) mx = std::max(mx, std::abs(r[p0 + i]));
-            return mx;
-        },
-        detail::MAX);
+    // max |v| over the cells of level 0 (max is exact: the same bits for any thread count).
+    auto maxAbs = [&](const double* v) {
+        return detail::reduceRows(
+            L,
+            [&](int j, int k) {
+                double mx = 0.0;
+                const size_t p0 = L.at(0, j, k);
+                for (int i = 0; i < L.nx; ++i) mx = std::max(mx, std::abs(v[p0 + i]));
+                return mx;
+            },
+            detail::MAX);
+    };
+    const double normB = maxAbs(r);
     auto finish = [&](const char* why) {
         solution.assign(n, 0.0);
         detail::forRows(L, [&](int j, int k) {
@@ -241,17 +245,6 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
         std::copy(r, r + L.total, p);  // p = b
         detail::residual(L, x, p, r);
     }
-    auto maxAbs = [&](const double* v) {
-        return detail::reduceRows(
-            L,
-            [&](int j, int k) {
-                double mx = 0.0;
-                const size_t p0 = L.at(0, j, k);
-                for (int i = 0; i < L.nx; ++i) mx = std::max(mx, std::abs(v[p0 + i]));
-                return mx;
-            },
-            detail::MAX);
-    };
     double res = maxAbs(r) / normB;
     rep.initialRelativeResidual = res;
     rep.relativeResidual = res;

@@ -142,8 +142,8 @@ void restrictTo(const Level& F, const double* rf, Level& C) {
     for (const Level::Redirect& r : F.redirects) bc[r.home] += r.weight * rf[r.fine];
 }
 
-// x_fine += P x_coarse on fine row (j, k), trilinear part only (the redirects are added by
-// the caller). Inactive fine cells may receive values; they are decoupled (all their weights
+// x_fine += P x_coarse on fine row (j, k), trilinear part only (prolongRedirects adds the
+// redirects). Inactive fine cells may receive values; they are decoupled (all their weights
 // are 0) and the solver masks them on output.
 void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, int j, int k) {
     thread_local std::vector<double> t;
@@ -161,6 +161,13 @@ void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, in
         }
     const size_t p0 = F.at(0, j, k);
     for (int i = 0; i < F.nx; ++i) xf[p0 + i] += F.tx.w0[i] * t[F.tx.c0[i] + 1] + F.tx.w1[i] * t[F.tx.c1[i] + 1];
+}
+
+void prolongRedirects(const Level& F, const double* xc, double* xf, int k) {
+    for (size_t n = F.redirectSlab[k]; n < F.redirectSlab[k + 1]; ++n) {
+        const Level::Redirect& r = F.redirects[n];
+        xf[r.fine] += r.weight * xc[r.home];
+    }
 }
 
 }  // namespace gale::sim::detail
