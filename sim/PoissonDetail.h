@@ -1,6 +1,7 @@
 #pragma once
 /// \file PoissonDetail.h
-/// Internal to PoissonSolver, not part of gale_sim's interface: the multigrid level (padded
+/// Internal to PoissonSolver (namespace gale::sim::multigrid, so its plain names such as Level
+/// cannot collide with other sim internals), not part of gale_sim's interface: the multigrid level (padded
 /// arrays, uniform runs, transfers to the next level), the row loops every kernel runs on, and the
 /// kernels the solver's files share. MGPCG after McAdams, Sifakis, Teran 2010 ("A parallel
 /// multigrid Poisson solver for fluids simulation on large grids"); the parts live in
@@ -29,7 +30,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace gale::sim::detail {
+namespace gale::sim::multigrid {
 
 /// Below this many cells a level runs serially: TBB's scheduling costs more than it saves.
 inline constexpr size_t PARALLEL_MIN_CELLS = 16 * 1024;
@@ -223,4 +224,4 @@ void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, in
 /// xf += the redirected part of P xc on fine slab k, in redirect order.
 void prolongRedirects(const Level& F, const double* xc, double* xf, int k);
 
-}  // namespace gale::sim::detail
+}  // namespace gale::sim::multigrid

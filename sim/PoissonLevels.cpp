@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-namespace gale::sim::detail {
+namespace gale::sim::multigrid {
 namespace {
 
 /// The hierarchy stops coarsening once a level has at most this many cells; that level is solved
@@ -255,4 +255,4 @@ void CoarseSolver::solve(const Level& L, const double* b, double* x) {
     for (size_t a = 0; a < m; ++a) x[cells[a]] = y[a];
 }
 
-}  // namespace gale::sim::detail
+}  // namespace gale::sim::multigrid

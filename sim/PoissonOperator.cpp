@@ -11,7 +11,7 @@
 
 #include "sim/PoissonDetail.h"
 
-namespace gale::sim::detail {
+namespace gale::sim::multigrid {
 
 // Constant-coefficient row kernels for runs of full-open cells, written so the compiler can
 // vectorise them (no stores into arrays they read); compiled twice, for x86-64-v3 (AVX2, FMA)
@@ -92,4 +92,4 @@ void residual(const Level& L, const double* x, const double* b, double* r) {
     });
 }
 
-}  // namespace gale::sim::detail
+}  // namespace gale::sim::multigrid

@@ -14,7 +14,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace gale::sim::detail {
+namespace gale::sim::multigrid {
 
 // One Gauss-Seidel sweep in red-black order (colour `first`, then the other), pipelined slab
 // by slab so each slab's data is streamed from memory once: step s updates colour `first` on
@@ -131,4 +131,4 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
     }
 }
 
-}  // namespace gale::sim::detail
+}  // namespace gale::sim::multigrid

@@ -30,14 +30,14 @@
 
 namespace gale::sim {
 
-using detail::Level;
+using multigrid::Level;
 
 struct PoissonSolver::Impl {
     std::vector<Level> levels;
     // PCG vectors on level 0 (padded): solution, residual, preconditioned residual, direction,
     // operator times direction (doubles as the V-cycle's scratch residual on level 0).
     std::vector<double> xs, rs, zs, ps, qs;
-    detail::CoarseSolver coarse;  // the coarsest level, solved exactly
+    multigrid::CoarseSolver coarse;  // the coarsest level, solved exactly
     size_t activeCells = 0;
     double setupSeconds = 0;
     int sweeps = 2;
@@ -56,16 +56,16 @@ struct PoissonSolver::Impl {
         }
         // Pre-smoothing V(n, .) in red-black order; the last sweep also forms the residual.
         for (int s = 0; s < sweeps; ++s)
-            detail::fusedSweep(L, x, b, /*first=*/0, /*fromZero=*/s == 0,
+            multigrid::fusedSweep(L, x, b, /*first=*/0, /*fromZero=*/s == 0,
                                /*residualOut=*/s + 1 == sweeps ? scratch : nullptr);
         Level& C = levels[l + 1];
-        detail::restrictTo(L, scratch, C);
+        multigrid::restrictTo(L, scratch, C);
         vcycle(l + 1, C.b.data(), C.x.data(), C.r.data());
         // Post-smoothing in black-red order: the adjoint of the pre-smoother, so the V-cycle is a
         // symmetric preconditioner as CG requires. The first post-sweep adds the coarse
         // correction as it goes; the last one sums b . x.
         for (int s = 0; s < sweeps; ++s)
-            detail::fusedSweep(L, x, b, /*first=*/1, /*fromZero=*/false, nullptr, s == 0 ? &C : nullptr,
+            multigrid::fusedSweep(L, x, b, /*first=*/1, /*fromZero=*/false, nullptr, s == 0 ? &C : nullptr,
                                s == 0 ? C.x.data() : nullptr, s + 1 == sweeps ? dotOut : nullptr);
     }
 };
@@ -100,7 +100,7 @@ PoissonSolver::PoissonSolver(const PoissonSystem& sys) : mImpl(std::make_unique<
     checkWeights(sys.weightZ, nzF, "weightZ");
 
     Impl& m = *mImpl;
-    m.activeCells = detail::buildHierarchy(sys, m.levels);
+    m.activeCells = multigrid::buildHierarchy(sys, m.levels);
     m.coarse.factor(m.levels.back());
     const size_t total = m.levels[0].total;
     for (auto* v : {&m.xs, &m.rs, &m.zs, &m.ps, &m.qs}) v->assign(total, 0.0);
@@ -161,7 +161,7 @@ void PoissonSolver::applyOperator(const std::vector<double>& x, std::vector<doub
     for (int k = 0; k < L.nz; ++k)
         for (int j = 0; j < L.ny; ++j)
             for (int i = 0; i < L.nx; ++i) in[L.at(i, j, k)] = x[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)];
-    (void)detail::applyDot(L, in.data(), res.data());
+    (void)multigrid::applyDot(L, in.data(), res.data());
     out.assign(L.cells(), 0.0);
     for (int k = 0; k < L.nz; ++k)
         for (int j = 0; j < L.ny; ++j)
@@ -197,7 +197,7 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
     double *x = m.xs.data(), *r = m.rs.data(), *z = m.zs.data(), *p = m.ps.data(), *q = m.qs.data();
     const bool warm = !solution.empty();
     // Load b (into r) and the warm start (into x), padded; inactive cells stay 0.
-    detail::forRows(L, [&](int j, int k) {
+    multigrid::forRows(L, [&](int j, int k) {
         const size_t p0 = L.at(0, j, k), c0 = size_t(L.nx) * (j + size_t(L.ny) * k);
         for (int i = 0; i < L.nx; ++i) {
             const bool active = L.diag(p0 + i) > 0.0;
@@ -207,7 +207,7 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
     });
     // max |v| over the cells of level 0 (max is exact: the same bits for any thread count).
     auto maxAbs = [&](const double* v) {
-        return detail::reduceRows(
+        return multigrid::reduceRows(
             L,
             [&](int j, int k) {
                 double mx = 0.0;
@@ -215,12 +215,12 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
                 for (int i = 0; i < L.nx; ++i) mx = std::max(mx, std::abs(v[p0 + i]));
                 return mx;
             },
-            detail::MAX);
+            multigrid::MAX);
     };
     const double normB = maxAbs(r);
     auto finish = [&](const char* why) {
         solution.assign(n, 0.0);
-        detail::forRows(L, [&](int j, int k) {
+        multigrid::forRows(L, [&](int j, int k) {
             const size_t p0 = L.at(0, j, k), c0 = size_t(L.nx) * (j + size_t(L.ny) * k);
             for (int i = 0; i < L.nx; ++i) solution[c0 + i] = L.active[p0 + i] ? x[p0 + i] : 0.0;
         });
@@ -243,7 +243,7 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
     // Keep b in p temporarily to form r = b - A x0.
     if (warm) {
         std::copy(r, r + L.total, p);  // p = b
-        detail::residual(L, x, p, r);
+        multigrid::residual(L, x, p, r);
     }
     double res = maxAbs(r) / normB;
     rep.initialRelativeResidual = res;
@@ -260,7 +260,7 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
             m.vcycle(0, r, z, q, &rz);  // r . z summed inside the last sweep
             return rz;
         } else {
-            detail::forRows(L, [&](int j, int k) {
+            multigrid::forRows(L, [&](int j, int k) {
                 const size_t p0 = L.at(0, j, k);
                 for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) {
                     const double d = L.diag(pp);
@@ -268,7 +268,7 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
                 }
             });
         }
-        return detail::reduceRows(
+        return multigrid::reduceRows(
             L,
             [&](int j, int k) {
                 double s = 0.0;
@@ -276,20 +276,20 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
                 for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) s += r[pp] * z[pp];
                 return s;
             },
-            detail::SUM);
+            multigrid::SUM);
     };
     double rz = precondition();
     std::copy(z, z + L.total, p);
     const char* why = "reached maxIterations";
     bool ok = false;
     for (int it = 1; it <= settings.maxIterations; ++it) {
-        const double pq = detail::applyDot(L, p, q);
+        const double pq = multigrid::applyDot(L, p, q);
         if (!(pq > 0.0) || !std::isfinite(pq) || !std::isfinite(rz)) {
             why = "breakdown: p.Ap is not positive (operator not SPD or values not finite)";
             break;
         }
         const double alpha = rz / pq;
-        const double rmax = detail::reduceRows(
+        const double rmax = multigrid::reduceRows(
             L,
             [&](int j, int k) {
                 double mx = 0.0;
@@ -301,7 +301,7 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
                 }
                 return mx;
             },
-            detail::MAX);
+            multigrid::MAX);
         rep.iterations = it;
         res = rmax / normB;
         if (!std::isfinite(res)) {
@@ -316,18 +316,18 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
         const double rzNew = precondition();
         const double beta = rzNew / rz;
         rz = rzNew;
-        detail::forRows(L, [&](int j, int k) {
+        multigrid::forRows(L, [&](int j, int k) {
             const size_t p0 = L.at(0, j, k);
             for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) p[pp] = z[pp] + beta * p[pp];
         });
     }
     // Report the true residual, not the recurrence's: b - A x, recomputed once.
     {
-        detail::forRows(L, [&](int j, int k) {
+        multigrid::forRows(L, [&](int j, int k) {
             const size_t p0 = L.at(0, j, k), c0 = size_t(L.nx) * (j + size_t(L.ny) * k);
             for (int i = 0; i < L.nx; ++i) z[p0 + i] = L.diag(p0 + i) > 0.0 ? rhs[c0 + i] : 0.0;
         });
-        detail::residual(L, x, z, r);
+        multigrid::residual(L, x, z, r);
         const double trueRes = maxAbs(r) / normB;
         rep.relativeResidual = trueRes;
         // Rounding can leave the true residual a little above the recurrence's.

@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace gale::sim::detail {
+namespace gale::sim::multigrid {
 
 Transfer1D makeTransfer(int nFine, int nCoarse, int factor) {
     Transfer1D t;
@@ -170,4 +170,4 @@ void prolongRedirects(const Level& F, const double* xc, double* xf, int k) {
     }
 }
 
-}  // namespace gale::sim::detail
+}  // namespace gale::sim::multigrid
