@@ -98,6 +98,19 @@ public:
     const std::vector<float>& openFractionsY() const { return mOpenY; }
     const std::vector<float>& openFractionsZ() const { return mOpenZ; }
 
+    /// Net flux out of cell (i, j, k) through its open faces, per unit face area, m/s: the sum of
+    /// open fraction x face velocity, outward positive, of face arrays U, V, W in this layout
+    /// (WindField's). Times h^2 it is the cell's volume outflow; zero for a discretely
+    /// divergence-free field. Inline: the solvers evaluate it per cell per step.
+    double openOutflux(const std::vector<double>& U, const std::vector<double>& V, const std::vector<double>& W,
+                       int i, int j, int k) const {
+        const size_t xm = size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k), xp = xm + 1;
+        const size_t ym = size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k), yp = ym + size_t(mNx);
+        const size_t zm = size_t(i) + size_t(mNx) * (j + size_t(mNy) * k), zp = zm + size_t(mNx) * mNy;
+        return mOpenX[xp] * U[xp] - mOpenX[xm] * U[xm] + mOpenY[yp] * V[yp] - mOpenY[ym] * V[ym] +
+               mOpenZ[zp] * W[zp] - mOpenZ[zm] * W[zm];
+    }
+
     /// True if cell (i, j, k) holds air (an unknown of the solve).
     bool isAir(int i, int j, int k) const { return mAir[cellIndex(i, j, k)] != 0; }
     const std::vector<uint8_t>& airFlags() const { return mAir; }

@@ -113,9 +113,8 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
                 if (!D.isAir(i, j, k)) continue;
                 const size_t xm = S.faceXIndex(i, j, k), xp = S.faceXIndex(i + 1, j, k);
                 const size_t ym = S.faceYIndex(i, j, k), yp = S.faceYIndex(i, j + 1, k);
-                const size_t zm = S.faceZIndex(i, j, k), zp = S.faceZIndex(i, j, k + 1);
-                double b = h * (thX[xp] * U[xp] - thX[xm] * U[xm] + thY[yp] * V[yp] - thY[ym] * V[ym] +
-                                thZ[zp] * W[zp] - thZ[zm] * W[zm]);
+                const size_t zp = S.faceZIndex(i, j, k + 1);
+                double b = h * D.openOutflux(U, V, W, i, j, k);
                 if (boundary) {
                     const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h, zc = o[2] + (k + 0.5) * h;
                     if (i == 0) b += 2.0 * thX[xm] * g(o[0], yc, zc);
@@ -190,12 +189,7 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 if (!air(i, j, k)) continue;
-                const size_t xm = S.faceXIndex(i, j, k), xp = S.faceXIndex(i + 1, j, k);
-                const size_t ym = S.faceYIndex(i, j, k), yp = S.faceYIndex(i, j + 1, k);
-                const size_t zm = S.faceZIndex(i, j, k), zp = S.faceZIndex(i, j, k + 1);
-                const double div = thX[xp] * U[xp] - thX[xm] * U[xm] + thY[yp] * V[yp] - thY[ym] * V[ym] +
-                                   thZ[zp] * W[zp] - thZ[zm] * W[zm];
-                maxDiv = std::max(maxDiv, std::abs(div));
+                maxDiv = std::max(maxDiv, std::abs(D.openOutflux(U, V, W, i, j, k)));
             }
     res.report.maxDivergenceScaled = maxDiv / Uref;
     res.assemblySeconds = tAssemble + std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();

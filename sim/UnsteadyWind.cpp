@@ -159,20 +159,13 @@ double UnsteadyWindSolver::kineticEnergy_m5ps2() const {
 }
 
 double UnsteadyWindSolver::maxDivergenceScaled() const {
-    const auto& thX = mDomain.openFractionsX();
-    const auto& thY = mDomain.openFractionsY();
-    const auto& thZ = mDomain.openFractionsZ();
     const auto &U = mField.u_mps(), &V = mField.v_mps(), &W = mField.w_mps();
     double maxDiv = 0.0;
     for (int k = 0; k < mGrid.nz; ++k)
         for (int j = 0; j < mGrid.ny; ++j)
             for (int i = 0; i < mGrid.nx; ++i) {
                 if (!mDomain.isAir(i, j, k)) continue;
-                const size_t xm = mSystem.faceXIndex(i, j, k), xp = mSystem.faceXIndex(i + 1, j, k);
-                const size_t ym = mSystem.faceYIndex(i, j, k), yp = mSystem.faceYIndex(i, j + 1, k);
-                const size_t zm = mSystem.faceZIndex(i, j, k), zp = mSystem.faceZIndex(i, j, k + 1);
-                const double div = thX[xp] * U[xp] - thX[xm] * U[xm] + thY[yp] * V[yp] - thY[ym] * V[ym] +
-                                   thZ[zp] * W[zp] - thZ[zm] * W[zm];
+                const double div = mDomain.openOutflux(U, V, W, i, j, k);
                 if (!(std::abs(div) <= maxDiv)) maxDiv = std::abs(div);
             }
     return maxDiv / mRefSpeed_mps;
@@ -188,9 +181,6 @@ SolveReport UnsteadyWindSolver::project() {
     const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
     const double h = mGrid.voxelSize_m;
     const PoissonSystem& S = mSystem;
-    const auto& thX = mDomain.openFractionsX();
-    const auto& thY = mDomain.openFractionsY();
-    const auto& thZ = mDomain.openFractionsZ();
     std::vector<double>&U = mField.u_mps(), &V = mField.v_mps(), &W = mField.w_mps();
     auto air = [&](int i, int j, int k) { return mDomain.isAir(i, j, k); };
     // Right-hand side: h times the outward open flux (as SteadyWind.cpp); p = 0 on the open sides.
@@ -199,11 +189,7 @@ SolveReport UnsteadyWindSolver::project() {
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 if (!air(i, j, k)) continue;
-                const size_t xm = S.faceXIndex(i, j, k), xp = S.faceXIndex(i + 1, j, k);
-                const size_t ym = S.faceYIndex(i, j, k), yp = S.faceYIndex(i, j + 1, k);
-                const size_t zm = S.faceZIndex(i, j, k), zp = S.faceZIndex(i, j, k + 1);
-                rhs[S.cellIndex(i, j, k)] = h * (thX[xp] * U[xp] - thX[xm] * U[xm] + thY[yp] * V[yp] - thY[ym] * V[ym] +
-                                                 thZ[zp] * W[zp] - thZ[zm] * W[zm]);
+                rhs[S.cellIndex(i, j, k)] = h * mDomain.openOutflux(U, V, W, i, j, k);
             }
     });
     SolveReport rep = mPoisson.solve(rhs, mPsi, mSettings.projection);
