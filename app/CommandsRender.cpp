@@ -138,15 +138,19 @@ int runRender(const SceneRunOptions& options) {
     try {
         render::AnimationWriter animationWriter(animation, out.frames);
         Progress progress("frame", out.frames);
+        coupling::OverlayScaleKeeper overlayScale;  // the automatic colour scale only grows
         for (int k = 0; k < out.frames && !gInterrupted; ++k) {
             const auto frameStart = Clock::now();
             const double t_s = out.startTime_s + k / out.fps;
             built.wind->update(t_s, wind);
             const render::FrameStats stats = renderer.draw(built.camera, wind);
-            if (overlay)
-                overlay->draw(built.camera,
-                              coupling::buildOverlay(*built.wind, wind, built.mesh, scene.overlay,
-                                                     scene.grass.params.height_m));
+            if (overlay) {
+                const render::FieldOverlayData data =
+                    coupling::buildOverlay(*built.wind, wind, built.mesh, overlayScale.frame(scene.overlay),
+                                           scene.grass.params.height_m);
+                overlayScale.seen(data);
+                overlay->draw(built.camera, data);
+            }
             context->readPixels(image);
             const std::string path = framePathAs(out.folder, out.prefix, k, out.format);
             render::writeImageAtomic(image, path);

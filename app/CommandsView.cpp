@@ -166,6 +166,7 @@ class WindWorker {
 
     void run() {
         render::GrassWind wind;  // the worker's own, brought forward step by step
+        coupling::OverlayScaleKeeper overlayScale;  // the automatic colour scale only grows
         double done_s = std::nan("");
         coupling::OverlaySpec doneOverlay;
         bool doneOverlaySet = false;
@@ -187,7 +188,8 @@ class WindWorker {
                 const auto start = Clock::now();
                 mSource.update(t_s, wind);
                 render::FieldOverlayData data =
-                    coupling::buildOverlay(mSource, wind, mMesh, overlay, mGrassHeight_m);
+                    coupling::buildOverlay(mSource, wind, mMesh, overlayScale.frame(overlay), mGrassHeight_m);
+                overlayScale.seen(data);
                 const double step_ms = msSince(start);
                 std::lock_guard<std::mutex> lock(mMutex);
                 mLatest.wind = wind;

@@ -281,7 +281,9 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
             data.vortexCores.push_back(m);
         }
     }
-    data.speedMax = spec.speedMax_mps > 0.0 ? float(spec.speedMax_mps) : niceSpeedMax(maxSpeed);
+    data.speedMax = spec.speedMax_mps > 0.0
+                        ? float(spec.speedMax_mps)
+                        : std::max(float(spec.speedMaxFloor_mps), niceSpeedMax(maxSpeed));
     const double arrowScale = ARROW_LENGTH_OF_SPACING * spacing / data.speedMax;
     for (size_t a = 0; a < data.arrows.size(); ++a)
         data.arrows[a].wsVector_m = glm::vec3(arrowVelocity[a] * arrowScale);

@@ -6,6 +6,7 @@
 /// threshold. Works from any sim::WindField, whichever solver made it; for the point-source
 /// heuristic, which has no velocity field, from the grass wind itself (direction x intensity).
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <glm/vec3.hpp>
@@ -34,8 +35,27 @@ struct OverlaySpec {
     double vortexQ_per_s2 = 0.0;  ///< Q threshold, 1/s^2; 0: automatic (see buildFieldOverlay)
     bool legend = true;
     double speedMax_mps = 0.0;  ///< top of the colour map; 0: the largest speed shown, rounded up
+    /// With speedMax_mps = 0: the automatic top never goes below this, m/s. A run passes the last
+    /// frame's top here so its colour scale only ever grows (frames stay comparable, the legend
+    /// does not flicker as gusts come and go); see OverlayScaleKeeper.
+    double speedMaxFloor_mps = 0.0;
 
     bool any() const { return arrows || slice || streamlines || vortexCores; }
+};
+
+/// Holds an automatic colour scale steady over a run: frame(spec) gives the spec to build a frame
+/// with (the scene's, plus the largest top so far as its floor); seen(data) records the top the
+/// frame used. A fixed speed_max_mps passes through unchanged.
+class OverlayScaleKeeper {
+public:
+    OverlaySpec frame(OverlaySpec spec) const {
+        spec.speedMaxFloor_mps = mTop;
+        return spec;
+    }
+    void seen(const render::FieldOverlayData& data) { mTop = std::max(mTop, double(data.speedMax)); }
+
+private:
+    double mTop = 0.0;
 };
 
 /// Throws std::invalid_argument naming the key (overlay.arrow_spacing_m ...) on a bad value.

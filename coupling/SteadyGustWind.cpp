@@ -32,6 +32,7 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
                                     " velocities for " + std::to_string(count) + " vertices");
     glm::vec2 along(spec.wsDirection.x, spec.wsDirection.y);
     along = glm::length(along) > 0.0f ? glm::normalize(along) : glm::vec2(1.0f, 0.0f);
+    mAlong = along;
 
     // Per vertex: direction, steady intensity, distance downwind -> arrival time.
     render::VertexWind vertex;
@@ -51,6 +52,7 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
         minAlong = std::min(minAlong, s), maxAlong = std::max(maxAlong, s);
         minBase = std::min(minBase, base[v]), maxBase = std::max(maxBase, base[v]);
     }
+    mMinAlong_m = minAlong;
     const double spanAlong = std::max(double(maxAlong) - minAlong, 1e-9);
     const double spanBase = std::max(double(maxBase) - minBase, 1e-9);
     const int groups = spec.arrivalBands * spec.levels;
@@ -78,7 +80,45 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
     mVertex = std::make_shared<const render::VertexWind>(std::move(vertex));
 }
 
+void SteadyGustWind::keepField(std::shared_ptr<const sim::WindField> field) {
+    mField = std::move(field);
+    mGustField.reset();
+}
+
+double SteadyGustWind::arrivalAt_s(double x, double y) const {
+    return (double(mAlong.x) * x + double(mAlong.y) * y - mMinAlong_m) / mSpec.convection_mps;
+}
+
+const sim::WindField* SteadyGustWind::currentField() const {
+    if (!mField) return nullptr;
+    if (mGustField && mGustField_s == mLastUpdate_s) return &*mGustField;
+    if (!mGustField) mGustField.emplace(*mField);
+    sim::WindField& out = *mGustField;
+    const int nx = out.nx(), ny = out.ny(), nz = out.nz();
+    const double h = out.voxelSize_m();
+    const auto lo = out.wsMin_m();
+    // One face kind: `columns` x `rows` columns of faces, the first at plan offset (ox, oy) cells,
+    // each column `layers` faces deep; the factor depends on the column's plan position alone.
+    auto scale = [&](const std::vector<double>& steady, std::vector<double>& gust, int columns, int rows,
+                     int layers, double ox, double oy) {
+        std::vector<double> factor(size_t(columns) * rows);
+        for (int j = 0; j < rows; ++j)
+            for (int i = 0; i < columns; ++i)
+                factor[size_t(j) * columns + i] =
+                    mCurve(mLastUpdate_s - arrivalAt_s(lo[0] + (i + ox) * h, lo[1] + (j + oy) * h));
+        const size_t plane = factor.size();
+        for (int k = 0; k < layers; ++k)
+            for (size_t c = 0; c < plane; ++c) gust[k * plane + c] = steady[k * plane + c] * factor[c];
+    };
+    scale(mField->u_mps(), out.u_mps(), nx + 1, ny, nz, 0.0, 0.5);
+    scale(mField->v_mps(), out.v_mps(), nx, ny + 1, nz, 0.5, 0.0);
+    scale(mField->w_mps(), out.w_mps(), nx, ny, nz + 1, 0.5, 0.5);
+    mGustField_s = mLastUpdate_s;
+    return &out;
+}
+
 void SteadyGustWind::update(double t_s, render::GrassWind& wind) {
+    mLastUpdate_s = t_s;
     if (wind.vertex != mVertex) {
         wind.vertex = mVertex;
         ++wind.revision;

@@ -16,12 +16,14 @@
 #include <optional>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "coupling/FieldWind.h"
 #include "coupling/GroupOscillators.h"
 #include "coupling/GustCurve.h"
 #include "coupling/WindSource.h"
+#include "sim/WindField.h"
 
 namespace gale::coupling {
 
@@ -43,16 +45,28 @@ public:
     int groupCount() const override { return static_cast<int>(mGroupBase.size()); }
     void update(double t_s, render::GrassWind& wind) override;
     std::string describe() const override;
-    /// Keeps the solved field the step velocities were sampled from, so views of the field can
-    /// show it (currentField()); the source itself never reads it.
-    void keepField(std::shared_ptr<const sim::WindField> field) { mField = std::move(field); }
-    const sim::WindField* currentField() const override { return mField.get(); }
+    /// Keeps the steady field the velocities were sampled from, so views of the field can show
+    /// it; the grass never reads it.
+    void keepField(std::shared_ptr<const sim::WindField> field);
+    /// The kept steady field as the grass feels it at the last update's time: every face velocity
+    /// scaled by g(t - arrival) at the face's plan position, the same travelling front the groups
+    /// follow. Built on the first call after an update (O(faces); the scaling is computed once per
+    /// face column), so runs without views of the field never pay for it. Null without a kept
+    /// field.
+    const sim::WindField* currentField() const override;
 
     /// Arrival delay of vertex v, seconds; for tests.
     double arrival_s(size_t v) const { return mArrival_s[v]; }
+    /// Arrival delay of the front at plan position (x, y), seconds (negative upwind of the mesh).
+    double arrivalAt_s(double wsX_m, double wsY_m) const;
 
 private:
     std::shared_ptr<const sim::WindField> mField;
+    glm::vec2 mAlong{1.0f, 0.0f};  // unit plan direction the front travels
+    double mMinAlong_m = 0.0;      // the mesh's most upwind position along it
+    double mLastUpdate_s = 0.0;
+    mutable std::optional<sim::WindField> mGustField;  // mField at mGustField_s
+    mutable double mGustField_s = 0.0;
     SteadyGustSpec mSpec;
     GustCurve mCurve;
     std::shared_ptr<const render::VertexWind> mVertex;  // directions and groups, fixed

@@ -66,6 +66,28 @@ TEST(FieldOverlayBuilder, UniformWindOverFlatGroundGivesIdenticalArrows) {
     EXPECT_GE(data.speedMax, speed);
 }
 
+// The automatic colour scale of a run only grows: a calmer frame after a windy one keeps the
+// windy top (and the arrows shrink with it); a fixed speed_max_mps is never touched.
+TEST(FieldOverlayBuilder, AutomaticScaleHoldsItsLargestTopOverARun) {
+    Uniform windy, calm;
+    for (double& u : calm.field.u_mps()) u *= 0.25;
+    for (double& v : calm.field.v_mps()) v *= 0.25;
+    coupling::OverlaySpec spec;
+    spec.arrows = true;
+    spec.arrowSpacing_m = 2.0;
+    const float calmAlone = coupling::buildFieldOverlay(calm.field, calm.mesh, spec, 0.5).speedMax;
+    coupling::OverlayScaleKeeper keeper;
+    const render::FieldOverlayData first = coupling::buildFieldOverlay(windy.field, windy.mesh, keeper.frame(spec), 0.5);
+    keeper.seen(first);
+    const render::FieldOverlayData second = coupling::buildFieldOverlay(calm.field, calm.mesh, keeper.frame(spec), 0.5);
+    keeper.seen(second);
+    EXPECT_LT(calmAlone, first.speedMax);           // on its own the calm frame would rescale...
+    EXPECT_EQ(second.speedMax, first.speedMax);     // ...within the run it keeps the windy top
+    EXPECT_NEAR(glm::length(second.arrows[0].wsVector_m), 0.25f * glm::length(first.arrows[0].wsVector_m), VECTOR_TOL);
+    spec.speedMax_mps = 2.0;
+    EXPECT_EQ(coupling::buildFieldOverlay(windy.field, windy.mesh, keeper.frame(spec), 0.5).speedMax, 2.0f);
+}
+
 TEST(FieldOverlayBuilder, StreamlinesInUniformWindAreStraightAndCrossTheTerrain) {
     Uniform s;
     coupling::OverlaySpec spec;

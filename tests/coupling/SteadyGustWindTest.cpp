@@ -2,7 +2,10 @@
 // scales with the steady speed-up, and the oscillator stays bounded.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <memory>
 
 #include "coupling/SteadyGustWind.h"
 #include "coupling/TerrainMeshBuilder.h"
@@ -69,6 +72,40 @@ TEST(SteadyGustWind, OscillatorStaysFiniteAndBoundedUnderAStepGust) {
         }
     }
     EXPECT_EQ(out.wsDirection()[3], glm::vec3(0.0f));
+}
+
+// Views of the field show the gust the grass feels: the kept steady field, each face scaled by
+// the curve at its own arrival delay, rebuilt when the time moves.
+TEST(SteadyGustWind, FieldViewCarriesTheSameTravellingFront) {
+    const render::TerrainMesh mesh = flat();  // x in [0, 50] m
+    std::vector<glm::vec3> steady(mesh.wsPosition_m.size(), glm::vec3(5.0f, 0.0f, 0.0f));
+    coupling::SteadyGustSpec spec;
+    spec.convection_mps = 5.0;
+    const auto curve = coupling::GustCurve::attackDecay(20.0, 0.2, 1.0, 0.3, 3.0);
+    coupling::SteadyGustWind wind(mesh, steady, spec, curve);
+    render::GrassWind out;
+    wind.update(0.0, out);
+    EXPECT_EQ(wind.currentField(), nullptr);  // no field kept: nothing to show
+
+    // A uniform 5 m/s field over the mesh's plan, 2 m cells.
+    constexpr int NX = 25, NY = 5, NZ = 4;
+    auto field = std::make_shared<sim::WindField>(NX, NY, NZ, 2.0, std::array<double, 3>{0.0, 0.0, 0.0}, nullptr,
+                                                  std::vector<uint8_t>(size_t(NX) * NY * NZ, 1));
+    std::fill(field->u_mps().begin(), field->u_mps().end(), 5.0);
+    wind.keepField(field);
+    for (double t : {1.0, 4.0, 4.0, 7.5}) {
+        wind.update(t, out);
+        const sim::WindField* gust = wind.currentField();
+        ASSERT_NE(gust, nullptr);
+        for (double x : {4.0, 22.0, 40.0}) {  // on x-faces (every 2 m), at a cell centre in y and z
+            const double expected = 5.0 * curve(t - x / 5.0);
+            EXPECT_NEAR(gust->velocityAt_mps(x, 5.0, 3.0)[0], expected, 1e-9) << "t = " << t << ", x = " << x;
+        }
+        EXPECT_EQ(gust->v_mps(), field->v_mps());  // zero stays zero
+    }
+    // The kept field itself is untouched.
+    EXPECT_EQ(field->u_mps().front(), 5.0);
+    EXPECT_EQ(field->u_mps().back(), 5.0);
 }
 
 }  // namespace
