@@ -110,8 +110,10 @@ void openVdbBaseline(const sim::WindField& field, const render::TerrainMesh& mes
         bestGrid = std::min(bestGrid, msSince(start));
         start = Clock::now();
         tbb::parallel_for(tbb::blocked_range<size_t>(0, vdb.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+            // The sampler keeps a pointer to the accessor: the accessor must outlive it.
+            const openvdb::Vec3SGrid::ConstAccessor accessor = grid->getConstAccessor();
             openvdb::tools::GridSampler<openvdb::Vec3SGrid::ConstAccessor, openvdb::tools::StaggeredBoxSampler>
-                sampler(grid->getConstAccessor(), grid->transform());
+                sampler(accessor, grid->transform());
             for (size_t v = r.begin(); v != r.end(); ++v) {
                 const glm::vec3& p = mesh.wsPosition_m[v];
                 vdb[v] = sampler.wsSample(openvdb::Vec3d(p.x, p.y, p.z + height_m));
