@@ -63,9 +63,10 @@ double AirDomain::estimateSolveMemory_bytes(int nx, int ny, int nz) {
     // Per cell of the box: open fractions 12 B and air flags 1 B (the domain), the PoissonSystem
     // copy of the weights 12 B (SteadyWindSolver), the solver's hierarchy and PCG vectors
     // (estimatedBytesPerCell), the MAC field 24 B, right-hand side and potential 16 B, the
-    // velocity update's face flags 3 B, the OpenVDB mask ~0.5 B and the two output grids written
-    // by writeVdb (~16 B per air voxel). Checked against peak RSS in docs/solver.md.
-    return cells * (12.0 + 1.0 + 12.0 + PoissonSolver::estimatedBytesPerCell() + 24.0 + 16.0 + 3.0 + 0.5 + 16.0);
+    // velocity update's face flags 3 B, the OpenVDB mask ~0.5 B and the three output grids written
+    // by writeVdb (~16 B per air voxel for velocity and speed, ~13 B per box voxel for the
+    // staggered faces). Checked against peak RSS in docs/solver.md.
+    return cells * (12.0 + 1.0 + 12.0 + PoissonSolver::estimatedBytesPerCell() + 24.0 + 16.0 + 3.0 + 0.5 + 16.0 + 13.0);
 }
 
 AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {

@@ -54,7 +54,13 @@ openvdb::Vec3SGrid::Ptr staggeredVelocityGrid(const WindField& f) {
     auto acc = grid->getAccessor();
     // Voxel (i, j, k) holds the three faces on cell (i, j, k)'s low sides, as OpenVDB's staggered
     // samplers expect; the layer i = nx (j = ny, k = nz) holds the high-side faces of the box.
+    // Every voxel gets its values (the samplers read inactive voxels too, and closed faces hold
+    // the extrapolated values gale samples near the ground); active are the voxels with a face
+    // of an air cell, so the grid's topology is the air's.
     const int nx = f.nx(), ny = f.ny(), nz = f.nz();
+    auto air = [&](int i, int j, int k) {
+        return i >= 0 && j >= 0 && k >= 0 && i < nx && j < ny && k < nz && f.isAir(i, j, k);
+    };
     for (int k = 0; k <= nz; ++k)
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i <= nx; ++i) {
@@ -62,7 +68,11 @@ openvdb::Vec3SGrid::Ptr staggeredVelocityGrid(const WindField& f) {
                 if (j < ny && k < nz) faces.x() = float(f.u(i, j, k));
                 if (i < nx && k < nz) faces.y() = float(f.v(i, j, k));
                 if (i < nx && j < ny) faces.z() = float(f.w(i, j, k));
-                acc.setValueOn(openvdb::Coord(i, j, k), faces);
+                const openvdb::Coord c(i, j, k);
+                if (air(i, j, k) || air(i - 1, j, k) || air(i, j - 1, k) || air(i, j, k - 1))
+                    acc.setValueOn(c, faces);
+                else
+                    acc.setValueOff(c, faces);
             }
     return grid;
 }
@@ -84,11 +94,17 @@ void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata) c
     openvdb::initialize();
     auto vel = velocityGrid(*this);
     auto speed = speedGrid(*this);
-    for (openvdb::GridBase* g : {static_cast<openvdb::GridBase*>(vel.get()), static_cast<openvdb::GridBase*>(speed.get())}) {
+    auto faces = staggeredVelocityGrid(*this);
+    for (openvdb::GridBase* g : {static_cast<openvdb::GridBase*>(vel.get()), static_cast<openvdb::GridBase*>(speed.get()),
+                                 static_cast<openvdb::GridBase*>(faces.get())}) {
         g->insertMeta("units", openvdb::StringMetadata("m/s"));
         g->insertMeta("cell_placement",
-                      openvdb::StringMetadata("cell-centred average of MAC face velocities; voxel (i,j,k) centre at "
-                                              "world wsMin + (i+0.5, j+0.5, k+0.5) * voxel_size"));
+                      openvdb::StringMetadata(
+                          g == faces.get()
+                              ? "MAC face velocities, staggered: voxel (i,j,k) holds u, v, w on the low x, y, z faces "
+                                "of the cell whose centre is at world wsMin + (i+0.5, j+0.5, k+0.5) * voxel_size"
+                              : "cell-centred average of MAC face velocities; voxel (i,j,k) centre at "
+                                "world wsMin + (i+0.5, j+0.5, k+0.5) * voxel_size"));
         g->insertMeta("voxel_size_m", openvdb::DoubleMetadata(mH));
         for (const auto& [k, v] : metadata.strings) g->insertMeta(k, openvdb::StringMetadata(v));
         for (const auto& [k, v] : metadata.numbers) g->insertMeta(k, openvdb::DoubleMetadata(v));
@@ -98,7 +114,7 @@ void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata) c
     const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()));
     try {
         openvdb::io::File file(tmp.string());
-        file.write({vel, speed});
+        file.write({vel, speed, faces});
         file.close();
         fs::rename(tmp, target);
     } catch (const std::exception& e) {

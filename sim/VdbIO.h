@@ -30,7 +30,8 @@ openvdb::Vec3SGrid::Ptr velocityGrid(const WindField& field);
 /// "velocity_faces": the MAC face velocities themselves, m/s, as a staggered grid (GRID_STAGGERED):
 /// voxel (i, j, k) holds (u, v, w) on cell (i, j, k)'s low x, y and z faces, so
 /// openvdb::tools::StaggeredBoxSampler reads it as WindField::velocityAt_mps does inside the box.
-/// Covers (nx+1) x (ny+1) x (nz+1) voxels, all active; float, so 1e-7 relative off the doubles.
+/// Values in all (nx+1) x (ny+1) x (nz+1) voxels (the samplers read inactive ones too); active
+/// where a face belongs to an air cell. Float, so 1e-7 relative off the doubles.
 openvdb::Vec3SGrid::Ptr staggeredVelocityGrid(const WindField& field);
 /// "speed": |velocity| of the cell-centred average, m/s, active on air cells.
 openvdb::FloatGrid::Ptr speedGrid(const WindField& field);

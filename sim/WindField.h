@@ -86,8 +86,10 @@ public:
 
     /// Writes the field as an OpenVDB file: a Vec3s grid "velocity" (cell-centred averages of the
     /// face velocities, world axes, m/s; GRID_UNKNOWN, VEC_CONTRAVARIANT_RELATIVE, not staggered;
-    /// voxel (i, j, k) is cell (i, j, k), its centre at world wsMin + (i+1/2, j+1/2, k+1/2) h) and
-    /// a float grid "speed" (|velocity|, m/s), active on air cells only. Atomic: written to a
+    /// voxel (i, j, k) is cell (i, j, k), its centre at world wsMin + (i+1/2, j+1/2, k+1/2) h),
+    /// a float grid "speed" (|velocity|, m/s), both active on air cells only, and a staggered
+    /// Vec3s grid "velocity_faces" (the face velocities themselves, GRID_STAGGERED; OpenVDB's
+    /// StaggeredBoxSampler reads it as velocityAt_mps does; see VdbIO.h). Atomic: written to a
     /// temporary name in the same folder, then renamed. Throws std::runtime_error on I/O failure.
     void writeVdb(const std::string& path, const VdbMetadata& metadata = {}) const;
 

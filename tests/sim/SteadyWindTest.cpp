@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/Interpolation.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -384,7 +385,7 @@ TEST(SteadyWind, DirectionIsWhereTheWindBlowsTowardsCounterClockwiseFromX) {
     EXPECT_NEAR(u[1], 5.0, REL_TOL * 5.0);
 }
 
-TEST(WindField, WritesAVdbWithVelocityAndSpeedGrids) {
+TEST(WindField, WritesAVdbWithVelocitySpeedAndStaggeredFaceGrids) {
     AirDomain domain(gaussianHill(2.0), DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
     const SteadyWindResult res = solveSteadyWind(domain, uniformWind(5.0, 0.0), {}, SolverSettings{});
     const std::string path = std::string(GALE_BINARY_DIR) + "/steady_wind_test.vdb";
@@ -394,8 +395,9 @@ TEST(WindField, WritesAVdbWithVelocityAndSpeedGrids) {
     file.open();
     auto vel = openvdb::gridPtrCast<openvdb::Vec3SGrid>(file.readGrid("velocity"));
     auto speed = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("speed"));
+    auto faces = openvdb::gridPtrCast<openvdb::Vec3SGrid>(file.readGrid("velocity_faces"));
     file.close();
-    ASSERT_TRUE(vel && speed);
+    ASSERT_TRUE(vel && speed && faces);
     EXPECT_EQ(vel->getGridClass(), openvdb::GRID_UNKNOWN);
     EXPECT_EQ(vel->getVectorType(), openvdb::VEC_CONTRAVARIANT_RELATIVE);
     EXPECT_EQ(size_t(vel->activeVoxelCount()), domain.activeCellCount());
@@ -409,6 +411,24 @@ TEST(WindField, WritesAVdbWithVelocityAndSpeedGrids) {
     EXPECT_NEAR(v[0], c[0], FLOAT_TOL * 5.0);
     EXPECT_NEAR(speed->tree().getValue(openvdb::Coord(3, 4, 5)), std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
                 FLOAT_TOL * 5.0);
+    // The staggered faces: OpenVDB's staggered sampler reads the wind the grass reads, down to
+    // half a cell above the hill (where closed faces hold extrapolated values), and the grid's
+    // active voxels are the air's (every air cell's own voxel at least; no voxel without air).
+    EXPECT_EQ(faces->getGridClass(), openvdb::GRID_STAGGERED);
+    EXPECT_GE(size_t(faces->activeVoxelCount()), domain.activeCellCount());
+    EXPECT_LT(size_t(faces->activeVoxelCount()), size_t(domain.nx() + 1) * (domain.ny() + 1) * (domain.nz() + 1));
+    openvdb::tools::GridSampler<openvdb::Vec3SGrid, openvdb::tools::StaggeredBoxSampler> sampler(*faces);
+    const Heightfield& ground = domain.terrain();
+    int compared = 0;
+    for (double x = 6.0; x < domain.nx() * 4.0 - 6.0; x += 3.7)
+        for (double y = 6.0; y < domain.ny() * 4.0 - 6.0; y += 4.3) {
+            const double z = ground.sample(x, y) + 2.0;
+            const auto ours = res.field.velocityAt_mps(x, y, z);
+            const openvdb::Vec3s theirs = sampler.wsSample(openvdb::Vec3d(x, y, z));
+            for (int k = 0; k < 3; ++k) EXPECT_NEAR(theirs[k], ours[k], FLOAT_TOL * 5.0) << x << ", " << y;
+            ++compared;
+        }
+    EXPECT_GT(compared, 50);
     std::filesystem::remove(path);
 }
 
