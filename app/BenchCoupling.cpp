@@ -4,7 +4,6 @@
 #include "app/BenchCoupling.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +17,7 @@
 
 #include "app/AtomicFile.h"
 #include "app/SvgPlot.h"
+#include "app/Timing.h"
 #include "coupling/FieldSampling.h"
 #include "coupling/FieldWind.h"
 #include "coupling/TerrainMeshBuilder.h"
@@ -29,19 +29,13 @@
 namespace gale::app {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 // Targets (issue: field-driven grass): a 1M-vertex field step under 50 ms on 2 cores; per-frame
 // cost flat in the vertex count (we allow 3x between the smallest and largest mesh for cache
 // effects on the K-entry tables).
 constexpr double TARGET_STEP_MS_AT_1M = 50.0;
 constexpr double TARGET_FRAME_COST_GROWTH = 3.0;
-constexpr int SHELLS = 16;
-constexpr int SPEED_STEPS = 8;  // field steps timed per mesh (the best is reported)  // tip error is measured on a 16-shell blade of unit height
-
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+constexpr int SHELLS = 16;       // tip error is measured on a 16-shell blade of unit height
+constexpr int SPEED_STEPS = 8;   // field steps timed per mesh (the best is reported)
 
 // The terrain and its solved wind the benchmark couples: a 200 m meadow with a 20 m hill, 6 m/s
 // log-law wind, solved once on 2 m cells.

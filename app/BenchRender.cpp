@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +19,7 @@
 #include <vector>
 
 #include "app/AtomicFile.h"
+#include "app/Timing.h"
 #include "render/RenderBench.h"
 
 namespace gale::app {
@@ -60,7 +60,7 @@ int runBenchRender(const BenchRenderOptions& options) {
     Progress progress("row", static_cast<int>(std::size(kPaperRows)));
     for (const PaperRow& row : kPaperRows) {
         ++index;
-        const auto rowStart = std::chrono::steady_clock::now();
+        const auto rowStart = Clock::now();
         render::ShellFillCase c;
         c.width = row.width;
         c.height = row.height;
@@ -72,9 +72,7 @@ int runBenchRender(const BenchRenderOptions& options) {
         const render::ShellFillResult r = render::measureShellFill(c);
         rendererName = r.renderer;
         results.push_back(r);
-        progress.step(index, std::chrono::duration<double, std::milli>(
-                                 std::chrono::steady_clock::now() - rowStart)
-                                 .count());
+        progress.step(index, msSince(rowStart));
     }
     progress.finish();
 

@@ -12,7 +12,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -25,14 +24,13 @@
 #include <stdexcept>
 
 #include "app/AtomicFile.h"
+#include "app/Timing.h"
 #include "sim/SteadyWind.h"
 
 namespace gale::app {
 namespace {
 
 constexpr double PI = 3.14159265358979323846;
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // =================================================================================================
 // Hemisphere of radius R on flat ground in a uniform wind U along +x: by symmetry the sphere in a
@@ -134,7 +132,7 @@ int runBenchAccuracy(const BenchAccuracyOptions& opt) {
         sim::DomainSpec spec{H.R / N, /*top_m=*/H.top, /*memoryLimit_bytes=*/8e9};
         spec.cutCells = cut;
         sim::AirDomain domain(hf, spec);
-        const double domainSeconds = since(t0);
+        const double domainSeconds = secondsSince(t0);
         sim::SteadyWindSolver solver(domain);
         for (double tol : tolerances) {
             if (!cut && tol != tolerances.back()) continue;
@@ -401,7 +399,7 @@ RunResult runOurs(int nx, int ny, int nz, double tol) {
     sim::SolverSettings set;
     set.relativeTolerance = tol;
     const sim::SolveReport rep = solver.solve(b, x, set);
-    r.totalSeconds = since(t0);
+    r.totalSeconds = secondsSince(t0);
     r.ok = 1, r.converged = rep.converged, r.iterations = rep.iterations, r.levels = rep.levels;
     r.relativeResidual = rep.relativeResidual, r.setupSeconds = rep.setupSeconds, r.solveSeconds = rep.solveSeconds;
     r.heldBytes = double(solver.memory_bytes());
@@ -450,7 +448,7 @@ RunResult runOpenVdb(int nx, int ny, int nz, double tol, VdbPrecond pc) {
     } else {
         x = tools::poisson::solveWithBoundaryConditions(source, boundary, state, interrupter, /*staggered=*/true);
     }
-    r.totalSeconds = r.solveSeconds = since(t0);
+    r.totalSeconds = r.solveSeconds = secondsSince(t0);
     r.peakRss_bytes = peakRssBytes();  // before our comparison solve below
     r.ok = 1, r.converged = state.success, r.iterations = state.iterations;
     r.relativeResidual = state.relativeError;
@@ -485,7 +483,7 @@ RunResult runTriad() {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 16), [&](const tbb::blocked_range<size_t>& q) {
             for (size_t i = q.begin(); i < q.end(); ++i) a[i] = b[i] + 1.5 * c[i];
         });
-        best = std::max(best, 3.0 * 8.0 * double(n) / since(t0));
+        best = std::max(best, 3.0 * 8.0 * double(n) / secondsSince(t0));
     }
     r.ok = a[7] == 6.5;
     r.triad_Bps = best;

@@ -3,7 +3,6 @@
 #include "app/BenchUnsteady.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +12,7 @@
 
 #include "app/AtomicFile.h"
 #include "app/SvgPlot.h"
+#include "app/Timing.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyStability.h"
@@ -21,10 +21,8 @@
 namespace gale::app {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr double PI = 3.14159265358979323846;
 
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 void writeJson(const std::string& path, const nlohmann::json& j) {
     if (path.empty()) return;
@@ -83,7 +81,7 @@ AccuracyRow lambOseen(sim::AdvectionScheme scheme, int cellsPerCore, double cour
     s.whirlwinds.push_back(w);
     sim::UnsteadyWindSolver solver(domain, steady.field, s, 1.0);
     for (int n = 0; n < row.steps; ++n) row.finite = row.finite && solver.step(row.dt_s).finite;
-    row.wall_s = since(t0);
+    row.wall_s = secondsSince(t0);
     const double G = w.circulation(), rc2 = R0_M * R0_M + 4 * NU_M2PS * T_END_S, rt = std::sqrt(rc2);
     const double z = hf.sample(half, half) + 0.5 * LID_CELLS * h;
     for (double r = 0.25 * rt; r <= 2.0 * rt + 1e-9; r += 0.25 * rt) {

@@ -3,7 +3,6 @@
 /// shells -> PNG frames, with a run report.
 
 #include <atomic>
-#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <ctime>
@@ -20,6 +19,7 @@
 #include "app/SceneBuilder.h"
 #include "app/SceneParser.h"
 #include "app/Version.h"
+#include "app/Timing.h"
 #include "coupling/FieldOverlayBuilder.h"
 #include "render/GlContext.h"
 #include "render/Animation.h"
@@ -31,7 +31,6 @@ namespace gale::app {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 /// Output we estimate at this many bytes per pixel or more; a run that cannot fit even this is
 /// refused before it starts (real grass PNGs take more, so this refuses only hopeless runs).
@@ -40,9 +39,6 @@ constexpr double MIN_PNG_BYTES_PER_PIXEL = 0.5;
 std::atomic<bool> gInterrupted{false};
 extern "C" void onInterrupt(int) { gInterrupted = true; }
 
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 /// Removes the frames this run wrote and the folder if this run created it, so a failed run
 /// leaves nothing behind.

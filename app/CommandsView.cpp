@@ -25,6 +25,7 @@
 #include "app/Errors.h"
 #include "app/SceneBuilder.h"
 #include "app/SceneParser.h"
+#include "app/Timing.h"
 #include "coupling/FieldOverlayBuilder.h"
 #include "render/FieldOverlay.h"
 #include "render/GlfwWindow.h"
@@ -36,7 +37,6 @@
 namespace gale::app {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 /// Interactive frames are paced to at most this rate, so drawing leaves CPU to the wind worker
 /// (llvmpipe and the solver share the same cores).
@@ -46,9 +46,6 @@ constexpr double MAX_INTERACTIVE_FPS = 60.0;
 constexpr double BEHIND_FRAMES = 1.5;
 constexpr double MIN_SPEED = 1.0 / 16.0, MAX_SPEED = 16.0;
 
-double msSince(Clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 
 /// Overlay modes the O key cycles through.
 enum class OverlayMode { Scene, None, Arrows, Slice, Streamlines, All, Count };

@@ -1,7 +1,6 @@
 #include "app/SceneBuilder.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -9,6 +8,7 @@
 #include "app/Errors.h"
 #include "app/Heightmap.h"
 #include "app/QuietStderr.h"
+#include "app/Timing.h"
 #include "coupling/FieldSampling.h"
 #include "coupling/FieldWind.h"
 #include "coupling/PointSourceWind.h"
@@ -97,7 +97,7 @@ std::string describeDomain(const sim::AirDomain& d) {
 /// wind.kind = "solved": the steady mass-consistent field (DESIGN 4.1) sampled at grass height,
 /// then either held (steady) or swept by travelling gusts (DESIGN 4.2, kinematic mode).
 void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = Clock::now();
     std::optional<sim::AirDomain> domain;
     try {
         domain.emplace(built.heightfield, scene.solver.domain);
@@ -146,14 +146,13 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
     } catch (const std::invalid_argument& e) {
         failAt(scene, "wind", e.what());
     }
-    built.solve_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    built.solve_ms = msSince(start);
 }
 
 /// wind.kind = "unsteady": the steady field as initial state and mean flow, stepped in time by
 /// sim::UnsteadyWindSolver inside a coupling::UnsteadyFieldWind as the frames ask (DESIGN 4.2).
 void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = Clock::now();
     auto domain = std::make_unique<sim::AirDomain>(
         [&]() -> sim::AirDomain {
             try {
@@ -181,7 +180,7 @@ void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltSce
     } catch (const std::invalid_argument& e) {
         failAt(scene, "unsteady", e.what());
     }
-    built.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    built.solve_ms = msSince(start);
 }
 
 }  // namespace
@@ -229,7 +228,7 @@ render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera
 }
 
 BuiltScene buildScene(const Scene& scene, const BuildOptions& options) {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = Clock::now();
     BuiltScene built;
     built.heightfield = buildHeightfield(scene);
     const sim::Heightfield& field = built.heightfield;
@@ -264,8 +263,7 @@ BuiltScene buildScene(const Scene& scene, const BuildOptions& options) {
         buildUnsteadyWind(scene, options, built);
     else
         buildPointSourceWind(scene, built);
-    built.build_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    built.build_ms = msSince(start);
     return built;
 }
 

@@ -3,7 +3,6 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <csignal>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +11,7 @@
 
 #include "app/AtomicFile.h"
 #include "app/Progress.h"
+#include "app/Timing.h"
 
 namespace gale::app {
 namespace {
@@ -59,13 +59,12 @@ class SolveInterruptGuard {
 
 int runSolve(const SolveRequest& req) {
     if (req.unsteady) return runUnsteadySolve(req);
-    using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     req.ambient.validate();
     SolveInterruptGuard interruptGuard;
     // No progress line before the domain has validated its inputs: bad input gets one line only.
     const sim::AirDomain domain(req.terrain, req.domain);
-    const double domainSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double domainSeconds = secondsSince(t0);
     std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MB; solving...\n", domain.nx(),
                  domain.ny(), domain.nz(), domain.activeCellCount(), domain.memoryEstimate_bytes() / 1e6);
     sim::SteadyWindSolver solver(domain, req.weights);
@@ -128,7 +127,7 @@ int runSolve(const SolveRequest& req) {
                                {"grid_class", "GRID_UNKNOWN"},
                                {"vector_type", "VEC_CONTRAVARIANT_RELATIVE"}};
     }
-    j["total_s"] = std::chrono::duration<double>(Clock::now() - t0).count();
+    j["total_s"] = secondsSince(t0);
     if (!req.reportPath.empty()) {
         const auto parent = std::filesystem::path(req.reportPath).parent_path();
         if (!parent.empty()) std::filesystem::create_directories(parent);
@@ -159,7 +158,6 @@ std::string sequencePath(const std::string& vdbPath, int frame) {
 }
 
 int runUnsteadySolve(const SolveRequest& req) {
-    using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     const UnsteadySolveRequest& u = *req.unsteady;
     req.ambient.validate();
@@ -222,7 +220,7 @@ int runUnsteadySolve(const SolveRequest& req) {
     // run's CFL and divergence are in the summary line and the report.
     Progress progress("output", outputs);
     for (int n = 1; n <= outputs && finite; ++n) {
-        const auto outputStart = std::chrono::steady_clock::now();
+        const auto outputStart = Clock::now();
         const double target = std::min(u.duration_s, n * u.outputEvery_s);
         for (const sim::StepReport& r : solver.advanceTo(target)) {
             ++stepCount;
@@ -249,9 +247,7 @@ int runUnsteadySolve(const SolveRequest& req) {
                              {"step_s", r.total_s}});
         }
         writeFrame(n);
-        progress.step(n, std::chrono::duration<double, std::milli>(
-                             std::chrono::steady_clock::now() - outputStart)
-                             .count());
+        progress.step(n, msSince(outputStart));
     }
     progress.finish();
     j["steps"] = steps;
@@ -266,7 +262,7 @@ int runUnsteadySolve(const SolveRequest& req) {
                     {"all_converged", ok},
                     {"finite", finite},
                     {"mean_step_s", stepCount ? solveSeconds / stepCount : 0.0}};
-    j["total_s"] = std::chrono::duration<double>(Clock::now() - t0).count();
+    j["total_s"] = secondsSince(t0);
     if (!req.reportPath.empty()) {
         const auto parent = std::filesystem::path(req.reportPath).parent_path();
         if (!parent.empty()) std::filesystem::create_directories(parent);

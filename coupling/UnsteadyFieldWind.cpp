@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cstdio>
 
-#include "coupling/FieldSampling.h"
 
 namespace gale::coupling {
 

@@ -1,5 +1,6 @@
 #pragma once
-// Helpers shared by the app tests: fresh temporary folders and running the gale binary.
+// Helpers shared by the app tests: fresh temporary folders, running the gale binary, and the
+// message of a scene that fails to parse.
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,6 +14,8 @@
 #include <vector>
 
 #include "TestFiles.h"
+#include "app/Errors.h"
+#include "app/SceneParser.h"
 
 namespace gale::app::test {
 
@@ -68,6 +71,16 @@ inline int countFiles(const std::string& folder) {
         ++n;
     }
     return n;
+}
+
+/// Parses `text` as "scene.toml" and returns the SceneError message ("" if it parsed).
+inline std::string errorOf(const std::string& text) {
+    try {
+        parseSceneString(text, "scene.toml");
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "";
 }
 
 }  // namespace gale::app::test

@@ -15,15 +15,7 @@ namespace {
 
 using test::TempDir;
 
-/// Parses `text` as "scene.toml" and returns the SceneError message ("" if it parsed).
-std::string errorOf(const std::string& text) {
-    try {
-        parseSceneString(text, "scene.toml");
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    return "";
-}
+using test::errorOf;
 
 /// Expects the parse of `text` to fail with a message holding every fragment.
 void expectError(const std::string& text, std::initializer_list<std::string> fragments) {

@@ -11,14 +11,7 @@
 namespace gale::app {
 namespace {
 
-std::string errorOf(const std::string& text) {
-    try {
-        parseSceneString(text, "scene.toml");
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    return "";
-}
+using test::errorOf;
 
 const char* const BASE = "[wind]\nkind = \"unsteady\"\nspeed_mps = 4.0\n";
 
