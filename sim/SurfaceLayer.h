@@ -1,0 +1,66 @@
+#pragma once
+/// \file SurfaceLayer.h
+/// The neutral atmospheric surface layer, in one place for every model that needs it: the log
+/// law, the wall function that turns a velocity near the ground into a surface stress, and the
+/// mixing length of the eddy viscosity.
+///
+///   u(z) = (u* / kappa) ln((z - d) / z0)          (neutral log law; Stull 1988, section 9.7)
+///   u*   = kappa U_p / ln((z_p - d) / z0)         (the same law solved for u* at a point p)
+///   tau  = rho u*^2, along the tangential velocity (kinematic: tau / rho = u*^2, m^2/s^2)
+///   l(z) = kappa (z - d) / (1 + kappa (z - d) / l_max)   (Blackadar 1962)
+///
+/// Heights are metres above the local ground (not world z); z0 is the aerodynamic roughness
+/// length and d the displacement height (about 2/3 of a dense canopy's height; 0 for bare
+/// ground). kappa = 0.41 (von Karman's constant, the value most surface-layer work uses).
+///
+/// Every function is finite for every finite input: at or below z0 + d the log law is clamped to
+/// zero speed and the friction velocity to that of the lowest valid height, so a cell centre that
+/// sits inside the roughness layer never produces Inf or NaN.
+
+#include <algorithm>
+#include <cmath>
+
+namespace gale::sim::surface {
+
+inline constexpr double KAPPA = 0.41;  ///< von Karman's constant
+
+/// The lowest height above the displacement plane at which the log law is evaluated: one z0
+/// above z0 + d (so ln(...) >= ln 2). Below it the functions clamp.
+inline double lowestLogHeight_m(double z0_m, double d_m) { return d_m + 2.0 * z0_m; }
+
+/// ln((z - d) / z0) for z above the clamp height, else ln 2. Requires z0 > 0.
+inline double logFactor(double height_m, double z0_m, double d_m = 0.0) {
+    const double zEff = std::max(height_m - d_m, 2.0 * z0_m);
+    return std::log(zEff / z0_m);
+}
+
+/// Mean speed (m/s) at height_m above ground for friction velocity uStar_mps; 0 at or below
+/// z0 + d.
+inline double logLawSpeed_mps(double uStar_mps, double height_m, double z0_m, double d_m = 0.0) {
+    if (height_m - d_m <= z0_m) return 0.0;
+    return uStar_mps / KAPPA * std::log((height_m - d_m) / z0_m);
+}
+
+/// Friction velocity u* (m/s) from a speed U_p (m/s, >= 0) known at height z_p above ground:
+/// the wall function of the first air cell.
+inline double frictionVelocity_mps(double speed_mps, double height_m, double z0_m,
+                                   double d_m = 0.0) {
+    return KAPPA * speed_mps / logFactor(height_m, z0_m, d_m);
+}
+
+/// Speed at height z_a given the speed at z_b, both on one log profile (the ratio of two log
+/// factors): how a value at a cell centre is carried down to grass height.
+inline double logLawRescale_mps(double speedAtB_mps, double heightA_m, double heightB_m,
+                                double z0_m, double d_m = 0.0) {
+    if (heightA_m - d_m <= z0_m) return 0.0;
+    return speedAtB_mps * logFactor(heightA_m, z0_m, d_m) / logFactor(heightB_m, z0_m, d_m);
+}
+
+/// Blackadar's mixing length (m) at height_m above ground, growing as kappa z near the ground and
+/// levelling off at lMax_m aloft.
+inline double mixingLength_m(double height_m, double lMax_m, double d_m = 0.0) {
+    const double z = std::max(height_m - d_m, 0.0);
+    return KAPPA * z / (1.0 + KAPPA * z / lMax_m);
+}
+
+}  // namespace gale::sim::surface
