@@ -7,24 +7,11 @@
 #include <optional>
 #include <string>
 
-#include "app/Scene.h"
+#include "app/io/Errors.h"
+#include "app/scene/LoadScene.h"
+#include "app/scene/Scene.h"
 
 namespace gale::app {
-
-/// Exit codes (docs/cli.md).
-inline constexpr int EXIT_OK = 0;
-inline constexpr int EXIT_FAILURE_INTERNAL = 1;
-inline constexpr int EXIT_BAD_INPUT = 2;
-inline constexpr int EXIT_INTERRUPTED = 130;
-
-/// A scene and the command-line overrides of its [output] section.
-struct SceneRunOptions {
-    std::string scenePath;
-    std::string folder;  ///< -o; empty: the scene's output.folder
-    std::optional<int> frames;
-    std::optional<int> width;
-    std::optional<int> height;
-};
 
 /// `gale solve`: the scene's steady wind (DESIGN 4.1) to a .vdb file and a JSON report.
 struct SolveVerbOptions {
@@ -32,14 +19,9 @@ struct SolveVerbOptions {
     std::string vdbPath;     ///< -o; empty: <output.folder>/<prefix>_wind.vdb
     std::string reportPath;  ///< --report; empty: the .vdb path with .json
 };
-/// Returns 0 when the solve converged, 2 when it did not (files still written, report says so).
+/// Returns EXIT_OK when the solve converged, EXIT_UNMET when it did not (files still written, the
+/// report says so).
 int runSolveVerb(const SolveVerbOptions& options);
-
-/// Parses the scene and applies the overrides, checking them as the parser checks the scene.
-Scene loadScene(const SceneRunOptions& options);
-
-/// Where the output folder came from, for messages: "FILE:LINE: output.folder" or "-o".
-std::string outputFolderSource(const Scene& scene, const SceneRunOptions& options);
 
 /// `gale check SCENE`: validates, builds the CPU side, prints what the run would build and what it
 /// leaves out, to stdout.

@@ -1,16 +1,18 @@
 /// \file CommandsBlade.cpp
 /// `gale blade`: the length-preserving bend (render/Bend.h) as numbers and as a drawing.
 
+#include <memory>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
 
-#include "app/AtomicFile.h"
+#include "app/io/AtomicFile.h"
+#include "app/Cli.h"
 #include "app/Commands.h"
-#include "app/Errors.h"
-#include "app/SceneParser.h"
+#include "app/io/Errors.h"
+#include "app/scene/SceneParser.h"
 #include "render/Bend.h"
 
 namespace gale::app {
@@ -160,6 +162,30 @@ int runBlade(const BladeOptions& o) {
                     static_cast<double>(shells[i].w_m));
     if (!o.svgPath.empty()) std::fprintf(stderr, "gale: wrote %s\n", o.svgPath.c_str());
     return EXIT_OK;
+}
+
+void addBladeVerb(CLI::App& app, VerbTable& verbs) {
+    auto options = std::make_shared<BladeOptions>();
+    CLI::App* verb = app.add_subcommand(
+        "blade",
+        "Print the length-preserving bend of one blade as CSV (i,n_m,w_m); --svg draws it");
+    verb->add_option("--shells", options->shells, "Shells above the ground, N")
+        ->required()
+        ->check(CLI::Range(1, MAX_SHELLS));
+    verb->add_option("--intensity", options->intensity,
+                     "Wind intensity I (1 lays the tip flat; negative bends the other way)")
+        ->required()
+        ->check(CLI::Range(-4.0, 4.0));
+    verb->add_option("--stiffness", options->stiffness,
+                     "Stiffness gamma in theta_j = (pi/2) I (j/N)^gamma (1 is the paper's)")
+        ->required()
+        ->check(CLI::Range(1e-6, 100.0));
+    verb->add_option("--height-m", options->height_m, "Blade height in metres")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-6, 100.0));
+    verb->add_option("--svg", options->svgPath, "Also write an SVG drawing of the blade here");
+    verb->footer(EXIT_CODES_FOOTER);
+    verbs.add(verb, [options] { return runBlade(*options); });
 }
 
 }  // namespace gale::app

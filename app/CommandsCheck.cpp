@@ -1,15 +1,17 @@
 /// \file CommandsCheck.cpp
-/// `gale check` and the scene loading shared by the scene verbs.
+/// `gale check`: validate a scene and say what a run would build and what it leaves out.
 
+#include <memory>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 
+#include "app/Cli.h"
 #include "app/Commands.h"
-#include "app/Errors.h"
-#include "app/OutputFolder.h"
-#include "app/SceneBuilder.h"
-#include "app/SceneParser.h"
+#include "app/io/Errors.h"
+#include "app/io/OutputFolder.h"
+#include "app/scene/SceneBuilder.h"
+#include "app/scene/SceneParser.h"
 #include "coupling/PointSourceWind.h"
 #include "render/GrassTexture.h"
 
@@ -37,26 +39,6 @@ void line(const char* label, const std::string& text) {
 }
 
 }  // namespace
-
-Scene loadScene(const SceneRunOptions& options) {
-    Scene scene = parseSceneFile(options.scenePath);
-    OutputSection& o = scene.output;
-    if (!options.folder.empty()) o.folder = options.folder;
-    if (options.frames) o.frames = *options.frames;
-    if (options.width) o.width = *options.width;
-    if (options.height) o.height = *options.height;
-    if (options.frames || options.width || options.height) {
-        if (auto problem = outputBudgetProblem(o))
-            throw InputError(
-                std::string(problem->key == "frames" ? "--frames" : "--width/--height") + ": " +
-                problem->reason);
-    }
-    return scene;
-}
-
-std::string outputFolderSource(const Scene& scene, const SceneRunOptions& options) {
-    return options.folder.empty() ? scene.where("output.folder") : std::string("-o");
-}
 
 int runCheck(const SceneRunOptions& options) {
     const Scene scene = loadScene(options);
@@ -247,6 +229,15 @@ int runCheck(const SceneRunOptions& options) {
     std::printf("ok: %s is valid (CPU side built in %.0f ms)\n", scene.path.c_str(),
                 built.build_ms);
     return EXIT_OK;
+}
+
+void addCheckVerb(CLI::App& app, VerbTable& verbs) {
+    auto options = std::make_shared<SceneRunOptions>();
+    CLI::App* verb = app.add_subcommand(
+        "check", "Validate a scene and print what a render would build and what it leaves out");
+    addSceneOptions(verb, *options);
+    verb->footer(EXIT_CODES_FOOTER);
+    verbs.add(verb, [options] { return runCheck(*options); });
 }
 
 }  // namespace gale::app

@@ -2,6 +2,7 @@
 /// `gale render`: scene -> heightfield -> mesh -> grass texture -> point-source wind -> OSMesa ->
 /// shells -> PNG frames, with a run report.
 
+#include <memory>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -11,15 +12,16 @@
 #include <system_error>
 #include <vector>
 
-#include "app/AtomicFile.h"
+#include "app/io/AtomicFile.h"
+#include "app/Cli.h"
 #include "app/Commands.h"
-#include "app/Errors.h"
-#include "app/OutputFolder.h"
-#include "app/Progress.h"
-#include "app/SceneBuilder.h"
-#include "app/SceneParser.h"
+#include "app/io/Errors.h"
+#include "app/io/OutputFolder.h"
+#include "app/io/Progress.h"
+#include "app/scene/SceneBuilder.h"
+#include "app/scene/SceneParser.h"
 #include "app/Version.h"
-#include "app/Timing.h"
+#include "app/io/Timing.h"
 #include "coupling/FieldOverlayBuilder.h"
 #include "render/GlContext.h"
 #include "render/Animation.h"
@@ -235,6 +237,17 @@ int runRender(const SceneRunOptions& options) {
                 Progress::formatDuration(loop_s).c_str(), mean_ms, reportPath.c_str());
     for (const std::string& f : extras) std::printf("preview %s\n", f.c_str());
     return EXIT_OK;
+}
+
+void addRenderVerb(CLI::App& app, VerbTable& verbs) {
+    auto options = std::make_shared<SceneRunOptions>();
+    CLI::App* verb = app.add_subcommand(
+        "render", "Render a scene headless to PNG frames, with a JSON run report");
+    addSceneOptions(verb, *options);
+    verb->footer(std::string("\nFrames go to FOLDER/<prefix>_0000.png ..., the report to "
+                             "FOLDER/<prefix>_report.json.") +
+                 EXIT_CODES_FOOTER);
+    verbs.add(verb, [options] { return runRender(*options); });
 }
 
 }  // namespace gale::app

@@ -1,19 +1,337 @@
 /// \file CommandsSolve.cpp
-/// `gale solve SCENE [-o FILE.vdb]`: the scene's steady wind as a .vdb field and a JSON report; for
-/// wind.kind = "unsteady" a .vdb sequence <stem>_0000.vdb ... with per-step reports
-/// (the work is in SolveCommand.cpp; this builds the request from the scene).
+/// `gale solve SCENE [-o FILE.vdb]`: the scene's steady wind as a .vdb field and a JSON report
+/// (docs/solver.md); for wind.kind = "unsteady" a .vdb sequence <stem>_0000.vdb ... with per-step
+/// reports (docs/unsteady.md). runSolveVerb builds a SolveRequest from the scene; runSolve does
+/// the work.
 
+#include <memory>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <unistd.h>
 
+#include "app/Cli.h"
 #include "app/Commands.h"
-#include "app/Errors.h"
-#include "app/OutputFolder.h"
-#include "app/SceneBuilder.h"
-#include "app/SolveCommand.h"
+#include "app/scene/SceneParser.h"
+#include "app/io/AtomicFile.h"
+#include "app/io/Errors.h"
+#include "app/io/OutputFolder.h"
+#include "app/io/Progress.h"
+#include "app/io/Timing.h"
+#include "app/scene/SceneBuilder.h"
+#include "sim/AirDomain.h"
+#include "sim/AmbientWind.h"
+#include "sim/Heightfield.h"
+#include "sim/PoissonSolver.h"
+#include "sim/SteadyWind.h"
+#include "sim/UnsteadyWind.h"
 
 namespace gale::app {
+
+
+/// wind.kind = "unsteady": the time stepping after the steady solve (docs/unsteady.md).
+struct UnsteadySolveRequest {
+    sim::UnsteadySettings settings;
+    double duration_s = 10.0;    ///< simulated time, seconds
+    double outputEvery_s = 1.0;  ///< a .vdb at t = 0, every this many seconds, and at duration_s
+};
+
+struct SolveRequest {
+    sim::Heightfield terrain;
+    sim::AmbientWind ambient;
+    sim::DomainSpec domain;
+    sim::MassConsistentWeights weights;
+    sim::SolverSettings solver;
+    std::string vdbPath;     ///< the field (grids "velocity" and "speed"); empty: not written
+    std::string reportPath;  ///< the JSON report; empty: not written
+    std::string sceneName;   ///< recorded in the report and the .vdb metadata
+    /// Set for unsteady scenes: vdbPath is then the stem of a sequence, <stem>_0000.vdb ..., and
+    /// the report lists every step (CFL, iterations, divergence, kinetic energy, timings).
+    std::optional<UnsteadySolveRequest> unsteady;
+};
+
+/// Builds the domain, solves, writes the .vdb and the JSON report (each atomically), prints a
+/// summary to stdout and progress to stderr. Returns EXIT_OK when the solve converged, EXIT_UNMET when it did not
+/// (both files are still written, and the report says so). Throws std::invalid_argument naming
+/// the parameter on bad input (voxel size, top, memory limit, NaN heights, wind, weights), and
+/// std::runtime_error when a file cannot be written.
+int runSolve(const SolveRequest& request);
+
+/// The unsteady run of an unsteady scene (runSolve calls it when request.unsteady is set): the
+/// steady solve, then steps to duration_s writing the sequence; returns 0 when every solve
+/// converged and the field stayed finite, EXIT_UNMET otherwise (files still written, the report says so).
+int runUnsteadySolve(const SolveRequest& request);
+
+/// "<stem>_0003.vdb" for path "<stem>.vdb" and frame 3.
+std::string sequencePath(const std::string& vdbPath, int frame);
+
+namespace {
+
+/// Ctrl-C (docs/reliability.md): while the domain is built and solved nothing is on disk, so the
+/// handler says where the run was and exits at once; while the files are written it only records
+/// the interrupt, so both (each written atomically) are complete before the run stops.
+enum SolveStage : int { STAGE_DOMAIN = 0, STAGE_SOLVING = 1, STAGE_WRITING = 2 };
+volatile std::sig_atomic_t gStage = STAGE_DOMAIN;
+volatile std::sig_atomic_t gInterruptedWhileWriting = 0;
+
+extern "C" void onSolveInterrupt(int) {
+    static const char DOMAIN_MSG[] =
+        "gale: interrupted while building the air domain: nothing written\n";
+    static const char SOLVING_MSG[] = "gale: interrupted while solving: nothing written\n";
+    if (gStage == STAGE_WRITING) {
+        gInterruptedWhileWriting = 1;
+        return;
+    }
+    // write and _exit are async-signal-safe; the message is all a handler may print.
+    if (gStage == STAGE_DOMAIN)
+        (void)!::write(STDERR_FILENO, DOMAIN_MSG, sizeof DOMAIN_MSG - 1);
+    else
+        (void)!::write(STDERR_FILENO, SOLVING_MSG, sizeof SOLVING_MSG - 1);
+    ::_exit(130);
+}
+
+/// Installs onSolveInterrupt for SIGINT for its lifetime.
+class SolveInterruptGuard {
+  public:
+    SolveInterruptGuard() {
+        gStage = STAGE_DOMAIN;
+        gInterruptedWhileWriting = 0;
+        mPrevious = std::signal(SIGINT, onSolveInterrupt);
+    }
+    ~SolveInterruptGuard() { std::signal(SIGINT, mPrevious); }
+    SolveInterruptGuard(const SolveInterruptGuard&) = delete;
+    SolveInterruptGuard& operator=(const SolveInterruptGuard&) = delete;
+
+  private:
+    void (*mPrevious)(int);
+};
+
+}  // namespace
+
+int runSolve(const SolveRequest& req) {
+    if (req.unsteady) return runUnsteadySolve(req);
+    const auto t0 = Clock::now();
+    req.ambient.validate();
+    SolveInterruptGuard interruptGuard;
+    // No progress line before the domain has validated its inputs: bad input gets one line only.
+    const sim::AirDomain domain(req.terrain, req.domain);
+    const double domainSeconds = secondsSince(t0);
+    std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MB; solving...\n", domain.nx(),
+                 domain.ny(), domain.nz(), domain.activeCellCount(), domain.memoryEstimate_bytes() / 1e6);
+    sim::SteadyWindSolver solver(domain, req.weights);
+    gStage = STAGE_SOLVING;
+    const sim::SteadyWindResult res = solver.solve(req.ambient, req.solver);
+    gStage = STAGE_WRITING;
+    const sim::SolveReport& rep = res.report;
+
+    nlohmann::json j;
+    j["scene"] = req.sceneName;
+    j["model"] = "steady mass-consistent wind (Sherman 1978), cut cells (Batty, Bertails, Bridson 2007), MGPCG "
+                 "(McAdams, Sifakis, Teran 2010)";
+    const auto o = domain.wsMin_m();
+    j["domain"] = {{"cells", {domain.nx(), domain.ny(), domain.nz()}},
+                   {"voxel_size_m", domain.voxelSize_m()},
+                   {"ws_min_m", {o[0], o[1], o[2]}},
+                   {"ws_top_m", domain.wsTop_m()},
+                   {"box_cells", domain.boxCellCount()},
+                   {"air_cells", domain.activeCellCount()},
+                   {"memory_estimate_bytes", domain.memoryEstimate_bytes()},
+                   {"memory_limit_bytes", req.domain.memoryLimit_bytes},
+                   {"domain_bytes", domain.memory_bytes()},
+                   {"vdb_mask_bytes", domain.vdbMemory_bytes()},
+                   {"solver_bytes", solver.poisson().memory_bytes()}};
+    j["ambient"] = {{"speed_mps", req.ambient.speed_mps},
+                    {"reference_height_m", req.ambient.referenceHeight_m},
+                    {"direction_deg", req.ambient.direction_deg},
+                    {"direction_convention", "towards, counter-clockwise from +x"},
+                    {"profile", sim::windProfileName(req.ambient.profile)},
+                    {"roughness_m", req.ambient.roughness_m}};
+    j["weights"] = {{"alpha_h", req.weights.alphaH}, {"alpha_v", req.weights.alphaV}};
+    j["solver"] = {{"relative_tolerance", req.solver.relativeTolerance},
+                   {"max_iterations", req.solver.maxIterations},
+                   {"smoothing_sweeps", req.solver.smoothingSweeps},
+                   {"multigrid", req.solver.useMultigrid},
+                   {"residual_norm", "max-norm of b - A x over max-norm of b"}};
+    j["report"] = {{"converged", rep.converged},
+                   {"iterations", rep.iterations},
+                   {"relative_residual", rep.relativeResidual},
+                   {"initial_relative_residual", rep.initialRelativeResidual},
+                   {"max_div_u_h_over_U", rep.maxDivergenceScaled},
+                   {"levels", rep.levels},
+                   {"message", rep.message},
+                   {"domain_s", domainSeconds},
+                   {"setup_s", rep.setupSeconds},
+                   {"solve_s", rep.solveSeconds},
+                   {"assembly_s", res.assemblySeconds}};
+    if (!req.vdbPath.empty()) {
+        const auto parent = std::filesystem::path(req.vdbPath).parent_path();
+        if (!parent.empty()) std::filesystem::create_directories(parent);
+        sim::VdbMetadata meta;
+        meta.strings = {{"scene", req.sceneName}, {"converged", rep.converged ? "yes" : "no"}};
+        meta.numbers = {{"iterations", double(rep.iterations)}, {"relative_residual", rep.relativeResidual},
+                        {"max_div_u_h_over_U", rep.maxDivergenceScaled}};
+        res.field.writeVdb(req.vdbPath, meta);
+        j["outputs"]["vdb"] = {{"path", req.vdbPath},
+                               {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
+                               {"placement", "cell-centred averages of the MAC face velocities; voxel (i,j,k) "
+                                             "centre at ws_min_m + (i+0.5, j+0.5, k+0.5) * voxel_size_m"},
+                               {"grid_class", "GRID_UNKNOWN"},
+                               {"vector_type", "VEC_CONTRAVARIANT_RELATIVE"}};
+    }
+    j["total_s"] = secondsSince(t0);
+    if (!req.reportPath.empty()) {
+        const auto parent = std::filesystem::path(req.reportPath).parent_path();
+        if (!parent.empty()) std::filesystem::create_directories(parent);
+        writeTextAtomic(req.reportPath, j.dump(2) + "\n");
+    }
+    std::printf("solve: %s in %d iterations, relative residual %.2e, max|div u| h/U %.2e, %.2f s (%d x %d x %d cells, "
+                "%zu air)\n",
+                rep.converged ? "converged" : "DID NOT CONVERGE", rep.iterations, rep.relativeResidual,
+                rep.maxDivergenceScaled, j["total_s"].get<double>(), domain.nx(), domain.ny(), domain.nz(),
+                domain.activeCellCount());
+    if (!rep.converged) std::printf("solve: %s\n", rep.message.c_str());
+    if (gInterruptedWhileWriting) {
+        std::fflush(stdout);
+        std::fprintf(stderr, "gale: interrupted while writing; the solve had finished and %s%s%s are "
+                     "complete\n", req.vdbPath.c_str(), req.reportPath.empty() ? "" : " and ",
+                     req.reportPath.c_str());
+        return 130;
+    }
+    return rep.converged ? EXIT_OK : EXIT_UNMET;
+}
+
+std::string sequencePath(const std::string& vdbPath, int frame) {
+    std::filesystem::path p(vdbPath);
+    char num[32];
+    std::snprintf(num, sizeof num, "_%04d", frame);
+    const std::string name = p.stem().string() + num + ".vdb";
+    return p.has_parent_path() ? (p.parent_path() / name).string() : name;
+}
+
+int runUnsteadySolve(const SolveRequest& req) {
+    const auto t0 = Clock::now();
+    const UnsteadySolveRequest& u = *req.unsteady;
+    req.ambient.validate();
+    u.settings.validate();
+    std::fprintf(stderr, "solve: building the air domain (voxel %.3g m)...\n", req.domain.voxelSize_m);
+    const sim::AirDomain domain(req.terrain, req.domain);
+    std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air; steady solve (initial state and mean flow)...\n",
+                 domain.nx(), domain.ny(), domain.nz(), domain.activeCellCount());
+    sim::SteadyWindSolver steadySolver(domain, req.weights);
+    const sim::SteadyWindResult steady = steadySolver.solve(req.ambient, req.solver);
+    sim::UnsteadyWindSolver solver(domain, steady.field, u.settings, req.ambient.speed_mps);
+
+    nlohmann::json j;
+    j["scene"] = req.sceneName;
+    j["model"] = "unsteady incompressible wind (DESIGN 4.2): operator splitting on the MAC grid (Stam 1999), " +
+                 std::string(sim::advectionSchemeName(u.settings.advection)) +
+                 " advection, projection on cut cells with warm-started MGPCG (McAdams, Sifakis, Teran 2010); "
+                 "initial state and mean flow: the steady mass-consistent field (Sherman 1978)";
+    j["domain"] = {{"cells", {domain.nx(), domain.ny(), domain.nz()}},
+                   {"voxel_size_m", domain.voxelSize_m()},
+                   {"air_cells", domain.activeCellCount()}};
+    j["steady"] = {{"converged", steady.report.converged},
+                   {"iterations", steady.report.iterations},
+                   {"max_div_u_h_over_U", steady.report.maxDivergenceScaled}};
+    const sim::UnsteadySettings& s = u.settings;
+    j["settings"] = {{"advection", sim::advectionSchemeName(s.advection)},
+                     {"dt_s", s.dt_s},
+                     {"cfl", s.cfl},
+                     {"max_dt_s", s.maxDt_s},
+                     {"viscosity_m2ps", s.viscosity_m2ps},
+                     {"vorticity_confinement", s.vorticityConfinement},
+                     {"open_top", s.openTop},
+                     {"projection_tolerance", s.projection.relativeTolerance},
+                     {"duration_s", u.duration_s},
+                     {"output_every_s", u.outputEvery_s},
+                     {"gusts", s.gusts.size()},
+                     {"whirlwinds", s.whirlwinds.size()},
+                     {"vortex_code", solver.usesVortexCode()}};
+    nlohmann::json steps = nlohmann::json::array(), frames = nlohmann::json::array();
+    bool ok = steady.report.converged, finite = true;
+    auto writeFrame = [&](int n) {
+        const std::string path = sequencePath(req.vdbPath, n);
+        if (!req.vdbPath.empty()) {
+            sim::VdbMetadata meta;
+            meta.strings = {{"scene", req.sceneName}};
+            meta.numbers = {{"time_s", solver.time_s()}};
+            solver.field().writeVdb(path, meta);
+        }
+        frames.push_back({{"frame", n}, {"t_s", solver.time_s()}, {"path", req.vdbPath.empty() ? "" : path}});
+    };
+    if (!req.vdbPath.empty()) {
+        const auto parent = std::filesystem::path(req.vdbPath).parent_path();
+        if (!parent.empty()) std::filesystem::create_directories(parent);
+    }
+    writeFrame(0);
+    const int outputs = int(std::ceil(u.duration_s / u.outputEvery_s - 1e-9));
+    double maxCfl = 0, maxDiv = 0, solveSeconds = 0;
+    int maxIt = 0, stepCount = 0;
+    // One updating line with ETA on a terminal, one line per output in logs (app/io/Progress.h); the
+    // run's CFL and divergence are in the summary line and the report.
+    Progress progress("output", outputs);
+    for (int n = 1; n <= outputs && finite; ++n) {
+        const auto outputStart = Clock::now();
+        const double target = std::min(u.duration_s, n * u.outputEvery_s);
+        for (const sim::StepReport& r : solver.advanceTo(target)) {
+            ++stepCount;
+            maxCfl = std::max(maxCfl, r.cfl), maxDiv = std::max(maxDiv, r.maxDivergenceScaled);
+            maxIt = std::max(maxIt, r.projection.iterations);
+            solveSeconds += r.total_s;
+            ok = ok && r.projection.converged && r.finite;
+            finite = finite && r.finite;
+            steps.push_back({{"t_s", r.t_s},
+                             {"dt_s", r.dt_s},
+                             {"cfl", r.cfl},
+                             {"projection_iterations", r.projection.iterations},
+                             {"projection_relative_residual", r.projection.relativeResidual},
+                             {"projection_converged", r.projection.converged},
+                             {"max_div_u_h_over_U", r.maxDivergenceScaled},
+                             {"kinetic_energy_m5ps2", r.kineticEnergy_m5ps2},
+                             {"max_speed_mps", r.maxSpeed_mps},
+                             {"finite", r.finite},
+                             {"viscosity_iterations", r.viscosityIterations},
+                             {"advection_s", r.advection_s},
+                             {"forcing_s", r.forcing_s},
+                             {"viscosity_s", r.viscosity_s},
+                             {"projection_s", r.projection_s},
+                             {"step_s", r.total_s}});
+        }
+        writeFrame(n);
+        progress.step(n, msSince(outputStart));
+    }
+    progress.finish();
+    j["steps"] = steps;
+    j["outputs"] = {{"vdb_sequence", frames},
+                    {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
+                    {"placement", "cell-centred averages of the MAC face velocities"}};
+    j["summary"] = {{"steps", stepCount},
+                    {"simulated_s", solver.time_s()},
+                    {"max_cfl", maxCfl},
+                    {"max_projection_iterations", maxIt},
+                    {"max_div_u_h_over_U", maxDiv},
+                    {"all_converged", ok},
+                    {"finite", finite},
+                    {"mean_step_s", stepCount ? solveSeconds / stepCount : 0.0}};
+    j["total_s"] = secondsSince(t0);
+    if (!req.reportPath.empty()) {
+        const auto parent = std::filesystem::path(req.reportPath).parent_path();
+        if (!parent.empty()) std::filesystem::create_directories(parent);
+        writeTextAtomic(req.reportPath, j.dump(2) + "\n");
+    }
+    std::printf("solve: unsteady, %d steps to t = %.2f s (%zu .vdb files), max CFL %.2f, max projection iterations %d, "
+                "max|div u| h/U %.2e, %s, %.2f s (%.3f s per step)\n",
+                stepCount, solver.time_s(), frames.size(), maxCfl, maxIt, maxDiv,
+                !finite ? "NON-FINITE FIELD" : ok ? "all solves converged" : "SOME SOLVES DID NOT CONVERGE",
+                j["total_s"].get<double>(), stepCount ? solveSeconds / stepCount : 0.0);
+    return ok ? EXIT_OK : EXIT_UNMET;
+}
+
 
 namespace fs = std::filesystem;
 
@@ -58,6 +376,27 @@ int runSolveVerb(const SolveVerbOptions& options) {
     } catch (const std::invalid_argument& e) {
         throw InputError(scene.where("solver") + ": " + e.what());
     }
+}
+
+void addSolveVerb(CLI::App& app, VerbTable& verbs) {
+    auto options = std::make_shared<SolveVerbOptions>();
+    CLI::App* verb = app.add_subcommand(
+        "solve", "Solve a scene's wind over its terrain (steady; unsteady scenes as a .vdb "
+                 "sequence); write the field as .vdb and a JSON report");
+    verb->add_option("scene", options->scenePath, "Scene file")->required();
+    verb->add_option("-o,--output", options->vdbPath,
+                     "The .vdb file (default: <output.folder>/<prefix>_wind.vdb)")
+        ->check(NOT_EMPTY);
+    verb->add_option("--report", options->reportPath,
+                     "The JSON report (default: the .vdb path with .json)")
+        ->check(NOT_EMPTY);
+    verb->footer(std::string("\nThe .vdb holds a Vec3s grid 'velocity' (m/s, world axes, cell "
+                             "centres), a float grid 'speed' and a staggered Vec3s grid "
+                             "'velocity_faces' (the MAC face velocities); docs/solver.md says "
+                             "more. A solve that did not converge still writes both files and "
+                             "exits 3.") +
+                 EXIT_CODES_FOOTER);
+    verbs.add(verb, [options] { return runSolveVerb(*options); });
 }
 
 }  // namespace gale::app

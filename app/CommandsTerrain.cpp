@@ -2,15 +2,17 @@
 /// `gale terrain`: the scene's heightfield as a 16-bit greyscale PNG that a heightmap scene can
 /// read back.
 
+#include <memory>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
 
+#include "app/Cli.h"
 #include "app/Commands.h"
-#include "app/Errors.h"
-#include "app/Heightmap.h"
-#include "app/SceneBuilder.h"
-#include "app/SceneParser.h"
+#include "app/io/Errors.h"
+#include "app/scene/Heightmap.h"
+#include "app/scene/SceneBuilder.h"
+#include "app/scene/SceneParser.h"
 
 namespace gale::app {
 
@@ -47,6 +49,17 @@ int runTerrainExport(const TerrainExportOptions& options) {
     std::printf("  metres_per_pixel = %.9g\n  height_offset_m = %.9g\n  height_scale_m = %.9g\n",
                 field.spacing_m, range.minHeight_m, range.maxHeight_m - range.minHeight_m);
     return EXIT_OK;
+}
+
+void addTerrainVerb(CLI::App& app, VerbTable& verbs) {
+    auto options = std::make_shared<TerrainExportOptions>();
+    CLI::App* verb = app.add_subcommand(
+        "terrain",
+        "Export a scene's heightfield as a 16-bit grey PNG (a heightmap scene reads it)");
+    verb->add_option("scene", options->scenePath, "Scene file")->required();
+    verb->add_option("-o,--output", options->imagePath, "PNG file to write")->required();
+    verb->footer(EXIT_CODES_FOOTER);
+    verbs.add(verb, [options] { return runTerrainExport(*options); });
 }
 
 }  // namespace gale::app

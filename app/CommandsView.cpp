@@ -5,6 +5,7 @@
 /// stays responsive while a step computes; when the wind falls behind, the heads-up line says so.
 
 #define GLFW_INCLUDE_NONE
+#include <memory>
 #include <GLFW/glfw3.h>  // key codes only: the window itself is render::GlfwWindow
 
 #include <algorithm>
@@ -21,11 +22,12 @@
 #include <thread>
 #include <vector>
 
+#include "app/Cli.h"
 #include "app/Commands.h"
-#include "app/Errors.h"
-#include "app/SceneBuilder.h"
-#include "app/SceneParser.h"
-#include "app/Timing.h"
+#include "app/io/Errors.h"
+#include "app/scene/SceneBuilder.h"
+#include "app/scene/SceneParser.h"
+#include "app/io/Timing.h"
 #include "coupling/FieldOverlayBuilder.h"
 #include "render/FieldOverlay.h"
 #include "render/GlfwWindow.h"
@@ -494,6 +496,32 @@ int runView(const ViewOptions& options) {
                 options.screenshotPath.empty() ? "" : "; screenshot ",
                 options.screenshotPath.c_str(), behindNote.c_str());
     return EXIT_OK;
+}
+
+void addViewVerb(CLI::App& app, VerbTable& verbs) {
+    auto options = std::make_shared<ViewOptions>();
+    CLI::App* verb = app.add_subcommand(
+        "view", "Show a scene in a window: mouse camera, play/pause, overlays (needs a display)");
+    verb->add_option("scene", options->scenePath, "Scene file")->required();
+    verb->add_option("--frames", options->frames,
+                     "Draw this many frames at the scene's frame times, then exit")
+        ->check(CLI::Range(1, MAX_FRAMES));
+    verb->add_option("--screenshot", options->screenshotPath,
+                     "Save the last frame (without the heads-up line) to this PNG");
+    verb->add_option("--keys", options->keys,
+                     "Replay key presses, one character per frame ('>' right arrow, ' ' space, "
+                     "'.' none): for tests and demos");
+    verb->add_option("--width", options->width, "Window width in pixels (default output.width)")
+        ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
+    verb->add_option("--height", options->height,
+                     "Window height in pixels (default output.height)")
+        ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
+    verb->footer(std::string("\nKeys: space play/pause, right arrow step, +/- speed, R reset "
+                             "camera, G grass, T terrain, O overlays, [ ] shells, S screenshot, "
+                             "H heads-up, Esc/Q quit. Mouse: left drag orbit, right drag pan, "
+                             "scroll zoom. Without a display: exit 1, use 'gale render'.") +
+                 EXIT_CODES_FOOTER);
+    verbs.add(verb, [options] { return runView(*options); });
 }
 
 }  // namespace gale::app

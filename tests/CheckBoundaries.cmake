@@ -1,26 +1,41 @@
-# Fails if sim/ includes a GL, GLFW, GLM or OpenImageIO header, or render/ an OpenVDB header.
+# The module boundaries (docs/architecture.md), one rule per arrow that must not exist:
+#   sim/        no GL, GLFW, GLM, OpenImageIO; no coupling/, render/ or app/ header
+#   render/     no OpenVDB; no sim/, coupling/ or app/ header
+#   coupling/   no app/ header
+#   app/io/     no other app/ header
+#   app/scene/  no app/bench/ header and none of the verbs' (app/*.h)
+#   app/bench/  no app/scene/ header and none of the verbs'
 set(violations "")
-file(GLOB_RECURSE sim_files ${SOURCE_DIR}/sim/*.h ${SOURCE_DIR}/sim/*.cpp)
-foreach(f IN LISTS sim_files)
-    file(STRINGS ${f} lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](GL/|GLFW/|glm/|OpenImageIO/|EGL/)")
-    if(lines)
-        list(APPEND violations "${f}: ${lines}")
+set(counts "")
+
+# check(NAME GLOB REGEX): every file under GLOB whose include lines match REGEX is a violation.
+function(check name pattern regex)
+    file(GLOB_RECURSE files ${SOURCE_DIR}/${pattern})
+    list(LENGTH files n)
+    if(n EQUAL 0)
+        message(FATAL_ERROR "boundary check found no sources for ${name} (${SOURCE_DIR}/${pattern})")
     endif()
-endforeach()
-file(GLOB_RECURSE render_files ${SOURCE_DIR}/render/*.h ${SOURCE_DIR}/render/*.cpp)
-foreach(f IN LISTS render_files)
-    file(STRINGS ${f} lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](openvdb/|nanovdb/)")
-    if(lines)
-        list(APPEND violations "${f}: ${lines}")
-    endif()
-endforeach()
-list(LENGTH sim_files nsim)
-list(LENGTH render_files nrender)
-if(nsim EQUAL 0 OR nrender EQUAL 0)
-    message(FATAL_ERROR "boundary check found no sources under ${SOURCE_DIR} (sim: ${nsim}, render: ${nrender})")
-endif()
+    foreach(f IN LISTS files)
+        file(STRINGS ${f} lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](${regex})")
+        if(lines)
+            list(APPEND violations "${f}: ${lines}")
+        endif()
+    endforeach()
+    set(violations "${violations}" PARENT_SCOPE)
+    list(APPEND counts "${name} ${n}")
+    set(counts "${counts}" PARENT_SCOPE)
+endfunction()
+
+check(sim "sim/*.[ch]*" "GL/|GLFW/|glm/|OpenImageIO/|EGL/|coupling/|render/|app/")
+check(render "render/*.[ch]*" "openvdb/|nanovdb/|sim/|coupling/|app/")
+check(coupling "coupling/*.[ch]*" "app/")
+check(app_io "app/io/*.[ch]*" "app/(scene|bench)/|app/[A-Za-z]+\\.h")
+check(app_scene "app/scene/*.[ch]*" "app/bench/|app/[A-Za-z]+\\.h")
+check(app_bench "app/bench/*.[ch]*" "app/scene/|app/[A-Za-z]+\\.h")
+
 if(violations)
     string(REPLACE ";" "\n  " text "${violations}")
     message(FATAL_ERROR "module boundary crossed:\n  ${text}")
 endif()
-message(STATUS "module boundaries hold (${nsim} sim files, ${nrender} render files)")
+string(REPLACE ";" ", " text "${counts}")
+message(STATUS "module boundaries hold (files: ${text})")

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "AppTestSupport.h"
-#include "app/Errors.h"
-#include "app/Heightmap.h"
+#include "app/io/Errors.h"
+#include "app/scene/Heightmap.h"
 #include "sim/Heightfield.h"
 
 namespace gale::app {

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "AppTestSupport.h"
-#include "app/Errors.h"
-#include "app/SceneParser.h"
+#include "app/io/Errors.h"
+#include "app/scene/SceneParser.h"
 
 namespace gale::app {
 namespace {

@@ -1,4 +1,4 @@
-// libFuzzer target: the heightmap loader (app/Heightmap) on arbitrary file contents, through
+// libFuzzer target: the heightmap loader (app/scene/Heightmap) on arbitrary file contents, through
 // every image format OpenImageIO reads. The contract under test: a file either loads into a
 // finite heightfield or throws ImageError naming the file. Anything else (another exception, a
 // crash, a sanitizer report, an allocation beyond -rss_limit_mb, a hang) is a bug.
@@ -13,8 +13,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "app/Errors.h"
-#include "app/Heightmap.h"
+#include "app/io/Errors.h"
+#include "app/scene/Heightmap.h"
 
 namespace {
 

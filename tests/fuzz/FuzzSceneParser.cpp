@@ -1,4 +1,4 @@
-// libFuzzer target: the scene parser (app/SceneParser) on arbitrary bytes. The contract under
+// libFuzzer target: the scene parser (app/scene/SceneParser) on arbitrary bytes. The contract under
 // test: any input either parses into a Scene or throws SceneError, whose message is one line
 // starting with the file name. Anything else (another exception, a crash, a sanitizer report,
 // a hang) is a bug.
@@ -8,8 +8,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "app/Errors.h"
-#include "app/SceneParser.h"
+#include "app/io/Errors.h"
+#include "app/scene/SceneParser.h"
 
 namespace {
 /// Relative image paths in fuzzed scenes resolve here, a folder that does not exist, so the

@@ -1,4 +1,4 @@
-#include "app/AtomicFile.h"
+#include "app/io/AtomicFile.h"
 
 #include <unistd.h>
 

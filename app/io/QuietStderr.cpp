@@ -1,4 +1,4 @@
-#include "app/QuietStderr.h"
+#include "app/io/QuietStderr.h"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "app/Heightmap.h"
+#include "app/scene/Heightmap.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -11,10 +11,10 @@
 #include <system_error>
 #include <vector>
 
-#include "app/AtomicFile.h"
-#include "app/Errors.h"
-#include "app/QuietStderr.h"
-#include "app/SceneParser.h"
+#include "app/io/AtomicFile.h"
+#include "app/io/Errors.h"
+#include "app/io/QuietStderr.h"
+#include "app/scene/SceneParser.h"
 
 namespace gale::app {
 namespace {

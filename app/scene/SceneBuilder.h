@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "app/Scene.h"
+#include "app/scene/Scene.h"
 #include "coupling/WindSource.h"
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"

@@ -1,7 +1,7 @@
 /// \file SvgPlot.cpp
 /// Log-log line plots as SVG, for the benchmarks' error-against-run-time studies.
 
-#include "app/SvgPlot.h"
+#include "app/bench/SvgPlot.h"
 
 #include <algorithm>
 #include <cmath>

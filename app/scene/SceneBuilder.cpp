@@ -1,14 +1,14 @@
-#include "app/SceneBuilder.h"
+#include "app/scene/SceneBuilder.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
-#include "app/Errors.h"
-#include "app/Heightmap.h"
-#include "app/QuietStderr.h"
-#include "app/Timing.h"
+#include "app/io/Errors.h"
+#include "app/scene/Heightmap.h"
+#include "app/io/QuietStderr.h"
+#include "app/io/Timing.h"
 #include "coupling/FieldSampling.h"
 #include "coupling/FieldWind.h"
 #include "coupling/PointSourceWind.h"

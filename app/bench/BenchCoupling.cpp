@@ -1,7 +1,7 @@
 /// \file BenchCoupling.cpp
 /// The coupling benchmark (see BenchCoupling.h).
 
-#include "app/BenchCoupling.h"
+#include "app/bench/BenchCoupling.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,9 +15,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "app/AtomicFile.h"
-#include "app/SvgPlot.h"
-#include "app/Timing.h"
+#include "app/io/AtomicFile.h"
+#include "app/io/Errors.h"
+#include "app/bench/SvgPlot.h"
+#include "app/io/Timing.h"
 #include "coupling/FieldSampling.h"
 #include "coupling/FieldWind.h"
 #include "coupling/TerrainMeshBuilder.h"
@@ -294,7 +295,7 @@ int runBenchCoupling(const BenchCouplingOptions& options) {
         j["targets_met"] = stepOk && flatOk;
         writeTextAtomic(options.jsonPath, j.dump(2) + "\n");
     }
-    return stepOk && flatOk ? 0 : 1;
+    return stepOk && flatOk ? EXIT_OK : EXIT_UNMET;
 }
 
 }  // namespace gale::app

@@ -1,4 +1,4 @@
-#include "app/SceneParser.h"
+#include "app/scene/SceneParser.h"
 
 #include <toml++/toml.h>
 
@@ -15,8 +15,8 @@
 #include <sstream>
 #include <system_error>
 
-#include "app/Errors.h"
-#include "app/SceneSection.h"
+#include "app/io/Errors.h"
+#include "app/scene/SceneSection.h"
 #include "render/GrassInput.h"
 #include "render/RenderLimits.h"
 

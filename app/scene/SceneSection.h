@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "app/Errors.h"
-#include "app/Scene.h"
+#include "app/io/Errors.h"
+#include "app/scene/Scene.h"
 
 namespace gale::app::detail {
 

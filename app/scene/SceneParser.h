@@ -15,7 +15,7 @@
 #include <optional>
 #include <string>
 
-#include "app/Scene.h"
+#include "app/scene/Scene.h"
 
 namespace gale::app {
 

@@ -4,7 +4,7 @@
 ///  - `gale bench stability`: the named extreme cases of sim/UnsteadyStability.h as a table
 ///    (case, steps, max speed, kinetic energy start/end, max divergence, NaN/Inf, pass);
 ///  - `gale bench unsteady`: error against wall time on the exact viscous Lamb-Oseen vortex for
-///    each advection scheme over resolutions and time steps (CSV + SVG via app/SvgPlot, observed
+///    each advection scheme over resolutions and time steps (CSV + SVG via app/bench/SvgPlot, observed
 ///    orders), and the time per step and its parts over a hill at 128x128x48 (and 256x256x48).
 /// Tables go to stdout, progress lines to stderr.
 

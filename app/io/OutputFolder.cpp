@@ -1,4 +1,4 @@
-#include "app/OutputFolder.h"
+#include "app/io/OutputFolder.h"
 
 #include <unistd.h>
 
@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <system_error>
 
-#include "app/AtomicFile.h"
-#include "app/Errors.h"
+#include "app/io/AtomicFile.h"
+#include "app/io/Errors.h"
 
 namespace gale::app {
 namespace {

@@ -1,8 +1,8 @@
 /// \file BenchSolve.cpp
 /// Accuracy and speed benchmarks of the steady solver (docs/solver.md).
 
-#include "app/BenchSolve.h"
-#include "app/SvgPlot.h"
+#include "app/bench/BenchSolve.h"
+#include "app/bench/SvgPlot.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/PoissonSolver.h>
@@ -23,8 +23,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "app/AtomicFile.h"
-#include "app/Timing.h"
+#include "app/io/AtomicFile.h"
+#include "app/io/Errors.h"
+#include "app/io/Timing.h"
 #include "sim/SteadyWind.h"
 
 namespace gale::app {
@@ -288,7 +289,7 @@ int runBenchAccuracy(const BenchAccuracyOptions& opt) {
                                  {"total_s", r.totalSeconds}, {"solve_s", r.solveSeconds}, {"setup_s", r.setupSeconds}});
         writeTextAtomic(opt.jsonPath, j.dump(2) + "\n");
     }
-    return ok ? 0 : 1;
+    return ok ? EXIT_OK : EXIT_UNMET;
 }
 
 // =================================================================================================
@@ -601,7 +602,7 @@ int runBenchSolve(const BenchSolveOptions& optIn) {
                     double(itsLast) / itsFirst);
     j["iteration_growth"] = itsFirst > 0 ? double(itsLast) / itsFirst : 0.0;
     if (!opt.jsonPath.empty()) writeTextAtomic(opt.jsonPath, j.dump(2) + "\n");
-    return allConverged ? 0 : 1;
+    return allConverged ? EXIT_OK : EXIT_UNMET;
 }
 
 }  // namespace gale::app

@@ -1,6 +1,6 @@
 /// \file BenchUnsteady.cpp
 /// `gale bench stability` and `gale bench unsteady`.
-#include "app/BenchUnsteady.h"
+#include "app/bench/BenchUnsteady.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +10,10 @@
 #include <sstream>
 #include <vector>
 
-#include "app/AtomicFile.h"
-#include "app/SvgPlot.h"
-#include "app/Timing.h"
+#include "app/io/AtomicFile.h"
+#include "app/io/Errors.h"
+#include "app/bench/SvgPlot.h"
+#include "app/io/Timing.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyStability.h"
@@ -194,7 +195,7 @@ int runBenchStability(const BenchStabilityOptions& opt) {
                              {"divergence_tolerance", sim::STABILITY_DIVERGENCE_TOLERANCE},
                              {"energy_growth_tolerance", sim::STABILITY_ENERGY_GROWTH_TOLERANCE},
                              {"all_pass", all}});
-    return all ? 0 : 1;
+    return all ? EXIT_OK : EXIT_UNMET;
 }
 
 int runBenchUnsteady(const BenchUnsteadyOptions& opt) {
@@ -307,7 +308,7 @@ int runBenchUnsteady(const BenchUnsteadyOptions& opt) {
             ordersOk = false;
     const bool ok = finite && ordersOk && (opt.quick || finest <= TARGET_ERROR);
     std::printf("%s\n", ok ? "unsteady: targets met" : "unsteady: TARGETS MISSED");
-    return ok ? 0 : 1;
+    return ok ? EXIT_OK : EXIT_UNMET;
 }
 
 }  // namespace gale::app
