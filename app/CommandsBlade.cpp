@@ -14,11 +14,12 @@
 #include "app/io/Errors.h"
 #include "app/scene/SceneParser.h"
 #include "render/Bend.h"
+#include "base/Numbers.h"
 
 namespace gale::app {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 constexpr double SVG_WIDTH = 520, SVG_HEIGHT = 440;
 constexpr double MARGIN_LEFT = 60, MARGIN_RIGHT = 30, MARGIN_TOP = 60, MARGIN_BOTTOM = 60;
 /// At most this many shell indices are labelled, so many shells stay legible.
@@ -39,11 +40,8 @@ void validate(const BladeOptions& o) {
                          ")");
 }
 
-std::string num(double v, int digits = 4) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, std::abs(v) < 1e-12 ? 0.0 : v);
-    return buf;
-}
+/// `digits` significant digits, with round-off below 1e-12 m shown as 0.
+std::string num(double v, int digits = 4) { return formatG(std::abs(v) < 1e-12 ? 0.0 : v, digits); }
 
 std::string escapeXml(const std::string& s) {
     std::string out;

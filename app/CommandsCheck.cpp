@@ -14,24 +14,15 @@
 #include "app/scene/SceneParser.h"
 #include "coupling/PointSourceWind.h"
 #include "render/GrassTexture.h"
+#include "base/Numbers.h"
 
 namespace gale::app {
 namespace {
 
-std::string fmt(double v, int digits = 3) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    return buf;
-}
 
-std::string fmtFixed(double v, int decimals = 2) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-    return buf;
-}
 
 std::string vec3(const glm::vec3& v) {
-    return "(" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) + ")";
+    return "(" + formatG(v.x, 3) + ", " + formatG(v.y, 3) + ", " + formatG(v.z, 3) + ")";
 }
 
 void line(const char* label, const std::string& text) {
@@ -59,9 +50,9 @@ int runCheck(const SceneRunOptions& options) {
     t << sim::terrainKindName(scene.terrain.spec.kind);
     if (scene.terrain.spec.kind == sim::TerrainKind::Heightmap)
         t << " from " << scene.terrain.imagePath;
-    t << ", " << field.nx << " x " << field.ny << " samples at " << fmt(field.spacing_m) << " m ("
-      << fmt(field.sizeX_m()) << " x " << fmt(field.sizeY_m()) << " m), heights "
-      << fmtFixed(field.minHeight_m()) << " .. " << fmtFixed(field.maxHeight_m()) << " m";
+    t << ", " << field.nx << " x " << field.ny << " samples at " << formatG(field.spacing_m, 3) << " m ("
+      << formatG(field.sizeX_m(), 3) << " x " << formatG(field.sizeY_m(), 3) << " m), heights "
+      << formatFixed(field.minHeight_m()) << " .. " << formatFixed(field.maxHeight_m()) << " m";
     line("terrain", t.str());
 
     const long long quads = static_cast<long long>(mesh.nx - 1) * (mesh.ny - 1);
@@ -71,15 +62,15 @@ int runCheck(const SceneRunOptions& options) {
                      std::to_string(scene.terrain.meshStride) +
                      (scene.terrain.meshStride == 1 ? "st" : "th") + " sample)");
 
-    line("grass", fmt(grass.params.height_m) + " m tall, " + std::to_string(grass.params.shells) +
+    line("grass", formatG(grass.params.height_m, 3) + " m tall, " + std::to_string(grass.params.shells) +
                       " shells (" + std::to_string(grass.params.shells + 1) +
-                      " layers with the ground), stiffness " + fmt(grass.params.stiffness) +
-                      ", texture repeats every " + fmt(grass.params.tile_m) + " m");
+                      " layers with the ground), stiffness " + formatG(grass.params.stiffness, 3) +
+                      ", texture repeats every " + formatG(grass.params.tile_m, 3) + " m");
 
     const render::Image& level0 = built.texture.levels.front();
     std::string tex = grass.texturePath.empty()
                           ? "generated (seed " + std::to_string(grass.generated.seed) +
-                                ", density " + fmt(grass.generated.density) + ")"
+                                ", density " + formatG(grass.generated.density, 3) + ")"
                           : grass.texturePath;
     line("texture",
          tex + ", " + std::to_string(level0.width) + " x " + std::to_string(level0.height) + ", " +
@@ -92,30 +83,30 @@ int runCheck(const SceneRunOptions& options) {
     const sim::UnsteadySettings& us = scene.unsteady.settings;
     if (unsteady) {
         const sim::AmbientWind& a = scene.wind.ambient;
-        line("wind", "unsteady field (DESIGN 4.2): steady mass-consistent start and mean flow, " + fmt(a.speed_mps) +
-                         " m/s at " + fmt(a.referenceHeight_m) + " m towards " + fmt(a.direction_deg) + " deg, " +
+        line("wind", "unsteady field (DESIGN 4.2): steady mass-consistent start and mean flow, " + formatG(a.speed_mps, 3) +
+                         " m/s at " + formatG(a.referenceHeight_m, 3) + " m towards " + formatG(a.direction_deg, 3) + " deg, " +
                          sim::windProfileName(a.profile) + " profile");
         line("", "domain " + built.domainSummary);
         line("", std::string("time stepping: ") + sim::advectionSchemeName(us.advection) + " advection, " +
-                     (us.dt_s > 0 ? "fixed dt " + fmt(us.dt_s) + " s" : "adaptive CFL " + fmt(us.cfl) + " (dt <= " + fmt(us.maxDt_s) + " s)") +
-                     ", projection to " + fmt(us.projection.relativeTolerance) + " (warm MGPCG), " +
+                     (us.dt_s > 0 ? "fixed dt " + formatG(us.dt_s, 3) + " s" : "adaptive CFL " + formatG(us.cfl, 3) + " (dt <= " + formatG(us.maxDt_s, 3) + " s)") +
+                     ", projection to " + formatG(us.projection.relativeTolerance, 3) + " (warm MGPCG), " +
                      (us.openTop ? "open top" : "free-slip lid on top"));
-        line("", "forces: " + std::string(us.viscosity_m2ps > 0 ? "implicit viscosity " + fmt(us.viscosity_m2ps) + " m^2/s" : "no viscosity") +
-                     (us.vorticityConfinement > 0 ? ", vorticity confinement " + fmt(us.vorticityConfinement) : ", no vorticity confinement"));
+        line("", "forces: " + std::string(us.viscosity_m2ps > 0 ? "implicit viscosity " + formatG(us.viscosity_m2ps, 3) + " m^2/s" : "no viscosity") +
+                     (us.vorticityConfinement > 0 ? ", vorticity confinement " + formatG(us.vorticityConfinement, 3) : ", no vorticity confinement"));
         for (size_t i = 0; i < us.gusts.size(); ++i) {
             const sim::GustEvent& g = us.gusts[i];
-            line("", "gust " + std::to_string(i) + ": " + sim::gustEnvelopeName(g.envelope) + " envelope, " + fmt(g.peak_mps) +
-                         " m/s towards " + fmt(g.direction_deg) + " deg, from t = " + fmt(g.start_s) + " s for " + fmt(g.duration_s) +
+            line("", "gust " + std::to_string(i) + ": " + sim::gustEnvelopeName(g.envelope) + " envelope, " + formatG(g.peak_mps, 3) +
+                         " m/s towards " + formatG(g.direction_deg, 3) + " deg, from t = " + formatG(g.start_s, 3) + " s for " + formatG(g.duration_s, 3) +
                          " s, " +
                          (g.entry == sim::GustEntry::Inflow ? std::string("entering through the inflow boundary")
-                                                            : "as a moving forcing region of " + fmt(g.regionRadius_m) + " m radius"));
+                                                            : "as a moving forcing region of " + formatG(g.regionRadius_m, 3) + " m radius"));
         }
         for (size_t i = 0; i < us.whirlwinds.size(); ++i) {
             const sim::Whirlwind& v = us.whirlwinds[i];
-            line("", "whirlwind " + std::to_string(i) + ": " + sim::vortexProfileName(v.profile) + " at (" + fmt(v.wsPosition_m[0]) +
-                         ", " + fmt(v.wsPosition_m[1]) + ") m, core " + fmt(v.coreRadius_m) + " m, circulation " +
-                         fmt(v.circulation()) + " m^2/s" + (v.updraft_mps > 0 ? ", updraft " + fmt(v.updraft_mps) + " m/s" : "") +
-                         (v.forced ? ", forced" + (v.lifetime_s < 1e29 ? " for " + fmt(v.lifetime_s) + " s" : std::string()) : ", free"));
+            line("", "whirlwind " + std::to_string(i) + ": " + sim::vortexProfileName(v.profile) + " at (" + formatG(v.wsPosition_m[0], 3) +
+                         ", " + formatG(v.wsPosition_m[1], 3) + ") m, core " + formatG(v.coreRadius_m, 3) + " m, circulation " +
+                         formatG(v.circulation(), 3) + " m^2/s" + (v.updraft_mps > 0 ? ", updraft " + formatG(v.updraft_mps, 3) + " m/s" : "") +
+                         (v.forced ? ", forced" + (v.lifetime_s < 1e29 ? " for " + formatG(v.lifetime_s, 3) + " s" : std::string()) : ", free"));
         }
         line("", std::string("blade response ") + coupling::bladeResponseName(scene.wind.response.response) + ", " +
                      coupling::groupingName(scene.wind.response.grouping) + " groups (" + std::to_string(scene.wind.response.groups) +
@@ -123,14 +114,14 @@ int runCheck(const SceneRunOptions& options) {
     } else if (solved) {
         const sim::AmbientWind& a = scene.wind.ambient;
         const coupling::FieldWindSpec& r = scene.wind.response;
-        line("wind", "solved steady field (mass-consistent, DESIGN 4.1): " + fmt(a.speed_mps) +
-                         " m/s at " + fmt(a.referenceHeight_m) + " m towards " +
-                         fmt(a.direction_deg) + " deg, " + sim::windProfileName(a.profile) +
+        line("wind", "solved steady field (mass-consistent, DESIGN 4.1): " + formatG(a.speed_mps, 3) +
+                         " m/s at " + formatG(a.referenceHeight_m, 3) + " m towards " +
+                         formatG(a.direction_deg, 3) + " deg, " + sim::windProfileName(a.profile) +
                          " profile" +
-                         (a.profile == sim::WindProfile::LogLaw ? " (z0 " + fmt(a.roughness_m) + " m)" : ""));
+                         (a.profile == sim::WindProfile::LogLaw ? " (z0 " + formatG(a.roughness_m, 3) + " m)" : ""));
         line("", "domain " + built.domainSummary);
         line("", std::string("blade response ") + coupling::bladeResponseName(r.response) +
-                     ", bend speed " + fmt(r.bendSpeed_mps) + " m/s" +
+                     ", bend speed " + formatG(r.bendSpeed_mps, 3) + " m/s" +
                      (scene.wind.gusts
                           ? "; travelling gusts, " + std::to_string(scene.wind.arrivalBands) +
                                 " arrival bands x " + std::to_string(scene.wind.levels) + " levels"
@@ -143,7 +134,7 @@ int runCheck(const SceneRunOptions& options) {
                          (scene.wind.autoSource ? " (default: west edge)" : "") +
                          (ps.blowAway ? ", blowing away from it" : ", blowing towards it") + "; " +
                          std::to_string(built.wind->groupCount()) + " groups (rings), " +
-                         fmt(ps.stepDelay_s) + " s apart");
+                         formatG(ps.stepDelay_s, 3) + " s apart");
         line("", "gust: " + scene.wind.curveDescription);
     }
 
@@ -159,7 +150,7 @@ int runCheck(const SceneRunOptions& options) {
     const render::Camera& c = built.camera;
     line("camera", vec3(c.wsPosition_m) + " m -> " + vec3(c.wsTarget_m) + " m" +
                        (scene.autoCameraPosition ? " (default 3/4 view)" : "") + ", fov " +
-                       fmt(c.fovY_deg) + " deg, near " + fmt(c.near_m) + " m, far " + fmt(c.far_m) +
+                       formatG(c.fovY_deg, 3) + " deg, near " + formatG(c.near_m, 3) + " m, far " + formatG(c.far_m, 3) +
                        " m");
 
     const coupling::OverlaySpec& ov = scene.overlay;
@@ -169,14 +160,14 @@ int runCheck(const SceneRunOptions& options) {
             if (on) views += (views.empty() ? "" : ", ") + what;
         };
         add(ov.arrows, "arrows every " +
-                           (ov.arrowSpacing_m > 0 ? fmt(ov.arrowSpacing_m) + " m" : std::string("1/16 of the terrain")) +
-                           " at " + (ov.arrowHeight_m >= 0 ? fmt(ov.arrowHeight_m) + " m" : std::string("1.25 x grass height")));
-        add(ov.slice, "terrain-following slice " + fmt(ov.sliceHeight_m) + " m up");
+                           (ov.arrowSpacing_m > 0 ? formatG(ov.arrowSpacing_m, 3) + " m" : std::string("1/16 of the terrain")) +
+                           " at " + (ov.arrowHeight_m >= 0 ? formatG(ov.arrowHeight_m, 3) + " m" : std::string("1.25 x grass height")));
+        add(ov.slice, "terrain-following slice " + formatG(ov.sliceHeight_m, 3) + " m up");
         add(ov.streamlines, std::to_string(ov.streamlineCount) + " streamlines from the upstream edge");
         add(ov.vortexCores, "vortex cores (Q > " +
-                                (ov.vortexQ_per_s2 > 0 ? fmt(ov.vortexQ_per_s2) + " 1/s^2" : std::string("auto")) + ")");
+                                (ov.vortexQ_per_s2 > 0 ? formatG(ov.vortexQ_per_s2, 3) + " 1/s^2" : std::string("auto")) + ")");
         line("overlay", views + "; colour map viridis up to " +
-                            (ov.speedMax_mps > 0 ? fmt(ov.speedMax_mps) + " m/s" : std::string("the largest speed")) +
+                            (ov.speedMax_mps > 0 ? formatG(ov.speedMax_mps, 3) + " m/s" : std::string("the largest speed")) +
                             (ov.legend ? ", with legend" : ", no legend"));
         if (!solved && (ov.slice || ov.streamlines || ov.vortexCores))
             line("", "note: the point source has no velocity field: only arrows (direction x "
@@ -187,8 +178,8 @@ int runCheck(const SceneRunOptions& options) {
 
     const double endTime_s = out.startTime_s + (out.frames - 1) / out.fps;
     line("output", std::to_string(out.frames) + " frames of " + std::to_string(out.width) + " x " +
-                       std::to_string(out.height) + " at " + fmt(out.fps) +
-                       " fps (t = " + fmt(out.startTime_s) + " .. " + fmt(endTime_s, 4) + " s)");
+                       std::to_string(out.height) + " at " + formatG(out.fps, 3) +
+                       " fps (t = " + formatG(out.startTime_s, 3) + " .. " + formatG(endTime_s, 4) + " s)");
     auto named = [&](int k) {  // output.format picks the extension
         return std::filesystem::path(framePath(out.folder, out.prefix, k))
             .replace_extension("." + out.format)

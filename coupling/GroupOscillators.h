@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
+#include "base/Numbers.h"
 
 namespace gale::coupling {
 
@@ -48,7 +49,7 @@ public:
         // y = (x, v), y' = M y + omega^2 u e2, M = [[0, 1], [-w2, -c]], w2 = omega^2,
         // c = 2 zeta omega. Trapezoidal: (I - a M) y1 = (I + a M) y0 + a w2 (u0 + u1) e2, a = h/2,
         // with (I - a M)^-1 = [[1 + a c, a], [-a w2, 1]] / (1 + a c + a^2 w2).
-        const double omega = 2.0 * 3.14159265358979323846 * mFrequency_hz;
+        const double omega = 2.0 * PI * mFrequency_hz;
         const double a = 0.5 * h, w2 = omega * omega, c = 2.0 * mZeta * omega;
         const double det = 1.0 + a * c + a * a * w2;
         for (int g = 0; g < groups; ++g) {

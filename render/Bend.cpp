@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include "base/Numbers.h"
 
 namespace gale::render {
 
@@ -10,7 +11,7 @@ void bendBladeInto(int shells, float height_m, float intensity, float stiffness,
     // DESIGN 5.1 (corrected from Bakay et al. 2002, section 3): segment j of N, length S, tilts by
     // theta_j = (pi/2) I (j/N)^gamma. The table is tiny (N + 1 entries per group per frame).
     const double s = static_cast<double>(height_m) / shells;
-    const double halfPiI = 0.5 * 3.14159265358979323846 * intensity;
+    const double halfPiI = 0.5 * PI * intensity;
     double n = 0.0, w = 0.0;
     out[0] = {0.0, 0.0};
     for (int j = 1; j <= shells; ++j) {

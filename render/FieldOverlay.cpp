@@ -15,11 +15,12 @@
 #include "render/CameraMath.h"
 #include "render/ColorMap.h"
 #include "render/GlUtil.h"
+#include "base/Numbers.h"
 
 namespace gale::render {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 
 // Arrow shape, as fractions of the arrow's length (a quiver-plot arrow: a shaft and a head).
 constexpr float ARROW_HEAD_LENGTH = 0.38f;

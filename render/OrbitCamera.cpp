@@ -4,11 +4,12 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+#include "base/Numbers.h"
 
 namespace gale::render {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 constexpr double DEG_PER_PIXEL = 0.3;
 constexpr double MAX_ELEVATION_DEG = 89.0;
 constexpr double ZOOM_PER_STEP = 0.85;

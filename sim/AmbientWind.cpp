@@ -5,10 +5,11 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 using detail::num;
 }  // namespace
 

@@ -3,16 +3,13 @@
 /// Small helpers every sim/ file shares: numbers in messages (default stream formatting: "0.5",
 /// "1e-06", "nan") and the smoothstep ramp.
 
-#include <sstream>
 #include <string>
+
+#include "base/Numbers.h"
 
 namespace gale::sim::detail {
 
-inline std::string num(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+inline std::string num(double v) { return formatG(v); }
 
 /// Hermite smoothstep on [0, 1]: 0 below, 1 above, C1 in between.
 inline double smoothstep(double x) { return x <= 0 ? 0.0 : x >= 1 ? 1.0 : x * x * (3.0 - 2.0 * x); }

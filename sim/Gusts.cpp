@@ -5,10 +5,11 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 /// Default attack of the spline envelope, as a fraction of the duration: a sharp rise.
 constexpr double DEFAULT_ATTACK_FRACTION = 0.15;
 /// Peak of the un-normalised IEC EOG shape -0.37 sin(3 pi s)(1 - cos(2 pi s)), at s = 1/2.

@@ -4,11 +4,12 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 constexpr int MAX_SAMPLES_PER_SIDE = 16384;
 
 struct KindName {

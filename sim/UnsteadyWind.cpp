@@ -14,6 +14,7 @@
 #include "sim/FaceExtrapolation.h"
 #include "sim/SteadyWind.h"
 #include "sim/Viscosity.h"
+#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
@@ -223,7 +224,7 @@ SolveReport UnsteadyWindSolver::project() {
 }
 
 std::array<double, 2> UnsteadyWindSolver::regionCentre_m(const GustEvent& g, double t) const {
-    const double a = g.direction_deg * M_PI / 180.0, dx = std::cos(a), dy = std::sin(a);
+    const double a = radiansFromDegrees(g.direction_deg), dx = std::cos(a), dy = std::sin(a);
     std::array<double, 2> c = g.regionStart_m;
     if (!g.regionStartGiven) {
         // On the upwind side: from the box centre back along the direction to the box edge.
@@ -306,7 +307,7 @@ void UnsteadyWindSolver::applyForcing(double t0, double dt) {
         if (target == 0.0) continue;
         const double now = circulationAround(mGrid, velocity(), mAxes[n], R, z);
         const double deficit = std::clamp((target - now) / target, 0.0, 1.0);
-        const double vPeak = std::abs(ww.circulation()) * peakSpeedFactor(ww.profile) / (2 * M_PI * ww.coreRadius_m);
+        const double vPeak = std::abs(ww.circulation()) * peakSpeedFactor(ww.profile) / (2 * PI * ww.coreRadius_m);
         const double tau = std::max(ww.coreRadius_m / std::max(vPeak, 1e-9), MIN_FORCING_STEPS * dt);
         const double scale = deficit * (1.0 - std::exp(-dt / tau));
         if (scale > 0.0)

@@ -9,10 +9,11 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 /// max over x of (1 - exp(-x^2)) / x, at x = 1.12091: the Lamb-Oseen peak in units of Gamma/(2 pi r_c).
 constexpr double LAMB_OSEEN_PEAK = 0.638161;
 /// Smoothstep window from full to zero between the seeded radius and this multiple of it.

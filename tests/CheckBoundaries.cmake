@@ -1,4 +1,5 @@
 # The module boundaries (docs/architecture.md), one rule per arrow that must not exist:
+#   base/       no project header but its own
 #   sim/        no GL, GLFW, GLM, OpenImageIO; no coupling/, render/ or app/ header
 #   render/     no OpenVDB; no sim/, coupling/ or app/ header
 #   coupling/   no app/ header
@@ -26,6 +27,7 @@ function(check name pattern regex)
     set(counts "${counts}" PARENT_SCOPE)
 endfunction()
 
+check(base "base/*.[ch]*" "sim/|render/|coupling/|app/")
 check(sim "sim/*.[ch]*" "GL/|GLFW/|glm/|OpenImageIO/|EGL/|coupling/|render/|app/")
 check(render "render/*.[ch]*" "openvdb/|nanovdb/|sim/|coupling/|app/")
 check(coupling "coupling/*.[ch]*" "app/")

@@ -26,6 +26,7 @@
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/VdbIO.h"
+#include "base/Numbers.h"
 
 namespace gale::app {
 namespace {
@@ -75,7 +76,7 @@ std::vector<glm::vec3> gustStep(const render::TerrainMesh& mesh, const std::vect
                                 double t_s) {
     std::vector<glm::vec3> out(steady.size());
     for (size_t v = 0; v < steady.size(); ++v) {
-        const double phase = 2.0 * 3.14159265358979 * (t_s - mesh.wsPosition_m[v].x / 6.0) / 4.0;
+        const double phase = 2.0 * PI * (t_s - mesh.wsPosition_m[v].x / 6.0) / 4.0;
         out[v] = steady[v] * float(1.0 + 0.5 * std::sin(phase));
     }
     return out;

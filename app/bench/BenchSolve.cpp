@@ -27,11 +27,13 @@
 #include "app/io/Errors.h"
 #include "app/io/Timing.h"
 #include "sim/SteadyWind.h"
+#include "base/Numbers.h"
+#include "app/bench/ExactSolutions.h"
 
 namespace gale::app {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 
 // =================================================================================================
 // Hemisphere of radius R on flat ground in a uniform wind U along +x: by symmetry the sphere in a
@@ -44,14 +46,13 @@ struct Hemisphere {
     double halfWidth = 3.0;  ///< L, m (3 R)
     double top = 3.0;        ///< T, m (3 R)
     double c() const { return halfWidth; }
-    double phi(double x, double y, double z) const {
-        const double X = x - c(), Y = y - c(), r2 = X * X + Y * Y + z * z;
-        return 0.5 * U * R * R * R * X / (r2 * std::sqrt(r2));
-    }
+    exact::HemisphereFlow flow() const { return {R, U, c(), c()}; }
+    double phi(double x, double y, double z) const { return flow().phi(x, y, z); }
     std::array<double, 3> velocity(double x, double y, double z) const {
-        const double X = x - c(), Y = y - c(), r2 = X * X + Y * Y + z * z, r = std::sqrt(r2), r5 = r2 * r2 * r;
-        const double k = 0.5 * U * R * R * R;
-        return {U + k * (1.0 / (r2 * r) - 3.0 * X * X / r5), -3.0 * k * X * Y / r5, -3.0 * k * X * z / r5};
+        return flow().velocity(x, y, z);
+    }
+    std::vector<std::array<double, 3>> nearPoints() const { return flow().nearPoints(); }
+};
     }
     /// Fixed evaluation points 0.1 R above the surface: on the shell r = 1.1 R (polar angles
     /// 0..80 degrees by 10, 16 azimuths) and 0.1 R above the ground at 1.2, 1.5, 2, 2.5 R from
@@ -84,11 +85,6 @@ struct AccuracyRow {
     size_t nearPoints = 0, domainFaces = 0;
 };
 
-std::string fmt(double v, int prec = 3) {
-    std::ostringstream s;
-    s << std::setprecision(prec) << v;
-    return s.str();
-}
 
 
 /// Least-squares slope of log(error) against log(cells per radius): the observed order.
@@ -248,8 +244,8 @@ int runBenchAccuracy(const BenchAccuracyOptions& opt) {
     const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd"};
     std::vector<Series> series;
     for (size_t t = 0; t < tolerances.size(); ++t) {
-        Series l2{"near L2, tol " + fmt(tolerances[t], 1), colours[t % 5], false, {}, {}};
-        Series mx{"near max, tol " + fmt(tolerances[t], 1), colours[t % 5], true, {}, {}};
+        Series l2{"near L2, tol " + formatG(tolerances[t], 1), colours[t % 5], false, {}, {}};
+        Series mx{"near max, tol " + formatG(tolerances[t], 1), colours[t % 5], true, {}, {}};
         for (const AccuracyRow& r : rows)
             if (r.tolerance == tolerances[t] && r.cutCells) {
                 l2.xy.push_back({r.totalSeconds, r.nearL2}), l2.labels.push_back(std::to_string(r.cellsPerRadius) + "/R");
@@ -257,11 +253,11 @@ int runBenchAccuracy(const BenchAccuracyOptions& opt) {
             }
         series.push_back(l2), series.push_back(mx);
     }
-    Series dom{"domain L2, tol " + fmt(tightest, 1), colours[3], false, {}, {}};
+    Series dom{"domain L2, tol " + formatG(tightest, 1), colours[3], false, {}, {}};
     for (const AccuracyRow& r : rows)
         if (r.tolerance == tightest && r.cutCells) dom.xy.push_back({r.totalSeconds, r.domainL2});
     series.push_back(dom);
-    Series stair{"near L2, stair-steps, tol " + fmt(tightest, 1), colours[4], true, {}, {}};
+    Series stair{"near L2, stair-steps, tol " + formatG(tightest, 1), colours[4], true, {}, {}};
     for (const AccuracyRow& r : rows)
         if (!r.cutCells) stair.xy.push_back({r.totalSeconds, r.nearL2}), stair.labels.push_back(std::to_string(r.cellsPerRadius) + "/R");
     if (!stair.xy.empty()) series.push_back(stair);
@@ -575,8 +571,8 @@ int runBenchSolve(const BenchSolveOptions& optIn) {
         const double peakMB = std::max(0.0, r.peakRss_bytes - baseline) / 1e6;
         std::printf("%-12s %-19s %5d %5s %9.1e %8.3f %8.3f %8.3f %8.0f %9s %8s %9s%s\n", name.c_str(), row.solver.c_str(),
                     r.iterations, r.converged ? "yes" : "NO", r.relativeResidual, r.setupSeconds, r.solveSeconds,
-                    r.totalSeconds, peakMB, ours ? "1" : (fmt(r.totalSeconds / oursTotal, 3) + "x").c_str(),
-                    ours ? fmt(floorS, 3).c_str() : "", ours ? fmt(r.solveSeconds / floorS, 3).c_str() : "",
+                    r.totalSeconds, peakMB, ours ? "1" : (formatG(r.totalSeconds / oursTotal, 3) + "x").c_str(),
+                    ours ? formatG(floorS, 3).c_str() : "", ours ? formatG(r.solveSeconds / floorS, 3).c_str() : "",
                     r.ok ? "" : (std::string("  FAILED: ") + r.message).c_str());
         if (ours)
             std::printf("%-12s %-19s traffic model %.0f B/cell/iteration, %.0f ms/iteration\n", "", "",

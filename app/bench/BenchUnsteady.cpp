@@ -18,11 +18,13 @@
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyStability.h"
 #include "sim/UnsteadyWind.h"
+#include "base/Numbers.h"
+#include "app/bench/ExactSolutions.h"
 
 namespace gale::app {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 
 
 void writeJson(const std::string& path, const nlohmann::json& j) {
@@ -86,7 +88,7 @@ AccuracyRow lambOseen(sim::AdvectionScheme scheme, int cellsPerCore, double cour
     const double G = w.circulation(), rc2 = R0_M * R0_M + 4 * NU_M2PS * T_END_S, rt = std::sqrt(rc2);
     const double z = hf.sample(half, half) + 0.5 * LID_CELLS * h;
     for (double r = 0.25 * rt; r <= 2.0 * rt + 1e-9; r += 0.25 * rt) {
-        const double exact = G / (2 * PI * r) * -std::expm1(-r * r / rc2);
+        const double exact = gale::exact::lambOseenSpeed_mps(G, rc2, r);
         const double got = sim::circulationAround(solver.grid(), solver.velocity(), {half, half}, r, z) / (2 * PI * r);
         row.error = std::max(row.error, std::abs(got - exact) / V_PEAK_MPS);
     }
@@ -146,11 +148,6 @@ TimingRow timeSteps(int n, int nz, sim::AdvectionScheme scheme, int steps) {
     return row;
 }
 
-std::string fmt(double v, int digits = 3) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    return buf;
-}
 
 }  // namespace
 
@@ -229,9 +226,9 @@ int runBenchUnsteady(const BenchUnsteadyOptions& opt) {
             order = std::log2(rows[i - 1].error / r.error);
         finite = finite && r.finite;
         std::printf("%-16s %10d %8.3g %8.3g %8.3g %8d %10.3e %10.3f %7s\n", r.scheme.c_str(), r.cellsPerCore, r.h_m,
-                    r.courant, r.dt_s, r.steps, r.error, r.wall_s, std::isnan(order) ? "" : fmt(order, 2).c_str());
+                    r.courant, r.dt_s, r.steps, r.error, r.wall_s, std::isnan(order) ? "" : formatG(order, 2).c_str());
         csv << r.scheme << "," << r.cellsPerCore << "," << r.h_m << "," << r.courant << "," << r.dt_s << "," << r.steps
-            << "," << r.error << "," << r.wall_s << "," << (std::isnan(order) ? "" : fmt(order, 3)) << "\n";
+            << "," << r.error << "," << r.wall_s << "," << (std::isnan(order) ? "" : formatG(order, 3)) << "\n";
         jrows.push_back({{"scheme", r.scheme},
                          {"cells_per_core", r.cellsPerCore},
                          {"h_m", r.h_m},

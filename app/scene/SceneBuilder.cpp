@@ -18,11 +18,12 @@
 #include "sim/SteadyWind.h"
 #include "coupling/TerrainMeshBuilder.h"
 #include "render/ImageIO.h"
+#include "base/Numbers.h"
 
 namespace gale::app {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 /// Largest grass texture image we read; matches GrassTextureSpec::size's range.
 constexpr int MAX_TEXTURE_SIDE_PX = 4096;
 /// Default view: elevation of the camera above the horizontal, seen from the target.

@@ -20,6 +20,7 @@
 
 #include "app/io/Errors.h"
 #include "app/scene/Scene.h"
+#include "base/Numbers.h"
 
 namespace gale::app::detail {
 
@@ -163,11 +164,7 @@ struct Limit {
         return std::string("must be in ") + (loOpen ? "(" : "[") + num(lo) + ", " + num(hi) +
                (hiOpen ? ")" : "]");
     }
-    static std::string num(double v) {
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%g", v);
-        return buf;
-    }
+    static std::string num(double v) { return formatG(v); }
 };
 
 inline Limit anyFinite() { return {}; }

@@ -1,5 +1,6 @@
 // The gale program as a user meets it: exit codes, one-line errors naming file, field and reason,
-// nothing written on bad input, and a tiny end-to-end render whose frames move.
+// nothing written on bad input, and a tiny end-to-end render whose frames move. (The bad scenes
+// of tests/data run once, through every verb, in tests/reliability/BadInputCorpusTest.cpp.)
 
 #include <gtest/gtest.h>
 
@@ -25,42 +26,6 @@ std::string corpus(const std::string& name) {
     return test::sourcePath("tests/data/scenes/" + name);
 }
 
-/// One bad scene of tests/data/scenes and what its error must say.
-struct BadScene {
-    const char* file;
-    std::vector<std::string> fragments;  ///< besides the file name: field (or line) and reason
-};
-
-/// Test names and failure messages show the scene's file name, not its bytes.
-void PrintTo(const BadScene& scene, std::ostream* os) { *os << scene.file; }
-
-const std::vector<BadScene>& badScenes() {
-    static const std::vector<BadScene> scenes = {
-        {"malformed.toml", {"malformed.toml:2:", "expected ']'"}},
-        {"unknown_key.toml", {"unknown_key.toml:4:", "grass.shell", "unknown key"}},
-        {"unknown_section.toml", {"unknown_section.toml:5:", "weather", "unknown section"}},
-        {"wrong_type.toml", {"wrong_type.toml:3:", "grass.shells", "expected an integer"}},
-        {"negative_shells.toml", {"negative_shells.toml:3:", "grass.shells", "(got -4)"}},
-        {"huge_shells.toml", {"huge_shells.toml:3:", "grass.shells", "(got 100000)"}},
-        {"nan_height.toml", {"nan_height.toml:3:", "grass.height_m", "(got nan)"}},
-        {"zero_spacing.toml", {"zero_spacing.toml:3:", "terrain.spacing_m", "must be > 0"}},
-        {"absurd_terrain.toml", {"absurd_terrain.toml:4:", "terrain.spacing_m", "samples"}},
-        {"zero_width.toml", {"zero_width.toml:3:", "output.width", "(got 0)"}},
-        {"bad_gust_keys.toml", {"bad_gust_keys.toml:4:", "wind.gust.keys", "increase"}},
-        {"missing_heightmap.toml",
-         {"missing_heightmap.toml:4:", "terrain.image", "no such file", "no_such_heightmap.png"}},
-        {"corrupt_heightmap.toml",
-         {"corrupt_heightmap.toml:4:", "terrain.image", "corrupt_heightmap.png",
-          "not a readable image"}},
-        {"truncated_heightmap.toml",
-         {"truncated_heightmap.toml:4:", "terrain.image", "truncated_heightmap.png",
-          "truncated or corrupt"}},
-        {"single_pixel_heightmap.toml",
-         {"single_pixel_heightmap.toml:4:", "terrain.image", "too small"}},
-    };
-    return scenes;
-}
-
 /// Exit code 2, exactly one stderr line "gale: error: ..." holding every fragment.
 void expectBadInput(const RunResult& r, const std::vector<std::string>& fragments) {
     EXPECT_EQ(r.exitCode, 2) << r.err;
@@ -69,32 +34,6 @@ void expectBadInput(const RunResult& r, const std::vector<std::string>& fragment
     for (const std::string& f : fragments)
         EXPECT_NE(r.err.find(f), std::string::npos) << "'" << f << "' not in: " << r.err;
 }
-
-class BadSceneTest : public testing::TestWithParam<BadScene> {};
-
-TEST_P(BadSceneTest, RenderExitsTwoWithOneLineAndWritesNothing) {
-    TempDir dir;
-    const std::string out = dir / "frames";
-    expectBadInput(runGale({"render", corpus(GetParam().file), "-o", out}), GetParam().fragments);
-    EXPECT_EQ(test::countFiles(out), 0);
-    EXPECT_FALSE(test::fs::exists(out));
-}
-
-TEST_P(BadSceneTest, CheckExitsTwoWithOneLine) {
-    TempDir dir;
-    const RunResult r = runGale({"check", corpus(GetParam().file), "-o", dir / "frames"});
-    expectBadInput(r, GetParam().fragments);
-    EXPECT_TRUE(r.out.empty()) << r.out;
-}
-
-INSTANTIATE_TEST_SUITE_P(Corpus, BadSceneTest, testing::ValuesIn(badScenes()),
-                         [](const testing::TestParamInfo<BadScene>& info) {
-                             std::string name = info.param.file;
-                             name = name.substr(0, name.find('.'));
-                             std::string out;
-                             for (char c : name) out += std::isalnum(c) ? c : '_';
-                             return out;
-                         });
 
 TEST(Cli, OutputFolderThatIsAFileIsBadInputForRenderAndCheck) {
     TempDir dir;

@@ -13,6 +13,7 @@
 #include "coupling/TerrainMeshBuilder.h"
 #include "render/Bend.h"
 #include "sim/Heightfield.h"
+#include "base/Numbers.h"
 
 using namespace gale;
 using coupling::BladeResponse;
@@ -22,7 +23,7 @@ using coupling::Grouping;
 
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 // The 'below a stated bound at K = 64', in blade lengths (RMS over vertices and frames).
 constexpr double GROUPED_TIP_ERROR_BOUND_AT_64 = 0.01;
 

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "coupling/PointSourceWind.h"
+#include "base/Numbers.h"
 
 using gale::coupling::tangentWindDirection;
 
@@ -41,7 +42,7 @@ TEST(Projection, HandComputedSlope) {
 
 TEST(Projection, ResultIsPerpendicularToTheNormalOnSteepSlopes) {
     for (float slope_deg : {0.0f, 30.0f, 60.0f, 85.0f, 89.9f}) {
-        const float a = slope_deg * 3.14159265f / 180.0f;
+        const float a = float(gale::radiansFromDegrees(slope_deg));
         const glm::vec3 n(std::sin(a), 0.1f * std::sin(a), std::cos(a));
         for (const glm::vec3& w : {glm::vec3(1, 0, 0), glm::vec3(0.3f, -2, 0.5f), glm::vec3(0.2f, 0.1f, -1)}) {
             const glm::vec3 v = tangentWindDirection(w, n);

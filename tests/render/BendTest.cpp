@@ -4,13 +4,14 @@
 #include <cmath>
 
 #include "render/Bend.h"
+#include "base/Numbers.h"
 
 using gale::render::bendBlade;
 using gale::render::ShellOffset;
 
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 // The bound on segment length: 1e-5 relative; double sums reach ~1e-13.
 constexpr double SEGMENT_LENGTH_REL_TOL = 1e-5;
 // Tip tilt from the last segment's direction; atan2 of double offsets is good to ~1e-9 rad.

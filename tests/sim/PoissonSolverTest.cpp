@@ -7,11 +7,12 @@
 #include <vector>
 
 #include "sim/PoissonSolver.h"
+#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 /// A second-order operator quarters its error when h halves: log2 ratio 2, minus slack for the
 /// pre-asymptotic range at 16 -> 32 cells.
 constexpr double MIN_SECOND_ORDER = 1.8;

@@ -6,11 +6,12 @@
 
 #include "sim/Gusts.h"
 #include "sim/Vortices.h"
+#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 /// Envelope values are closed-form: round-off only.
 constexpr double SHAPE_TOLERANCE = 1e-12;
 /// Peaks located by sampling at 1e-4 of the duration / core radius.

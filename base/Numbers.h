@@ -1,0 +1,31 @@
+#pragma once
+/// \file Numbers.h
+/// The one home of pi and of numbers written as text, for every module (sim, render, coupling,
+/// app, tests). Header-only, standard library only: it sits below every other folder.
+
+#include <cstdio>
+#include <string>
+
+namespace gale {
+
+inline constexpr double PI = 3.14159265358979323846;
+
+/// Degrees to radians.
+inline constexpr double radiansFromDegrees(double deg) { return deg * (PI / 180.0); }
+
+/// `v` with `digits` significant digits, shortest form ("%.*g": 0.5, 1e-06, 12.3, nan, inf): the
+/// form of numbers in messages, reports and tables.
+inline std::string formatG(double v, int digits = 6) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    return buf;
+}
+
+/// `v` with `decimals` digits after the point ("%.*f").
+inline std::string formatFixed(double v, int decimals = 2) {
+    char buf[400];  // %f of the largest double needs 309 digits before the point
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    return buf;
+}
+
+}  // namespace gale
