@@ -374,7 +374,7 @@ int runSolveVerb(const SolveVerbOptions& options) {
         // allocating; a bad value is the scene's.
         return runSolve(request);
     } catch (const std::invalid_argument& e) {
-        throw InputError(scene.where("solver") + ": " + e.what());
+        rethrowAsSceneError(scene, "solver", e);
     }
 }
 

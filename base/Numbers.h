@@ -10,6 +10,10 @@ namespace gale {
 
 inline constexpr double PI = 3.14159265358979323846;
 
+/// Bytes in a mebibyte: every size gale prints or reads (memory limits, estimates, files) is in
+/// MiB.
+inline constexpr double MIB = 1024.0 * 1024.0;
+
 /// Degrees to radians.
 inline constexpr double radiansFromDegrees(double deg) { return deg * (PI / 180.0); }
 

@@ -15,6 +15,8 @@
 
 #include "sim/PoissonSolver.h"
 #include "sim/VdbIO.h"
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 
 namespace gale::sim {
 
@@ -88,31 +90,35 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                                         std::to_string(n % hf.nx) + ", " + std::to_string(n / hf.nx) + ")");
     const double h = spec.voxelSize_m;
     if (!(h > 0.0) || !std::isfinite(h))
-        throw std::invalid_argument("DomainSpec.voxelSize_m must be > 0 and finite, got " + num(h));
+        throw ParameterError("solver.voxel_size_m", num(h), "must be > 0 and finite");
     if (!(spec.memoryLimit_bytes > 0.0))
-        throw std::invalid_argument("DomainSpec.memoryLimit_bytes must be > 0, got " + num(spec.memoryLimit_bytes));
+        throw ParameterError("solver.memory_limit_mb", num(spec.memoryLimit_bytes / MIB),
+                             "must be > 0");
     const double nxD = std::floor(hf.sizeX_m() / h + 1e-9), nyD = std::floor(hf.sizeY_m() / h + 1e-9);
     if (nxD < 1 || nyD < 1)
-        throw std::invalid_argument("DomainSpec.voxelSize_m (" + num(h) + " m) is larger than the terrain (" +
-                                    num(hf.sizeX_m()) + " x " + num(hf.sizeY_m()) + " m)");
+        throw ParameterError("solver.voxel_size_m", num(h),
+                             "must not exceed the terrain (" + num(hf.sizeX_m()) + " x " +
+                                 num(hf.sizeY_m()) + " m)");
     const double minH = hf.minHeight_m(), maxH = hf.maxHeight_m();
     const double zMin = std::floor(minH / h) * h;
     double top = 0.0;
     if (spec.top_m) {
         top = *spec.top_m;
         if (!std::isfinite(top) || !(top > maxH))
-            throw std::invalid_argument("DomainSpec.top_m (" + num(top) + " m) must be above the highest terrain point (" +
-                                        num(maxH) + " m): the domain would have no air");
+            throw ParameterError("solver.top_m", num(top),
+                                 "must be above the highest terrain point (" + num(maxH) +
+                                     " m): the domain would have no air");
     } else {
         top = maxH + std::max(AUTO_TOP_RELIEF_FACTOR * (maxH - minH), AUTO_TOP_MIN_CELLS * h);
     }
     const double nzD = std::ceil((top - zMin) / h - 1e-9);
     const double estimate = estimateSolveMemory_bytes(1, 1, 1) * nxD * nyD * nzD;
     if (nxD * nyD * nzD > 2.0e9 || estimate > spec.memoryLimit_bytes)
-        throw std::invalid_argument(
-            "estimated memory " + num(std::round(estimate / 1e6)) + " MB for " + num(nxD) + " x " + num(nyD) + " x " +
-            num(nzD) + " cells exceeds DomainSpec.memoryLimit_bytes (" + num(std::round(spec.memoryLimit_bytes / 1e6)) +
-            " MB): increase voxelSize_m, lower top_m or raise the limit");
+        throw ParameterError("solver.memory_limit_mb", num(std::round(spec.memoryLimit_bytes / MIB)),
+                             "is below the estimated " + num(std::round(estimate / MIB)) + " MiB for " +
+                                 num(nxD) + " x " + num(nyD) + " x " + num(nzD) +
+                                 " cells: raise solver.voxel_size_m, lower solver.top_m or raise "
+                                 "the limit");
 
     mNx = int(nxD), mNy = int(nyD), mNz = std::max(1, int(nzD));
     mVoxelSize_m = h;
@@ -195,8 +201,9 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
             }
     mActiveCount = active;
     if (active == 0)
-        throw std::invalid_argument("domain has no air cells: raise DomainSpec.top_m (" + num(top) +
-                                    " m) above the terrain (max " + num(maxH) + " m)");
+        throw ParameterError("solver.top_m", num(top),
+                             "leaves no air cells: raise it above the terrain (max " + num(maxH) +
+                                 " m)");
     auto air = [&](int i, int j, int k) { return mAir[cellIndex(i, j, k)] != 0; };
     for (int k = 0; k < nz; ++k)
         for (int j = 0; j < ny; ++j) {

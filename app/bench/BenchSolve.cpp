@@ -38,7 +38,7 @@ using gale::PI;
 // =================================================================================================
 // Hemisphere of radius R on flat ground in a uniform wind U along +x: by symmetry the sphere in a
 // free stream, u = U e_x + grad(phi), phi = U R^3 cos(theta) / (2 r^2) = U R^3 X / (2 r^3)
-// (DESIGN 4.1). The box [0, 2L]^2 x [0, T] carries the exact potential on its open faces
+// (docs/design.md 4.1; app/bench/ExactSolutions.h). The box [0, 2L]^2 x [0, T] carries the exact potential on its open faces
 // (Dirichlet psi = phi), so the box size adds no truncation error; the ground is the symmetry plane.
 struct Hemisphere {
     double R = 1.0;          ///< radius, m
@@ -52,24 +52,6 @@ struct Hemisphere {
         return flow().velocity(x, y, z);
     }
     std::vector<std::array<double, 3>> nearPoints() const { return flow().nearPoints(); }
-};
-    }
-    /// Fixed evaluation points 0.1 R above the surface: on the shell r = 1.1 R (polar angles
-    /// 0..80 degrees by 10, 16 azimuths) and 0.1 R above the ground at 1.2, 1.5, 2, 2.5 R from
-    /// the axis (16 azimuths): 193 points, the same physical points at every resolution.
-    std::vector<std::array<double, 3>> nearPoints() const {
-        std::vector<std::array<double, 3>> p;
-        for (int ia = 0; ia <= 8; ++ia)
-            for (int ib = 0; ib < (ia == 0 ? 1 : 16); ++ib) {
-                const double al = ia * 10.0 * PI / 180.0, be = ib * 2.0 * PI / 16.0, rr = 1.1 * R;
-                p.push_back({c() + rr * std::sin(al) * std::cos(be), c() + rr * std::sin(al) * std::sin(be),
-                             rr * std::cos(al)});
-            }
-        for (double rho : {1.2, 1.5, 2.0, 2.5})
-            for (int ib = 0; ib < 16; ++ib)
-                p.push_back({c() + rho * R * std::cos(ib * PI / 8), c() + rho * R * std::sin(ib * PI / 8), 0.1 * R});
-        return p;
-    }
 };
 
 struct AccuracyRow {

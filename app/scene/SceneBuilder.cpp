@@ -19,6 +19,7 @@
 #include "coupling/TerrainMeshBuilder.h"
 #include "render/ImageIO.h"
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 
 namespace gale::app {
 namespace {
@@ -32,6 +33,27 @@ constexpr double DEFAULT_ELEVATION_DEG = 28.0;
 [[noreturn]] void failAt(const Scene& scene, const std::string& key, const std::string& reason) {
     throw SceneError(scene.where(key) + ": " + reason);
 }
+
+}  // namespace
+
+void rethrowAsSceneError(const Scene& scene, const std::string& fallbackKey,
+                         const std::invalid_argument& error) {
+    const auto* p = dynamic_cast<const ParameterError*>(&error);
+    if (!p) failAt(scene, fallbackKey, error.what());
+    const auto lineOf = [&](const std::string& key) {
+        const auto it = scene.keyLines.find(key);
+        return it == scene.keyLines.end() ? 0 : it->second;
+    };
+    if (lineOf(p->key()) > 0) failAt(scene, p->key(), p->expected() + " (got " + p->value() + ")");
+    // A default the scene did not write: point at its section (or the fallback) and say so.
+    const std::string section = p->key().substr(0, p->key().rfind('.'));
+    const int line = lineOf(section) > 0 ? lineOf(section) : lineOf(fallbackKey);
+    throw SceneError(scene.path + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
+                     p->key() + ": " + p->expected() + " (got " + p->value() +
+                     ", the default)");
+}
+
+namespace {
 
 render::GrassTexture loadTexture(const Scene& scene) {
     const std::string& path = scene.grass.texturePath;
@@ -80,7 +102,7 @@ void buildPointSourceWind(const Scene& scene, BuiltScene& built) {
     try {
         built.wind = std::make_unique<coupling::PointSourceWind>(built.mesh, source, gustCurve(scene));
     } catch (const std::invalid_argument& e) {
-        failAt(scene, "wind", e.what());
+        rethrowAsSceneError(scene, "wind", e);
     }
 }
 
@@ -103,7 +125,7 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
     try {
         domain.emplace(built.heightfield, scene.solver.domain);
     } catch (const std::invalid_argument& e) {
-        failAt(scene, "solver", e.what());
+        rethrowAsSceneError(scene, "solver", e);
     }
     built.domainSummary = describeDomain(*domain);
     if (!options.solveWind) return;
@@ -113,7 +135,7 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
         result = sim::solveSteadyWind(*domain, scene.wind.ambient, scene.solver.weights,
                                       scene.solver.settings);
     } catch (const std::invalid_argument& e) {
-        failAt(scene, "wind", e.what());
+        rethrowAsSceneError(scene, "wind", e);
     }
     built.solve = result.report;
     const double sampleHeight_m = scene.wind.sampleHeight_m >= 0.0
@@ -145,7 +167,7 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
             built.wind = std::move(wind);
         }
     } catch (const std::invalid_argument& e) {
-        failAt(scene, "wind", e.what());
+        rethrowAsSceneError(scene, "wind", e);
     }
     built.solve_ms = msSince(start);
 }
@@ -159,7 +181,7 @@ void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltSce
             try {
                 return sim::AirDomain(built.heightfield, scene.solver.domain);
             } catch (const std::invalid_argument& e) {
-                failAt(scene, "solver", e.what());
+                rethrowAsSceneError(scene, "solver", e);
             }
         }());
     built.domainSummary = describeDomain(*domain);
@@ -169,7 +191,7 @@ void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltSce
     try {
         result = sim::solveSteadyWind(*domain, scene.wind.ambient, scene.solver.weights, scene.solver.settings);
     } catch (const std::invalid_argument& e) {
-        failAt(scene, "wind", e.what());
+        rethrowAsSceneError(scene, "wind", e);
     }
     built.solve = result.report;
     const double sampleHeight_m = scene.wind.sampleHeight_m >= 0.0 ? scene.wind.sampleHeight_m
@@ -179,7 +201,7 @@ void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltSce
             built.mesh, std::move(domain), result.field, scene.unsteady.settings, scene.wind.ambient.speed_mps,
             scene.wind.response, sampleHeight_m);
     } catch (const std::invalid_argument& e) {
-        failAt(scene, "unsteady", e.what());
+        rethrowAsSceneError(scene, "unsteady", e);
     }
     built.solve_ms = msSince(start);
 }
@@ -199,7 +221,7 @@ sim::Heightfield buildHeightfield(const Scene& scene) {
     try {
         return sim::makeTerrain(t.spec);
     } catch (const std::invalid_argument& e) {
-        failAt(scene, "terrain", e.what());
+        rethrowAsSceneError(scene, "terrain", e);
     }
 }
 
@@ -245,7 +267,7 @@ BuiltScene buildScene(const Scene& scene, const BuildOptions& options) {
         try {
             built.texture = render::generateGrassTexture(scene.grass.generated);
         } catch (const std::invalid_argument& e) {
-            failAt(scene, "grass.generated", e.what());
+            rethrowAsSceneError(scene, "grass.generated", e);
         }
     } else {
         built.texture = loadTexture(scene);

@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "app/scene/Scene.h"
@@ -16,6 +17,12 @@
 #include "sim/PoissonSolver.h"
 
 namespace gale::app {
+
+/// Turns a library's std::invalid_argument into the scene's error (SceneError, exit 2): a
+/// gale::ParameterError names its own scene key, and the message points at that key's FILE:LINE;
+/// any other is placed at `fallbackKey` (the section the failing call was built from).
+[[noreturn]] void rethrowAsSceneError(const Scene& scene, const std::string& fallbackKey,
+                                      const std::invalid_argument& error);
 
 struct BuiltScene {
     sim::Heightfield heightfield;

@@ -17,6 +17,7 @@
 #include "sim/VdbIO.h"
 #include "base/Numbers.h"
 #include "app/bench/ExactSolutions.h"
+#include "base/ParameterError.h"
 
 namespace gale::sim {
 namespace {
@@ -328,8 +329,17 @@ TEST(AirDomain, BadInputThrowsNamingTheParameter) {
     expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{100.0, {}, 1e9}); }, "voxelSize_m");
     expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{1.0, /*top_m=*/-1.0, 1e9}); }, "top_m");
     expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{1.0, /*top_m=*/0.0, 1e9}); }, "no air");
-    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{0.01, /*top_m=*/50.0, 1e9}); }, "memoryLimit_bytes");
-    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{1.0, {}, 0.0}); }, "memoryLimit_bytes");
+    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{0.01, /*top_m=*/50.0, 1e9}); }, "solver.memory_limit_mb");
+    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{1.0, {}, 0.0}); }, "solver.memory_limit_mb");
+    // The typed error carries the scene's key and the value in the key's unit (MiB).
+    try {
+        AirDomain d(hf, DomainSpec{0.01, /*top_m=*/50.0, /*memoryLimit_bytes=*/64.0 * 1024 * 1024});
+        ADD_FAILURE() << "a domain over its memory limit was built";
+    } catch (const ParameterError& e) {
+        EXPECT_EQ(e.key(), "solver.memory_limit_mb");
+        EXPECT_EQ(e.value(), "64");
+        EXPECT_NE(e.expected().find("MiB"), std::string::npos) << e.what();
+    }
     Heightfield bad = hf;
     bad.height_m[5] = std::nanf("");
     expectThrowsNaming([&] { AirDomain d(bad, DomainSpec{1.0, {}, 1e9}); }, "height_m");
