@@ -34,6 +34,15 @@ std::string vec3(const glm::vec3& v) {
     return "(" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) + ")";
 }
 
+/// "from 210 deg = towards 30 deg, counter-clockwise from +x 60 deg": the meteorological and the
+/// mathematical direction of one wind, side by side.
+std::string directionText(double direction_deg) {
+    sim::AmbientWind a;
+    a.direction_deg = direction_deg;
+    return "from " + fmt(a.from_deg()) + " deg = towards " + fmt(a.towardsBearing_deg()) +
+           " deg, counter-clockwise from +x " + fmt(direction_deg) + " deg";
+}
+
 void line(const char* label, const std::string& text) {
     std::printf("%-9s %s\n", label, text.c_str());
 }
@@ -56,13 +65,24 @@ int runCheck(const SceneRunOptions& options) {
     line("scene", scene.path + (scene.description.empty() ? "" : ": " + scene.description));
 
     std::ostringstream t;
-    t << sim::terrainKindName(scene.terrain.spec.kind);
-    if (scene.terrain.spec.kind == sim::TerrainKind::Heightmap)
+    const Georeference& geo = built.georef;
+    if (scene.terrain.dem)
+        t << "dem from " << scene.terrain.demPath;
+    else
+        t << sim::terrainKindName(scene.terrain.spec.kind);
+    if (scene.terrain.spec.kind == sim::TerrainKind::Heightmap && !scene.terrain.dem)
         t << " from " << scene.terrain.imagePath;
     t << ", " << field.nx << " x " << field.ny << " samples at " << fmt(field.spacing_m) << " m ("
       << fmt(field.sizeX_m()) << " x " << fmt(field.sizeY_m()) << " m), heights "
       << fmtFixed(field.minHeight_m()) << " .. " << fmtFixed(field.maxHeight_m()) << " m";
     line("terrain", t.str());
+    if (geo.georeferenced()) {
+        line("", "coordinate system " + geo.crsName + "; covers x " + fmtFixed(geo.demX_m(0.0)) +
+                     " .. " + fmtFixed(geo.demX_m(field.sizeX_m())) + ", y " +
+                     fmtFixed(geo.demY_m(0.0)) + " .. " + fmtFixed(geo.demY_m(field.sizeY_m())) +
+                     " (pixel centres); inside gale local (0, 0) = (" + fmtFixed(geo.originX_m) +
+                     ", " + fmtFixed(geo.originY_m) + ")");
+    }
 
     const long long quads = static_cast<long long>(mesh.nx - 1) * (mesh.ny - 1);
     line("mesh", std::to_string(mesh.nx) + " x " + std::to_string(mesh.ny) + " = " +
@@ -93,7 +113,7 @@ int runCheck(const SceneRunOptions& options) {
     if (unsteady) {
         const sim::AmbientWind& a = scene.wind.ambient;
         line("wind", "unsteady field (DESIGN 4.2): steady mass-consistent start and mean flow, " + fmt(a.speed_mps) +
-                         " m/s at " + fmt(a.referenceHeight_m) + " m towards " + fmt(a.direction_deg) + " deg, " +
+                         " m/s at " + fmt(a.referenceHeight_m) + " m " + directionText(a.direction_deg) + ", " +
                          sim::windProfileName(a.profile) + " profile");
         line("", "domain " + built.domainSummary);
         line("", std::string("time stepping: ") + sim::advectionSchemeName(us.advection) + " advection, " +
@@ -124,8 +144,8 @@ int runCheck(const SceneRunOptions& options) {
         const sim::AmbientWind& a = scene.wind.ambient;
         const coupling::FieldWindSpec& r = scene.wind.response;
         line("wind", "solved steady field (mass-consistent, DESIGN 4.1): " + fmt(a.speed_mps) +
-                         " m/s at " + fmt(a.referenceHeight_m) + " m towards " +
-                         fmt(a.direction_deg) + " deg, " + sim::windProfileName(a.profile) +
+                         " m/s at " + fmt(a.referenceHeight_m) + " m " +
+                         directionText(a.direction_deg) + ", " + sim::windProfileName(a.profile) +
                          " profile" +
                          (a.profile == sim::WindProfile::LogLaw ? " (z0 " + fmt(a.roughness_m) + " m)" : ""));
         line("", "domain " + built.domainSummary);
