@@ -2,6 +2,7 @@
 #include "sim/VdbIO.h"
 
 #include <openvdb/io/File.h>
+#include <openvdb/tools/SignedFloodFill.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -186,6 +187,8 @@ void writeHoudiniVdb(const std::string& path, const WindField& f, const Heightfi
                 if (std::abs(d) < band) sacc.setValueOn(openvdb::Coord(i, k, -j - 1), float(d));
             }
         }
+    // Below the band the ground is inside: negative background there, as a level set needs.
+    openvdb::tools::signedFloodFill(sdf->tree());
     for (openvdb::GridBase* g : {static_cast<openvdb::GridBase*>(vel.get()), static_cast<openvdb::GridBase*>(sdf.get())})
         g->insertMeta("axes", openvdb::StringMetadata("y-up: (x, y, z) here = gale (x, z, -y); metres"));
     writeGridsAtomic(path, {vel, sdf});
