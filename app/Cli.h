@@ -46,5 +46,6 @@ void addSolveVerb(CLI::App& app, VerbTable& verbs);
 void addBladeVerb(CLI::App& app, VerbTable& verbs);
 void addBenchVerbs(CLI::App& app, VerbTable& verbs);
 void addTerrainVerb(CLI::App& app, VerbTable& verbs);
+void addProbeVerb(CLI::App& app, VerbTable& verbs);
 
 }  // namespace gale::app

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/io/Errors.h"
 #include "app/scene/LoadScene.h"
@@ -18,6 +19,12 @@ struct SolveVerbOptions {
     std::string scenePath;
     std::string vdbPath;     ///< -o; empty: <output.folder>/<prefix>_wind.vdb
     std::string reportPath;  ///< --report; empty: the .vdb path with .json
+    /// --grid-height-m: also write the wind this high above the ground (metres) as
+    /// <stem>_<H>m.tif (speed and from-direction bands) and <stem>_<H>m.asc (speed), steady only.
+    std::vector<double> gridHeights_m;
+    /// --houdini: also write <stem>_houdini.NNNN.vdb (grids vel and surface, y-up), NNNN the
+    /// scene's frame number at each output time (1-based, output.fps).
+    bool houdini = false;
 };
 /// Returns EXIT_OK when the solve converged, EXIT_UNMET when it did not (files still written, the
 /// report says so).

@@ -25,6 +25,15 @@ std::string vec3(const glm::vec3& v) {
     return "(" + formatG(v.x, 3) + ", " + formatG(v.y, 3) + ", " + formatG(v.z, 3) + ")";
 }
 
+/// "from 210 deg = towards 30 deg, counter-clockwise from +x 60 deg": the meteorological and the
+/// mathematical direction of one wind, side by side.
+std::string directionText(double direction_deg) {
+    sim::AmbientWind a;
+    a.direction_deg = direction_deg;
+    return "from " + formatG(a.from_deg(), 3) + " deg = towards " + formatG(a.towardsBearing_deg(), 3) +
+           " deg, counter-clockwise from +x " + formatG(direction_deg, 3) + " deg";
+}
+
 void line(const char* label, const std::string& text) {
     std::printf("%-9s %s\n", label, text.c_str());
 }
@@ -47,13 +56,24 @@ int runCheck(const SceneRunOptions& options) {
     line("scene", scene.path + (scene.description.empty() ? "" : ": " + scene.description));
 
     std::ostringstream t;
-    t << sim::terrainKindName(scene.terrain.spec.kind);
-    if (scene.terrain.spec.kind == sim::TerrainKind::Heightmap)
+    const Georeference& geo = built.georef;
+    if (scene.terrain.dem)
+        t << "dem from " << scene.terrain.demPath;
+    else
+        t << sim::terrainKindName(scene.terrain.spec.kind);
+    if (scene.terrain.spec.kind == sim::TerrainKind::Heightmap && !scene.terrain.dem)
         t << " from " << scene.terrain.imagePath;
     t << ", " << field.nx << " x " << field.ny << " samples at " << formatG(field.spacing_m, 3) << " m ("
       << formatG(field.sizeX_m(), 3) << " x " << formatG(field.sizeY_m(), 3) << " m), heights "
       << formatFixed(field.minHeight_m()) << " .. " << formatFixed(field.maxHeight_m()) << " m";
     line("terrain", t.str());
+    if (geo.georeferenced()) {
+        line("", "coordinate system " + geo.crsName + "; covers x " + formatFixed(geo.demX_m(0.0)) +
+                     " .. " + formatFixed(geo.demX_m(field.sizeX_m())) + ", y " +
+                     formatFixed(geo.demY_m(0.0)) + " .. " + formatFixed(geo.demY_m(field.sizeY_m())) +
+                     " (pixel centres); inside gale local (0, 0) = (" + formatFixed(geo.originX_m) +
+                     ", " + formatFixed(geo.originY_m) + ")");
+    }
 
     const long long quads = static_cast<long long>(mesh.nx - 1) * (mesh.ny - 1);
     line("mesh", std::to_string(mesh.nx) + " x " + std::to_string(mesh.ny) + " = " +
@@ -84,7 +104,7 @@ int runCheck(const SceneRunOptions& options) {
     if (unsteady) {
         const sim::AmbientWind& a = scene.wind.ambient;
         line("wind", "unsteady field (DESIGN 4.2): steady mass-consistent start and mean flow, " + formatG(a.speed_mps, 3) +
-                         " m/s at " + formatG(a.referenceHeight_m, 3) + " m towards " + formatG(a.direction_deg, 3) + " deg, " +
+                         " m/s at " + formatG(a.referenceHeight_m, 3) + " m " + directionText(a.direction_deg) + ", " +
                          sim::windProfileName(a.profile) + " profile");
         line("", "domain " + built.domainSummary);
         line("", std::string("time stepping: ") + sim::advectionSchemeName(us.advection) + " advection, " +
@@ -115,8 +135,8 @@ int runCheck(const SceneRunOptions& options) {
         const sim::AmbientWind& a = scene.wind.ambient;
         const coupling::FieldWindSpec& r = scene.wind.response;
         line("wind", "solved steady field (mass-consistent, DESIGN 4.1): " + formatG(a.speed_mps, 3) +
-                         " m/s at " + formatG(a.referenceHeight_m, 3) + " m towards " +
-                         formatG(a.direction_deg, 3) + " deg, " + sim::windProfileName(a.profile) +
+                         " m/s at " + formatG(a.referenceHeight_m, 3) + " m " +
+                         directionText(a.direction_deg) + ", " + sim::windProfileName(a.profile) +
                          " profile" +
                          (a.profile == sim::WindProfile::LogLaw ? " (z0 " + formatG(a.roughness_m, 3) + " m)" : ""));
         line("", "domain " + built.domainSummary);

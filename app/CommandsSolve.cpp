@@ -24,12 +24,14 @@
 #include "app/io/Progress.h"
 #include "app/io/Timing.h"
 #include "app/scene/SceneBuilder.h"
+#include "app/scene/WindRaster.h"
 #include "sim/AirDomain.h"
 #include "sim/AmbientWind.h"
 #include "sim/Heightfield.h"
 #include "sim/PoissonSolver.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
+#include "sim/VdbIO.h"
 
 namespace gale::app {
 
@@ -53,7 +55,17 @@ struct SolveRequest {
     /// Set for unsteady scenes: vdbPath is then the stem of a sequence, <stem>_0000.vdb ..., and
     /// the report lists every step (CFL, iterations, divergence, kinetic energy, timings).
     std::optional<UnsteadySolveRequest> unsteady;
+    Georeference georef;                ///< a DEM's coordinate system, for the rasters
+    std::vector<double> gridHeights_m;  ///< rasters of the wind this high above ground (steady)
+    double houdiniFps = 0.0;            ///< > 0: also the y-up .vdb sequence, frames at this rate
 };
+
+/// "<stem>_houdini.0025.vdb": the y-up file of the scene frame at t_s (frame 1 at t = 0).
+std::string houdiniPath(const std::string& vdbPath, double fps, double t_s) {
+    char num[32];
+    std::snprintf(num, sizeof num, ".%04ld.vdb", std::lround(t_s * fps) + 1);
+    return std::filesystem::path(vdbPath).replace_extension("").string() + "_houdini" + num;
+}
 
 /// Builds the domain, solves, writes the .vdb and the JSON report (each atomically), prints a
 /// summary to stdout and progress to stderr. Returns EXIT_OK when the solve converged, EXIT_UNMET when it did not
@@ -121,8 +133,9 @@ int runSolve(const SolveRequest& req) {
     // No progress line before the domain has validated its inputs: bad input gets one line only.
     const sim::AirDomain domain(req.terrain, req.domain);
     const double domainSeconds = secondsSince(t0);
-    std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MB; solving...\n", domain.nx(),
-                 domain.ny(), domain.nz(), domain.activeCellCount(), domain.memoryEstimate_bytes() / 1e6);
+    std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MiB; solving...\n", domain.nx(),
+                 domain.ny(), domain.nz(), domain.activeCellCount(),
+                 domain.memoryEstimate_bytes() / (1024.0 * 1024.0));
     sim::SteadyWindSolver solver(domain, req.weights);
     gStage = STAGE_SOLVING;
     const sim::SteadyWindResult res = solver.solve(req.ambient, req.solver);
@@ -176,12 +189,33 @@ int runSolve(const SolveRequest& req) {
         meta.numbers = {{"iterations", double(rep.iterations)}, {"relative_residual", rep.relativeResidual},
                         {"max_div_u_h_over_U", rep.maxDivergenceScaled}};
         res.field.writeVdb(req.vdbPath, meta);
+        if (req.houdiniFps > 0.0) {
+            const std::string path = houdiniPath(req.vdbPath, req.houdiniFps, 0.0);
+            sim::writeHoudiniVdb(path, res.field, req.terrain);
+            j["outputs"]["houdini"] = {{"paths", nlohmann::json::array({path})},
+                                       {"grids", {"vel (vec3s, m/s, y-up)", "surface (level set of the terrain, y-up)"}},
+                                       {"axes", "houdini (x, y, z) = gale (x, z, -y)"}};
+        }
         j["outputs"]["vdb"] = {{"path", req.vdbPath},
-                               {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
+                               {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)",
+                                          "velocity_faces (vec3s, m/s, staggered: the MAC face velocities)"}},
                                {"placement", "cell-centred averages of the MAC face velocities; voxel (i,j,k) "
                                              "centre at ws_min_m + (i+0.5, j+0.5, k+0.5) * voxel_size_m"},
                                {"grid_class", "GRID_UNKNOWN"},
                                {"vector_type", "VEC_CONTRAVARIANT_RELATIVE"}};
+    }
+    for (const double height_m : req.gridHeights_m) {
+        char suffix[64];
+        std::snprintf(suffix, sizeof suffix, "_%gm", height_m);
+        const std::string stem = std::filesystem::path(req.vdbPath).replace_extension("").string() + suffix;
+        const std::vector<std::string> paths = writeWindRasters(res.field, req.terrain, req.georef, height_m, stem);
+        j["outputs"]["rasters"].push_back(
+            {{"height_agl_m", height_m},
+             {"paths", paths},
+             {"bands", {"speed_mps (float32)", "from_deg (float32, meteorological, .tif only)"}},
+             {"crs", req.georef.georeferenced() ? req.georef.crsName : "none (not a DEM scene)"},
+             {"nodata", WIND_RASTER_NODATA}});
+        for (const std::string& p : paths) std::printf("solve: wrote %s\n", p.c_str());
     }
     j["total_s"] = secondsSince(t0);
     if (!req.reportPath.empty()) {
@@ -253,6 +287,7 @@ int runUnsteadySolve(const SolveRequest& req) {
                      {"whirlwinds", s.whirlwinds.size()},
                      {"vortex_code", solver.usesVortexCode()}};
     nlohmann::json steps = nlohmann::json::array(), frames = nlohmann::json::array();
+    std::vector<std::string> houdiniPaths;
     bool ok = steady.report.converged, finite = true;
     auto writeFrame = [&](int n) {
         const std::string path = sequencePath(req.vdbPath, n);
@@ -261,6 +296,11 @@ int runUnsteadySolve(const SolveRequest& req) {
             meta.strings = {{"scene", req.sceneName}};
             meta.numbers = {{"time_s", solver.time_s()}};
             solver.field().writeVdb(path, meta);
+            if (req.houdiniFps > 0.0) {
+                const std::string hpath = houdiniPath(req.vdbPath, req.houdiniFps, solver.time_s());
+                sim::writeHoudiniVdb(hpath, solver.field(), req.terrain);
+                houdiniPaths.push_back(hpath);
+            }
         }
         frames.push_back({{"frame", n}, {"t_s", solver.time_s()}, {"path", req.vdbPath.empty() ? "" : path}});
     };
@@ -310,6 +350,10 @@ int runUnsteadySolve(const SolveRequest& req) {
     j["outputs"] = {{"vdb_sequence", frames},
                     {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
                     {"placement", "cell-centred averages of the MAC face velocities"}};
+    if (!houdiniPaths.empty())
+        j["outputs"]["houdini"] = {{"paths", houdiniPaths},
+                                   {"grids", {"vel (vec3s, m/s, y-up)", "surface (level set of the terrain, y-up)"}},
+                                   {"axes", "houdini (x, y, z) = gale (x, z, -y)"}};
     j["summary"] = {{"steps", stepCount},
                     {"simulated_s", solver.time_s()},
                     {"max_cfl", maxCfl},
@@ -340,7 +384,13 @@ int runSolveVerb(const SolveVerbOptions& options) {
     sceneOptions.scenePath = options.scenePath;
     const Scene scene = loadScene(sceneOptions);
     SolveRequest request;
-    request.terrain = buildHeightfield(scene);
+    SceneTerrain terrain = buildTerrain(scene);
+    request.terrain = std::move(terrain.field);
+    request.georef = std::move(terrain.georef);
+    request.gridHeights_m = options.gridHeights_m;
+    if (options.houdini) request.houdiniFps = scene.output.fps;
+    if (!options.gridHeights_m.empty() && scene.wind.kind == WindKind::Unsteady)
+        throw InputError("--grid-height-m: rasters are written for steady scenes only (this scene is unsteady)");
     request.ambient = scene.wind.ambient;
     request.domain = scene.solver.domain;
     request.weights = scene.solver.weights;
@@ -390,6 +440,13 @@ void addSolveVerb(CLI::App& app, VerbTable& verbs) {
     verb->add_option("--report", options->reportPath,
                      "The JSON report (default: the .vdb path with .json)")
         ->check(NOT_EMPTY);
+    verb->add_option("--grid-height-m", options->gridHeights_m,
+                     "Also write the wind this high above the ground (m; repeatable) as "
+                     "<stem>_<H>m.tif (speed, from-direction; the DEM's CRS) and <stem>_<H>m.asc")
+        ->check(CLI::Range(0.001, 1e5));
+    verb->add_flag("--houdini", options->houdini,
+                   "Also write <stem>_houdini.NNNN.vdb for Houdini: grid 'vel' and the terrain SDF "
+                   "'surface', y-up, NNNN the scene's frame (output.fps) of each output time");
     verb->footer(std::string("\nThe .vdb holds a Vec3s grid 'velocity' (m/s, world axes, cell "
                              "centres), a float grid 'speed' and a staggered Vec3s grid "
                              "'velocity_faces' (the MAC face velocities); docs/solver.md says "

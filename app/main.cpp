@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
     addBenchVerbs(app, verbs);
     addSolveVerb(app, verbs);
     addTerrainVerb(app, verbs);
+    addProbeVerb(app, verbs);
 
     if (argc > 1 && argv[1][0] != '-' && !isVerb(app, argv[1]))
         return reportError("unknown verb '" + std::string(argv[1]) + "' (expected " +

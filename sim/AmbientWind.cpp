@@ -11,7 +11,20 @@ namespace gale::sim {
 namespace {
 using gale::PI;
 using detail::num;
+
+/// An angle in degrees brought into [0, 360).
+double wrap360(double deg) {
+    const double w = std::fmod(deg, 360.0);
+    const double r = w < 0.0 ? w + 360.0 : w;
+    return r >= 360.0 ? 0.0 : r;
+}
 }  // namespace
+
+double AmbientWind::towardsFromMeteorological_deg(double from_deg) { return wrap360(270.0 - from_deg); }
+
+double AmbientWind::from_deg() const { return wrap360(270.0 - direction_deg); }
+
+double AmbientWind::towardsBearing_deg() const { return wrap360(90.0 - direction_deg); }
 
 const char* windProfileName(WindProfile profile) {
     return profile == WindProfile::Uniform ? "uniform" : "log";

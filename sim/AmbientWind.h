@@ -28,6 +28,15 @@ struct AmbientWind {
     WindProfile profile = WindProfile::LogLaw;
     double roughness_m = 0.03;  ///< aerodynamic roughness length z0 (LogLaw), > 0
 
+    /// The meteorological convention: degrees clockwise from north (+y), where the wind comes
+    /// FROM (a west wind, from 270, blows along +x). Both helpers return degrees in [0, 360).
+    /// direction_deg = 270 - from_deg (mod 360): from 210 = towards bearing 30 = direction 60.
+    static double towardsFromMeteorological_deg(double from_deg);
+    /// This wind's meteorological "from" direction, degrees clockwise from north, [0, 360).
+    double from_deg() const;
+    /// The compass bearing it blows towards, degrees clockwise from north, [0, 360).
+    double towardsBearing_deg() const;
+
     /// Throws std::invalid_argument naming the field when a value is out of range or not finite.
     void validate() const;
     /// Horizontal speed at a height above the local ground, m/s (0 at or below z0 for LogLaw;

@@ -2,6 +2,7 @@
 #include "sim/VdbIO.h"
 
 #include <openvdb/io/File.h>
+#include <openvdb/tools/SignedFloodFill.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -37,6 +38,23 @@ void forEachAirCell(const WindField& field, F&& f) {
         for (int i = 0; i < field.nx(); ++i)
             for (int k = 0; k < field.nz(); ++k)
                 if (field.isAir(i, j, k)) f(openvdb::Coord(i, j, k), field.cellVelocity_mps(i, j, k));
+}
+
+/// Writes `grids` to `path` through a temporary file in the same folder, renamed when complete.
+void writeGridsAtomic(const std::string& path, const openvdb::GridCPtrVec& grids) {
+    namespace fs = std::filesystem;
+    const fs::path target(path);
+    const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()));
+    try {
+        openvdb::io::File file(tmp.string());
+        file.write(grids);
+        file.close();
+        fs::rename(tmp, target);
+    } catch (const std::exception& e) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw std::runtime_error("cannot write VDB file '" + path + "': " + e.what());
+    }
 }
 }  // namespace
 
@@ -90,6 +108,92 @@ openvdb::FloatGrid::Ptr speedGrid(const WindField& f) {
     return grid;
 }
 
+double readFaceVelocities(const std::string& path, WindField& field) {
+    openvdb::initialize();
+    openvdb::GridBase::Ptr base;
+    try {
+        openvdb::io::File file(path);
+        file.open();
+        if (!file.hasGrid("velocity_faces")) {
+            file.close();
+            throw std::runtime_error("has no grid 'velocity_faces' (write it with gale solve)");
+        }
+        base = file.readGrid("velocity_faces");
+        file.close();
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(path + ": " + e.what());
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": not a readable .vdb (" + e.what() + ")");
+    }
+    auto grid = openvdb::gridPtrCast<openvdb::Vec3SGrid>(base);
+    if (!grid) throw std::runtime_error(path + ": grid 'velocity_faces' is not a Vec3s grid");
+    const double h = field.voxelSize_m();
+    const auto o = field.wsMin_m();
+    const openvdb::Vec3d centre = grid->transform().indexToWorld(openvdb::Vec3d(0.0));
+    const double fileH = grid->transform().voxelSize()[0];
+    const double tol = 1e-6 * h;
+    if (std::abs(fileH - h) > tol || std::abs(centre[0] - (o[0] + 0.5 * h)) > tol ||
+        std::abs(centre[1] - (o[1] + 0.5 * h)) > tol || std::abs(centre[2] - (o[2] + 0.5 * h)) > tol)
+        throw std::runtime_error(path + ": solved on another grid (voxel " + std::to_string(fileH) +
+                                 " m, first cell centre at " + std::to_string(centre[0]) + ", " +
+                                 std::to_string(centre[1]) + ", " + std::to_string(centre[2]) +
+                                 ") than the scene's (voxel " + std::to_string(h) + " m, " +
+                                 std::to_string(o[0] + 0.5 * h) + ", " + std::to_string(o[1] + 0.5 * h) +
+                                 ", " + std::to_string(o[2] + 0.5 * h) + ")");
+    auto acc = grid->getConstAccessor();
+    const int nx = field.nx(), ny = field.ny(), nz = field.nz();
+    for (int k = 0; k <= nz; ++k)
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i <= nx; ++i) {
+                const openvdb::Vec3s v = acc.getValue(openvdb::Coord(i, j, k));
+                if (j < ny && k < nz) field.u_mps()[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = v.x();
+                if (i < nx && k < nz) field.v_mps()[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = v.y();
+                if (i < nx && j < ny) field.w_mps()[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = v.z();
+            }
+    const auto time = grid->getMetadata<openvdb::DoubleMetadata>("time_s");
+    return time ? time->value() : std::nan("");
+}
+
+void writeHoudiniVdb(const std::string& path, const WindField& f, const Heightfield& terrain) {
+    openvdb::initialize();
+    const double h = f.voxelSize_m();
+    const auto o = f.wsMin_m();
+    // y-up: gale cell (i, j, k) -> index (i, k, -j - 1), whose centre is (x, z, -y).
+    auto xform = openvdb::math::Transform::createLinearTransform(h);
+    xform->postTranslate(openvdb::Vec3d(o[0] + 0.5 * h, o[2] + 0.5 * h, -o[1] + 0.5 * h));
+    auto vel = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+    vel->setName("vel");
+    vel->setTransform(xform);
+    vel->setGridClass(openvdb::GRID_UNKNOWN);
+    vel->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
+    vel->setIsInWorldSpace(true);
+    auto vacc = vel->getAccessor();
+    forEachAirCell(f, [&](const openvdb::Coord& c, const std::array<double, 3>& v) {
+        vacc.setValueOn(openvdb::Coord(c.x(), c.z(), -c.y() - 1),
+                        openvdb::Vec3s(float(v[0]), float(v[2]), float(-v[1])));
+    });
+    const float band = float(3.0 * h);
+    auto sdf = openvdb::FloatGrid::create(band);
+    sdf->setName("surface");
+    sdf->setTransform(xform->copy());
+    sdf->setGridClass(openvdb::GRID_LEVEL_SET);
+    auto sacc = sdf->getAccessor();
+    for (int j = 0; j < f.ny(); ++j)
+        for (int i = 0; i < f.nx(); ++i) {
+            const double x = o[0] + (i + 0.5) * h, y = o[1] + (j + 0.5) * h;
+            const double ground = terrain.sample(x, y);
+            for (int k = 0; k < f.nz(); ++k) {
+                const double d = o[2] + (k + 0.5) * h - ground;
+                if (std::abs(d) < band) sacc.setValueOn(openvdb::Coord(i, k, -j - 1), float(d));
+            }
+        }
+    // Below the band the ground is inside: negative background there, as a level set needs.
+    openvdb::tools::signedFloodFill(sdf->tree());
+    for (openvdb::GridBase* g : {static_cast<openvdb::GridBase*>(vel.get()), static_cast<openvdb::GridBase*>(sdf.get())})
+        g->insertMeta("axes", openvdb::StringMetadata("y-up: (x, y, z) here = gale (x, z, -y); metres"));
+    writeGridsAtomic(path, {vel, sdf});
+}
+
 void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata) const {
     openvdb::initialize();
     auto vel = velocityGrid(*this);
@@ -109,19 +213,7 @@ void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata) c
         for (const auto& [k, v] : metadata.strings) g->insertMeta(k, openvdb::StringMetadata(v));
         for (const auto& [k, v] : metadata.numbers) g->insertMeta(k, openvdb::DoubleMetadata(v));
     }
-    namespace fs = std::filesystem;
-    const fs::path target(path);
-    const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()));
-    try {
-        openvdb::io::File file(tmp.string());
-        file.write({vel, speed, faces});
-        file.close();
-        fs::rename(tmp, target);
-    } catch (const std::exception& e) {
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw std::runtime_error("cannot write VDB file '" + path + "': " + e.what());
-    }
+    writeGridsAtomic(path, {vel, speed, faces});
 }
 
 }  // namespace gale::sim

@@ -33,6 +33,22 @@ openvdb::Vec3SGrid::Ptr velocityGrid(const WindField& field);
 /// Values in all (nx+1) x (ny+1) x (nz+1) voxels (the samplers read inactive ones too); active
 /// where a face belongs to an air cell. Float, so 1e-7 relative off the doubles.
 openvdb::Vec3SGrid::Ptr staggeredVelocityGrid(const WindField& field);
+/// Reads the "velocity_faces" grid of a .vdb that gale wrote into `field`'s face velocities
+/// (m/s). `field` gives the geometry (from the same scene's AirDomain); the file's voxel size and
+/// origin must match it to 1e-6 of a voxel. Returns the file's "time_s" metadata (unsteady
+/// sequences), or NaN when it has none. Throws std::runtime_error naming the file when it cannot
+/// be read, has no velocity_faces grid, or was solved on another grid (both geometries named).
+double readFaceVelocities(const std::string& path, WindField& field);
+
+/// Writes the field for Houdini (and other y-up tools): a Vec3s grid "vel" (m/s, cell-centred,
+/// GRID_UNKNOWN, VEC_CONTRAVARIANT_RELATIVE) and a level-set FloatGrid "surface" of the terrain
+/// (negative inside the ground), both with a y-up transform: gale's world (x, y, z), z up, becomes
+/// (x, z, -y), so the ground lies in Houdini's xz plane and north (+y) points along -z. The SDF is
+/// the vertical distance z - h(x, y) on a narrow band of 3 voxels (exact for flat ground, an
+/// overestimate of the true distance on slopes, still zero on the surface). Written atomically.
+/// Throws std::runtime_error naming the path when it cannot be written.
+void writeHoudiniVdb(const std::string& path, const WindField& field, const Heightfield& terrain);
+
 /// "speed": |velocity| of the cell-centred average, m/s, active on air cells.
 openvdb::FloatGrid::Ptr speedGrid(const WindField& field);
 

@@ -13,6 +13,7 @@
 #include "coupling/FieldWind.h"
 #include "coupling/GustCurve.h"
 #include "coupling/PointSourceWind.h"
+#include "app/scene/Dem.h"
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"
 #include "sim/AirDomain.h"
@@ -32,6 +33,10 @@ struct TerrainSection {
     double heightScale_m = 10.0;  ///< height of a full-scale pixel (white / 1.0)
     double heightOffset_m = 0.0;  ///< height of a zero pixel
     int meshStride = 1;           ///< render mesh takes every meshStride-th sample
+    // kind == "dem" (spec.kind is then Heightmap: loaded, not procedural; Dem.h):
+    bool dem = false;              ///< terrain from a georeferenced raster through GDAL
+    std::string demPath;           ///< resolved against the scene file's folder
+    std::optional<CropWindow> crop;  ///< crop_m, in the DEM's coordinates
 };
 
 struct GrassSection {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "app/io/Errors.h"
+#include "app/scene/Dem.h"
 #include "app/scene/Heightmap.h"
 #include "app/io/QuietStderr.h"
 #include "app/io/Timing.h"
@@ -110,7 +111,7 @@ std::string describeDomain(const sim::AirDomain& d) {
     char buf[256];
     std::snprintf(buf, sizeof buf,
                   "%d x %d x %d cells of %.3g m, %zu air cells (%.0f%% of the box), top at %.1f m, "
-                  "about %.0f MB",
+                  "about %.0f MiB",
                   d.nx(), d.ny(), d.nz(), d.voxelSize_m(), d.activeCellCount(),
                   100.0 * double(d.activeCellCount()) / double(std::max<size_t>(1, d.boxCellCount())),
                   d.wsTop_m(), d.memoryEstimate_bytes() / (1024.0 * 1024.0));
@@ -208,22 +209,33 @@ void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltSce
 
 }  // namespace
 
-sim::Heightfield buildHeightfield(const Scene& scene) {
+SceneTerrain buildTerrain(const Scene& scene) {
     const TerrainSection& t = scene.terrain;
+    if (t.dem) {
+        try {
+            Dem dem = loadDem({t.demPath, t.crop, t.meshStride});
+            return {std::move(dem.field), std::move(dem.georef)};
+        } catch (const ImageError& e) {
+            failAt(scene, "terrain.dem", e.what());
+        }
+    }
     if (t.spec.kind == sim::TerrainKind::Heightmap) {
         try {
-            return loadHeightmap(
-                {t.imagePath, t.metresPerPixel, t.heightScale_m, t.heightOffset_m, t.meshStride});
+            return {loadHeightmap({t.imagePath, t.metresPerPixel, t.heightScale_m,
+                                   t.heightOffset_m, t.meshStride}),
+                    {}};
         } catch (const ImageError& e) {
             failAt(scene, "terrain.image", e.what());
         }
     }
     try {
-        return sim::makeTerrain(t.spec);
+        return {sim::makeTerrain(t.spec), {}};
     } catch (const std::invalid_argument& e) {
         rethrowAsSceneError(scene, "terrain", e);
     }
 }
+
+sim::Heightfield buildHeightfield(const Scene& scene) { return buildTerrain(scene).field; }
 
 render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera& base,
                              bool keepPosition, bool keepTarget) {
@@ -253,7 +265,9 @@ render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera
 BuiltScene buildScene(const Scene& scene, const BuildOptions& options) {
     const auto start = Clock::now();
     BuiltScene built;
-    built.heightfield = buildHeightfield(scene);
+    SceneTerrain terrain = buildTerrain(scene);
+    built.heightfield = std::move(terrain.field);
+    built.georef = std::move(terrain.georef);
     const sim::Heightfield& field = built.heightfield;
     if (scene.terrain.meshStride >= std::max(field.nx, field.ny))
         failAt(scene, "terrain.mesh_stride",

@@ -25,7 +25,8 @@ namespace gale::app {
                                       const std::invalid_argument& error);
 
 struct BuiltScene {
-    sim::Heightfield heightfield;
+    sim::Heightfield heightfield;  ///< in the local frame (Dem.h) for a DEM
+    Georeference georef;           ///< the DEM's coordinate system and local offset; empty otherwise
     render::TerrainMesh mesh;
     render::GrassTexture texture;
     std::unique_ptr<coupling::WindSource> wind;
@@ -52,7 +53,17 @@ struct BuildOptions {
 /// failures.
 BuiltScene buildScene(const Scene& scene, const BuildOptions& options = {});
 
-/// Only the heightfield (procedural or from the heightmap image); throws like buildScene.
+/// A scene's terrain: the heightfield (local frame) and, for a DEM, where it sits.
+struct SceneTerrain {
+    sim::Heightfield field;
+    Georeference georef;
+};
+
+/// Only the terrain (procedural, from the heightmap image, or from the DEM); throws like
+/// buildScene.
+SceneTerrain buildTerrain(const Scene& scene);
+
+/// buildTerrain's heightfield alone.
 sim::Heightfield buildHeightfield(const Scene& scene);
 
 /// The default camera for `field`: a three-quarter view from the south-west, looking at the

@@ -16,6 +16,7 @@
 #include <system_error>
 
 #include "app/io/Errors.h"
+#include "app/scene/SceneKeys.h"
 #include "app/scene/SceneSection.h"
 #include "render/GrassInput.h"
 #include "render/RenderLimits.h"
@@ -71,15 +72,16 @@ void readTerrain(Context& ctx, Section s) {
     sim::TerrainSpec& spec = t.spec;
 
     const std::string kindName = s.string("kind", "gaussian_hill");
+    const bool isDem = kindName == "dem";  // loaded like a heightmap, through GDAL (Dem.h)
     try {
-        spec.kind = sim::terrainKindFromName(kindName);
+        spec.kind = isDem ? sim::TerrainKind::Heightmap : sim::terrainKindFromName(kindName);
     } catch (const std::invalid_argument&) {
         s.failKey("kind",
                   "expected one of flat, gaussian_hill, ridge, valley, crater, fractal, "
-                  "hemisphere, heightmap (got \"" +
+                  "hemisphere, heightmap, dem (got \"" +
                       kindName + "\")");
     }
-    const bool heightmap = spec.kind == sim::TerrainKind::Heightmap;
+    const bool heightmap = spec.kind == sim::TerrainKind::Heightmap && !isDem;
 
     const auto size = s.vec<2>("size_m", {40.0, 40.0}, above(0.0));
     spec.sizeX_m = size[0];
@@ -101,13 +103,15 @@ void readTerrain(Context& ctx, Section s) {
     t.heightScale_m = s.number("height_scale_m", 10.0, closed(-1e5, 1e5));
     t.heightOffset_m = s.number("height_offset_m", 0.0, closed(-1e5, 1e5));
     t.meshStride = static_cast<int>(s.integer("mesh_stride", 1, 1, 1024));
+    const std::string demFile = readDemKeys(s, t, isDem);
     s.finish();
 
     // Which keys each kind reads (sim/Heightfield.cpp); the others are noted as ignored.
     using K = sim::TerrainKind;
     auto uses = [&](const std::string& key) -> bool {
         const K k = spec.kind;
-        if (key == "size_m" || key == "spacing_m") return !heightmap;
+        if (key == "size_m" || key == "spacing_m") return !heightmap && !isDem;
+        if (key == "dem" || key == "crop_m") return isDem;
         if (key == "height_m")
             return k == K::GaussianHill || k == K::Ridge || k == K::Valley || k == K::Crater ||
                    k == K::Fractal;
@@ -124,12 +128,19 @@ void readTerrain(Context& ctx, Section s) {
     };
     for (const char* key : {"size_m", "spacing_m", "height_m", "radius_m", "center_m", "axis_deg",
                             "seed", "octaves", "roughness", "feature_size_m", "image",
-                            "metres_per_pixel", "height_scale_m", "height_offset_m"}) {
+                            "metres_per_pixel", "height_scale_m", "height_offset_m", "dem",
+                            "crop_m"}) {
         if (s.given(key) && !uses(key))
             ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) + ": not used by kind \"" +
                                        kindName + "\" (ignored)");
     }
 
+    if (isDem) {
+        t.dem = true;
+        t.demPath = resolveAgainst(ctx.folder, demFile);
+        requireInputFile(s, "dem", t.demPath, demFile);
+        return;  // grid size is known once the raster is opened (Dem.cpp checks it)
+    }
     if (heightmap) {
         if (image.empty()) {
             if (s.given("image")) s.failKey("image", "must name an image file (got \"\")");
@@ -300,6 +311,8 @@ void readWind(Context& ctx, Section s) {
     a.speed_mps = s.number("speed_mps", a.speed_mps, closed(0.0, 1000.0));
     a.referenceHeight_m = s.number("reference_height_m", a.referenceHeight_m, above(0.0, 1e5));
     a.direction_deg = s.number("direction_deg", a.direction_deg, anyFinite());
+    readFromDeg(s, a);
+    noteAmbientWithoutKind(ctx, s);
     const std::string profile = s.string("profile", "log");
     try {
         a.profile = sim::windProfileFromName(profile);
@@ -359,8 +372,9 @@ void readWind(Context& ctx, Section s) {
     const bool shaped = g.take("base") || g.take("peak") || g.take("attack_s") || g.take("decay_s");
     const double base = g.number("base", 0.1, closed(-MAX_INTENSITY, MAX_INTENSITY));
     const double peak = g.number("peak", 0.8, closed(-MAX_INTENSITY, MAX_INTENSITY));
-    const double attack_s = g.number("attack_s", 0.4, above(0.0, 1e6));
-    const double decay_s = g.number("decay_s", 1.6, above(0.0, 1e6));
+    // Defaults scale with the period (0.4 s and 1.6 s at the default 4 s), so any period works.
+    const double attack_s = g.number("attack_s", 0.1 * period_s, above(0.0, 1e6));
+    const double decay_s = g.number("decay_s", 0.4 * period_s, above(0.0, 1e6));
     g.finish();
     s.finish();
 
@@ -584,7 +598,7 @@ double estimateTerrainBytes(int64_t nx, int64_t ny, int stride) {
 }
 
 std::string formatBytes(double bytes) {
-    const char* units[] = {"B", "KB", "MB", "GB", "TB", "PB", "EB"};
+    const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
     int u = 0;
     while (bytes >= 1024.0 && u < 6) bytes /= 1024.0, ++u;
     char buf[64];

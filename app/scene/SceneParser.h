@@ -60,7 +60,7 @@ std::optional<BudgetProblem> outputBudgetProblem(const OutputSection& output);
 /// Estimated bytes of all frames as PNG (noisy grass: about 2 bytes per pixel).
 double estimatePngBytes(const OutputSection& output);
 
-/// Human-readable byte count ("3.2 GB").
+/// Human-readable byte count in binary units ("3.2 GiB"), the one unit gale prints sizes in.
 std::string formatBytes(double bytes);
 
 }  // namespace gale::app

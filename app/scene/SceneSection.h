@@ -296,6 +296,9 @@ class Section {
                 const size_t d = editDistance(key, known);
                 if (d < bestDistance) bestDistance = d, best = known;
             }
+            // A key written without its unit suffix ("speed" for "speed_mps").
+            for (const std::string& known : mKnown)
+                if (best.empty() && known.rfind(key + "_", 0) == 0) best = known;
             std::string valid;
             for (const std::string& known : mKnown) valid += (valid.empty() ? "" : ", ") + known;
             std::string reason = v.is_table() ? "unknown section" : "unknown key";

@@ -163,7 +163,7 @@ TEST(SceneParser, AbsurdTerrainIsRefusedBeforeAllocating) {
                 {"terrain.spacing_m", "1000001 x 1000001 samples", "at most 16384"});
     // Within 16384 per side, but heightfield plus mesh would need tens of GB.
     expectError("[terrain]\nsize_m = [40, 40]\nspacing_m = 0.003\n",
-                {"terrain.spacing_m", "GB", "raise spacing_m or mesh_stride"});
+                {"terrain.spacing_m", "GiB", "raise spacing_m or mesh_stride"});
 }
 
 TEST(SceneParser, AbsurdOutputIsRefused) {

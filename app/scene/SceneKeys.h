@@ -1,0 +1,28 @@
+#pragma once
+/// \file SceneKeys.h
+/// Readers of scene keys that live outside SceneParser.cpp: the DEM terrain keys and the
+/// meteorological wind direction. Only SceneParser.cpp includes it.
+
+#include <string>
+
+#include "app/scene/SceneSection.h"
+
+namespace gale::app::detail {
+
+/// [terrain] keys of kind = "dem": `dem` (the raster, as written; the parser resolves it) and
+/// `crop_m` ([min x, min y, max x, max y] in the DEM's coordinates, metres). Fills t.crop;
+/// returns the `dem` string. Throws SceneError for an empty `dem` when `isDem`, or a crop window
+/// that is not an increasing rectangle.
+std::string readDemKeys(Section& s, TerrainSection& t, bool isDem);
+
+/// [wind] from_deg: the meteorological direction (degrees clockwise from north = +y, where the
+/// wind comes FROM). Sets a.direction_deg (towards, counter-clockwise from +x) when given; throws
+/// SceneError when both from_deg and direction_deg are given. Call after direction_deg is read.
+void readFromDeg(Section& s, sim::AmbientWind& a);
+
+/// The first-hour note: ambient-wind keys (speed_mps, direction_deg, from_deg, profile, ...)
+/// given without `kind` drive `gale solve` and `gale probe` but not the frames, whose default
+/// point-source wind ignores them; one note says so and how to see them (kind = "solved").
+void noteAmbientWithoutKind(Context& ctx, Section& s);
+
+}  // namespace gale::app::detail
