@@ -16,9 +16,6 @@
 namespace gale::coupling {
 namespace {
 
-// Steps of the searches for the read points, per cell: fine enough that they land within an
-// eighth of a cell of the lowest solved point.
-constexpr int SEARCH_STEPS_PER_CELL = 8;
 // |(n - n_Q) S| (Frobenius) is capped here: the first-order law is meant for a gentle change
 // between the wall and Q; at the foot of a cliff or on a needle the wind at Q is carried with at
 // most a 50 % correction rather than an unbounded one.
@@ -82,13 +79,18 @@ bool solvedAt(const sim::WindField& field, const glm::dvec3& q, unsigned compone
     return !field.belowTerrain(q.x, q.y, q.z) && field.readsOnlySolvedFaces(q.x, q.y, q.z, components);
 }
 
-// The lowest s in [0, NEAR_GROUND_SEARCH_CELLS h] at which p + s dir reads only solved faces for
-// `components`; negative when there is none.
+// The lowest s in [0, NEAR_GROUND_SEARCH_CELLS h], to an eighth of a cell, at which p + s dir reads
+// only solved faces for `components`; negative when there is none. Coarse steps of half a cell,
+// then two halvings back down (the stencils only gain solved faces as they rise, within a cell).
 double lowestSolved(const sim::WindField& field, const glm::dvec3& p, const glm::dvec3& dir, unsigned components) {
     const double h = field.voxelSize_m();
-    for (int step = 0; step <= NEAR_GROUND_SEARCH_CELLS * SEARCH_STEPS_PER_CELL; ++step) {
-        const double s = step * h / SEARCH_STEPS_PER_CELL;
-        if (solvedAt(field, p + s * dir, components)) return s;
+    if (solvedAt(field, p, components)) return 0.0;
+    for (int step = 1; step <= 2 * NEAR_GROUND_SEARCH_CELLS; ++step) {
+        double s = 0.5 * step * h;
+        if (!solvedAt(field, p + s * dir, components)) continue;
+        for (double back : {0.25 * h, 0.125 * h})
+            if (solvedAt(field, p + (s - back) * dir, components)) s -= back;
+        return s;
     }
     return -1.0;
 }
@@ -108,7 +110,7 @@ bool readingMap(const glm::dvec3& n, const glm::dmat3& G, const glm::dmat3& C, d
     B[0] = glm::dvec3(t1.x, t1.y, gt1.z);
     B[1] = glm::dvec3(t2.x, t2.y, gt2.z);
     B[2] = glm::dvec3(gQ * n.x, gQ * n.y, gW * n.z);
-    if (!(std::abs(glm::determinant(B)) >= MIN_READING_DETERMINANT * gW)) return false;
+    if (!(gW > 0.0 && std::abs(glm::determinant(B)) >= MIN_READING_DETERMINANT * gW)) return false;
     glm::dmat3 Cfull;
     Cfull[0] = C * t1;
     Cfull[1] = C * t2;
@@ -163,7 +165,7 @@ NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t
     const double sW = lowestSolved(field, p, up, W);
     if (sW < 0.0) return asItIs(p);
     const double lowest = std::max(MIN_LOG_CENTRE_CELLS * h, sim::surface::lowestLogHeight_m(z0, d));
-    const int first = std::max(0, int(std::ceil((p.z - zMin) / h - 0.5)));
+    const int first = int(std::clamp(std::ceil((p.z - zMin) / h - 0.5), 0.0, double(field.nz())));
     for (int k = first; k <= first + NEAR_GROUND_SEARCH_CELLS && k < field.nz(); ++k) {
         const glm::dvec3 q(p.x, p.y, zMin + (k + 0.5) * h);
         const double zQ = q.z - ground;
@@ -188,6 +190,7 @@ void validate(const NearGround& g) {
 }
 
 NearGroundRead planNearGroundRead(const sim::WindField& field, const glm::dvec3& p, const NearGround& nearGround) {
+    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return asItIs(p);  // reads zero
     if (field.belowTerrain(p.x, p.y, p.z)) return {glm::vec3(p), glm::vec3(p), {}};
     const sim::Heightfield* terrain = field.terrain();
     if (nearGround.model == NearGroundModel::Interpolated || !terrain) return asItIs(p);

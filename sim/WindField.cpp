@@ -76,26 +76,28 @@ std::array<double, 3> WindField::velocityAboveTerrainAt_mps(double x, double y, 
 
 std::array<double, 3> WindField::velocityComponentsAt_mps(const std::array<double, 3>& wsUV_m,
                                                          const std::array<double, 3>& wsW_m) const {
-    if (mNx == 0) return {0, 0, 0};
-    auto index = [&](const std::array<double, 3>& p) {
-        return std::array<double, 3>{(p[0] - mWsMin[0]) / mH, (p[1] - mWsMin[1]) / mH, (p[2] - mWsMin[2]) / mH};
-    };
-    auto inBox = [&](const std::array<double, 3>& I) {
-        return I[0] >= 0.0 && I[0] <= mNx && I[1] >= 0.0 && I[1] <= mNy && I[2] >= 0.0 && I[2] <= mNz;
-    };
-    const size_t nx = size_t(mNx), ny = size_t(mNy);
     std::array<double, 3> out{0, 0, 0};
-    const std::array<double, 3> A = index(wsUV_m), B = index(wsW_m);
-    if (inBox(A)) {
-        const AxisWeights faceX = axisWeights(A[0], mNx + 1), centreX = axisWeights(A[0] - 0.5, mNx);
-        const AxisWeights faceY = axisWeights(A[1], mNy + 1), centreY = axisWeights(A[1] - 0.5, mNy);
-        const AxisWeights centreZ = axisWeights(A[2] - 0.5, mNz);
-        out[0] = trilinear(mU, nx + 1, ny, faceX, centreY, centreZ);
-        out[1] = trilinear(mV, nx, ny + 1, centreX, faceY, centreZ);
+    if (mNx == 0) return out;
+    const size_t nx = size_t(mNx), ny = size_t(mNy);
+    const double X = (wsUV_m[0] - mWsMin[0]) / mH, Y = (wsUV_m[1] - mWsMin[1]) / mH, Z = (wsUV_m[2] - mWsMin[2]) / mH;
+    const bool uvInBox = X >= 0.0 && X <= mNx && Y >= 0.0 && Y <= mNy && Z >= 0.0 && Z <= mNz;
+    const AxisWeights centreX = axisWeights(X - 0.5, mNx), centreY = axisWeights(Y - 0.5, mNy);
+    if (uvInBox) {
+        const AxisWeights centreZ = axisWeights(Z - 0.5, mNz);
+        out[0] = trilinear(mU, nx + 1, ny, axisWeights(X, mNx + 1), centreY, centreZ);
+        out[1] = trilinear(mV, nx, ny + 1, centreX, axisWeights(Y, mNy + 1), centreZ);
     }
-    if (inBox(B))
-        out[2] = trilinear(mW, nx, ny, axisWeights(B[0] - 0.5, mNx), axisWeights(B[1] - 0.5, mNy),
-                           axisWeights(B[2], mNz + 1));
+    // w's point usually lies straight above (the log law; the normal over level ground): its
+    // horizontal stencils are u's and v's.
+    if (wsW_m[0] == wsUV_m[0] && wsW_m[1] == wsUV_m[1]) {
+        const double Zw = (wsW_m[2] - mWsMin[2]) / mH;
+        if (uvInBox || (X >= 0.0 && X <= mNx && Y >= 0.0 && Y <= mNy))
+            if (Zw >= 0.0 && Zw <= mNz) out[2] = trilinear(mW, nx, ny, centreX, centreY, axisWeights(Zw, mNz + 1));
+        return out;
+    }
+    const double Xw = (wsW_m[0] - mWsMin[0]) / mH, Yw = (wsW_m[1] - mWsMin[1]) / mH, Zw = (wsW_m[2] - mWsMin[2]) / mH;
+    if (Xw >= 0.0 && Xw <= mNx && Yw >= 0.0 && Yw <= mNy && Zw >= 0.0 && Zw <= mNz)
+        out[2] = trilinear(mW, nx, ny, axisWeights(Xw - 0.5, mNx), axisWeights(Yw - 0.5, mNy), axisWeights(Zw, mNz + 1));
     return out;
 }
 
