@@ -151,7 +151,13 @@ NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfiel
     if (!readingMap(n, I - (sW - sUV) * shape, I + sUV * shape, normalGrowth(nP + sUV), normalGrowth(nP + sW),
                     normalGrowth(nP), a))
         return asItIs(p);
-    return {glm::vec3(p + sUV * n), glm::vec3(p + sW * n), pack(a)};
+    // w is read straight above Q where its faces are solved there, at the normal distance it would
+    // have on the normal (the step then shares u's and v's horizontal stencils); the offset along
+    // the ground, (s_W - s_UV) tan(slope), is left out of the model (on the hemisphere's cap it
+    // changed the error by less than 0.01 %).
+    const glm::dvec3 q = p + sUV * n, above = q + glm::dvec3(0.0, 0.0, (sW - sUV) / n.z);
+    if (sW >= sUV && solvedAt(field, above, W)) return {glm::vec3(q), glm::vec3(above), pack(a)};
+    return {glm::vec3(q), glm::vec3(p + sW * n), pack(a)};
 }
 
 // Momentum with wall stress: Q at the lowest solved cell centre straight above P at least

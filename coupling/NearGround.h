@@ -21,7 +21,8 @@
 ///   u(P) = A (u(Q), v(Q), w(Q')),   A 3 x 3, made once per field geometry and kept.
 ///
 /// How T changes between the wall and Q is the model's near-wall law:
-/// - Mass-consistent (free slip, potential flow): Q and Q' lie on the normal through P. An
+/// - Mass-consistent (free slip, potential flow): Q lies on the normal through P, Q' on it too or,
+///   where w's faces are solved there, straight above Q at the same distance from the ground. An
 ///   irrotational flow with u.N = 0 on the wall has dT/dn = -S T there, S the shape operator of
 ///   the ground (the derivative of N along the surface): differentiate u.N = 0 along the wall, then
 ///   swap the derivatives by the symmetry of grad u that curl u = 0 gives (docs/coupling.md writes
