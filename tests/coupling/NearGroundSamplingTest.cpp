@@ -13,6 +13,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "app/bench/ExactSolutions.h"
+#include "base/Numbers.h"
 #include "coupling/FieldSampling.h"
 #include "coupling/NearGround.h"
 #include "sim/AirDomain.h"
@@ -23,8 +25,6 @@ using namespace gale;
 
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
-
 // --- the hemisphere: potential flow past a sphere, exact --------------------------------------
 
 // A 16 m knoll: at 2 m cells (gale's usual) that is 8 cells per radius.
@@ -32,15 +32,14 @@ constexpr double RADIUS_M = 16.0;
 // The ground sits this fraction of a cell above the box's bottom face: cut, between the faces.
 constexpr double GROUND_OFFSET_CELLS = 0.3;
 
+// The exact flow (app/bench/ExactSolutions.h) over ground lifted to zb.
 struct Hemisphere {
-    double c = 3.0 * RADIUS_M;  // centre x = y, metres
-    double zb = 0.0;            // ground height, metres
-    // Exact velocity (U = 1 m/s along +x) at a world point: u = U + grad phi,
-    // phi = U R^3 cos(theta) / (2 r^2) (potential flow past a sphere; the ground is its symmetry plane).
+    exact::HemisphereFlow flow{RADIUS_M, 1.0, 3.0 * RADIUS_M, 3.0 * RADIUS_M};
+    double zb = 0.0;  // ground height, metres
+    double c() const { return flow.cx_m; }
     glm::dvec3 exact(const glm::dvec3& p) const {
-        const double X = p.x - c, Y = p.y - c, Z = p.z - zb, r2 = X * X + Y * Y + Z * Z;
-        const double r = std::sqrt(r2), r5 = r2 * r2 * r, k = 0.5 * RADIUS_M * RADIUS_M * RADIUS_M;
-        return {1 + k * (1 / (r2 * r) - 3 * X * X / r5), -k * 3 * X * Y / r5, -k * 3 * X * Z / r5};
+        const auto u = flow.velocity(p.x, p.y, p.z - zb);
+        return {u[0], u[1], u[2]};
     }
 };
 
@@ -58,18 +57,15 @@ SolvedHemisphere solveHemisphere(int cellsPerRadius) {
     s.geometry.zb = GROUND_OFFSET_CELLS * h;
     sim::TerrainSpec ts;
     ts.kind = sim::TerrainKind::Hemisphere;
-    ts.sizeX_m = ts.sizeY_m = 2 * s.geometry.c;
+    ts.sizeX_m = ts.sizeY_m = 2 * s.geometry.c();
     ts.spacing_m = RADIUS_M / 128;
     ts.radius_m = RADIUS_M;
-    ts.centerX_m = ts.centerY_m = s.geometry.c;
+    ts.centerX_m = ts.centerY_m = s.geometry.c();
     s.terrain = sim::makeTerrain(ts);
     for (float& z : s.terrain.height_m) z += float(s.geometry.zb);
     const sim::AirDomain domain(s.terrain, sim::DomainSpec{h, s.geometry.zb + 3.0 * RADIUS_M, 2e9});
     const Hemisphere g = s.geometry;
-    auto phi = [g](double x, double y, double z) {
-        const double X = x - g.c, Y = y - g.c, Z = z - g.zb, r2 = X * X + Y * Y + Z * Z;
-        return 0.5 * RADIUS_M * RADIUS_M * RADIUS_M * X / (r2 * std::sqrt(r2));
-    };
+    auto phi = [g](double x, double y, double z) { return g.flow.phi(x, y, z - g.zb); };
     sim::AmbientWind ambient;
     ambient.profile = sim::WindProfile::Uniform;
     ambient.speed_mps = 1.0;
@@ -92,12 +88,12 @@ render::TerrainMesh grassOn(const SolvedHemisphere& s) {
         mesh.wsPosition_m.push_back(glm::vec3(x, y, s.terrain.sample(x, y)));
         mesh.wsNormal.push_back(glm::vec3(0, 0, 1));  // unused by the sampler
     };
-    const double c = s.geometry.c;
+    const double c = s.geometry.c();
     add(c, c);  // the top
     for (int ib = 0; ib < 16; ++ib) {
         const double be = ib * 2 * PI / 16;
         for (int ia = 1; ia <= 4; ++ia) {
-            const double al = ia * 10 * PI / 180;
+            const double al = radiansFromDegrees(ia * 10.0);
             add(c + RADIUS_M * std::sin(al) * std::cos(be), c + RADIUS_M * std::sin(al) * std::sin(be));
         }
         for (double rho : {1.3, 1.6, 2.0, 2.5}) add(c + rho * RADIUS_M * std::cos(be), c + rho * RADIUS_M * std::sin(be));
