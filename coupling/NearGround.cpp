@@ -5,11 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-#include <string>
-
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
+#include <stdexcept>
+#include <string>
 
 #include "sim/SurfaceLayer.h"
 
@@ -47,16 +46,23 @@ glm::dvec3 normalAt(const sim::Heightfield& t, double x, double y, double delta_
 
 // The shape operator S of the ground at (x, y): dN along the surface, as a symmetric 3 x 3 acting
 // on tangent vectors and taking N to 0, by central differences `delta_m` apart.
-glm::dmat3 shapeOperator(const sim::Heightfield& t, double x, double y, double delta_m, const glm::dvec3& n) {
-    const glm::dvec3 dNdx = (normalAt(t, x + delta_m, y, delta_m) - normalAt(t, x - delta_m, y, delta_m)) / (2.0 * delta_m);
-    const glm::dvec3 dNdy = (normalAt(t, x, y + delta_m, delta_m) - normalAt(t, x, y - delta_m, delta_m)) / (2.0 * delta_m);
+glm::dmat3 shapeOperator(const sim::Heightfield& t, double x, double y, double delta_m,
+                         const glm::dvec3& n) {
+    const glm::dvec3 dNdx =
+        (normalAt(t, x + delta_m, y, delta_m) - normalAt(t, x - delta_m, y, delta_m)) /
+        (2.0 * delta_m);
+    const glm::dvec3 dNdy =
+        (normalAt(t, x, y + delta_m, delta_m) - normalAt(t, x, y - delta_m, delta_m)) /
+        (2.0 * delta_m);
     // A tangent vector w = a (1, 0, h_x) + b (0, 1, h_y) has a = w.x, b = w.y and S w = a dN/dx +
     // b dN/dy; for any w, S w = S (w - (w.N) N). So S = [dN/dx dN/dy] [e_x e_y]^T (I - N N^T).
     const glm::dmat3 tangent = glm::dmat3(1.0) - glm::outerProduct(n, n);
     glm::dmat3 s(0.0);
     for (int col = 0; col < 3; ++col)
-        for (int row = 0; row < 3; ++row) s[col][row] = dNdx[row] * tangent[col][0] + dNdy[row] * tangent[col][1];
-    return 0.5 * (s + glm::transpose(s));  // self-adjoint; the differences make it so only to rounding
+        for (int row = 0; row < 3; ++row)
+            s[col][row] = dNdx[row] * tangent[col][0] + dNdy[row] * tangent[col][1];
+    return 0.5 *
+           (s + glm::transpose(s));  // self-adjoint; the differences make it so only to rounding
 }
 
 double frobenius(const glm::dmat3& m) {
@@ -73,16 +79,20 @@ std::array<float, 9> pack(const glm::dmat3& m) {  // glm is column-major: m[col]
     return a;
 }
 
-NearGroundRead asItIs(const glm::dvec3& p) { return {glm::vec3(p), glm::vec3(p), pack(glm::dmat3(1.0))}; }
+NearGroundRead asItIs(const glm::dvec3& p) {
+    return {glm::vec3(p), glm::vec3(p), pack(glm::dmat3(1.0))};
+}
 
 bool solvedAt(const sim::WindField& field, const glm::dvec3& q, unsigned components) {
-    return !field.belowTerrain(q.x, q.y, q.z) && field.readsOnlySolvedFaces(q.x, q.y, q.z, components);
+    return !field.belowTerrain(q.x, q.y, q.z) &&
+           field.readsOnlySolvedFaces(q.x, q.y, q.z, components);
 }
 
 // The lowest s in [0, NEAR_GROUND_SEARCH_CELLS h], to an eighth of a cell, at which p + s dir reads
 // only solved faces for `components`; negative when there is none. Coarse steps of half a cell,
 // then two halvings back down (the stencils only gain solved faces as they rise, within a cell).
-double lowestSolved(const sim::WindField& field, const glm::dvec3& p, const glm::dvec3& dir, unsigned components) {
+double lowestSolved(const sim::WindField& field, const glm::dvec3& p, const glm::dvec3& dir,
+                    unsigned components) {
     const double h = field.voxelSize_m();
     if (solvedAt(field, p, components)) return 0.0;
     for (int step = 1; step <= 2 * NEAR_GROUND_SEARCH_CELLS; ++step) {
@@ -101,8 +111,8 @@ double lowestSolved(const sim::WindField& field, const glm::dvec3& p, const glm:
 //   u = e_x . (T + beta gQ N),  v = e_y . (T + beta gQ N),  w = e_z . (G T + beta gW N).
 // False when the readings do not fix the unknowns well (a near-vertical wall, where u and v no
 // longer tell the tangential wind from the normal one).
-bool readingMap(const glm::dvec3& n, const glm::dmat3& G, const glm::dmat3& C, double gQ, double gW, double gP,
-                glm::dmat3& out) {
+bool readingMap(const glm::dvec3& n, const glm::dmat3& G, const glm::dmat3& C, double gQ, double gW,
+                double gP, glm::dmat3& out) {
     const glm::dvec3 ref = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     const glm::dvec3 t1 = glm::normalize(ref - glm::dot(ref, n) * n), t2 = glm::cross(n, t1);
     const glm::dvec3 gt1 = G * t1, gt2 = G * t2;
@@ -123,7 +133,8 @@ bool readingMap(const glm::dvec3& n, const glm::dmat3& G, const glm::dmat3& C, d
 }
 
 // Mass-consistent: Q and Q' on the normal; T carried by T(n) = (I - (n - n_Q) S) T(n_Q).
-NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfield& t, const glm::dvec3& p) {
+NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfield& t,
+                              const glm::dvec3& p) {
     const double delta = FRAME_DIFFERENCE_CELLS * field.voxelSize_m();
     // The foot F of the normal through P (not the ground straight below P: on a slope that point's
     // normal misses P, and the wall condition would be applied along a tilted line). Found by
@@ -141,15 +152,16 @@ NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfiel
     if (sUV < 0.0 || sW < 0.0) return asItIs(p);
     glm::dmat3 shape = shapeOperator(t, foot.x, foot.y, delta, n);
     const double reach = std::max(nP + sUV, nP + sW) * frobenius(shape);
-    if (!(reach <= MAX_CURVATURE_CORRECTION)) shape *= reach > 0.0 ? MAX_CURVATURE_CORRECTION / reach : 0.0;
+    if (!(reach <= MAX_CURVATURE_CORRECTION))
+        shape *= reach > 0.0 ? MAX_CURVATURE_CORRECTION / reach : 0.0;
     const glm::dmat3 I(1.0);
     // The normal wind: the flux through the parallel surface at distance n, whose area grows as
     // det(I + n S), fed by the tangential divergence: u_n(n) = beta n / det(I + n S) to first order
     // in the curvature (exact where it is the same in every direction).
     auto normalGrowth = [&](double dist) { return dist / glm::determinant(I + dist * shape); };
     glm::dmat3 a;
-    if (!readingMap(n, I - (sW - sUV) * shape, I + sUV * shape, normalGrowth(nP + sUV), normalGrowth(nP + sW),
-                    normalGrowth(nP), a))
+    if (!readingMap(n, I - (sW - sUV) * shape, I + sUV * shape, normalGrowth(nP + sUV),
+                    normalGrowth(nP + sW), normalGrowth(nP), a))
         return asItIs(p);
     // w is read straight above Q where its faces are solved there, at the normal distance it would
     // have on the normal (the step then shares u's and v's horizontal stencils); the offset along
@@ -162,15 +174,16 @@ NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfiel
 
 // Momentum with wall stress: Q at the lowest solved cell centre straight above P at least
 // MIN_LOG_CENTRE_CELLS above the ground, Q' straight above P; T carried by the log law.
-NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t, const glm::dvec3& p,
-                          const NearGround& nearGround) {
+NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t,
+                          const glm::dvec3& p, const NearGround& nearGround) {
     const double h = field.voxelSize_m(), zMin = field.wsMin_m()[2];
     const double ground = t.sample(p.x, p.y), zP = std::max(0.0, p.z - ground);
     const glm::dvec3 n = normalAt(t, p.x, p.y, FRAME_DIFFERENCE_CELLS * h), up(0.0, 0.0, 1.0);
     const double z0 = nearGround.roughness_m, d = nearGround.displacement_m;
     const double sW = lowestSolved(field, p, up, W);
     if (sW < 0.0) return asItIs(p);
-    const double lowest = std::max(MIN_LOG_CENTRE_CELLS * h, sim::surface::lowestLogHeight_m(z0, d));
+    const double lowest =
+        std::max(MIN_LOG_CENTRE_CELLS * h, sim::surface::lowestLogHeight_m(z0, d));
     const int first = int(std::clamp(std::ceil((p.z - zMin) / h - 0.5), 0.0, double(field.nz())));
     for (int k = first; k <= first + NEAR_GROUND_SEARCH_CELLS && k < field.nz(); ++k) {
         const glm::dvec3 q(p.x, p.y, zMin + (k + 0.5) * h);
@@ -178,7 +191,8 @@ NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t
         if (zQ < lowest || !solvedAt(field, q, UV)) continue;
         auto carry = [&](double z) { return sim::surface::logLawRescale_mps(1.0, z, zQ, z0, d); };
         glm::dmat3 a;
-        if (!readingMap(n, carry(zP + sW) * glm::dmat3(1.0), carry(zP) * glm::dmat3(1.0), zQ, zP + sW, zP, a))
+        if (!readingMap(n, carry(zP + sW) * glm::dmat3(1.0), carry(zP) * glm::dmat3(1.0), zQ,
+                        zP + sW, zP, a))
             return asItIs(p);
         return {glm::vec3(q), glm::vec3(p + sW * up), pack(a)};
     }
@@ -189,14 +203,17 @@ NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t
 
 void validate(const NearGround& g) {
     if (!std::isfinite(g.roughness_m) || g.roughness_m <= 0.0)
-        throw std::invalid_argument("wind.roughness_m must be finite and > 0, got " + std::to_string(g.roughness_m));
+        throw std::invalid_argument("wind.roughness_m must be finite and > 0, got " +
+                                    std::to_string(g.roughness_m));
     if (!std::isfinite(g.displacement_m) || g.displacement_m < 0.0)
         throw std::invalid_argument("wind.displacement_m must be finite and >= 0, got " +
                                     std::to_string(g.displacement_m));
 }
 
-NearGroundRead planNearGroundRead(const sim::WindField& field, const glm::dvec3& p, const NearGround& nearGround) {
-    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return asItIs(p);  // reads zero
+NearGroundRead planNearGroundRead(const sim::WindField& field, const glm::dvec3& p,
+                                  const NearGround& nearGround) {
+    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
+        return asItIs(p);  // reads zero
     if (field.belowTerrain(p.x, p.y, p.z)) return {glm::vec3(p), glm::vec3(p), {}};
     const sim::Heightfield* terrain = field.terrain();
     if (nearGround.model == NearGroundModel::Interpolated || !terrain) return asItIs(p);
@@ -205,7 +222,8 @@ NearGroundRead planNearGroundRead(const sim::WindField& field, const glm::dvec3&
         p.z - terrain->sample(p.x, p.y) <= nearGround.displacement_m + nearGround.roughness_m)
         return {glm::vec3(p), glm::vec3(p), {}};
     if (field.readsOnlySolvedFaces(p.x, p.y, p.z)) return asItIs(p);
-    if (nearGround.model == NearGroundModel::LogLaw) return logLawRead(field, *terrain, p, nearGround);
+    if (nearGround.model == NearGroundModel::LogLaw)
+        return logLawRead(field, *terrain, p, nearGround);
     return tangentialRead(field, *terrain, p);
 }
 

@@ -38,12 +38,11 @@
 ///   kept for comparisons and for OpenVDB's sampler, which reads the same faces).
 ///
 /// A point whose own stencils are solved is read as it is (A = I) in every model; a point below
-/// the terrain, or (log law) at or below z0 + d, reads zero (A = 0). The ground's normal and curvature come from the field's own
-/// terrain (the heightfield the solver cut its cells with), by central differences half a cell
-/// apart.
+/// the terrain, or (log law) at or below z0 + d, reads zero (A = 0). The ground's normal and
+/// curvature come from the field's own terrain (the heightfield the solver cut its cells with), by
+/// central differences half a cell apart.
 
 #include <array>
-
 #include <glm/vec3.hpp>
 
 #include "sim/WindField.h"

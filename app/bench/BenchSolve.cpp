@@ -53,24 +53,6 @@ struct Hemisphere {
     }
     std::vector<std::array<double, 3>> nearPoints() const { return flow().nearPoints(); }
 };
-    }
-    /// Fixed evaluation points 0.1 R above the surface: on the shell r = 1.1 R (polar angles
-    /// 0..80 degrees by 10, 16 azimuths) and 0.1 R above the ground at 1.2, 1.5, 2, 2.5 R from
-    /// the axis (16 azimuths): 193 points, the same physical points at every resolution.
-    std::vector<std::array<double, 3>> nearPoints() const {
-        std::vector<std::array<double, 3>> p;
-        for (int ia = 0; ia <= 8; ++ia)
-            for (int ib = 0; ib < (ia == 0 ? 1 : 16); ++ib) {
-                const double al = ia * 10.0 * PI / 180.0, be = ib * 2.0 * PI / 16.0, rr = 1.1 * R;
-                p.push_back({c() + rr * std::sin(al) * std::cos(be), c() + rr * std::sin(al) * std::sin(be),
-                             rr * std::cos(al)});
-            }
-        for (double rho : {1.2, 1.5, 2.0, 2.5})
-            for (int ib = 0; ib < 16; ++ib)
-                p.push_back({c() + rho * R * std::cos(ib * PI / 8), c() + rho * R * std::sin(ib * PI / 8), 0.1 * R});
-        return p;
-    }
-};
 
 struct AccuracyRow {
     int cellsPerRadius = 0;

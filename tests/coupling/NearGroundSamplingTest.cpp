@@ -6,12 +6,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <glm/geometric.hpp>
 #include <limits>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <glm/geometric.hpp>
 
 #include "app/bench/ExactSolutions.h"
 #include "base/Numbers.h"
@@ -94,9 +93,11 @@ render::TerrainMesh grassOn(const SolvedHemisphere& s) {
         const double be = ib * 2 * PI / 16;
         for (int ia = 1; ia <= 4; ++ia) {
             const double al = radiansFromDegrees(ia * 10.0);
-            add(c + RADIUS_M * std::sin(al) * std::cos(be), c + RADIUS_M * std::sin(al) * std::sin(be));
+            add(c + RADIUS_M * std::sin(al) * std::cos(be),
+                c + RADIUS_M * std::sin(al) * std::sin(be));
         }
-        for (double rho : {1.3, 1.6, 2.0, 2.5}) add(c + rho * RADIUS_M * std::cos(be), c + rho * RADIUS_M * std::sin(be));
+        for (double rho : {1.3, 1.6, 2.0, 2.5})
+            add(c + rho * RADIUS_M * std::cos(be), c + rho * RADIUS_M * std::sin(be));
     }
     mesh.nx = int(mesh.wsPosition_m.size()), mesh.ny = 1;
     return mesh;
@@ -136,11 +137,15 @@ TEST(NearGroundSampling, MassConsistentGrassHeightErrorOverCutGroundIsBelowOnePe
     for (int cells : {4, 8}) {
         const SolvedHemisphere s = solveHemisphere(cells);
         for (double height : {0.25, 0.5, 1.0}) {
-            const GrassError before = grassError(s, height, coupling::NearGroundModel::Interpolated);
+            const GrassError before =
+                grassError(s, height, coupling::NearGroundModel::Interpolated);
             const GrassError after = grassError(s, height, coupling::NearGroundModel::Tangential);
-            std::printf("cells/R %d  height %.2f m  interpolated L2 %.4f max %.4f  tangential L2 %.4f max %.4f\n",
-                        cells, height, before.relL2, before.maxRel, after.relL2, after.maxRel);
-            if (cells == 8 && height <= 0.5) EXPECT_LE(after.relL2, MAX_REL_L2) << "height " << height;
+            std::printf(
+                "cells/R %d  height %.2f m  interpolated L2 %.4f max %.4f  tangential L2 %.4f max "
+                "%.4f\n",
+                cells, height, before.relL2, before.maxRel, after.relL2, after.maxRel);
+            if (cells == 8 && height <= 0.5)
+                EXPECT_LE(after.relL2, MAX_REL_L2) << "height " << height;
         }
     }
 }
@@ -202,7 +207,8 @@ TEST(NearGroundSampling, LogLawModeReproducesTheLogProfileUnderTheFirstCell) {
             const double exact = sim::surface::logLawSpeed_mps(USTAR_MPS, height, Z0_M);
             const std::vector<glm::vec3> got = coupling::sampleAtGrass(f, mesh, height, ng);
             for (const glm::vec3& u : got) {
-                EXPECT_NEAR(u.x, exact, REL_TOL * exact) << "ground " << offset << " m, height " << height << " m";
+                EXPECT_NEAR(u.x, exact, REL_TOL * exact)
+                    << "ground " << offset << " m, height " << height << " m";
                 EXPECT_NEAR(u.y, 0.0, REL_TOL * exact);
                 EXPECT_NEAR(u.z, 0.0, REL_TOL * exact);
             }
@@ -210,7 +216,8 @@ TEST(NearGroundSampling, LogLawModeReproducesTheLogProfileUnderTheFirstCell) {
             ng.model = coupling::NearGroundModel::Interpolated;
             const std::vector<glm::vec3> before = coupling::sampleAtGrass(f, mesh, height, ng);
             ng.model = coupling::NearGroundModel::LogLaw;
-            if (height < 0.5) EXPECT_GT(std::abs(before[0].x - exact), 0.05 * exact) << "offset " << offset;
+            if (height < 0.5)
+                EXPECT_GT(std::abs(before[0].x - exact), 0.05 * exact) << "offset " << offset;
         }
     }
 }
@@ -228,7 +235,8 @@ TEST(NearGroundSampling, ExtremeRoughnessGivesFiniteWindAndBadValuesAreRefused) 
             for (double height : {0.0, 0.25, 1.0}) {
                 for (const glm::vec3& u : coupling::sampleAtGrass(f, mesh, height, ng)) {
                     EXPECT_TRUE(std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z));
-                    if (height <= z0 + d) EXPECT_EQ(u.x, 0.0f) << "z0 " << z0 << " d " << d << " height " << height;
+                    if (height <= z0 + d)
+                        EXPECT_EQ(u.x, 0.0f) << "z0 " << z0 << " d " << d << " height " << height;
                 }
             }
         }
