@@ -23,37 +23,38 @@ void forEachPoint(size_t count, F&& f) {
 
 }  // namespace
 
-GrassSampler::GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_m) {
+GrassSampler::GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_m, const NearGround& nearGround) {
     if (!std::isfinite(sampleHeight_m) || sampleHeight_m < 0.0)
         throw std::invalid_argument("wind.sample_height_m must be finite and >= 0, got " +
                                     std::to_string(sampleHeight_m));
+    validate(nearGround);
     mVertex = mesh.wsPosition_m;
     mHeight_m = sampleHeight_m;
+    mNearGround = nearGround;
 }
 
 void GrassSampler::sample(const sim::WindField& field, std::vector<glm::vec3>& out) {
     const sim::WindField::Geometry geometry = field.geometry();
-    // A new geometry: the terrain test is made in the same pass as the samples.
-    const bool testTerrain = mBelowTerrain.size() != mVertex.size() || mMaskGeometry != geometry;
-    if (testTerrain) mBelowTerrain.resize(mVertex.size());
+    // A new geometry: the read plans are made in the same pass as the samples.
+    const bool plan = mRead.size() != mVertex.size() || mPlanGeometry != geometry;
+    if (plan) mRead.resize(mVertex.size());
     out.resize(mVertex.size());
     forEachPoint(mVertex.size(), [&](size_t v) {
-        const glm::vec3& p = mVertex[v];
-        const double z = p.z + mHeight_m;
-        if (testTerrain) mBelowTerrain[v] = field.belowTerrain(p.x, p.y, z) ? 1 : 0;
-        if (mBelowTerrain[v]) {
-            out[v] = glm::vec3(0.0f);
-            return;
+        if (plan) {
+            const glm::vec3& p = mVertex[v];
+            mRead[v] = planNearGroundRead(field, glm::dvec3(p.x, p.y, double(p.z) + mHeight_m), mNearGround);
         }
-        const auto u = field.velocityAboveTerrainAt_mps(p.x, p.y, z);
-        out[v] = glm::vec3(u[0], u[1], u[2]);
+        const NearGroundRead& r = mRead[v];
+        const auto u = field.velocityComponentsAt_mps({r.wsUV_m.x, r.wsUV_m.y, r.wsUV_m.z},
+                                                      {r.wsW_m.x, r.wsW_m.y, r.wsW_m.z});
+        out[v] = applyNearGroundMap(r.map, glm::vec3(u[0], u[1], u[2]));
     });
-    mMaskGeometry = geometry;
+    mPlanGeometry = geometry;
 }
 
 std::vector<glm::vec3> sampleAtGrass(const sim::WindField& field, const render::TerrainMesh& mesh,
-                                     double sampleHeight_m) {
-    return GrassSampler(mesh, sampleHeight_m).sample(field);
+                                     double sampleHeight_m, const NearGround& nearGround) {
+    return GrassSampler(mesh, sampleHeight_m, nearGround).sample(field);
 }
 
 }  // namespace gale::coupling

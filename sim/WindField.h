@@ -62,6 +62,31 @@ public:
     std::array<double, 3> velocityAboveTerrainAt_mps(double wsX_m, double wsY_m, double wsZ_m) const;
     /// True when the point lies below the terrain surface (never for a field without terrain).
     bool belowTerrain(double wsX_m, double wsY_m, double wsZ_m) const;
+    /// Component selectors for readsOnlySolvedFaces.
+    static constexpr unsigned COMPONENT_U = 1, COMPONENT_V = 2, COMPONENT_W = 4;
+    static constexpr unsigned ALL_COMPONENTS = COMPONENT_U | COMPONENT_V | COMPONENT_W;
+    /// True when every face that velocityAboveTerrainAt_mps reads at this world point (metres) for
+    /// the selected components is solved (isSolvedFace). False outside the box, and for u or v
+    /// below the lowest (above the highest) cell centre, where their interpolation holds a layer's
+    /// value rather than interpolating.
+    bool readsOnlySolvedFaces(double wsX_m, double wsY_m, double wsZ_m,
+                              unsigned components = ALL_COMPONENTS) const;
+    /// u and v interpolated at wsUV_m and w at wsW_m (world metres), m/s, each as
+    /// velocityAboveTerrainAt_mps reads it: for a reader that places each component where its own
+    /// faces are solved (coupling's near-ground sampler). A point outside the box gives zero for
+    /// its components.
+    std::array<double, 3> velocityComponentsAt_mps(const std::array<double, 3>& wsUV_m,
+                                                   const std::array<double, 3>& wsW_m) const;
+    /// True when face `i, j, k` of the `axis` face grid (0: u, 1: v, 2: w; layouts as u_mps etc.)
+    /// carries flux: both its cells are air (a box-side face: its one cell; never the box bottom).
+    bool isFlowFace(int axis, int i, int j, int k) const;
+    /// True when the face carries flux and its centre lies above the terrain: its value is the
+    /// flow at its centre. A cut face whose centre is under the ground carries the flux through
+    /// its open sliver, a value the cut-cell solve resolves poorly as a point value (several
+    /// percent off next to small cut cells; docs/coupling.md).
+    bool isSolvedFace(int axis, int i, int j, int k) const;
+    /// The terrain the field was solved over, or nullptr.
+    const Heightfield* terrain() const { return mTerrain.get(); }
 
     /// What a point's place in the field depends on: cells, box and terrain. Two fields with equal
     /// geometries answer belowTerrain alike and share every interpolation stencil.

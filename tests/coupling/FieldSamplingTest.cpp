@@ -1,5 +1,7 @@
-// GrassSampler: the field read at grass height above each vertex, with the terrain test kept
-// across steps of one geometry and made again for another.
+// GrassSampler: the field read at grass height above each vertex, with the read plans (the terrain
+// test among them) kept across steps of one geometry and made again for another. The field here
+// is a shear flow, not a near-wall solution, so the sampler reads it as it stands (Interpolated);
+// tests/coupling/NearGroundSamplingTest.cpp tests the near-ground models.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,6 +18,7 @@ namespace {
 constexpr int NX = 8, NY = 8, NZ = 6;
 constexpr double H = 1.0;           // cell edge, metres
 constexpr double SAMPLE_HEIGHT_M = 0.5;
+const coupling::NearGround AS_IT_STANDS{coupling::NearGroundModel::Interpolated};
 
 std::shared_ptr<const sim::Heightfield> flatTerrain(float height_m) {
     auto t = std::make_shared<sim::Heightfield>();
@@ -66,7 +69,7 @@ void expectMatchesField(const std::vector<glm::vec3>& got, const sim::WindField&
 TEST(GrassSampler, ReadsTheFieldAtGrassHeightStepAfterStep) {
     const auto ground = flatTerrain(2.0f);
     const render::TerrainMesh mesh = meshAt(2.0f);
-    coupling::GrassSampler sampler(mesh, SAMPLE_HEIGHT_M);
+    coupling::GrassSampler sampler(mesh, SAMPLE_HEIGHT_M, AS_IT_STANDS);
     std::vector<glm::vec3> out;
     for (double offset : {0.0, 3.0, -1.5}) {
         const sim::WindField f = field(ground, offset);
@@ -81,7 +84,7 @@ TEST(GrassSampler, ReadsTheFieldAtGrassHeightStepAfterStep) {
 // the new ground buries reads zero, and grass it uncovers reads the field.
 TEST(GrassSampler, MakesTheTerrainTestAgainForAnotherGeometry) {
     const render::TerrainMesh mesh = meshAt(2.0f);
-    coupling::GrassSampler sampler(mesh, SAMPLE_HEIGHT_M);
+    coupling::GrassSampler sampler(mesh, SAMPLE_HEIGHT_M, AS_IT_STANDS);
     std::vector<glm::vec3> out;
     const sim::WindField low = field(flatTerrain(2.0f), 0.0);
     sampler.sample(low, out);

@@ -156,3 +156,43 @@ TEST(WindFieldSampling, TerrainTestIsTheOnlyDifferenceFromTheUncheckedSampler) {
     EXPECT_TRUE(emptyField().geometry() == same.geometry());
     EXPECT_TRUE(emptyField(slopedTerrain(11.0)).geometry() != f.geometry());  // another terrain object
 }
+
+// Reading u and v at one point and w at another gives each component as the ordinary sampler
+// reads it at that component's point.
+TEST(WindFieldSampling, ComponentsAtTwoPointsMatchTheOrdinarySamplerAtEach) {
+    WindField f = emptyField();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> value(-10.0, 10.0);
+    fillFaces(f, [&](int, const std::array<double, 3>&) { return value(rng); });
+    for (int n = 0; n < 500; ++n) {
+        const auto a = interiorPoint(rng), b = interiorPoint(rng);
+        const auto split = f.velocityComponentsAt_mps(a, b);
+        const auto atA = f.velocityAboveTerrainAt_mps(a[0], a[1], a[2]);
+        const auto atB = f.velocityAboveTerrainAt_mps(b[0], b[1], b[2]);
+        EXPECT_EQ(split[0], atA[0]);
+        EXPECT_EQ(split[1], atA[1]);
+        EXPECT_EQ(split[2], atB[2]);
+    }
+    const auto outside = f.velocityComponentsAt_mps({WS_MIN[0] - 1.0, WS_MIN[1], WS_MIN[2]}, {WS_MIN[0], WS_MIN[1] - 1.0, WS_MIN[2]});
+    for (double c : outside) EXPECT_EQ(c, 0.0);
+}
+
+// A face is solved when it carries flux and its centre is in the air; a point reads only solved
+// faces well above the ground and not next to it, nor below the lowest cell centre (u, v).
+TEST(WindFieldSampling, SolvedFacesAreFlowFacesWithTheirCentreAboveTheGround) {
+    auto t = std::make_shared<Heightfield>();
+    t->nx = t->ny = 20, t->spacing_m = 0.5, t->originX_m = -4.0, t->originY_m = 1.0;
+    t->height_m.assign(size_t(t->nx) * t->ny, float(WS_MIN[2] + 0.3 * H));  // ground cut 0.3 cells up
+    const WindField f(NX, NY, NZ, H, WS_MIN, t, std::vector<uint8_t>(size_t(NX) * NY * NZ, 1));
+    EXPECT_TRUE(f.isFlowFace(0, 3, 3, 0));     // both cells air
+    EXPECT_TRUE(f.isSolvedFace(0, 3, 3, 0));   // centre 0.5 cells up, ground 0.3
+    EXPECT_FALSE(f.isFlowFace(2, 3, 3, 0));    // the box bottom
+    EXPECT_FALSE(f.isSolvedFace(2, 3, 3, 0));
+    EXPECT_TRUE(f.isSolvedFace(2, 3, 3, 1));
+    const double x = WS_MIN[0] + 4.2 * H, y = WS_MIN[1] + 3.1 * H;
+    EXPECT_FALSE(f.readsOnlySolvedFaces(x, y, WS_MIN[2] + 0.4 * H));  // below the first centre
+    EXPECT_TRUE(f.readsOnlySolvedFaces(x, y, WS_MIN[2] + 0.6 * H, WindField::COMPONENT_U | WindField::COMPONENT_V));
+    EXPECT_FALSE(f.readsOnlySolvedFaces(x, y, WS_MIN[2] + 0.6 * H, WindField::COMPONENT_W));  // reads the bottom
+    EXPECT_TRUE(f.readsOnlySolvedFaces(x, y, WS_MIN[2] + 1.6 * H));
+    EXPECT_FALSE(f.readsOnlySolvedFaces(WS_MIN[0] - 1.0, y, WS_MIN[2] + 1.6 * H));  // outside the box
+}

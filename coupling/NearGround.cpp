@@ -1,0 +1,230 @@
+/// \file NearGround.cpp
+/// The near-ground read plans (see NearGround.h).
+
+#include "coupling/NearGround.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "sim/SurfaceLayer.h"
+
+namespace gale::coupling {
+namespace {
+
+// |(n - n_Q) S| (Frobenius) is capped here: the first-order law is meant for a gentle change
+// between the wall and Q; at the foot of a cliff or on a needle the wind at Q is carried with at
+// most a 50 % correction rather than an unbounded one.
+constexpr double MAX_CURVATURE_CORRECTION = 0.5;
+// Log law: the first cell centre used must stand at least this many cells above the ground; a
+// centre closer to it sits in a sliver cut cell, the value the solver resolves worst.
+constexpr double MIN_LOG_CENTRE_CELLS = 0.25;
+// The ground's normal and curvature are differenced this many cells apart: wide enough to see the
+// terrain the solver resolves, narrow enough that a vertex beside a cliff does not see the cliff.
+constexpr double FRAME_DIFFERENCE_CELLS = 0.5;
+// Fixed-point steps towards the foot of the normal through the grass point: each shrinks the
+// offset by the factor n_P / (radius of curvature), so three leave it far below a millimetre.
+constexpr int FOOT_STEPS = 3;
+// The readings must fix the model's unknowns: |det| of the reading matrix at least this fraction
+// of its flat-ground value n_w (over a slope it is about n_w N_z^2; 0.1 admits slopes up to ~72
+// degrees).
+constexpr double MIN_READING_DETERMINANT = 0.1;
+// A map entry larger than this amplifies reading errors more than any well-posed read would.
+constexpr double MAX_MAP_ENTRY = 4.0;
+
+constexpr unsigned UV = sim::WindField::COMPONENT_U | sim::WindField::COMPONENT_V;
+constexpr unsigned W = sim::WindField::COMPONENT_W;
+
+glm::dvec3 normalAt(const sim::Heightfield& t, double x, double y, double delta_m) {
+    const double hx = (t.sample(x + delta_m, y) - t.sample(x - delta_m, y)) / (2.0 * delta_m);
+    const double hy = (t.sample(x, y + delta_m) - t.sample(x, y - delta_m)) / (2.0 * delta_m);
+    return glm::normalize(glm::dvec3(-hx, -hy, 1.0));
+}
+
+// The shape operator S of the ground at (x, y): dN along the surface, as a symmetric 3 x 3 acting
+// on tangent vectors and taking N to 0, by central differences `delta_m` apart.
+glm::dmat3 shapeOperator(const sim::Heightfield& t, double x, double y, double delta_m,
+                         const glm::dvec3& n) {
+    const glm::dvec3 dNdx =
+        (normalAt(t, x + delta_m, y, delta_m) - normalAt(t, x - delta_m, y, delta_m)) /
+        (2.0 * delta_m);
+    const glm::dvec3 dNdy =
+        (normalAt(t, x, y + delta_m, delta_m) - normalAt(t, x, y - delta_m, delta_m)) /
+        (2.0 * delta_m);
+    // A tangent vector w = a (1, 0, h_x) + b (0, 1, h_y) has a = w.x, b = w.y and S w = a dN/dx +
+    // b dN/dy; for any w, S w = S (w - (w.N) N). So S = [dN/dx dN/dy] [e_x e_y]^T (I - N N^T).
+    const glm::dmat3 tangent = glm::dmat3(1.0) - glm::outerProduct(n, n);
+    glm::dmat3 s(0.0);
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row)
+            s[col][row] = dNdx[row] * tangent[col][0] + dNdy[row] * tangent[col][1];
+    return 0.5 *
+           (s + glm::transpose(s));  // self-adjoint; the differences make it so only to rounding
+}
+
+double frobenius(const glm::dmat3& m) {
+    double s = 0.0;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) s += m[c][r] * m[c][r];
+    return std::sqrt(s);
+}
+
+std::array<float, 9> pack(const glm::dmat3& m) {  // glm is column-major: m[col][row]
+    std::array<float, 9> a{};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) a[size_t(3 * r + c)] = float(m[c][r]);
+    return a;
+}
+
+NearGroundRead asItIs(const glm::dvec3& p) {
+    return {glm::vec3(p), glm::vec3(p), pack(glm::dmat3(1.0))};
+}
+
+bool solvedAt(const sim::WindField& field, const glm::dvec3& q, unsigned components) {
+    return !field.belowTerrain(q.x, q.y, q.z) &&
+           field.readsOnlySolvedFaces(q.x, q.y, q.z, components);
+}
+
+// The lowest s in [0, NEAR_GROUND_SEARCH_CELLS h], to an eighth of a cell, at which p + s dir reads
+// only solved faces for `components`; negative when there is none. Coarse steps of half a cell,
+// then two halvings back down (the stencils only gain solved faces as they rise, within a cell).
+double lowestSolved(const sim::WindField& field, const glm::dvec3& p, const glm::dvec3& dir,
+                    unsigned components) {
+    const double h = field.voxelSize_m();
+    if (solvedAt(field, p, components)) return 0.0;
+    for (int step = 1; step <= 2 * NEAR_GROUND_SEARCH_CELLS; ++step) {
+        double s = 0.5 * step * h;
+        if (!solvedAt(field, p + s * dir, components)) continue;
+        for (double back : {0.25 * h, 0.125 * h})
+            if (solvedAt(field, p + (s - back) * dir, components)) s -= back;
+        return s;
+    }
+    return -1.0;
+}
+
+// The linear map from the readings to V(n_P) for V(n) = T(n) + beta g(n) N, with T(n_W) = G T(n_Q)
+// and T(n_P) = C T(n_Q) the near-wall law's carries from Q and g the normal wind's growth from the
+// wall (gQ = g(n_Q) etc.). Unknowns: T(n_Q) = a t1 + b t2 and beta;
+//   u = e_x . (T + beta gQ N),  v = e_y . (T + beta gQ N),  w = e_z . (G T + beta gW N).
+// False when the readings do not fix the unknowns well (a near-vertical wall, where u and v no
+// longer tell the tangential wind from the normal one).
+bool readingMap(const glm::dvec3& n, const glm::dmat3& G, const glm::dmat3& C, double gQ, double gW,
+                double gP, glm::dmat3& out) {
+    const glm::dvec3 ref = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 t1 = glm::normalize(ref - glm::dot(ref, n) * n), t2 = glm::cross(n, t1);
+    const glm::dvec3 gt1 = G * t1, gt2 = G * t2;
+    glm::dmat3 B;  // rows: readings; columns: a, b, beta (glm: B[col][row])
+    B[0] = glm::dvec3(t1.x, t1.y, gt1.z);
+    B[1] = glm::dvec3(t2.x, t2.y, gt2.z);
+    B[2] = glm::dvec3(gQ * n.x, gQ * n.y, gW * n.z);
+    if (!(gW > 0.0 && std::abs(glm::determinant(B)) >= MIN_READING_DETERMINANT * gW)) return false;
+    glm::dmat3 Cfull;
+    Cfull[0] = C * t1;
+    Cfull[1] = C * t2;
+    Cfull[2] = gP * n;
+    out = Cfull * glm::inverse(B);
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
+            if (!(std::abs(out[c][r]) <= MAX_MAP_ENTRY)) return false;
+    return true;
+}
+
+// Mass-consistent: Q and Q' on the normal; T carried by T(n) = (I - (n - n_Q) S) T(n_Q).
+NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfield& t,
+                              const glm::dvec3& p) {
+    const double delta = FRAME_DIFFERENCE_CELLS * field.voxelSize_m();
+    // The foot F of the normal through P (not the ground straight below P: on a slope that point's
+    // normal misses P, and the wall condition would be applied along a tilted line). Found by
+    // fixed-point steps from the point below, each a correction of order (n_P / radius)^2.
+    glm::dvec3 foot(p.x, p.y, t.sample(p.x, p.y));
+    glm::dvec3 n = normalAt(t, foot.x, foot.y, delta);
+    for (int step = 0; step < FOOT_STEPS; ++step) {
+        const double dist = glm::dot(p - foot, n);
+        foot = glm::dvec3(p.x - dist * n.x, p.y - dist * n.y, 0.0);
+        foot.z = t.sample(foot.x, foot.y);
+        n = normalAt(t, foot.x, foot.y, delta);
+    }
+    const double nP = std::max(0.0, glm::dot(p - foot, n));
+    const double sUV = lowestSolved(field, p, n, UV), sW = lowestSolved(field, p, n, W);
+    if (sUV < 0.0 || sW < 0.0) return asItIs(p);
+    glm::dmat3 shape = shapeOperator(t, foot.x, foot.y, delta, n);
+    const double reach = std::max(nP + sUV, nP + sW) * frobenius(shape);
+    if (!(reach <= MAX_CURVATURE_CORRECTION))
+        shape *= reach > 0.0 ? MAX_CURVATURE_CORRECTION / reach : 0.0;
+    const glm::dmat3 I(1.0);
+    // The normal wind: the flux through the parallel surface at distance n, whose area grows as
+    // det(I + n S), fed by the tangential divergence: u_n(n) = beta n / det(I + n S) to first order
+    // in the curvature (exact where it is the same in every direction).
+    auto normalGrowth = [&](double dist) { return dist / glm::determinant(I + dist * shape); };
+    glm::dmat3 a;
+    if (!readingMap(n, I - (sW - sUV) * shape, I + sUV * shape, normalGrowth(nP + sUV),
+                    normalGrowth(nP + sW), normalGrowth(nP), a))
+        return asItIs(p);
+    // w is read straight above Q where its faces are solved there, at the normal distance it would
+    // have on the normal (the step then shares u's and v's horizontal stencils); the offset along
+    // the ground, (s_W - s_UV) tan(slope), is left out of the model (on the hemisphere's cap it
+    // changed the error by less than 0.01 %).
+    const glm::dvec3 q = p + sUV * n, above = q + glm::dvec3(0.0, 0.0, (sW - sUV) / n.z);
+    if (sW >= sUV && solvedAt(field, above, W)) return {glm::vec3(q), glm::vec3(above), pack(a)};
+    return {glm::vec3(q), glm::vec3(p + sW * n), pack(a)};
+}
+
+// Momentum with wall stress: Q at the lowest solved cell centre straight above P at least
+// MIN_LOG_CENTRE_CELLS above the ground, Q' straight above P; T carried by the log law.
+NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t,
+                          const glm::dvec3& p, const NearGround& nearGround) {
+    const double h = field.voxelSize_m(), zMin = field.wsMin_m()[2];
+    const double ground = t.sample(p.x, p.y), zP = std::max(0.0, p.z - ground);
+    const glm::dvec3 n = normalAt(t, p.x, p.y, FRAME_DIFFERENCE_CELLS * h), up(0.0, 0.0, 1.0);
+    const double z0 = nearGround.roughness_m, d = nearGround.displacement_m;
+    const double sW = lowestSolved(field, p, up, W);
+    if (sW < 0.0) return asItIs(p);
+    const double lowest =
+        std::max(MIN_LOG_CENTRE_CELLS * h, sim::surface::lowestLogHeight_m(z0, d));
+    const int first = int(std::clamp(std::ceil((p.z - zMin) / h - 0.5), 0.0, double(field.nz())));
+    for (int k = first; k <= first + NEAR_GROUND_SEARCH_CELLS && k < field.nz(); ++k) {
+        const glm::dvec3 q(p.x, p.y, zMin + (k + 0.5) * h);
+        const double zQ = q.z - ground;
+        if (zQ < lowest || !solvedAt(field, q, UV)) continue;
+        auto carry = [&](double z) { return sim::surface::logLawRescale_mps(1.0, z, zQ, z0, d); };
+        glm::dmat3 a;
+        if (!readingMap(n, carry(zP + sW) * glm::dmat3(1.0), carry(zP) * glm::dmat3(1.0), zQ,
+                        zP + sW, zP, a))
+            return asItIs(p);
+        return {glm::vec3(q), glm::vec3(p + sW * up), pack(a)};
+    }
+    return asItIs(p);
+}
+
+}  // namespace
+
+void validate(const NearGround& g) {
+    if (!std::isfinite(g.roughness_m) || g.roughness_m <= 0.0)
+        throw std::invalid_argument("wind.roughness_m must be finite and > 0, got " +
+                                    std::to_string(g.roughness_m));
+    if (!std::isfinite(g.displacement_m) || g.displacement_m < 0.0)
+        throw std::invalid_argument("wind.displacement_m must be finite and >= 0, got " +
+                                    std::to_string(g.displacement_m));
+}
+
+NearGroundRead planNearGroundRead(const sim::WindField& field, const glm::dvec3& p,
+                                  const NearGround& nearGround) {
+    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
+        return asItIs(p);  // reads zero
+    if (field.belowTerrain(p.x, p.y, p.z)) return {glm::vec3(p), glm::vec3(p), {}};
+    const sim::Heightfield* terrain = field.terrain();
+    if (nearGround.model == NearGroundModel::Interpolated || !terrain) return asItIs(p);
+    // Inside the roughness layer the log law's wind is zero, whatever the field holds.
+    if (nearGround.model == NearGroundModel::LogLaw &&
+        p.z - terrain->sample(p.x, p.y) <= nearGround.displacement_m + nearGround.roughness_m)
+        return {glm::vec3(p), glm::vec3(p), {}};
+    if (field.readsOnlySolvedFaces(p.x, p.y, p.z)) return asItIs(p);
+    if (nearGround.model == NearGroundModel::LogLaw)
+        return logLawRead(field, *terrain, p, nearGround);
+    return tangentialRead(field, *terrain, p);
+}
+
+}  // namespace gale::coupling

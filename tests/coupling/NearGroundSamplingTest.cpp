@@ -1,0 +1,259 @@
+// What the grass reads near the ground (coupling/NearGround.h): the mass-consistent field over a
+// hemisphere against the exact potential flow, through the sampler the grass uses, and the
+// log-law mode against the log profile over flat rough ground. The ground sits between cell
+// faces (cut cells) in both.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <glm/geometric.hpp>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/bench/ExactSolutions.h"
+#include "base/Numbers.h"
+#include "coupling/FieldSampling.h"
+#include "coupling/NearGround.h"
+#include "sim/AirDomain.h"
+#include "sim/SteadyWind.h"
+#include "sim/SurfaceLayer.h"
+
+using namespace gale;
+
+namespace {
+
+// --- the hemisphere: potential flow past a sphere, exact --------------------------------------
+
+// A 16 m knoll: at 2 m cells (gale's usual) that is 8 cells per radius.
+constexpr double RADIUS_M = 16.0;
+// The ground sits this fraction of a cell above the box's bottom face: cut, between the faces.
+constexpr double GROUND_OFFSET_CELLS = 0.3;
+
+// The exact flow (app/bench/ExactSolutions.h) over ground lifted to zb.
+struct Hemisphere {
+    exact::HemisphereFlow flow{RADIUS_M, 1.0, 3.0 * RADIUS_M, 3.0 * RADIUS_M};
+    double zb = 0.0;  // ground height, metres
+    double c() const { return flow.cx_m; }
+    glm::dvec3 exact(const glm::dvec3& p) const {
+        const auto u = flow.velocity(p.x, p.y, p.z - zb);
+        return {u[0], u[1], u[2]};
+    }
+};
+
+struct SolvedHemisphere {
+    Hemisphere geometry;
+    sim::Heightfield terrain;
+    sim::SteadyWindResult solved;
+};
+
+// Box 6R x 6R x 3R with the exact potential carried on its open faces (as the solver's own
+// hemisphere benchmark, docs/solver.md), so the box adds no truncation error.
+SolvedHemisphere solveHemisphere(int cellsPerRadius) {
+    SolvedHemisphere s;
+    const double h = RADIUS_M / cellsPerRadius;
+    s.geometry.zb = GROUND_OFFSET_CELLS * h;
+    sim::TerrainSpec ts;
+    ts.kind = sim::TerrainKind::Hemisphere;
+    ts.sizeX_m = ts.sizeY_m = 2 * s.geometry.c();
+    ts.spacing_m = RADIUS_M / 128;
+    ts.radius_m = RADIUS_M;
+    ts.centerX_m = ts.centerY_m = s.geometry.c();
+    s.terrain = sim::makeTerrain(ts);
+    for (float& z : s.terrain.height_m) z += float(s.geometry.zb);
+    const sim::AirDomain domain(s.terrain, sim::DomainSpec{h, s.geometry.zb + 3.0 * RADIUS_M, 2e9});
+    const Hemisphere g = s.geometry;
+    auto phi = [g](double x, double y, double z) { return g.flow.phi(x, y, z - g.zb); };
+    sim::AmbientWind ambient;
+    ambient.profile = sim::WindProfile::Uniform;
+    ambient.speed_mps = 1.0;
+    sim::SolverSettings settings;
+    settings.relativeTolerance = 1e-9;  // the solve's own error well below what is compared
+    settings.maxIterations = 200;
+    s.solved = sim::solveSteadyWind(domain, ambient, {}, settings, phi);
+    EXPECT_TRUE(s.solved.report.converged) << s.solved.report.message;
+    return s;
+}
+
+// Grass vertices: on the cap up to 40 degrees from the top (slopes up to 0.84, steeper than
+// grass-bearing hillsides commonly are) and on the flat ground from 1.3 R out, 16 azimuths each.
+// The steeper band, down to the hemisphere's vertical foot, is measured in docs/coupling.md (known
+// limits): there u and v are solved only well above the grass and the first-order near-wall law
+// carries them down with 1-2 % error.
+render::TerrainMesh grassOn(const SolvedHemisphere& s) {
+    render::TerrainMesh mesh;
+    auto add = [&](double x, double y) {
+        mesh.wsPosition_m.push_back(glm::vec3(x, y, s.terrain.sample(x, y)));
+        mesh.wsNormal.push_back(glm::vec3(0, 0, 1));  // unused by the sampler
+    };
+    const double c = s.geometry.c();
+    add(c, c);  // the top
+    for (int ib = 0; ib < 16; ++ib) {
+        const double be = ib * 2 * PI / 16;
+        for (int ia = 1; ia <= 4; ++ia) {
+            const double al = radiansFromDegrees(ia * 10.0);
+            add(c + RADIUS_M * std::sin(al) * std::cos(be),
+                c + RADIUS_M * std::sin(al) * std::sin(be));
+        }
+        for (double rho : {1.3, 1.6, 2.0, 2.5})
+            add(c + rho * RADIUS_M * std::cos(be), c + rho * RADIUS_M * std::sin(be));
+    }
+    mesh.nx = int(mesh.wsPosition_m.size()), mesh.ny = 1;
+    return mesh;
+}
+
+struct GrassError {
+    double relL2 = 0;   // sqrt(sum |u - u_exact|^2 / sum |u_exact|^2)
+    double maxRel = 0;  // max |u - u_exact| / U
+};
+
+GrassError grassError(const SolvedHemisphere& s, double height_m, coupling::NearGroundModel model) {
+    const render::TerrainMesh mesh = grassOn(s);
+    coupling::NearGround ng;
+    ng.model = model;
+    const std::vector<glm::vec3> got = coupling::sampleAtGrass(s.solved.field, mesh, height_m, ng);
+    double e2 = 0, n2 = 0;
+    GrassError e;
+    for (size_t v = 0; v < got.size(); ++v) {
+        const glm::vec3& p = mesh.wsPosition_m[v];
+        const glm::dvec3 ue = s.geometry.exact(glm::dvec3(p.x, p.y, double(p.z) + height_m));
+        const glm::dvec3 d = glm::dvec3(got[v]) - ue;
+        const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
+        e2 += dd, n2 += ue.x * ue.x + ue.y * ue.y + ue.z * ue.z;
+        e.maxRel = std::max(e.maxRel, std::sqrt(dd));
+    }
+    e.relL2 = std::sqrt(e2 / n2);
+    return e;
+}
+
+}  // namespace
+
+// The target: over cut ground at 8 cells per radius the grass reads the exact potential
+// flow within 1 % at 0.25 m and 0.5 m (mass-consistent field, the sampler's default treatment).
+// Also prints the before/after table of docs/coupling.md.
+TEST(NearGroundSampling, MassConsistentGrassHeightErrorOverCutGroundIsBelowOnePercent) {
+    constexpr double MAX_REL_L2 = 0.01;  // the target
+    for (int cells : {4, 8}) {
+        const SolvedHemisphere s = solveHemisphere(cells);
+        for (double height : {0.25, 0.5, 1.0}) {
+            const GrassError before =
+                grassError(s, height, coupling::NearGroundModel::Interpolated);
+            const GrassError after = grassError(s, height, coupling::NearGroundModel::Tangential);
+            std::printf(
+                "cells/R %d  height %.2f m  interpolated L2 %.4f max %.4f  tangential L2 %.4f max "
+                "%.4f\n",
+                cells, height, before.relL2, before.maxRel, after.relL2, after.maxRel);
+            if (cells == 8 && height <= 0.5)
+                EXPECT_LE(after.relL2, MAX_REL_L2) << "height " << height;
+        }
+    }
+}
+
+// --- the log law over flat rough ground -----------------------------------------------------
+
+namespace {
+
+constexpr double LOG_H_M = 2.0;  // cell edge
+constexpr int LOG_N = 6, LOG_NZ = 8;
+constexpr double USTAR_MPS = 0.4, Z0_M = 0.03;
+
+// A field over flat ground at groundOffset_m above the box bottom whose solved faces (centre above
+// the ground) hold the log profile u = u*/kappa ln(z/z0) along +x at their heights above the
+// ground; the faces the ground closes hold copies of the face above, as the solvers leave them.
+sim::WindField logLawField(double groundOffset_m) {
+    auto t = std::make_shared<sim::Heightfield>();
+    t->nx = t->ny = 2 * LOG_N + 1, t->spacing_m = LOG_H_M / 2;
+    t->height_m.assign(size_t(t->nx) * t->ny, float(groundOffset_m));
+    std::vector<uint8_t> air(size_t(LOG_N) * LOG_N * LOG_NZ, 1);  // every cell's top face is open
+    sim::WindField f(LOG_N, LOG_N, LOG_NZ, LOG_H_M, {0.0, 0.0, 0.0}, t, air);
+    for (int k = LOG_NZ - 1; k >= 0; --k)
+        for (int j = 0; j < LOG_N; ++j)
+            for (int i = 0; i <= LOG_N; ++i) {
+                const double z = (k + 0.5) * LOG_H_M - groundOffset_m;
+                const size_t n = i + size_t(LOG_N + 1) * (j + size_t(LOG_N) * k);
+                f.u_mps()[n] = z > 0.0 ? sim::surface::logLawSpeed_mps(USTAR_MPS, z, Z0_M)
+                                       : f.u_mps()[n + size_t(LOG_N + 1) * LOG_N];
+            }
+    return f;
+}
+
+render::TerrainMesh flatGrass(double groundOffset_m) {
+    render::TerrainMesh mesh;
+    for (double x : {3.0, 5.5, 6.0, 8.25})
+        for (double y : {2.5, 6.0, 9.0}) {
+            mesh.wsPosition_m.push_back(glm::vec3(x, y, groundOffset_m));
+            mesh.wsNormal.push_back(glm::vec3(0, 0, 1));
+        }
+    mesh.nx = int(mesh.wsPosition_m.size()), mesh.ny = 1;
+    return mesh;
+}
+
+}  // namespace
+
+// Log-law mode: below the first cell centre the grass reads the log profile itself, for ground
+// at several places between the faces (the first centre 0.9, 0.4 and 0.1 cells above it).
+TEST(NearGroundSampling, LogLawModeReproducesTheLogProfileUnderTheFirstCell) {
+    // The profile is read at a cell centre (exact there) and carried by the log law's ratio; what
+    // is left is float storage of the map and of the velocities.
+    constexpr double REL_TOL = 1e-5;
+    coupling::NearGround ng;
+    ng.model = coupling::NearGroundModel::LogLaw;
+    ng.roughness_m = Z0_M;
+    for (double offset : {0.1 * LOG_H_M, 0.6 * LOG_H_M, 0.9 * LOG_H_M}) {
+        const sim::WindField f = logLawField(offset);
+        const render::TerrainMesh mesh = flatGrass(offset);
+        for (double height : {0.25, 0.5, 1.0}) {
+            const double exact = sim::surface::logLawSpeed_mps(USTAR_MPS, height, Z0_M);
+            const std::vector<glm::vec3> got = coupling::sampleAtGrass(f, mesh, height, ng);
+            for (const glm::vec3& u : got) {
+                EXPECT_NEAR(u.x, exact, REL_TOL * exact)
+                    << "ground " << offset << " m, height " << height << " m";
+                EXPECT_NEAR(u.y, 0.0, REL_TOL * exact);
+                EXPECT_NEAR(u.z, 0.0, REL_TOL * exact);
+            }
+            // The field as it stands holds the first solved value instead: the error this removes.
+            ng.model = coupling::NearGroundModel::Interpolated;
+            const std::vector<glm::vec3> before = coupling::sampleAtGrass(f, mesh, height, ng);
+            ng.model = coupling::NearGroundModel::LogLaw;
+            if (height < 0.5)
+                EXPECT_GT(std::abs(before[0].x - exact), 0.05 * exact) << "offset " << offset;
+        }
+    }
+}
+
+// Extreme roughness: grass below z0 + d reads zero, never NaN or Inf; a very smooth surface stays
+// finite; bad parameters are refused with the scene key.
+TEST(NearGroundSampling, ExtremeRoughnessGivesFiniteWindAndBadValuesAreRefused) {
+    const sim::WindField f = logLawField(0.3 * LOG_H_M);
+    const render::TerrainMesh mesh = flatGrass(0.3 * LOG_H_M);
+    coupling::NearGround ng;
+    ng.model = coupling::NearGroundModel::LogLaw;
+    for (double z0 : {1e-9, 0.5, 5.0})
+        for (double d : {0.0, 0.4, 3.0}) {
+            ng.roughness_m = z0, ng.displacement_m = d;
+            for (double height : {0.0, 0.25, 1.0}) {
+                for (const glm::vec3& u : coupling::sampleAtGrass(f, mesh, height, ng)) {
+                    EXPECT_TRUE(std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z));
+                    if (height <= z0 + d)
+                        EXPECT_EQ(u.x, 0.0f) << "z0 " << z0 << " d " << d << " height " << height;
+                }
+            }
+        }
+    for (double bad : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+        ng.roughness_m = bad, ng.displacement_m = 0.0;
+        try {
+            coupling::GrassSampler sampler(mesh, 0.5, ng);
+            FAIL() << "accepted roughness " << bad;
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("wind.roughness_m"), std::string::npos);
+        }
+        ng.roughness_m = 0.03, ng.displacement_m = bad == 0.0 ? -0.5 : bad;
+        try {
+            coupling::GrassSampler sampler(mesh, 0.5, ng);
+            FAIL() << "accepted displacement " << ng.displacement_m;
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("wind.displacement_m"), std::string::npos);
+        }
+    }
+}
