@@ -250,8 +250,25 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
     auto nuZ = [&](int i, int j, int k) { return mNuZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)]; };
     auto nuCell = [&](int i, int j, int k) { return 0.5 * (nuZ(i, j, k) + nuZ(i, j, k + 1)); };
 
-    // Horizontal speed at each wall face from the velocities at the start of the step.
-    const std::vector<double> u0 = U, v0 = V;
+    // Horizontal speed of each wall face at the start of the step: its own component and the
+    // mean of the four faces of the other component around it.
+    std::vector<double> speedX(mLowX.size(), 0.0), speedY(mLowY.size(), 0.0);
+    tbb::parallel_for(0, ny + 1, [&](int j) {
+        for (int i = 0; i <= nx; ++i) {
+            if (j < ny && mLowX[size_t(i) + size_t(nx + 1) * j] >= 0) {
+                const int k = mLowX[size_t(i) + size_t(nx + 1) * j], ia = std::max(i - 1, 0), ib = std::min(i, nx - 1);
+                auto vAt = [&](int ii, int jj) { return V[size_t(ii) + size_t(nx) * (jj + size_t(ny + 1) * k)]; };
+                const double other = 0.25 * (vAt(ia, j) + vAt(ia, j + 1) + vAt(ib, j) + vAt(ib, j + 1));
+                speedX[size_t(i) + size_t(nx + 1) * j] = std::hypot(U[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)], other);
+            }
+            if (i < nx && mLowY[size_t(i) + size_t(nx) * j] >= 0) {
+                const int k = mLowY[size_t(i) + size_t(nx) * j], ja = std::max(j - 1, 0), jb = std::min(j, ny - 1);
+                auto uAt = [&](int ii, int jj) { return U[size_t(ii) + size_t(nx + 1) * (jj + size_t(ny) * k)]; };
+                const double other = 0.25 * (uAt(i, ja) + uAt(i + 1, ja) + uAt(i, jb) + uAt(i + 1, jb));
+                speedY[size_t(i) + size_t(nx) * j] = std::hypot(V[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)], other);
+            }
+        }
+    });
     std::vector<double> frictionX(mLowX.size(), 0.0), frictionY(mLowY.size(), 0.0);
 
     std::vector<double>* comps[3] = {&U, &V, &W};
@@ -268,12 +285,18 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
             ia = c == 0 ? std::max(i - 1, 0) : i, ib = c == 0 ? std::min(i, nx - 1) : i;
             ja = c == 1 ? std::max(j - 1, 0) : j, jb = c == 1 ? std::min(j, ny - 1) : j;
         };
-        auto nuFace = [&](int i, int j, int k) {
-            if (c == 2) return nuZ(i, j, k);
-            int ia, ja, ib, jb;
-            cellsBeside(i, j, ia, ja, ib, jb);
-            return 0.5 * (nuCell(ia, ja, k) + nuCell(ib, jb, k));
-        };
+        // nu_t at every face of this component, once (each face is the neighbour of four).
+        mNuFace.resize(q.size());
+        tbb::parallel_for(0, n2, [&](int k) {
+            for (int j = 0; j < n1; ++j)
+                for (int i = 0; i < n0; ++i) {
+                    if (!ok[idx(i, j, k)]) continue;
+                    int ia, ja, ib, jb;
+                    cellsBeside(i, j, ia, ja, ib, jb);
+                    mNuFace[idx(i, j, k)] = c == 2 ? nuZ(i, j, k) : 0.5 * (nuCell(ia, ja, k) + nuCell(ib, jb, k));
+                }
+        });
+        auto nuFace = [&](int i, int j, int k) { return mNuFace[idx(i, j, k)]; };
         auto nuBelow = [&](int i, int j, int k) {
             if (c == 2) return nuCell(i, j, k - 1);
             int ia, ja, ib, jb;
@@ -294,21 +317,7 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                     if (c < 2) {
                         const double g = (c == 0 ? mGroundX : mGroundY)[col];
                         wallH = std::clamp(o[2] + (kl + 1) * h - g, MIN_WALL_HEIGHT_CELLS * h, MAX_WALL_HEIGHT_CELLS * h);
-                        // Horizontal speed of the wall face: its own component and the mean of
-                        // the four faces of the other component around it.
-                        int ia, ja, ib, jb;
-                        cellsBeside(i, j, ia, ja, ib, jb);
-                        const double other =
-                            c == 0 ? 0.25 * (v0[size_t(ia) + size_t(nx) * (j + size_t(ny + 1) * kl)] +
-                                             v0[size_t(ia) + size_t(nx) * (j + 1 + size_t(ny + 1) * kl)] +
-                                             v0[size_t(ib) + size_t(nx) * (j + size_t(ny + 1) * kl)] +
-                                             v0[size_t(ib) + size_t(nx) * (j + 1 + size_t(ny + 1) * kl)])
-                                   : 0.25 * (u0[size_t(i) + size_t(nx + 1) * (ja + size_t(ny) * kl)] +
-                                             u0[size_t(i + 1) + size_t(nx + 1) * (ja + size_t(ny) * kl)] +
-                                             u0[size_t(i) + size_t(nx + 1) * (jb + size_t(ny) * kl)] +
-                                             u0[size_t(i + 1) + size_t(nx + 1) * (jb + size_t(ny) * kl)]);
-                        const double own = mOld[idx(i, j, kl)];
-                        const double speed = std::sqrt(own * own + other * other);
+                        const double speed = (c == 0 ? speedX : speedY)[col];
                         const double cw = surface::KAPPA / surface::logFactor(0.5 * wallH, z0, d);
                         wallC = cw * cw * speed;  // tau_w = wallC * u, m/s
                         (c == 0 ? frictionX : frictionY)[col] = cw * speed;

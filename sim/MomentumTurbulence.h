@@ -88,7 +88,7 @@ public:
     /// nu_t (m^2/s) on the z-faces of the last apply() (WindField's w layout), 0 before.
     const std::vector<double>& eddyViscosityZ_m2ps() const { return mNuZ; }
     /// Bytes per cell of the box this object holds and uses while applying (memory estimates).
-    static constexpr double BYTES_PER_CELL = 8.0 * 7 + 4.0 + 3.0;
+    static constexpr double BYTES_PER_CELL = 8.0 * 6 + 4.0 + 3.0;
 
 private:
     void computeEddyViscosity(const std::vector<double>& u, const std::vector<double>& v, const std::vector<double>& w);
@@ -102,7 +102,7 @@ private:
     std::vector<float> mL2Z;                              // l^2 on z-faces, m^2
     std::vector<double> mForceX, mForceY;                 // balance force on x- and y-faces, m/s^2
     std::vector<double> mTopX, mTopY;                     // top stress per column, m^2/s^2
-    std::vector<double> mNuZ, mStrainH, mOld;
+    std::vector<double> mNuZ, mStrainH, mOld, mNuFace;
 };
 
 }  // namespace gale::sim

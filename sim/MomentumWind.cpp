@@ -9,6 +9,8 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <cstdio>
+#include <cstdlib>
 
 #include "sim/Format.h"
 #include "sim/SteadyWind.h"
@@ -113,6 +115,7 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
         m.projectionIterations = sr.projection.iterations;
         m.projectionConverged = sr.projection.converged;
         m.seconds = sr.total_s;
+        if (std::getenv("MPROF")) std::fprintf(stderr, "adv %.3f visc %.3f proj %.3f (pit %d) total %.3f\n", sr.advection_s, sr.viscosity_s, sr.projection_s, sr.projection.iterations, sr.total_s);
         rep.history.push_back(m);
         rep.iterations = it;
         rep.momentumResidual = m.momentumResidual;
@@ -135,6 +138,14 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
         rep.message = "not converged: momentum residual " + num(rep.momentumResidual) + " > " +
                       num(settings.residualTolerance) + " after " + std::to_string(rep.iterations) +
                       " iterations (raise solver.max_iterations or the tolerance)";
+    if (rep.finite) {
+        rep.finalProjection = solver.project(settings.finalProjection);
+        rep.maxDivergenceScaled = solver.maxDivergenceScaled();
+        if (!rep.finalProjection.converged) {
+            rep.converged = false;
+            rep.message += "; the final projection did not converge: " + rep.finalProjection.message;
+        }
+    }
     res.field = solver.field();
     rep.seconds = since(t0);
     return res;

@@ -44,12 +44,17 @@ struct MomentumSettings {
     /// Pseudo-time step: dt = cfl h / U_max (U_max the start field's largest face speed), > 0.
     /// The semi-Lagrangian step is stable at any cfl; larger steps converge in fewer iterations
     /// with a larger splitting error.
-    double cfl = 4.0;
+    double cfl = 2.0;
     int maxIterations = 300;          ///< pseudo-time steps at most, >= 1
     double residualTolerance = 1e-4;  ///< converged when the RMS momentum residual is <= this, > 0
     double displacementHeight_m = 0.0;  ///< d of the log law (about 2/3 of tall grass), m, >= 0
     double mixingLengthMax_m = surface::BLACKADAR_MAX_MIXING_LENGTH_M;  ///< l_max, metres, > 0
-    SolverSettings projection{/*relativeTolerance=*/1e-6, /*maxIterations=*/60};
+    /// Projection of each pseudo-time step: loose, since every step projects the whole current
+    /// divergence again (what one step leaves is removed by the next), warm-started.
+    SolverSettings projection{/*relativeTolerance=*/1e-3, /*maxIterations=*/60};
+    /// The projection of the converged field, once: its tolerance is the divergence the result
+    /// keeps (max |div u| h / U <= relativeTolerance times the last step's).
+    SolverSettings finalProjection{/*relativeTolerance=*/1e-6, /*maxIterations=*/100};
     SolverSettings start;  ///< the mass-consistent start solve
 
     /// Throws std::invalid_argument naming the scene key (solver.cfl, ...).
@@ -72,7 +77,8 @@ struct [[nodiscard]] MomentumReport {
     bool finite = true;           ///< no NaN/Inf in the field
     int iterations = 0;
     double momentumResidual = 0;  ///< of the last iteration (RMS)
-    double maxDivergenceScaled = 0;
+    double maxDivergenceScaled = 0;  ///< max |div u| h / U after the final projection
+    SolveReport finalProjection;  ///< the final projection's solve
     double dt_s = 0;              ///< the pseudo-time step
     double maxEddyViscosity_m2ps = 0;     ///< of the last iteration
     double maxFrictionVelocity_mps = 0;   ///< of the last iteration

@@ -181,7 +181,9 @@ void UnsteadyWindSolver::extrapolateClosedFaces() {
     detail::extrapolateFaces(mField.w_mps(), mOkZ, mGrid.nx, mGrid.ny, mGrid.nz + 1, EXTRAPOLATION_LAYERS);
 }
 
-SolveReport UnsteadyWindSolver::project() {
+SolveReport UnsteadyWindSolver::project() { return project(mSettings.projection); }
+
+SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {
     const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
     const double h = mGrid.voxelSize_m;
     const PoissonSystem& S = mSystem;
@@ -196,7 +198,7 @@ SolveReport UnsteadyWindSolver::project() {
                 rhs[S.cellIndex(i, j, k)] = h * mDomain.openOutflux(U, V, W, i, j, k);
             }
     });
-    SolveReport rep = mPoisson.solve(rhs, mPsi, mSettings.projection);
+    SolveReport rep = mPoisson.solve(rhs, mPsi, settings);
     const std::vector<double>& psi = mPsi;
     auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
     tbb::parallel_for(0, nz, [&](int k) {

@@ -131,6 +131,8 @@ public:
     MacVelocity velocity() const { return {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()}; }
     /// Projects the current field (after external edits, e.g. seeding in tests).
     SolveReport project();
+    /// The same with other criteria (the steady momentum model's final, tighter projection).
+    SolveReport project(const SolverSettings& settings);
 
 private:
     void seedDue(double t0, double t1);
