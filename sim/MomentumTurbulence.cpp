@@ -320,7 +320,9 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                         const double speed = (c == 0 ? speedX : speedY)[col];
                         const double cw = surface::KAPPA / surface::logFactor(0.5 * wallH, z0, d);
                         wallC = cw * cw * speed;  // tau_w = wallC * u, m/s
-                        (c == 0 ? frictionX : frictionY)[col] = cw * speed;
+                        // The reported u* skips slivers (a wall face under half a cell high sits
+                        // below the log law's range and reports the clamp, not the flow).
+                        if (wallH >= 0.5 * h) (c == 0 ? frictionX : frictionY)[col] = cw * speed;
                     }
                     for (int m = 0; m < n; ++m) {
                         const int k = kl + m;

@@ -66,7 +66,7 @@ struct SurfaceLayerSettings {
 /// What one stress step did.
 struct TurbulenceReport {
     double maxEddyViscosity_m2ps = 0;    ///< largest nu_t over the air, m^2/s
-    double maxFrictionVelocity_mps = 0;  ///< largest wall-function u* over the wall faces, m/s
+    double maxFrictionVelocity_mps = 0;  ///< largest wall-function u* over wall faces >= h/2 high, m/s
 };
 
 /// The stress step on one domain. Geometry (ground heights, wall faces, mixing lengths, the

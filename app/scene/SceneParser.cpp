@@ -426,6 +426,16 @@ void readSolver(Context& ctx, Section s) {
                       Limit::num(ratio) + ")");
     v.settings.relativeTolerance = s.number("tolerance", 1e-6, above(0.0, 0.5));
     v.settings.maxIterations = static_cast<int>(s.integer("max_iterations", 100, 1, 100000));
+    // The steady model (docs/validation.md compares them); the momentum keys apply to it only.
+    const std::string model = s.string("model", "mass_consistent");
+    try {
+        v.model = sim::steadyModelFromName(model);
+    } catch (const std::invalid_argument& e) {
+        s.failKey("model", e.what());
+    }
+    v.domain.momentumModel = v.model == sim::SteadyModel::Momentum;
+    v.momentum.displacementHeight_m = s.number("displacement_height_m", 0.0, closed(0.0, 1e4));
+    v.momentum.maxIterations = static_cast<int>(s.integer("momentum_max_iterations", 300, 1, 100000));
     s.finish();
 }
 
