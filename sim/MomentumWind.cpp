@@ -9,8 +9,6 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
-#include <cstdio>
-#include <cstdlib>
 
 #include "sim/Format.h"
 #include "sim/SteadyWind.h"
@@ -97,6 +95,12 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
     start = SteadyWindResult{};  // the solver holds its own copy
 
     const double scale = h / (uRef * uRef * rep.dt_s);
+    // No convergence before the inflow has crossed the box once at the ambient speed: a small
+    // disturbance (a low hill) changes the field little per step from the start, so the residual
+    // alone would stop before the wake has formed. A calm wind (speed 0) has nothing to carry.
+    const double dirRad = ambient.direction_deg * M_PI / 180.0;
+    const double crossing_m = std::abs(std::cos(dirRad)) * domain.nx() * h + std::abs(std::sin(dirRad)) * domain.ny() * h;
+    rep.minIterations = ambient.speed_mps > 0.0 ? int(std::ceil(crossing_m / (ambient.speed_mps * rep.dt_s))) : 1;
     std::vector<double> prevU, prevV, prevW;
     for (int it = 1; it <= settings.maxIterations; ++it) {
         prevU = solver.field().u_mps(), prevV = solver.field().v_mps(), prevW = solver.field().w_mps();
@@ -115,7 +119,6 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
         m.projectionIterations = sr.projection.iterations;
         m.projectionConverged = sr.projection.converged;
         m.seconds = sr.total_s;
-        if (std::getenv("MPROF")) std::fprintf(stderr, "adv %.3f visc %.3f proj %.3f (pit %d) total %.3f\n", sr.advection_s, sr.viscosity_s, sr.projection_s, sr.projection.iterations, sr.total_s);
         rep.history.push_back(m);
         rep.iterations = it;
         rep.momentumResidual = m.momentumResidual;
@@ -127,7 +130,7 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
             rep.message = "the field became non-finite at iteration " + std::to_string(it);
             break;
         }
-        if (m.momentumResidual <= settings.residualTolerance && m.projectionConverged) {
+        if (m.momentumResidual <= settings.residualTolerance && m.projectionConverged && it >= rep.minIterations) {
             rep.converged = true;
             rep.message = "momentum residual " + num(m.momentumResidual) + " <= " + num(settings.residualTolerance) +
                           " after " + std::to_string(it) + " iterations";

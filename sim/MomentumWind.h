@@ -19,7 +19,9 @@
 /// by their open fractions, of (u^{n+1} - u^n) / dt scaled by h / U^2 (U = the ambient speed; the steady momentum
 /// equations' imbalance in units of the advective acceleration U^2 / h), its maximum, and the
 /// largest divergence after the projection, max |div u| h / U. Converged: the RMS residual at or
-/// below residualTolerance with a converged projection. Otherwise the report says why, and the
+/// below residualTolerance with a converged projection, and at least as many steps as the
+/// ambient wind needs to cross the box once (MomentumReport::minIterations; a low hill's small
+/// disturbance changes the field little per step from the start). Otherwise the report says why, and the
 /// field is the last iterate.
 ///
 /// @code
@@ -76,6 +78,7 @@ struct [[nodiscard]] MomentumReport {
     bool converged = false;
     bool finite = true;           ///< no NaN/Inf in the field
     int iterations = 0;
+    int minIterations = 0;        ///< steps for the ambient wind to cross the box once
     double momentumResidual = 0;  ///< of the last iteration (RMS)
     double maxDivergenceScaled = 0;  ///< max |div u| h / U after the final projection
     SolveReport finalProjection;  ///< the final projection's solve

@@ -23,11 +23,11 @@ AmbientWind logWind(double speed_mps, double z0_m = 0.03) {
     return a;
 }
 
-/// Flat ground at groundZ_m over a 240 m x 40 m box, 2 m cells, top at 60 m.
+/// Flat ground at groundZ_m under a 120 m x 8 m box (2 m cells: 60 x 4 columns).
 Heightfield flatGround(double groundZ_m) {
     TerrainSpec t;
     t.kind = TerrainKind::Flat;
-    t.sizeX_m = 240, t.sizeY_m = 40, t.spacing_m = 2.0;
+    t.sizeX_m = 120, t.sizeY_m = 8, t.spacing_m = 2.0;
     Heightfield hf = makeTerrain(t);
     for (float& z : hf.height_m) z = float(groundZ_m);
     return hf;
@@ -209,7 +209,7 @@ TEST(MomentumWind, MemoryEstimateIsCheckedBeforeAllocating) {
     // A limit between the mass-consistent and the momentum estimate of the same box: the
     // mass-consistent domain builds, the momentum one is refused before allocating.
     const Heightfield hf = flatGround(0.0);
-    const int nx = 120, ny = 20, nz = 30;  // 240 m x 40 m x 60 m in 2 m cells
+    const int nx = 60, ny = 4, nz = 30;  // 120 m x 8 m x 60 m in 2 m cells
     const double mc = AirDomain::estimateSolveMemory_bytes(nx, ny, nz, false);
     const double mom = AirDomain::estimateSolveMemory_bytes(nx, ny, nz, true);
     ASSERT_GT(mom, mc);
