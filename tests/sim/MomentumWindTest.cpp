@@ -45,6 +45,13 @@ Heightfield ridge(double height_m, double sigma_m, double cell_m) {
     return makeTerrain(t);
 }
 
+/// A domain of cell_m cubes with the automatic top.
+DomainSpec cubes(double cell_m) {
+    DomainSpec s;
+    s.voxelSize_m = cell_m;
+    return s;
+}
+
 /// Largest slope of the Gaussian ridge: H / sigma * exp(-1/2).
 double maxSlope(double height_m, double sigma_m) { return height_m / sigma_m * std::exp(-0.5); }
 
@@ -108,7 +115,7 @@ TEST(MomentumWind, SteepRidgeSlowsTheLeeBelowMassConsistentAndReversesTheFlow) {
     const double H = 40, sigma = 24, h = 4;
     ASSERT_GE(maxSlope(H, sigma), 0.5);
     const Heightfield hf = ridge(H, sigma, h);
-    DomainSpec spec{h};
+    DomainSpec spec = cubes(h);
     spec.momentumModel = true;
     AirDomain domain(hf, spec);
     const AmbientWind wind = logWind(10.0);
@@ -130,7 +137,7 @@ TEST(MomentumWind, SteepRidgeSlowsTheLeeBelowMassConsistentAndReversesTheFlow) {
 TEST(MomentumWind, GentleRidgeHasNoReversedFlow) {
     const double H = 8, sigma = 50, h = 4;
     ASSERT_LE(maxSlope(H, sigma), 0.1);
-    AirDomain domain(ridge(H, sigma, h), {h});
+    AirDomain domain(ridge(H, sigma, h), cubes(h));
     MomentumSettings ms;
     ms.maxIterations = RIDGE_ITERATIONS;
     const MomentumWindResult mom = solveMomentumWind(domain, logWind(10.0), ms);
@@ -141,7 +148,7 @@ TEST(MomentumWind, GentleRidgeHasNoReversedFlow) {
 TEST(MomentumWind, ConvergedFieldIsDivergenceFreeAndFiniteOnCutCells) {
     // A gentle ridge whose ground cuts cells everywhere; the history is complete and honest.
     const double h = 4;
-    AirDomain domain(ridge(12, 40, h), {h});
+    AirDomain domain(ridge(12, 40, h), cubes(h));
     const AmbientWind wind = logWind(8.0);
     MomentumSettings ms;
     ms.maxIterations = 200;
