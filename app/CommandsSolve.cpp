@@ -23,6 +23,7 @@
 #include "app/io/OutputFolder.h"
 #include "app/io/Progress.h"
 #include "app/io/Timing.h"
+#include "base/Numbers.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/WindRaster.h"
 #include "sim/AirDomain.h"
@@ -49,6 +50,8 @@ struct SolveRequest {
     sim::DomainSpec domain;
     sim::MassConsistentWeights weights;
     sim::SolverSettings solver;
+    sim::SteadyModel model = sim::SteadyModel::MassConsistent;  ///< [solver] model
+    sim::MomentumSettings momentum;                              ///< model = momentum
     std::string vdbPath;     ///< the field (grids "velocity" and "speed"); empty: not written
     std::string reportPath;  ///< the JSON report; empty: not written
     std::string sceneName;   ///< recorded in the report and the .vdb metadata
@@ -123,6 +126,36 @@ class SolveInterruptGuard {
     void (*mPrevious)(int);
 };
 
+/// The momentum model's settings, result and convergence history (one entry per pseudo-time step).
+nlohmann::json momentumJson(const sim::MomentumReport& m, const sim::MomentumSettings& s) {
+    nlohmann::json history = nlohmann::json::array();
+    for (const sim::MomentumIteration& it : m.history)
+        history.push_back({{"iteration", it.iteration},
+                           {"momentum_residual", it.momentumResidual},
+                           {"max_momentum_residual", it.maxMomentumResidual},
+                           {"max_div_u_h_over_U", it.maxDivergenceScaled},
+                           {"projection_iterations", it.projectionIterations},
+                           {"projection_converged", it.projectionConverged},
+                           {"step_s", it.seconds}});
+    return {{"converged", m.converged},
+            {"finite", m.finite},
+            {"iterations", m.iterations},
+            {"momentum_residual", m.momentumResidual},
+            {"residual_definition", "open-fraction weighted RMS over faces of |u(n+1) - u(n)| / dt * h / U^2"},
+            {"tolerance", s.residualTolerance},
+            {"max_div_u_h_over_U", m.maxDivergenceScaled},
+            {"pseudo_dt_s", m.dt_s},
+            {"cfl", s.cfl},
+            {"mixing_length_max_m", s.mixingLengthMax_m},
+            {"displacement_height_m", s.displacementHeight_m},
+            {"max_eddy_viscosity_m2ps", m.maxEddyViscosity_m2ps},
+            {"max_friction_velocity_mps", m.maxFrictionVelocity_mps},
+            {"start_iterations", m.start.iterations},
+            {"message", m.message},
+            {"seconds", m.seconds},
+            {"history", history}};
+}
+
 }  // namespace
 
 int runSolve(const SolveRequest& req) {
@@ -135,17 +168,29 @@ int runSolve(const SolveRequest& req) {
     const double domainSeconds = secondsSince(t0);
     std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MiB; solving...\n", domain.nx(),
                  domain.ny(), domain.nz(), domain.activeCellCount(),
-                 domain.memoryEstimate_bytes() / (1024.0 * 1024.0));
-    sim::SteadyWindSolver solver(domain, req.weights);
+                 domain.memoryEstimate_bytes() / MIB);
     gStage = STAGE_SOLVING;
-    const sim::SteadyWindResult res = solver.solve(req.ambient, req.solver);
+    sim::SteadyWindResult res;
+    std::optional<sim::MomentumReport> momentum;
+    std::optional<sim::SteadyWindSolver> solver;  // the mass-consistent model's, kept for its memory figure
+    if (req.model == sim::SteadyModel::Momentum) {
+        sim::SteadyModelResult m =
+            sim::solveSteadyModel(domain, req.ambient, req.model, req.weights, req.solver, req.momentum);
+        res.field = std::move(m.field), res.report = m.report, momentum = std::move(m.momentum);
+    } else {
+        solver.emplace(domain, req.weights);
+        res = solver->solve(req.ambient, req.solver);
+    }
     gStage = STAGE_WRITING;
     const sim::SolveReport& rep = res.report;
 
     nlohmann::json j;
     j["scene"] = req.sceneName;
-    j["model"] = "steady mass-consistent wind (Sherman 1978), cut cells (Batty, Bertails, Bridson 2007), MGPCG "
-                 "(McAdams, Sifakis, Teran 2010)";
+    j["model"] = momentum ? "steady momentum model (sim/MomentumWind.h): RANS, mixing length (Blackadar 1962), log-law "
+                            "wall stress, pseudo-time stepping from the mass-consistent field"
+                          : "steady mass-consistent wind (Sherman 1978), cut cells (Batty, Bertails, Bridson 2007), MGPCG "
+                            "(McAdams, Sifakis, Teran 2010)";
+    if (momentum) j["momentum"] = momentumJson(*momentum, req.momentum);
     const auto o = domain.wsMin_m();
     j["domain"] = {{"cells", {domain.nx(), domain.ny(), domain.nz()}},
                    {"voxel_size_m", domain.voxelSize_m()},
@@ -157,7 +202,7 @@ int runSolve(const SolveRequest& req) {
                    {"memory_limit_bytes", req.domain.memoryLimit_bytes},
                    {"domain_bytes", domain.memory_bytes()},
                    {"vdb_mask_bytes", domain.vdbMemory_bytes()},
-                   {"solver_bytes", solver.poisson().memory_bytes()}};
+                   {"solver_bytes", solver ? solver->poisson().memory_bytes() : size_t(0)}};
     j["ambient"] = {{"speed_mps", req.ambient.speed_mps},
                     {"reference_height_m", req.ambient.referenceHeight_m},
                     {"direction_deg", req.ambient.direction_deg},
@@ -395,6 +440,8 @@ int runSolveVerb(const SolveVerbOptions& options) {
     request.domain = scene.solver.domain;
     request.weights = scene.solver.weights;
     request.solver = scene.solver.settings;
+    request.model = scene.solver.model;
+    request.momentum = scene.solver.momentum;
     request.sceneName = scene.name;
     if (scene.wind.kind == WindKind::Unsteady)
         request.unsteady = UnsteadySolveRequest{scene.unsteady.settings, scene.unsteady.duration_s,

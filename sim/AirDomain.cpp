@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/MomentumWind.h"
 #include "sim/PoissonSolver.h"
 #include "sim/VdbIO.h"
 #include "base/Numbers.h"
@@ -60,7 +61,7 @@ float cleanFraction(double f, bool cutCells) {
 }  // namespace
 }  // namespace detail
 
-double AirDomain::estimateSolveMemory_bytes(int nx, int ny, int nz) {
+double AirDomain::estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentum) {
     const double cells = double(nx) * ny * nz;
     // Per cell of the box: open fractions 12 B and air flags 1 B (the domain), the PoissonSystem
     // copy of the weights 12 B (SteadyWindSolver), the solver's hierarchy and PCG vectors
@@ -68,7 +69,8 @@ double AirDomain::estimateSolveMemory_bytes(int nx, int ny, int nz) {
     // velocity update's face flags 3 B, the OpenVDB mask ~0.5 B and the three output grids written
     // by writeVdb (~16 B per air voxel for velocity and speed, ~13 B per box voxel for the
     // staggered faces). Checked against peak RSS in docs/solver.md.
-    return cells * (12.0 + 1.0 + 12.0 + PoissonSolver::estimatedBytesPerCell() + 24.0 + 16.0 + 3.0 + 0.5 + 16.0 + 13.0);
+    return cells * (12.0 + 1.0 + 12.0 + PoissonSolver::estimatedBytesPerCell() + 24.0 + 16.0 + 3.0 + 0.5 + 16.0 + 13.0 +
+                    (momentum ? MOMENTUM_EXTRA_BYTES_PER_CELL : 0.0));
 }
 
 AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
@@ -112,7 +114,7 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
         top = maxH + std::max(AUTO_TOP_RELIEF_FACTOR * (maxH - minH), AUTO_TOP_MIN_CELLS * h);
     }
     const double nzD = std::ceil((top - zMin) / h - 1e-9);
-    const double estimate = estimateSolveMemory_bytes(1, 1, 1) * nxD * nyD * nzD;
+    const double estimate = estimateSolveMemory_bytes(1, 1, 1, spec.momentumModel) * nxD * nyD * nzD;
     if (nxD * nyD * nzD > 2.0e9 || estimate > spec.memoryLimit_bytes)
         throw ParameterError("solver.memory_limit_mb", num(std::round(spec.memoryLimit_bytes / MIB)),
                              "is below the estimated " + num(std::round(estimate / MIB)) + " MiB for " +

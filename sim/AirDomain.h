@@ -44,6 +44,8 @@ struct DomainSpec {
     /// true: cut cells (open fractions in [0, 1]); false: stair-steps, every fraction rounded to
     /// 0 or 1 at 1/2 (for comparisons: first-order boundary, docs/solver.md).
     bool cutCells = true;
+    /// true: the estimate also counts the momentum model's arrays (sim/MomentumWind.h).
+    bool momentumModel = false;
 };
 
 class AirDomain {
@@ -84,8 +86,9 @@ public:
     /// Bytes of the OpenVDB air mask alone (Grid::memUsage).
     size_t vdbMemory_bytes() const;
 
-    /// Estimated peak bytes of a steady solve on a box of nx * ny * nz cells.
-    static double estimateSolveMemory_bytes(int nx, int ny, int nz);
+    /// Estimated peak bytes of a steady solve on a box of nx * ny * nz cells (momentum: of the
+    /// momentum model, which adds MOMENTUM_EXTRA_BYTES_PER_CELL).
+    static double estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentum = false);
 
     /// Open fraction of the x-face between cells (i-1, j, k) and (i, j, k), i in [0, nx].
     float openFractionX(int i, int j, int k) const { return mOpenX[size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k)]; }

@@ -30,10 +30,13 @@
 /// @endcode
 
 #include <functional>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "sim/AirDomain.h"
 #include "sim/AmbientWind.h"
+#include "sim/MomentumWind.h"
 #include "sim/PoissonSolver.h"
 #include "sim/WindField.h"
 
@@ -104,5 +107,31 @@ private:
 [[nodiscard]] SteadyWindResult solveSteadyWind(const AirDomain& domain, const AmbientWind& ambient,
                                                const MassConsistentWeights& weights, const SolverSettings& settings,
                                                const BoundaryPotential& boundary = {});
+
+/// The steady model a scene chooses ([solver] model).
+enum class SteadyModel {
+    MassConsistent,  ///< Sherman 1978: free slip, no drag (this header)
+    Momentum,        ///< RANS with a surface layer (sim/MomentumWind.h)
+};
+
+/// Name as written in scene files ("mass_consistent", "momentum"), and back; fromName throws
+/// std::invalid_argument listing the valid names.
+const char* steadyModelName(SteadyModel model);
+SteadyModel steadyModelFromName(const std::string& name);
+
+/// What either model produced. For the momentum model `report` summarises its run (converged,
+/// iterations = pseudo-time steps, max divergence, message) and `momentum` holds the history.
+struct SteadyModelResult {
+    WindField field;
+    SolveReport report;
+    std::optional<MomentumReport> momentum;
+};
+
+/// Solves the chosen steady model: the mass-consistent field with `weights` and `settings`, or
+/// the momentum model started from the mass-consistent field solved with `settings`
+/// (momentum.start is overwritten by them). Throws std::invalid_argument as the model does.
+[[nodiscard]] SteadyModelResult solveSteadyModel(const AirDomain& domain, const AmbientWind& ambient, SteadyModel model,
+                                                 const MassConsistentWeights& weights, const SolverSettings& settings,
+                                                 const MomentumSettings& momentum = {});
 
 }  // namespace gale::sim

@@ -49,6 +49,7 @@ void UnsteadySettings::validate() const {
         throw std::invalid_argument("unsteady.max_dt_s must be > 0, got " + num(maxDt_s));
     if (!(viscosity_m2ps >= 0.0) || !std::isfinite(viscosity_m2ps))
         throw std::invalid_argument("unsteady.viscosity_m2ps must be >= 0, got " + num(viscosity_m2ps));
+    if (surfaceLayer.enabled) surfaceLayer.validate();
     if (!(vorticityConfinement >= 0.0) || !std::isfinite(vorticityConfinement))
         throw std::invalid_argument("unsteady.vorticity_confinement must be >= 0, got " + num(vorticityConfinement));
     for (size_t i = 0; i < gusts.size(); ++i) try {
@@ -103,6 +104,9 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
                                                     : k == nz        ? (mSettings.openTop ? air(i, j, nz - 1) : uint8_t(0))
                                                                      : 0;
     mSeeded.assign(mSettings.whirlwinds.size(), 0);
+    if (mSettings.surfaceLayer.enabled)
+        mStress = std::make_unique<TurbulentStress>(domain, mSettings.surfaceLayer, mSettings.viscosity_m2ps, mOkX,
+                                                    mOkY, mOkZ);
     if (!mSettings.openTop) {
         // The steady field's small flux through the top becomes the lid's first projection.
         closeLid();
@@ -178,7 +182,9 @@ void UnsteadyWindSolver::extrapolateClosedFaces() {
     detail::extrapolateFaces(mField.w_mps(), mOkZ, mGrid.nx, mGrid.ny, mGrid.nz + 1, EXTRAPOLATION_LAYERS);
 }
 
-SolveReport UnsteadyWindSolver::project() {
+SolveReport UnsteadyWindSolver::project() { return project(mSettings.projection); }
+
+SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {
     const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
     const double h = mGrid.voxelSize_m;
     const PoissonSystem& S = mSystem;
@@ -193,7 +199,7 @@ SolveReport UnsteadyWindSolver::project() {
                 rhs[S.cellIndex(i, j, k)] = h * mDomain.openOutflux(U, V, W, i, j, k);
             }
     });
-    SolveReport rep = mPoisson.solve(rhs, mPsi, mSettings.projection);
+    SolveReport rep = mPoisson.solve(rhs, mPsi, settings);
     const std::vector<double>& psi = mPsi;
     auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
     tbb::parallel_for(0, nz, [&](int k) {
@@ -381,8 +387,13 @@ StepReport UnsteadyWindSolver::step(double dt) {
     if (forcing) rep.forcingEnergy_m5ps2 = kineticEnergy_m5ps2() - keBeforeForces;
     rep.forcing_s += since(t);
 
-    // 4. viscosity.
-    if (mSettings.viscosity_m2ps > 0.0) {
+    // 4. viscosity: the surface layer's stresses, or a constant viscosity.
+    if (mStress) {
+        t = Clock::now();
+        rep.turbulence = mStress->apply(dt, mField.u_mps(), mField.v_mps(), mField.w_mps());
+        if (!mSettings.openTop) closeLid();
+        rep.viscosity_s = since(t);
+    } else if (mSettings.viscosity_m2ps > 0.0) {
         t = Clock::now();
         const ViscosityReport vr = diffuseImplicit(mGrid, mSettings.viscosity_m2ps, dt, {&mOkX, &mOkY, &mOkZ},
                                                    mField.u_mps(), mField.v_mps(), mField.w_mps());

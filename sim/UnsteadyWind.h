@@ -16,7 +16,10 @@
 ///     plus the gust), whirlwind forcing during a forced whirlwind's lifetime (relaxes its circulation
 ///     at 2 r_c back to the seeded one; injects, never removes), vorticity confinement
 ///     (Fedkiw, Stam, Jensen 2001);
-///  4. optional implicit viscosity (sim/Viscosity.h: backward Euler, unconditionally stable);
+///  4. optional implicit viscosity (sim/Viscosity.h: backward Euler, unconditionally stable), or,
+///     with UnsteadySettings::surfaceLayer enabled, the mixing-length eddy viscosity and the
+///     log-law wall stress of sim/MomentumTurbulence.h (gusts then slow and lag near rough
+///     ground, whirlwinds lose speed at the surface);
 ///  5. projection: the steady solve's operator with A = I (SteadyWindSolver::makeSystem(domain,
 ///     1)) on cut cells, fluxes theta_f u_f through open fractions theta_f, Dirichlet (p = 0) on
 ///     the sides, a free-slip lid on top (UnsteadySettings::openTop), no flux through the terrain; MGPCG warm-started from the previous
@@ -38,12 +41,14 @@
 /// @endcode
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "sim/Advection.h"
 #include "sim/AirDomain.h"
 #include "sim/Gusts.h"
+#include "sim/MomentumTurbulence.h"
 #include "sim/PoissonSolver.h"
 #include "sim/Vortices.h"
 #include "sim/WindField.h"
@@ -65,6 +70,8 @@ struct UnsteadySettings {
     /// hollows into a ring within 5 s and the kinetic energy grows by 7 % in 10 s without forcing;
     /// under the lid the same vortex stays compact and its energy decays monotonically.
     bool openTop = false;
+    /// Eddy viscosity and wall stress (off by default); viscosity_m2ps is then added to nu_t.
+    SurfaceLayerSettings surfaceLayer;
     std::vector<GustEvent> gusts;
     std::vector<Whirlwind> whirlwinds;
 
@@ -83,6 +90,7 @@ struct [[nodiscard]] StepReport {
     bool finite = true;                 ///< no NaN/Inf in any velocity after the step
     SolveReport projection;             ///< the elliptic solve of step 5
     int viscosityIterations = 0;        ///< CG iterations of the viscous step (0: none)
+    TurbulenceReport turbulence;        ///< the surface-layer stress step (zeros when off)
     /// Kinetic energy the forces of step 3 changed (whirlwind forcing, confinement), m^5/s^2;
     /// 0 when no force runs. Seeding is not forcing: it happens before the step's advection.
     double forcingEnergy_m5ps2 = 0;
@@ -123,6 +131,8 @@ public:
     MacVelocity velocity() const { return {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()}; }
     /// Projects the current field (after external edits, e.g. seeding in tests).
     SolveReport project();
+    /// The same with other criteria (the steady momentum model's final, tighter projection).
+    SolveReport project(const SolverSettings& settings);
 
 private:
     void seedDue(double t0, double t1);
@@ -149,6 +159,7 @@ private:
     PoissonSystem mSystem;
     PoissonSolver mPoisson;
     std::vector<double> mPsi;  // projection potential (m^2/s), warm start
+    std::unique_ptr<TurbulentStress> mStress;  // surface-layer stresses, when enabled
     std::vector<std::array<double, 2>> mAxes;
     std::vector<uint8_t> mSeeded;
 };

@@ -72,6 +72,8 @@ struct SolverSection {
     sim::DomainSpec domain;
     sim::MassConsistentWeights weights;
     sim::SolverSettings settings;
+    sim::SteadyModel model = sim::SteadyModel::MassConsistent;  ///< [solver] model
+    sim::MomentumSettings momentum;  ///< model = "momentum" (sim/MomentumWind.h)
 };
 
 /// [unsteady] with [[wind.gusts]] and [[wind.whirlwinds]] (docs/unsteady.md). Read for every

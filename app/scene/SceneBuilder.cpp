@@ -131,10 +131,10 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
     built.domainSummary = describeDomain(*domain);
     if (!options.solveWind) return;
     if (options.progress) options.progress("solving the steady wind: " + built.domainSummary);
-    sim::SteadyWindResult result;
+    sim::SteadyModelResult result;
     try {
-        result = sim::solveSteadyWind(*domain, scene.wind.ambient, scene.solver.weights,
-                                      scene.solver.settings);
+        result = sim::solveSteadyModel(*domain, scene.wind.ambient, scene.solver.model, scene.solver.weights,
+                                       scene.solver.settings, scene.solver.momentum);
     } catch (const std::invalid_argument& e) {
         rethrowAsSceneError(scene, "wind", e);
     }

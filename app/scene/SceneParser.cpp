@@ -440,6 +440,16 @@ void readSolver(Context& ctx, Section s) {
                       Limit::num(ratio) + ")");
     v.settings.relativeTolerance = s.number("tolerance", 1e-6, above(0.0, 0.5));
     v.settings.maxIterations = static_cast<int>(s.integer("max_iterations", 100, 1, 100000));
+    // The steady model (docs/validation.md compares them); the momentum keys apply to it only.
+    const std::string model = s.string("model", "mass_consistent");
+    try {
+        v.model = sim::steadyModelFromName(model);
+    } catch (const std::invalid_argument& e) {
+        s.failKey("model", e.what());
+    }
+    v.domain.momentumModel = v.model == sim::SteadyModel::Momentum;
+    v.momentum.displacementHeight_m = s.number("displacement_height_m", 0.0, closed(0.0, 1e4));
+    v.momentum.maxIterations = static_cast<int>(s.integer("momentum_max_iterations", 300, 1, 100000));
     s.finish();
 }
 
@@ -462,6 +472,13 @@ void readUnsteady(Context& ctx, Section s) {
     v.viscosity_m2ps = s.number("viscosity_m2ps", 0.0, closed(0.0, 1e6));
     v.vorticityConfinement = s.number("vorticity_confinement", 0.0, closed(0.0, 100.0));
     v.openTop = s.boolean("open_top", false);
+    // The momentum model's surface layer in each step (sim/MomentumTurbulence.h): the wind's
+    // roughness at the wall, the mixing-length eddy viscosity, a log wind held in balance.
+    v.surfaceLayer.enabled = s.boolean("surface_layer", false);
+    const sim::AmbientWind& ambient = ctx.scene->wind.ambient;
+    v.surfaceLayer.roughness_m = ambient.roughness_m;
+    v.surfaceLayer.displacementHeight_m = ctx.scene->solver.momentum.displacementHeight_m;
+    if (ambient.profile == sim::WindProfile::LogLaw) v.surfaceLayer.balanced = ambient;
     v.projection.relativeTolerance = s.number("tolerance", 1e-5, above(0.0, 0.5));
     v.projection.maxIterations = static_cast<int>(s.integer("max_iterations", 60, 1, 100000));
     u.outputEvery_s = s.number("output_every_s", 1.0, above(0.0, 1e7));

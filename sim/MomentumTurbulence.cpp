@@ -1,0 +1,371 @@
+/// \file MomentumTurbulence.cpp
+/// Mixing-length eddy viscosity (Prandtl; Blackadar 1962) and log-law wall stress, one implicit
+/// step per column (Thomas algorithm).
+#include "sim/MomentumTurbulence.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "sim/Format.h"
+
+namespace gale::sim {
+namespace {
+
+using detail::num;
+
+/// The wall face's control-volume height, as a fraction of h, is kept in this range: below it a
+/// sliver of a cut face would turn the wall drag into a division by almost nothing; above it a
+/// face far above the ground (beside a cliff) would be treated as touching it.
+constexpr double MIN_WALL_HEIGHT_CELLS = 0.05;
+constexpr double MAX_WALL_HEIGHT_CELLS = 1.5;
+
+/// Solves the tridiagonal system sub[k] x[k-1] + diag[k] x[k] + sup[k] x[k+1] = rhs[k], k in
+/// [0, n), by the Thomas algorithm (stable without pivoting for the diagonally dominant systems
+/// of the stress step). Overwrites sup and rhs; the solution lands in rhs.
+void solveTridiagonal(int n, const double* sub, const double* diag, double* sup, double* rhs) {
+    double beta = diag[0];
+    rhs[0] /= beta;
+    for (int k = 1; k < n; ++k) {
+        sup[k - 1] /= beta;
+        beta = diag[k] - sub[k] * sup[k - 1];
+        rhs[k] = (rhs[k] - sub[k] * rhs[k - 1]) / beta;
+    }
+    for (int k = n - 2; k >= 0; --k) rhs[k] -= sup[k] * rhs[k + 1];
+}
+
+/// Per-thread scratch of one column.
+struct ColumnScratch {
+    std::vector<double> sub, diag, sup, rhs;
+    explicit ColumnScratch(int n) : sub(size_t(n)), diag(size_t(n)), sup(size_t(n)), rhs(size_t(n)) {}
+};
+
+}  // namespace
+
+void SurfaceLayerSettings::validate() const {
+    if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
+        throw std::invalid_argument("solver.roughness_m must be > 0 and finite, got " + num(roughness_m));
+    if (!(displacementHeight_m >= 0.0) || !std::isfinite(displacementHeight_m))
+        throw std::invalid_argument("solver.displacement_height_m must be >= 0 and finite, got " +
+                                    num(displacementHeight_m));
+    if (!(mixingLengthMax_m > 0.0) || !std::isfinite(mixingLengthMax_m))
+        throw std::invalid_argument("solver.mixing_length_max_m must be > 0 and finite, got " + num(mixingLengthMax_m));
+    if (balanced) {
+        balanced->validate();
+        if (!(balanced->referenceHeight_m > displacementHeight_m + roughness_m))
+            throw std::invalid_argument("wind.reference_height_m (" + num(balanced->referenceHeight_m) +
+                                        " m) must be above displacement height + roughness (" +
+                                        num(displacementHeight_m + roughness_m) + " m)");
+    }
+}
+
+TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings& s, double nuMol,
+                                 const std::vector<uint8_t>& okX, const std::vector<uint8_t>& okY,
+                                 const std::vector<uint8_t>& okZ)
+    : mDomain(D), mSettings(s), mNuMol(nuMol), mOkX(okX), mOkY(okY), mOkZ(okZ) {
+    mSettings.validate();
+    if (!(nuMol >= 0.0) || !std::isfinite(nuMol))
+        throw std::invalid_argument("unsteady.viscosity_m2ps must be >= 0, got " + num(nuMol));
+    const int nx = D.nx(), ny = D.ny(), nz = D.nz();
+    if (okX.size() != size_t(nx + 1) * ny * nz || okY.size() != size_t(nx) * (ny + 1) * nz ||
+        okZ.size() != size_t(nx) * ny * (nz + 1))
+        throw std::invalid_argument("TurbulentStress: face masks do not match the domain");
+    const double h = D.voxelSize_m(), z0 = s.roughness_m, d = s.displacementHeight_m;
+    const auto o = D.wsMin_m();
+    const Heightfield& T = D.terrain();
+
+    mGroundCell.resize(size_t(nx) * ny);
+    mGroundX.resize(size_t(nx + 1) * ny);
+    mGroundY.resize(size_t(nx) * (ny + 1));
+    for (int j = 0; j <= ny; ++j)
+        for (int i = 0; i <= nx; ++i) {
+            const double x = o[0] + i * h, y = o[1] + j * h;
+            if (i < nx && j < ny) mGroundCell[size_t(i) + size_t(nx) * j] = T.sample(x + 0.5 * h, y + 0.5 * h);
+            if (j < ny) mGroundX[size_t(i) + size_t(nx + 1) * j] = T.sample(x, y + 0.5 * h);
+            if (i < nx) mGroundY[size_t(i) + size_t(nx) * j] = T.sample(x + 0.5 * h, y);
+        }
+
+    // Lowest unknown face of each column (the masks are monotone in k over a heightfield).
+    auto lowest = [nz](const std::vector<uint8_t>& ok, int n0, int n1, int n2, std::vector<int>& low) {
+        low.assign(size_t(n0) * n1, -1);
+        for (int j = 0; j < n1; ++j)
+            for (int i = 0; i < n0; ++i)
+                for (int k = 0; k < n2; ++k)
+                    if (ok[size_t(i) + size_t(n0) * (j + size_t(n1) * k)]) {
+                        low[size_t(i) + size_t(n0) * j] = k;
+                        break;
+                    }
+        (void)nz;
+    };
+    lowest(okX, nx + 1, ny, nz, mLowX);
+    lowest(okY, nx, ny + 1, nz, mLowY);
+    lowest(okZ, nx, ny, nz + 1, mLowZ);
+
+    // l^2 on every z-face with air below (the top face included), from the cell column's ground.
+    mL2Z.assign(size_t(nx) * ny * (nz + 1), 0.f);
+    tbb::parallel_for(1, nz + 1, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                if (!D.isAir(i, j, k - 1)) continue;
+                const double zE = o[2] + k * h - mGroundCell[size_t(i) + size_t(nx) * j];
+                const double l = surface::discreteMixingLength_m(zE, h, s.mixingLengthMax_m, z0, d);
+                mL2Z[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = float(l * l);
+            }
+    });
+
+    // Balance force and top stress of the ambient profile, per face of the x and y columns.
+    mForceX.assign(okX.size(), 0.0), mForceY.assign(okY.size(), 0.0);
+    mTopX.assign(size_t(nx + 1) * ny, 0.0), mTopY.assign(size_t(nx) * (ny + 1), 0.0);
+    if (!s.balanced) return;
+    const AmbientWind& A = *s.balanced;
+    const double uStar = surface::frictionVelocity_mps(A.speed_mps, A.referenceHeight_m, z0, d);
+    const double dir = A.direction_deg * M_PI / 180.0, e[2] = {std::cos(dir), std::sin(dir)};
+    for (int c = 0; c < 2; ++c) {
+        const int n0 = nx + (c == 0), n1 = ny + (c == 1);
+        const std::vector<int>& low = c == 0 ? mLowX : mLowY;
+        const std::vector<double>& ground = c == 0 ? mGroundX : mGroundY;
+        std::vector<double>& force = c == 0 ? mForceX : mForceY;
+        std::vector<double>& top = c == 0 ? mTopX : mTopY;
+        tbb::parallel_for(0, n1, [&](int j) {
+            std::vector<double> tau(size_t(nz) + 1);
+            for (int i = 0; i < n0; ++i) {
+                const size_t col = size_t(i) + size_t(n0) * j;
+                const int kl = low[col];
+                if (kl < 0) continue;
+                // The two cell columns beside the face column (clamped at the box sides).
+                const int ia = c == 0 ? std::max(i - 1, 0) : i, ib = c == 0 ? std::min(i, nx - 1) : i;
+                const int ja = c == 1 ? std::max(j - 1, 0) : j, jb = c == 1 ? std::min(j, ny - 1) : j;
+                auto l2Edge = [&](int k) {
+                    return 0.5 * (double(mL2Z[size_t(ia) + size_t(nx) * (ja + size_t(ny) * k)]) +
+                                  double(mL2Z[size_t(ib) + size_t(nx) * (jb + size_t(ny) * k)]));
+                };
+                const double g = ground[col];
+                const double wallH = std::clamp(o[2] + (kl + 1) * h - g, MIN_WALL_HEIGHT_CELLS * h, MAX_WALL_HEIGHT_CELLS * h);
+                auto profileHeight = [&](int k) { return k == kl ? 0.5 * wallH : o[2] + (k + 0.5) * h - g; };
+                auto U0 = [&](double z) { return surface::logLawSpeed_mps(uStar, z, z0, d); };
+                // tau[k - kl]: stress through the bottom of face k; tau[nz - kl]: the top's.
+                const double zp = profileHeight(kl), u0p = U0(zp);
+                const double cw = surface::KAPPA / surface::logFactor(zp, z0, d);
+                tau[0] = cw * cw * u0p * u0p;
+                for (int k = kl + 1; k <= nz; ++k) {
+                    const double zLo = profileHeight(k - 1), zHi = k < nz ? profileHeight(k) : zLo + h;
+                    const double grad = (U0(zHi) - U0(zLo)) / h;
+                    tau[size_t(k - kl)] = l2Edge(k) * grad * grad;
+                }
+                for (int k = kl; k < nz; ++k) {
+                    const double delta = k == kl ? wallH : h;
+                    const double F = -(tau[size_t(k + 1 - kl)] - tau[size_t(k - kl)]) / delta;
+                    const size_t f = c == 0 ? size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)
+                                            : size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k);
+                    force[f] = F * e[c];
+                }
+                top[col] = tau[size_t(nz - kl)] * e[c];
+            }
+        });
+    }
+}
+
+void TurbulentStress::computeEddyViscosity(const std::vector<double>& U, const std::vector<double>& V,
+                                           const std::vector<double>& W) {
+    const AirDomain& D = mDomain;
+    const int nx = D.nx(), ny = D.ny(), nz = D.nz();
+    const double h = D.voxelSize_m();
+    auto xi = [&](int i, int j, int k) { return size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k); };
+    auto yi = [&](int i, int j, int k) { return size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k); };
+    auto zi = [&](int i, int j, int k) { return size_t(i) + size_t(nx) * (j + size_t(ny) * k); };
+    mStrainH.assign(size_t(nx) * ny * nz, 0.0);
+    mNuZ.assign(size_t(nx) * ny * (nz + 1), 0.0);
+    // Cell-centred part of 2 S_ij S_ij without the vertical shears: 2 (du/dx^2 + dv/dy^2 + dw/dz^2)
+    // + (du/dy + dv/dx)^2, central differences of cell-centred velocities across the cell.
+    tbb::parallel_for(0, nz, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                if (!D.isAir(i, j, k)) continue;
+                const double dudx = (U[xi(i + 1, j, k)] - U[xi(i, j, k)]) / h;
+                const double dvdy = (V[yi(i, j + 1, k)] - V[yi(i, j, k)]) / h;
+                const double dwdz = (W[zi(i, j, k + 1)] - W[zi(i, j, k)]) / h;
+                const int jm = std::max(j - 1, 0), jp = std::min(j + 1, ny - 1);
+                const int im = std::max(i - 1, 0), ip = std::min(i + 1, nx - 1);
+                const double dudy = jp > jm ? 0.5 * (U[xi(i, jp, k)] + U[xi(i + 1, jp, k)] - U[xi(i, jm, k)] - U[xi(i + 1, jm, k)]) /
+                                                  ((jp - jm) * h)
+                                            : 0.0;
+                const double dvdx = ip > im ? 0.5 * (V[yi(ip, j, k)] + V[yi(ip, j + 1, k)] - V[yi(im, j, k)] - V[yi(im, j + 1, k)]) /
+                                                  ((ip - im) * h)
+                                            : 0.0;
+                mStrainH[zi(i, j, k)] = 2.0 * (dudx * dudx + dvdy * dvdy + dwdz * dwdz) + (dudy + dvdx) * (dudy + dvdx);
+            }
+    });
+    // nu_t = nu + l^2 |S| on z-faces between two air cells; the vertical shears S_xz, S_yz as
+    // face differences there.
+    tbb::parallel_for(1, nz, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                if (!D.isAir(i, j, k - 1)) continue;
+                const double dudz = 0.5 * (U[xi(i, j, k)] - U[xi(i, j, k - 1)] + U[xi(i + 1, j, k)] - U[xi(i + 1, j, k - 1)]) / h;
+                const double dvdz = 0.5 * (V[yi(i, j, k)] - V[yi(i, j, k - 1)] + V[yi(i, j + 1, k)] - V[yi(i, j + 1, k - 1)]) / h;
+                const int im = std::max(i - 1, 0), ip = std::min(i + 1, nx - 1);
+                const int jm = std::max(j - 1, 0), jp = std::min(j + 1, ny - 1);
+                const double dwdx = ip > im ? (W[zi(ip, j, k)] - W[zi(im, j, k)]) / ((ip - im) * h) : 0.0;
+                const double dwdy = jp > jm ? (W[zi(i, jp, k)] - W[zi(i, jm, k)]) / ((jp - jm) * h) : 0.0;
+                const double s2 = (dudz + dwdx) * (dudz + dwdx) + (dvdz + dwdy) * (dvdz + dwdy) +
+                                  0.5 * (mStrainH[zi(i, j, k - 1)] + mStrainH[zi(i, j, k)]);
+                mNuZ[zi(i, j, k)] = mNuMol + double(mL2Z[zi(i, j, k)]) * std::sqrt(s2);
+            }
+    });
+    // The wall-level and top faces of each column take the value of their air neighbour (the
+    // wall's stress is the wall function's; the top's is prescribed): they only enter the
+    // cell-centred averages.
+    tbb::parallel_for(0, ny, [&](int j) {
+        for (int i = 0; i < nx; ++i) {
+            int kb = -1;
+            for (int k = 0; k < nz; ++k)
+                if (D.isAir(i, j, k)) {
+                    kb = k;
+                    break;
+                }
+            if (kb < 0) continue;
+            mNuZ[zi(i, j, kb)] = kb + 1 < nz ? mNuZ[zi(i, j, kb + 1)] : mNuMol;
+            mNuZ[zi(i, j, nz)] = nz - 1 > kb ? mNuZ[zi(i, j, nz - 1)] : mNuZ[zi(i, j, kb)];
+        }
+    });
+}
+
+TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::vector<double>& V,
+                                        std::vector<double>& W) {
+    if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("TurbulentStress::apply: dt_s must be > 0, got " + num(dt));
+    if (U.size() != mOkX.size() || V.size() != mOkY.size() || W.size() != mOkZ.size())
+        throw std::invalid_argument("TurbulentStress::apply: velocity arrays do not match the domain");
+    const AirDomain& D = mDomain;
+    const int nx = D.nx(), ny = D.ny(), nz = D.nz();
+    const double h = D.voxelSize_m(), h2 = h * h;
+    const double z0 = mSettings.roughness_m, d = mSettings.displacementHeight_m;
+    const auto o = D.wsMin_m();
+    TurbulenceReport rep;
+    computeEddyViscosity(U, V, W);
+    for (double nu : mNuZ) rep.maxEddyViscosity_m2ps = std::max(rep.maxEddyViscosity_m2ps, nu);
+
+    auto nuZ = [&](int i, int j, int k) { return mNuZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)]; };
+    auto nuCell = [&](int i, int j, int k) { return 0.5 * (nuZ(i, j, k) + nuZ(i, j, k + 1)); };
+
+    // Horizontal speed of each wall face at the start of the step: its own component and the
+    // mean of the four faces of the other component around it.
+    std::vector<double> speedX(mLowX.size(), 0.0), speedY(mLowY.size(), 0.0);
+    tbb::parallel_for(0, ny + 1, [&](int j) {
+        for (int i = 0; i <= nx; ++i) {
+            if (j < ny && mLowX[size_t(i) + size_t(nx + 1) * j] >= 0) {
+                const int k = mLowX[size_t(i) + size_t(nx + 1) * j], ia = std::max(i - 1, 0), ib = std::min(i, nx - 1);
+                auto vAt = [&](int ii, int jj) { return V[size_t(ii) + size_t(nx) * (jj + size_t(ny + 1) * k)]; };
+                const double other = 0.25 * (vAt(ia, j) + vAt(ia, j + 1) + vAt(ib, j) + vAt(ib, j + 1));
+                speedX[size_t(i) + size_t(nx + 1) * j] = std::hypot(U[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)], other);
+            }
+            if (i < nx && mLowY[size_t(i) + size_t(nx) * j] >= 0) {
+                const int k = mLowY[size_t(i) + size_t(nx) * j], ja = std::max(j - 1, 0), jb = std::min(j, ny - 1);
+                auto uAt = [&](int ii, int jj) { return U[size_t(ii) + size_t(nx + 1) * (jj + size_t(ny) * k)]; };
+                const double other = 0.25 * (uAt(i, ja) + uAt(i + 1, ja) + uAt(i, jb) + uAt(i + 1, jb));
+                speedY[size_t(i) + size_t(nx) * j] = std::hypot(V[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)], other);
+            }
+        }
+    });
+    std::vector<double> frictionX(mLowX.size(), 0.0), frictionY(mLowY.size(), 0.0);
+
+    std::vector<double>* comps[3] = {&U, &V, &W};
+    const std::vector<uint8_t>* masks[3] = {&mOkX, &mOkY, &mOkZ};
+    for (int c = 0; c < 3; ++c) {
+        std::vector<double>& q = *comps[c];
+        const std::vector<uint8_t>& ok = *masks[c];
+        mOld = q;
+        const int n0 = nx + (c == 0), n1 = ny + (c == 1), n2 = nz + (c == 2);
+        auto idx = [&](int i, int j, int k) { return size_t(i) + size_t(n0) * (j + size_t(n1) * k); };
+        const std::vector<int>& low = c == 0 ? mLowX : c == 1 ? mLowY : mLowZ;
+        // nu_t at the face itself (horizontal exchanges) and on the edge below face k (vertical).
+        auto cellsBeside = [&](int i, int j, int& ia, int& ja, int& ib, int& jb) {
+            ia = c == 0 ? std::max(i - 1, 0) : i, ib = c == 0 ? std::min(i, nx - 1) : i;
+            ja = c == 1 ? std::max(j - 1, 0) : j, jb = c == 1 ? std::min(j, ny - 1) : j;
+        };
+        // nu_t at every face of this component, once (each face is the neighbour of four).
+        mNuFace.resize(q.size());
+        tbb::parallel_for(0, n2, [&](int k) {
+            for (int j = 0; j < n1; ++j)
+                for (int i = 0; i < n0; ++i) {
+                    if (!ok[idx(i, j, k)]) continue;
+                    int ia, ja, ib, jb;
+                    cellsBeside(i, j, ia, ja, ib, jb);
+                    mNuFace[idx(i, j, k)] = c == 2 ? nuZ(i, j, k) : 0.5 * (nuCell(ia, ja, k) + nuCell(ib, jb, k));
+                }
+        });
+        auto nuFace = [&](int i, int j, int k) { return mNuFace[idx(i, j, k)]; };
+        auto nuBelow = [&](int i, int j, int k) {
+            if (c == 2) return nuCell(i, j, k - 1);
+            int ia, ja, ib, jb;
+            cellsBeside(i, j, ia, ja, ib, jb);
+            return 0.5 * (nuZ(ia, ja, k) + nuZ(ib, jb, k));
+        };
+        tbb::parallel_for(tbb::blocked_range<int>(0, n1), [&](const tbb::blocked_range<int>& rows) {
+            ColumnScratch s(n2);
+            for (int j = rows.begin(); j != rows.end(); ++j)
+                for (int i = 0; i < n0; ++i) {
+                    const size_t col = size_t(i) + size_t(n0) * j;
+                    const int kl = low[col];
+                    if (kl < 0) continue;
+                    int kt = kl;  // last unknown face of the column
+                    while (kt + 1 < n2 && ok[idx(i, j, kt + 1)]) ++kt;
+                    const int n = kt - kl + 1;
+                    double wallH = h, wallC = 0.0;
+                    if (c < 2) {
+                        const double g = (c == 0 ? mGroundX : mGroundY)[col];
+                        wallH = std::clamp(o[2] + (kl + 1) * h - g, MIN_WALL_HEIGHT_CELLS * h, MAX_WALL_HEIGHT_CELLS * h);
+                        const double speed = (c == 0 ? speedX : speedY)[col];
+                        const double cw = surface::KAPPA / surface::logFactor(0.5 * wallH, z0, d);
+                        wallC = cw * cw * speed;  // tau_w = wallC * u, m/s
+                        // The reported u* skips slivers (a wall face under half a cell high sits
+                        // below the log law's range and reports the clamp, not the flow).
+                        if (wallH >= 0.5 * h) (c == 0 ? frictionX : frictionY)[col] = cw * speed;
+                    }
+                    for (int m = 0; m < n; ++m) {
+                        const int k = kl + m;
+                        const size_t f = idx(i, j, k);
+                        const double delta = (c < 2 && m == 0) ? wallH : h;
+                        const double a = dt / delta;
+                        double diag = 1.0, rhs = mOld[f];
+                        s.sub[size_t(m)] = s.sup[size_t(m)] = 0.0;
+                        // Below: the wall function (x, y) or the edge to the face below.
+                        if (m == 0) {
+                            diag += a * wallC;
+                        } else {
+                            const double e = a * nuBelow(i, j, k) / h;
+                            diag += e, s.sub[size_t(m)] = -e;
+                        }
+                        // Above: the edge to the face above, or the top stress.
+                        if (m + 1 < n) {
+                            const double e = a * nuBelow(i, j, k + 1) / h;
+                            diag += e, s.sup[size_t(m)] = -e;
+                        } else if (c < 2 && k == nz - 1) {
+                            rhs += a * (c == 0 ? mTopX : mTopY)[col];
+                        }
+                        // Horizontal neighbours, point-implicit.
+                        const double nuSelf = nuFace(i, j, k);
+                        auto nb = [&](int ii, int jj) {
+                            if (ii < 0 || jj < 0 || ii >= n0 || jj >= n1) return;
+                            const size_t g = idx(ii, jj, k);
+                            if (!ok[g]) return;
+                            const double e = dt * 0.5 * (nuSelf + nuFace(ii, jj, k)) / h2;
+                            diag += e, rhs += e * mOld[g];
+                        };
+                        nb(i - 1, j), nb(i + 1, j), nb(i, j - 1), nb(i, j + 1);
+                        if (c < 2) rhs += dt * (c == 0 ? mForceX : mForceY)[f];
+                        s.diag[size_t(m)] = diag, s.rhs[size_t(m)] = rhs;
+                    }
+                    solveTridiagonal(n, s.sub.data(), s.diag.data(), s.sup.data(), s.rhs.data());
+                    for (int m = 0; m < n; ++m) q[idx(i, j, kl + m)] = s.rhs[size_t(m)];
+                }
+        });
+    }
+    for (double f : frictionX) rep.maxFrictionVelocity_mps = std::max(rep.maxFrictionVelocity_mps, f);
+    for (double f : frictionY) rep.maxFrictionVelocity_mps = std::max(rep.maxFrictionVelocity_mps, f);
+    return rep;
+}
+
+}  // namespace gale::sim

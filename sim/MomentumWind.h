@@ -1,0 +1,113 @@
+#pragma once
+/// \file MomentumWind.h
+/// The steady momentum model of the wind: incompressible Reynolds-averaged flow with a
+/// mixing-length eddy viscosity and a log-law wall stress (sim/MomentumTurbulence.h) on the
+/// AirDomain's cut-cell MAC grid, driven to a steady state by pseudo-time stepping. docs/solver.md
+/// compares it with the mass-consistent model; docs/validation.md measures it.
+///
+/// Method. Start from the mass-consistent field (sim/SteadyWind.h) for the same ambient wind,
+/// then repeat the unsteady solver's step (sim/UnsteadyWind.h: semi-Lagrangian advection, the
+/// implicit stress step, projection warm-started from the last potential with PoissonSolver) with
+/// one fixed step dt = cfl h / U_max until the field stops changing. A fixed dt makes a fixed point
+/// of the step a steady solution: the projection's potential is then -dt times the pressure (up to
+/// the splitting error of the advection, O(dt), which the report's dt lets a reader judge).
+/// Boundaries: the start field is the inflow wherever air enters the box (it carries the log
+/// profile over the sides), outflow is zero-gradient (the advection reads the box), the top is
+/// open (p = 0) with the ambient profile's shear stress, the ground has the wall function.
+///
+/// Convergence. Each iteration records the momentum residual, the RMS over open faces, weighted
+/// by their open fractions, of (u^{n+1} - u^n) / dt scaled by h / U^2 (U = the ambient speed; the steady momentum
+/// equations' imbalance in units of the advective acceleration U^2 / h), its maximum, and the
+/// largest divergence after the projection, max |div u| h / U. Converged: the RMS residual at or
+/// below residualTolerance with a converged projection, and at least as many steps as the
+/// ambient wind needs to cross the box once (MomentumReport::minIterations; a low hill's small
+/// disturbance changes the field little per step from the start). Otherwise the report says why, and the
+/// field is the last iterate.
+///
+/// @code
+///   gale::sim::AirDomain domain(terrain, {/*voxelSize_m=*/5.0});
+///   gale::sim::MomentumWindResult res = gale::sim::solveMomentumWind(domain, ambient, {});
+///   if (!res.report.converged) std::cerr << res.report.message << "\n";
+///   for (const auto& it : res.report.history) plot(it.iteration, it.momentumResidual);
+/// @endcode
+
+#include <string>
+#include <vector>
+
+#include "sim/AirDomain.h"
+#include "sim/AmbientWind.h"
+#include "sim/MomentumTurbulence.h"
+#include "sim/PoissonSolver.h"
+#include "sim/WindField.h"
+
+namespace gale::sim {
+
+struct MomentumSettings {
+    /// Pseudo-time step: dt = cfl h / U_max (U_max the start field's largest face speed), > 0.
+    /// The semi-Lagrangian step is stable at any cfl; larger steps converge in fewer iterations
+    /// with a larger splitting error.
+    double cfl = 2.0;
+    int maxIterations = 300;          ///< pseudo-time steps at most, >= 1
+    double residualTolerance = 1e-4;  ///< converged when the RMS momentum residual is <= this, > 0
+    double displacementHeight_m = 0.0;  ///< d of the log law (about 2/3 of tall grass), m, >= 0
+    double mixingLengthMax_m = surface::BLACKADAR_MAX_MIXING_LENGTH_M;  ///< l_max, metres, > 0
+    /// Projection of each pseudo-time step: loose, since every step projects the whole current
+    /// divergence again (what one step leaves is removed by the next), warm-started.
+    SolverSettings projection{/*relativeTolerance=*/1e-3, /*maxIterations=*/60};
+    /// The projection of the converged field, once: its tolerance is the divergence the result
+    /// keeps (max |div u| h / U <= relativeTolerance times the last step's).
+    SolverSettings finalProjection{/*relativeTolerance=*/1e-6, /*maxIterations=*/100};
+    SolverSettings start;  ///< the mass-consistent start solve
+
+    /// Throws std::invalid_argument naming the scene key (solver.cfl, ...).
+    void validate() const;
+};
+
+/// One pseudo-time step of the history.
+struct MomentumIteration {
+    int iteration = 0;
+    double momentumResidual = 0;     ///< open-fraction weighted RMS over faces of |du| / dt * h / U^2
+    double maxMomentumResidual = 0;  ///< max over faces of theta |du| / dt * h / U^2
+    double maxDivergenceScaled = 0;  ///< max over air cells |div u| h / U after the projection
+    int projectionIterations = 0;
+    bool projectionConverged = false;
+    double seconds = 0;  ///< wall time of the step
+};
+
+struct [[nodiscard]] MomentumReport {
+    bool converged = false;
+    bool finite = true;           ///< no NaN/Inf in the field
+    int iterations = 0;
+    int minIterations = 0;        ///< steps for the ambient wind to cross the box once
+    double momentumResidual = 0;  ///< of the last iteration (RMS)
+    double maxDivergenceScaled = 0;  ///< max |div u| h / U after the final projection
+    SolveReport finalProjection;  ///< the final projection's solve
+    double dt_s = 0;              ///< the pseudo-time step
+    double maxEddyViscosity_m2ps = 0;     ///< of the last iteration
+    double maxFrictionVelocity_mps = 0;   ///< of the last iteration
+    double seconds = 0;           ///< wall time including the start solve
+    std::string message;          ///< why it stopped, in words
+    SolveReport start;            ///< the mass-consistent start solve
+    std::vector<MomentumIteration> history;
+};
+
+struct MomentumWindResult {
+    WindField field;
+    MomentumReport report;
+};
+
+/// Extra bytes per cell of the box a momentum solve holds beyond the mass-consistent solve
+/// (AirDomain's memory estimate adds it when DomainSpec::momentumModel is set): the unsteady
+/// solver's mean field, step copies and masks, the previous iterate, the stress step's arrays.
+inline constexpr double MOMENTUM_EXTRA_BYTES_PER_CELL = 24.0 * 5 + 3.0 + TurbulentStress::BYTES_PER_CELL;
+
+/// Solves the momentum model for an ambient wind with a log profile (its roughness_m is z0).
+/// Build the domain with DomainSpec::momentumModel set, so that its memory check (made before
+/// anything is allocated) counts the model's arrays.
+/// Throws std::invalid_argument naming the field for a bad wind or settings, or a wind whose
+/// profile is not the log law (the model's inflow and wall stress need the roughness).
+/// Non-convergence is in the report, never thrown.
+[[nodiscard]] MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind& ambient,
+                                                   const MomentumSettings& settings);
+
+}  // namespace gale::sim
