@@ -9,7 +9,9 @@
 #include "app/Cli.h"
 #include "app/Commands.h"
 #include "app/io/Errors.h"
+#include "app/io/AtomicFile.h"
 #include "app/io/OutputFolder.h"
+#include "app/io/OutputLock.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
 #include "coupling/PointSourceWind.h"
@@ -205,6 +207,16 @@ int runCheck(const SceneRunOptions& options) {
         line("", "note: " + std::to_string(folder.staleFrames.size()) +
                      " older frames beyond this run's last (e.g. " + folder.staleFrames.front() +
                      ") stay in the folder");
+    const std::vector<std::string> stale = staleTemporaries(out.folder);
+    if (!stale.empty())
+        line("", "note: " + std::to_string(stale.size()) +
+                     " temporary files left by a gale run that was stopped (e.g. " +
+                     std::filesystem::path(stale.front()).filename().string() +
+                     "); the next render or solve into this folder removes them");
+    const std::string lockPath = OutputLock::pathFor(out.folder);
+    if (std::filesystem::exists(lockPath))
+        line("", "note: " + lockPath + " exists: another gale run writes here now (or was "
+                 "killed; the next run takes a dead run's lock over)");
 
     if (unsteady) {
         std::string out = us.whirlwinds.empty() && us.vorticityConfinement == 0.0 ? "no vortex code (no whirlwinds, no confinement)" : "";
