@@ -102,6 +102,10 @@ int runCheck(const SceneRunOptions& options) {
                      (us.dt_s > 0 ? "fixed dt " + fmt(us.dt_s) + " s" : "adaptive CFL " + fmt(us.cfl) + " (dt <= " + fmt(us.maxDt_s) + " s)") +
                      ", projection to " + fmt(us.projection.relativeTolerance) + " (warm MGPCG), " +
                      (us.openTop ? "open top" : "free-slip lid on top"));
+        line("", "gale solve plans " + fmt(plannedSequenceFiles(scene.unsteady), 12) + " .vdb files (limit " +
+                     std::to_string(scene.unsteady.maxFiles) + ", unsteady.max_files) and at least " +
+                     fmt(plannedUnsteadySteps(scene), 12) + " time steps (limit " +
+                     std::to_string(scene.unsteady.maxSteps) + ", unsteady.max_steps)");
         line("", "forces: " + std::string(us.viscosity_m2ps > 0 ? "implicit viscosity " + fmt(us.viscosity_m2ps) + " m^2/s" : "no viscosity") +
                      (us.vorticityConfinement > 0 ? ", vorticity confinement " + fmt(us.vorticityConfinement) : ", no vorticity confinement"));
         for (size_t i = 0; i < us.gusts.size(); ++i) {

@@ -270,5 +270,28 @@ TEST(OneRunPerFolder, ALockLeftByADeadRunIsTakenOverWithANote) {
     EXPECT_TRUE(leftovers(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
 }
 
+TEST(BoundedInput, CheckOfAnEndlessDeviceStopsAt16MiBWithExit2) {
+    const RunResult r = runGale({"check", "/dev/zero"}, RunOptions{});
+    ASSERT_FALSE(r.timedOut);
+    EXPECT_EQ(r.exitCode, 2) << r.describe();
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("/dev/zero: more than 16"), std::string::npos) << r.err;
+}
+
+TEST(BoundsOnWork, CheckReportsTheFilesAndStepsAnUnsteadyRunPlans) {
+    TempDir cwd;
+    writeFile(cwd / "scene.toml", LONG_UNSTEADY);
+    const RunResult r = runGale({"check", "scene.toml"}, cwd.str());
+    EXPECT_EQ(r.exitCode, 0) << r.describe();
+    // 200 s every 0.2 s and the file at t = 0; adaptive steps of at most cfl h / U = 2 x 0.5 / 2 s.
+    EXPECT_NE(r.out.find("gale solve plans 1001 .vdb files (limit 10000"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("at least 400 time steps"), std::string::npos) << r.out;
+    // The scene sets the limit: below the plan, the run is refused naming the line.
+    writeFile(cwd / "low.toml", std::string(LONG_UNSTEADY) + "max_files = 1000\n");
+    const RunResult low = runGale({"check", "low.toml"}, cwd.str());
+    EXPECT_EQ(low.exitCode, 2) << low.describe();
+    EXPECT_NE(low.err.find("low.toml:12: unsteady.output_every_s"), std::string::npos) << low.err;
+}
+
 }  // namespace
 }  // namespace gale::reliability
