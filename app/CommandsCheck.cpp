@@ -223,14 +223,14 @@ int runCheck(const SceneRunOptions& options) {
                  "killed; the next run takes a dead run's lock over)");
 
     if (unsteady) {
-        std::string out = us.whirlwinds.empty() && us.vorticityConfinement == 0.0 ? "no vortex code (no whirlwinds, no confinement)" : "";
+        std::string leftOut = us.whirlwinds.empty() && us.vorticityConfinement == 0.0 ? "no vortex code (no whirlwinds, no confinement)" : "";
         auto add = [&](bool leave, const std::string& what) {
-            if (leave) out += (out.empty() ? "" : "; ") + what;
+            if (leave) leftOut += (leftOut.empty() ? "" : "; ") + what;
         };
         add(us.gusts.empty(), "no gusts");
         add(us.viscosity_m2ps == 0.0, "no viscosity step");
         add(us.advection == sim::AdvectionScheme::SemiLagrangian, "no MacCormack/BFECC correction");
-        line("left out", out.empty() ? "nothing: every part of the unsteady solver runs" : out);
+        line("left out", leftOut.empty() ? "nothing: every part of the unsteady solver runs" : leftOut);
     } else if (solved) {
         line("left out", "no unsteady solver: a steady field" +
                              std::string(scene.wind.gusts ? " with kinematic travelling gusts"

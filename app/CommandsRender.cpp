@@ -42,7 +42,9 @@ namespace fs = std::filesystem;
 constexpr double MIN_PNG_BYTES_PER_PIXEL = 0.5;
 
 /// Bytes the GIF and contact sheet are allowed beside the frames, as a fraction of the frames'
-/// total (measured: a 4-frame GIF and sheet together are about 0.6 frames of PNG).
+/// total. Measured on the 64 x 48 test scene: 3 frames of 3.4 kB, a 6.6 kB GIF and a 7.8 kB
+/// sheet; larger frames are downscaled for the GIF and the sheet has a fixed size, so one frame's
+/// worth per frame is an upper bound.
 constexpr double PREVIEW_FRACTION = 1.0;
 /// Margin on the measured frame size: later frames of a run compress differently.
 constexpr double FRAME_SIZE_MARGIN = 1.25;
