@@ -63,7 +63,8 @@ const CLI::Validator NOT_EMPTY(
 const char* const EXIT_CODES_FOOTER =
     "\nExit codes: 0 ok, 1 runtime failure (e.g. no GL context, a file that cannot be written), "
     "2 bad input (scene, image, arguments, output folder), 3 ran but did not converge or missed "
-    "its target (outputs written, the report says so), 130 interrupted.";
+    "its target (outputs written, the report says so), 130/143/129 interrupted by "
+    "SIGINT/SIGTERM/SIGHUP.";
 
 void addSceneOptions(CLI::App* verb, SceneRunOptions& o) {
     verb->add_option("scene", o.scenePath, "Scene file (TOML; see docs/scene-format.md)")

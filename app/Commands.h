@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/scene/LoadScene.h"
 #include "app/scene/Scene.h"
@@ -36,6 +37,10 @@ int runCheck(const SceneRunOptions& options);
 
 /// `gale render SCENE`: renders the frames headless into the output folder, with a run report.
 int runRender(const SceneRunOptions& options);
+
+/// The files a scene reads (the scene, its heightmap, its grass texture; empty paths for those
+/// it does not have), with their roles for refuseAliases messages.
+std::vector<RunPath> sceneInputs(const Scene& scene);
 
 /// `gale view SCENE`: the scene in a window (docs/cli.md).
 struct ViewOptions {

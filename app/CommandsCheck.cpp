@@ -9,7 +9,9 @@
 #include "app/Cli.h"
 #include "app/Commands.h"
 #include "app/io/Errors.h"
+#include "app/io/AtomicFile.h"
 #include "app/io/OutputFolder.h"
+#include "app/io/OutputLock.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
 #include "coupling/PointSourceWind.h"
@@ -111,6 +113,10 @@ int runCheck(const SceneRunOptions& options) {
                      (us.dt_s > 0 ? "fixed dt " + formatG(us.dt_s, 3) + " s" : "adaptive CFL " + formatG(us.cfl, 3) + " (dt <= " + formatG(us.maxDt_s, 3) + " s)") +
                      ", projection to " + formatG(us.projection.relativeTolerance, 3) + " (warm MGPCG), " +
                      (us.openTop ? "open top" : "free-slip lid on top"));
+        line("", "gale solve plans " + formatG(plannedSequenceFiles(scene.unsteady), 12) + " .vdb files (limit " +
+                     std::to_string(scene.unsteady.maxFiles) + ", unsteady.max_files) and at least " +
+                     formatG(plannedUnsteadySteps(scene), 12) + " time steps (limit " +
+                     std::to_string(scene.unsteady.maxSteps) + ", unsteady.max_steps)");
         line("", "forces: " + std::string(us.viscosity_m2ps > 0 ? "implicit viscosity " + formatG(us.viscosity_m2ps, 3) + " m^2/s" : "no viscosity") +
                      (us.vorticityConfinement > 0 ? ", vorticity confinement " + formatG(us.vorticityConfinement, 3) : ", no vorticity confinement"));
         for (size_t i = 0; i < us.gusts.size(); ++i) {
@@ -216,16 +222,26 @@ int runCheck(const SceneRunOptions& options) {
         line("", "note: " + std::to_string(folder.staleFrames.size()) +
                      " older frames beyond this run's last (e.g. " + folder.staleFrames.front() +
                      ") stay in the folder");
+    const std::vector<std::string> stale = staleTemporaries(out.folder);
+    if (!stale.empty())
+        line("", "note: " + std::to_string(stale.size()) +
+                     " temporary files left by a gale run that was stopped (e.g. " +
+                     std::filesystem::path(stale.front()).filename().string() +
+                     "); the next render or solve into this folder removes them");
+    const std::string lockPath = OutputLock::pathFor(out.folder);
+    if (std::filesystem::exists(lockPath))
+        line("", "note: " + lockPath + " exists: another gale run writes here now (or was "
+                 "killed; the next run takes a dead run's lock over)");
 
     if (unsteady) {
-        std::string out = us.whirlwinds.empty() && us.vorticityConfinement == 0.0 ? "no vortex code (no whirlwinds, no confinement)" : "";
+        std::string leftOut = us.whirlwinds.empty() && us.vorticityConfinement == 0.0 ? "no vortex code (no whirlwinds, no confinement)" : "";
         auto add = [&](bool leave, const std::string& what) {
-            if (leave) out += (out.empty() ? "" : "; ") + what;
+            if (leave) leftOut += (leftOut.empty() ? "" : "; ") + what;
         };
         add(us.gusts.empty(), "no gusts");
         add(us.viscosity_m2ps == 0.0, "no viscosity step");
         add(us.advection == sim::AdvectionScheme::SemiLagrangian, "no MacCormack/BFECC correction");
-        line("left out", out.empty() ? "nothing: every part of the unsteady solver runs" : out);
+        line("left out", leftOut.empty() ? "nothing: every part of the unsteady solver runs" : leftOut);
     } else if (solved) {
         line("left out", "no unsteady solver: a steady field" +
                              std::string(scene.wind.gusts ? " with kinematic travelling gusts"

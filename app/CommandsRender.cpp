@@ -2,9 +2,9 @@
 /// `gale render`: scene -> heightfield -> mesh -> grass texture -> point-source wind -> OSMesa ->
 /// shells -> PNG frames, with a run report.
 
+#include <cerrno>
 #include <memory>
-#include <atomic>
-#include <csignal>
+#include <optional>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -16,7 +16,10 @@
 #include "app/Cli.h"
 #include "app/Commands.h"
 #include "app/io/Errors.h"
+#include "app/io/ImageCheck.h"
+#include "app/io/Interrupt.h"
 #include "app/io/OutputFolder.h"
+#include "app/io/OutputLock.h"
 #include "app/io/Progress.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
@@ -38,17 +41,33 @@ namespace fs = std::filesystem;
 /// refused before it starts (real grass PNGs take more, so this refuses only hopeless runs).
 constexpr double MIN_PNG_BYTES_PER_PIXEL = 0.5;
 
-std::atomic<bool> gInterrupted{false};
-extern "C" void onInterrupt(int) { gInterrupted = true; }
+/// Bytes the GIF and contact sheet are allowed beside the frames, as a fraction of the frames'
+/// total. Measured on the 64 x 48 test scene: 3 frames of 3.4 kB, a 6.6 kB GIF and a 7.8 kB
+/// sheet; larger frames are downscaled for the GIF and the sheet has a fixed size, so one frame's
+/// worth per frame is an upper bound.
+constexpr double PREVIEW_FRACTION = 1.0;
+/// Margin on the measured frame size: later frames of a run compress differently.
+constexpr double FRAME_SIZE_MARGIN = 1.25;
 
+/// framePath with the extension of output.format (".png" or ".exr").
+std::string framePathAs(const std::string& folder, const std::string& prefix, int k,
+                        const std::string& format);
 
-/// Removes the frames this run wrote and the folder if this run created it, so a failed run
-/// leaves nothing behind.
-void removeOutputs(const std::vector<std::string>& files, const std::string& folder,
-                   bool createdFolder) {
+/// After the first frame: its measured size times the frames still to come (with margin, and
+/// room for the previews) must fit in the output folder's free space. Throws InputError.
+void checkRoomForFrames(const OutputSection& out, const std::string& where, double frameBytes) {
     std::error_code ec;
-    for (const std::string& f : files) fs::remove(f, ec);
-    if (createdFolder) fs::remove(folder, ec);  // only removes it if empty
+    const fs::space_info space = fs::space(out.folder, ec);
+    if (ec) return;
+    const double rest = frameBytes * FRAME_SIZE_MARGIN * (out.frames - 1);
+    const double previews = (out.gif || out.contactSheet) ? frameBytes * out.frames * PREVIEW_FRACTION : 0.0;
+    const double need = rest + previews;
+    if (need > static_cast<double>(space.available))
+        throw InputError(where + ": '" + out.folder + "' has " +
+                         formatBytes(static_cast<double>(space.available)) + " free but the " +
+                         std::to_string(out.frames - 1) + " frames still to render need about " +
+                         formatBytes(need) + " (the first frame took " + formatBytes(frameBytes) +
+                         "); nothing was written");
 }
 
 /// framePath with the extension of output.format (".png" or ".exr").
@@ -68,8 +87,19 @@ std::string utcNow() {
 
 }  // namespace
 
+std::vector<RunPath> sceneInputs(const Scene& scene) {
+    return {{scene.path, "the scene"},
+            {scene.terrain.imagePath, scene.where("terrain.image") + " (the heightmap)"},
+            {scene.grass.texturePath, scene.where("grass.texture") + " (the grass texture)"}};
+}
+
+namespace {
+
+}  // namespace
+
 int runRender(const SceneRunOptions& options) {
     const auto runStart = Clock::now();
+    InterruptScope interrupt("while reading and building the scene: nothing written");
     Scene scene = loadScene(options);
     const OutputSection& out = scene.output;
     const std::string folderWhere = outputFolderSource(scene, options);
@@ -82,6 +112,20 @@ int runRender(const SceneRunOptions& options) {
                          formatBytes(folder.freeBytes) + " free but " + std::to_string(out.frames) +
                          " frames of " + std::to_string(out.width) + " x " +
                          std::to_string(out.height) + " need at least " + formatBytes(minBytes));
+    const std::string reportPath = (fs::path(out.folder) / (out.prefix + "_report.json")).string();
+    render::AnimationOptions animation;
+    if (out.contactSheet) animation.sheetPath = out.folder + "/" + out.prefix + "_sheet.png";
+    if (out.gif) animation.gifPath = out.folder + "/" + out.prefix + ".gif";
+    animation.fps = out.fps;
+    {
+        std::vector<RunPath> outputs;
+        for (int k = 0; k < out.frames; ++k)
+            outputs.push_back({framePathAs(out.folder, out.prefix, k, out.format), folderWhere + " (a frame)"});
+        outputs.push_back({reportPath, folderWhere + " (the report)"});
+        outputs.push_back({animation.sheetPath, folderWhere + " (the contact sheet)"});
+        outputs.push_back({animation.gifPath, folderWhere + " (the GIF)"});
+        refuseAliases(sceneInputs(scene), outputs);
+    }
     for (const std::string& note : scene.notes)
         std::fprintf(stderr, "gale: note: %s\n", note.c_str());
 
@@ -111,6 +155,14 @@ int runRender(const SceneRunOptions& options) {
 
     // Everything is validated: only now does anything appear on disk.
     const bool createdFolder = prepareOutputFolder(out.folder, folderWhere);
+    std::optional<OutputLock> lock;
+    try {
+        lock.emplace(out.folder, folderWhere);
+    } catch (...) {
+        if (createdFolder) fs::remove(out.folder);
+        throw;
+    }
+    removeStaleTemporaries(out.folder);
     if (!folder.staleFrames.empty())
         std::fprintf(stderr,
                      "gale: note: %s holds %zu older frames beyond this run's last (e.g. %s); "
@@ -118,26 +170,27 @@ int runRender(const SceneRunOptions& options) {
                      out.folder.c_str(), folder.staleFrames.size(),
                      folder.staleFrames.front().c_str());
 
+    // Every output goes to its temporary and is moved into place only when the run is done
+    // (or interrupted, for what is complete): a failed run leaves the earlier outputs alone.
+    StagedFiles staged;
     std::vector<std::string> written;  // frames
     std::vector<std::string> extras;   // contact sheet and GIF
     std::vector<double> frame_ms, drawCpu_ms, drawGpu_ms;
     render::GrassWind wind;
     render::Image image;
-    gInterrupted = false;
-    auto previousHandler = std::signal(SIGINT, onInterrupt);
     std::fprintf(stderr, "gale: rendering %d frames of %d x %d (%s)\n", out.frames, out.width,
                  out.height, glDescription.c_str());
     const auto loopStart = Clock::now();
     int done = 0;
-    render::AnimationOptions animation;
-    if (out.contactSheet) animation.sheetPath = out.folder + "/" + out.prefix + "_sheet.png";
-    if (out.gif) animation.gifPath = out.folder + "/" + out.prefix + ".gif";
-    animation.fps = out.fps;
+    render::AnimationOptions stagedAnimation = animation;
+    if (!animation.sheetPath.empty()) stagedAnimation.sheetPath = staged.add(animation.sheetPath);
+    if (!animation.gifPath.empty()) stagedAnimation.gifPath = staged.add(animation.gifPath);
     try {
-        render::AnimationWriter animationWriter(animation, out.frames);
+        interrupt.defer();
+        render::AnimationWriter animationWriter(stagedAnimation, out.frames);
         Progress progress("frame", out.frames);
         coupling::OverlayScaleKeeper overlayScale;  // the automatic colour scale only grows
-        for (int k = 0; k < out.frames && !gInterrupted; ++k) {
+        for (int k = 0; k < out.frames && !interruptSignal(); ++k) {
             const auto frameStart = Clock::now();
             const double t_s = out.startTime_s + k / out.fps;
             built.wind->update(t_s, wind);
@@ -151,7 +204,16 @@ int runRender(const SceneRunOptions& options) {
             }
             context->readPixels(image);
             const std::string path = framePathAs(out.folder, out.prefix, k, out.format);
-            render::writeImageAtomic(image, path);
+            const std::string tmp = staged.add(path);
+            errno = 0;
+            try {
+                render::writeImageAtomic(image, tmp);
+            } catch (const std::runtime_error& e) {
+                throw std::runtime_error(path + ": cannot write: " + e.what());
+            }
+            verifyImageFile(tmp, path, image.width, image.height, errno);
+            const double frameBytes = staged.seal(path);
+            if (k == 0) checkRoomForFrames(out, folderWhere, frameBytes);
             written.push_back(path);
             animationWriter.addFrame(image, k);
             drawCpu_ms.push_back(stats.cpu_ms);
@@ -161,15 +223,28 @@ int runRender(const SceneRunOptions& options) {
             progress.step(done, frame_ms.back());
         }
         // An interrupted run still gets its sheet and GIF, of the frames it finished.
+        errno = 0;
         animationWriter.finish();
-        if (done > 0 && !animation.sheetPath.empty()) extras.push_back(animation.sheetPath);
-        if (done > 0 && !animation.gifPath.empty()) extras.push_back(animation.gifPath);
+        const int previewErrno = errno;
+        if (done > 0 && !animation.sheetPath.empty()) {
+            verifyImageFile(stagedAnimation.sheetPath, animation.sheetPath, -1, -1, previewErrno);
+            staged.seal(animation.sheetPath);
+            extras.push_back(animation.sheetPath);
+        }
+        if (done > 0 && !animation.gifPath.empty()) {
+            verifyImageFile(stagedAnimation.gifPath, animation.gifPath, -1, -1, previewErrno);
+            staged.seal(animation.gifPath);
+            extras.push_back(animation.gifPath);
+        }
     } catch (...) {
-        std::signal(SIGINT, previousHandler);
-        removeOutputs(written, out.folder, createdFolder);
+        staged.discard();
+        lock.reset();
+        if (createdFolder) {
+            std::error_code ec;
+            fs::remove(out.folder, ec);  // only removes it if empty
+        }
         throw;
     }
-    std::signal(SIGINT, previousHandler);
     const double loop_s = msSince(loopStart) / 1000.0;
 
     nlohmann::json report;
@@ -211,12 +286,20 @@ int runRender(const SceneRunOptions& options) {
     report["draw_gpu_ms"] = drawGpu_ms;
     report["render_s"] = loop_s;
     report["total_s"] = msSince(runStart) / 1000.0;
-    const std::string reportPath = (fs::path(out.folder) / (out.prefix + "_report.json")).string();
+    if (interruptSignal()) report["stopped_by"] = interruptSignalName();
     try {
-        writeTextAtomic(reportPath, report.dump(2) + "\n");
+        // The report last: frames without their report are never moved into place.
+        const std::string reportTmp = staged.add(reportPath);
+        writeTextAtomic(reportTmp, report.dump(2) + "\n");
+        staged.seal(reportPath);
+        staged.commit();
     } catch (...) {
-        written.insert(written.end(), extras.begin(), extras.end());
-        removeOutputs(written, out.folder, createdFolder);  // frames without their report: none
+        staged.discard();
+        lock.reset();
+        if (createdFolder) {
+            std::error_code ec;
+            fs::remove(out.folder, ec);  // only removes it if empty
+        }
         throw;
     }
 
@@ -227,9 +310,10 @@ int runRender(const SceneRunOptions& options) {
         // Where it stopped: the last complete frame (frames are written atomically).
         const std::string last = done > 0 ? "after " + fs::path(written.back()).filename().string()
                                           : std::string("before the first frame");
-        std::printf("interrupted %s: wrote %d of %d frames to %s (report %s)\n", last.c_str(),
-                    done, out.frames, shown.c_str(), reportPath.c_str());
-        return EXIT_INTERRUPTED;
+        std::printf("interrupted (%s) %s: wrote %d of %d frames to %s (report %s)\n",
+                    interruptSignalName(), last.c_str(), done, out.frames, shown.c_str(),
+                    reportPath.c_str());
+        return interruptExitCode();
     }
     std::printf("wrote %d frames to %s (%s .. %s) in %s, %.0f ms/frame; report %s\n", done,
                 shown.c_str(), fs::path(written.front()).filename().c_str(),

@@ -6,7 +6,6 @@
 
 #include <memory>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -20,6 +19,8 @@
 #include "app/scene/SceneParser.h"
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
+#include "app/io/Interrupt.h"
+#include "app/io/OutputLock.h"
 #include "app/io/OutputFolder.h"
 #include "app/io/Progress.h"
 #include "app/io/Timing.h"
@@ -55,6 +56,7 @@ struct SolveRequest {
     std::string vdbPath;     ///< the field (grids "velocity" and "speed"); empty: not written
     std::string reportPath;  ///< the JSON report; empty: not written
     std::string sceneName;   ///< recorded in the report and the .vdb metadata
+    std::string outputWhere = "-o";  ///< where the output path came from, for messages
     /// Set for unsteady scenes: vdbPath is then the stem of a sequence, <stem>_0000.vdb ..., and
     /// the report lists every step (CFL, iterations, divergence, kinetic energy, timings).
     std::optional<UnsteadySolveRequest> unsteady;
@@ -87,44 +89,75 @@ std::string sequencePath(const std::string& vdbPath, int frame);
 
 namespace {
 
-/// Ctrl-C (docs/reliability.md): while the domain is built and solved nothing is on disk, so the
-/// handler says where the run was and exits at once; while the files are written it only records
-/// the interrupt, so both (each written atomically) are complete before the run stops.
-enum SolveStage : int { STAGE_DOMAIN = 0, STAGE_SOLVING = 1, STAGE_WRITING = 2 };
-volatile std::sig_atomic_t gStage = STAGE_DOMAIN;
-volatile std::sig_atomic_t gInterruptedWhileWriting = 0;
-
-extern "C" void onSolveInterrupt(int) {
-    static const char DOMAIN_MSG[] =
-        "gale: interrupted while building the air domain: nothing written\n";
-    static const char SOLVING_MSG[] = "gale: interrupted while solving: nothing written\n";
-    if (gStage == STAGE_WRITING) {
-        gInterruptedWhileWriting = 1;
-        return;
-    }
-    // write and _exit are async-signal-safe; the message is all a handler may print.
-    if (gStage == STAGE_DOMAIN)
-        (void)!::write(STDERR_FILENO, DOMAIN_MSG, sizeof DOMAIN_MSG - 1);
-    else
-        (void)!::write(STDERR_FILENO, SOLVING_MSG, sizeof SOLVING_MSG - 1);
-    ::_exit(130);
+/// The folder of `path` ("." for a bare name).
+std::string folderOf(const std::string& path) {
+    const auto parent = std::filesystem::path(path).parent_path();
+    return parent.empty() ? std::string(".") : parent.string();
 }
 
-/// Installs onSolveInterrupt for SIGINT for its lifetime.
-class SolveInterruptGuard {
-  public:
-    SolveInterruptGuard() {
-        gStage = STAGE_DOMAIN;
-        gInterruptedWhileWriting = 0;
-        mPrevious = std::signal(SIGINT, onSolveInterrupt);
-    }
-    ~SolveInterruptGuard() { std::signal(SIGINT, mPrevious); }
-    SolveInterruptGuard(const SolveInterruptGuard&) = delete;
-    SolveInterruptGuard& operator=(const SolveInterruptGuard&) = delete;
+/// Creates the folders of the .vdb and the report, takes the .vdb folder's lock and removes
+/// temporaries a killed run left there. Returns the lock.
+std::unique_ptr<OutputLock> prepareSolveOutputs(const SolveRequest& req) {
+    for (const std::string& path : {req.vdbPath, req.reportPath})
+        if (!path.empty()) std::filesystem::create_directories(folderOf(path));
+    if (req.vdbPath.empty()) return nullptr;
+    auto lock = std::make_unique<OutputLock>(folderOf(req.vdbPath), req.outputWhere);
+    removeStaleTemporaries(folderOf(req.vdbPath));
+    return lock;
+}
 
-  private:
-    void (*mPrevious)(int);
-};
+/// Writes `field` to the staged temporary of `path` and seals it; returns its size in bytes.
+double writeStagedVdb(StagedFiles& staged, const sim::WindField& field, const std::string& path,
+                      const sim::VdbMetadata& meta) {
+    const std::string tmp = staged.add(path);
+    try {
+        field.writeVdb(tmp, meta);
+    } catch (const std::runtime_error& e) {
+        // WindField::writeVdb says "cannot write VDB file 'TMP': REASON": keep the reason.
+        std::string reason = e.what();
+        const size_t at = reason.find("': ");
+        if (at != std::string::npos) reason = reason.substr(at + 3);
+        throw std::runtime_error(path + ": cannot write: " + reason);
+    }
+    return staged.seal(path);
+}
+
+/// Steps `solver` to `tEnd` as UnsteadyWindSolver::advanceTo does, but stops after the step in
+/// hand when SIGINT, SIGTERM or SIGHUP arrives (app/io/Interrupt.h).
+std::vector<sim::StepReport> advanceUntilInterrupted(sim::UnsteadyWindSolver& solver, double tEnd) {
+    std::vector<sim::StepReport> reps;
+    // As advanceTo: a last step shorter than this fraction of a regular step is merged.
+    constexpr double MERGE_FRACTION = 1e-6;
+    while (solver.time_s() < tEnd && !interruptSignal()) {
+        double dt = solver.nextDt_s();
+        if (solver.time_s() + dt * (1.0 + MERGE_FRACTION) >= tEnd) dt = tEnd - solver.time_s();
+        reps.push_back(solver.step(dt));
+        if (!reps.back().finite) break;
+    }
+    return reps;
+}
+
+/// After the first .vdb of a sequence: its size times the files still to come must fit in the
+/// folder's free space. Throws InputError.
+void checkRoomForSequence(const std::string& folder, const std::string& where, double fileBytes,
+                          int filesToCome) {
+    // Later fields carry more structure than the initial one: the same margin as for frames.
+    constexpr double FILE_SIZE_MARGIN = 1.25;
+    std::error_code ec;
+    const std::filesystem::space_info space = std::filesystem::space(folder, ec);
+    const double need = fileBytes * FILE_SIZE_MARGIN * filesToCome;
+    if (!ec && need > static_cast<double>(space.available))
+        throw InputError(where + ": '" + folder + "' has " + formatBytes(double(space.available)) +
+                         " free but the " + std::to_string(filesToCome) +
+                         " .vdb files still to write need about " + formatBytes(need) +
+                         " (the first took " + formatBytes(fileBytes) + "); nothing was written");
+}
+
+/// Writes `text` to the staged temporary of `path` and seals it.
+void writeStagedText(StagedFiles& staged, const std::string& path, const std::string& text) {
+    writeTextAtomic(staged.add(path), text);
+    staged.seal(path);
+}
 
 /// The momentum model's settings, result and convergence history (one entry per pseudo-time step).
 nlohmann::json momentumJson(const sim::MomentumReport& m, const sim::MomentumSettings& s) {
@@ -162,14 +195,14 @@ int runSolve(const SolveRequest& req) {
     if (req.unsteady) return runUnsteadySolve(req);
     const auto t0 = Clock::now();
     req.ambient.validate();
-    SolveInterruptGuard interruptGuard;
+    InterruptScope interrupt("while building the air domain: nothing written");
     // No progress line before the domain has validated its inputs: bad input gets one line only.
     const sim::AirDomain domain(req.terrain, req.domain);
     const double domainSeconds = secondsSince(t0);
+    interrupt.exitAtOnce("while solving: nothing written");
     std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MiB; solving...\n", domain.nx(),
                  domain.ny(), domain.nz(), domain.activeCellCount(),
                  domain.memoryEstimate_bytes() / MIB);
-    gStage = STAGE_SOLVING;
     sim::SteadyWindResult res;
     std::optional<sim::MomentumReport> momentum;
     std::optional<sim::SteadyWindSolver> solver;  // the mass-consistent model's, kept for its memory figure
@@ -181,7 +214,7 @@ int runSolve(const SolveRequest& req) {
         solver.emplace(domain, req.weights);
         res = solver->solve(req.ambient, req.solver);
     }
-    gStage = STAGE_WRITING;
+    interrupt.defer();  // from here both files are completed, then the run stops
     const sim::SolveReport& rep = res.report;
 
     nlohmann::json j;
@@ -226,14 +259,14 @@ int runSolve(const SolveRequest& req) {
                    {"setup_s", rep.setupSeconds},
                    {"solve_s", rep.solveSeconds},
                    {"assembly_s", res.assemblySeconds}};
+    const std::unique_ptr<OutputLock> lock = prepareSolveOutputs(req);
+    StagedFiles staged;  // both files move into place together, or neither
     if (!req.vdbPath.empty()) {
-        const auto parent = std::filesystem::path(req.vdbPath).parent_path();
-        if (!parent.empty()) std::filesystem::create_directories(parent);
         sim::VdbMetadata meta;
         meta.strings = {{"scene", req.sceneName}, {"converged", rep.converged ? "yes" : "no"}};
         meta.numbers = {{"iterations", double(rep.iterations)}, {"relative_residual", rep.relativeResidual},
                         {"max_div_u_h_over_U", rep.maxDivergenceScaled}};
-        res.field.writeVdb(req.vdbPath, meta);
+        writeStagedVdb(staged, res.field, req.vdbPath, meta);
         if (req.houdiniFps > 0.0) {
             const std::string path = houdiniPath(req.vdbPath, req.houdiniFps, 0.0);
             sim::writeHoudiniVdb(path, res.field, req.terrain);
@@ -263,23 +296,20 @@ int runSolve(const SolveRequest& req) {
         for (const std::string& p : paths) std::printf("solve: wrote %s\n", p.c_str());
     }
     j["total_s"] = secondsSince(t0);
-    if (!req.reportPath.empty()) {
-        const auto parent = std::filesystem::path(req.reportPath).parent_path();
-        if (!parent.empty()) std::filesystem::create_directories(parent);
-        writeTextAtomic(req.reportPath, j.dump(2) + "\n");
-    }
+    if (!req.reportPath.empty()) writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
+    staged.commit();
     std::printf("solve: %s in %d iterations, relative residual %.2e, max|div u| h/U %.2e, %.2f s (%d x %d x %d cells, "
                 "%zu air)\n",
                 rep.converged ? "converged" : "DID NOT CONVERGE", rep.iterations, rep.relativeResidual,
                 rep.maxDivergenceScaled, j["total_s"].get<double>(), domain.nx(), domain.ny(), domain.nz(),
                 domain.activeCellCount());
     if (!rep.converged) std::printf("solve: %s\n", rep.message.c_str());
-    if (gInterruptedWhileWriting) {
+    if (interruptSignal()) {
         std::fflush(stdout);
-        std::fprintf(stderr, "gale: interrupted while writing; the solve had finished and %s%s%s are "
-                     "complete\n", req.vdbPath.c_str(), req.reportPath.empty() ? "" : " and ",
+        std::fprintf(stderr, "gale: interrupted (%s) while writing; the solve had finished and %s%s%s are "
+                     "complete\n", interruptSignalName(), req.vdbPath.c_str(), req.reportPath.empty() ? "" : " and ",
                      req.reportPath.c_str());
-        return 130;
+        return interruptExitCode();
     }
     return rep.converged ? EXIT_OK : EXIT_UNMET;
 }
@@ -297,11 +327,13 @@ int runUnsteadySolve(const SolveRequest& req) {
     const UnsteadySolveRequest& u = *req.unsteady;
     req.ambient.validate();
     u.settings.validate();
+    InterruptScope interrupt("while building the air domain: nothing written");
     std::fprintf(stderr, "solve: building the air domain (voxel %.3g m)...\n", req.domain.voxelSize_m);
     const sim::AirDomain domain(req.terrain, req.domain);
     std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air; steady solve (initial state and mean flow)...\n",
                  domain.nx(), domain.ny(), domain.nz(), domain.activeCellCount());
     sim::SteadyWindSolver steadySolver(domain, req.weights);
+    interrupt.exitAtOnce("during the steady solve: nothing written");
     const sim::SteadyWindResult steady = steadySolver.solve(req.ambient, req.solver);
     sim::UnsteadyWindSolver solver(domain, steady.field, u.settings, req.ambient.speed_mps);
 
@@ -334,13 +366,20 @@ int runUnsteadySolve(const SolveRequest& req) {
     nlohmann::json steps = nlohmann::json::array(), frames = nlohmann::json::array();
     std::vector<std::string> houdiniPaths;
     bool ok = steady.report.converged, finite = true;
+    // The sequence and report go to temporaries and move into place together at the end (or,
+    // interrupted, the complete frames and a report that says where the run stopped).
+    interrupt.defer();
+    const std::unique_ptr<OutputLock> lock = prepareSolveOutputs(req);
+    StagedFiles staged;
+    const int outputs = int(std::ceil(u.duration_s / u.outputEvery_s - 1e-9));
     auto writeFrame = [&](int n) {
         const std::string path = sequencePath(req.vdbPath, n);
         if (!req.vdbPath.empty()) {
             sim::VdbMetadata meta;
             meta.strings = {{"scene", req.sceneName}};
             meta.numbers = {{"time_s", solver.time_s()}};
-            solver.field().writeVdb(path, meta);
+            const double bytes = writeStagedVdb(staged, solver.field(), path, meta);
+            if (n == 0) checkRoomForSequence(folderOf(req.vdbPath), req.outputWhere, bytes, outputs);
             if (req.houdiniFps > 0.0) {
                 const std::string hpath = houdiniPath(req.vdbPath, req.houdiniFps, solver.time_s());
                 sim::writeHoudiniVdb(hpath, solver.field(), req.terrain);
@@ -349,21 +388,16 @@ int runUnsteadySolve(const SolveRequest& req) {
         }
         frames.push_back({{"frame", n}, {"t_s", solver.time_s()}, {"path", req.vdbPath.empty() ? "" : path}});
     };
-    if (!req.vdbPath.empty()) {
-        const auto parent = std::filesystem::path(req.vdbPath).parent_path();
-        if (!parent.empty()) std::filesystem::create_directories(parent);
-    }
     writeFrame(0);
-    const int outputs = int(std::ceil(u.duration_s / u.outputEvery_s - 1e-9));
     double maxCfl = 0, maxDiv = 0, solveSeconds = 0;
     int maxIt = 0, stepCount = 0;
     // One updating line with ETA on a terminal, one line per output in logs (app/io/Progress.h); the
     // run's CFL and divergence are in the summary line and the report.
     Progress progress("output", outputs);
-    for (int n = 1; n <= outputs && finite; ++n) {
+    for (int n = 1; n <= outputs && finite && !interruptSignal(); ++n) {
         const auto outputStart = Clock::now();
         const double target = std::min(u.duration_s, n * u.outputEvery_s);
-        for (const sim::StepReport& r : solver.advanceTo(target)) {
+        for (const sim::StepReport& r : advanceUntilInterrupted(solver, target)) {
             ++stepCount;
             maxCfl = std::max(maxCfl, r.cfl), maxDiv = std::max(maxDiv, r.maxDivergenceScaled);
             maxIt = std::max(maxIt, r.projection.iterations);
@@ -387,10 +421,16 @@ int runUnsteadySolve(const SolveRequest& req) {
                              {"projection_s", r.projection_s},
                              {"step_s", r.total_s}});
         }
+        if (solver.time_s() < target) break;  // interrupted between two outputs
         writeFrame(n);
         progress.step(n, msSince(outputStart));
     }
     progress.finish();
+    if (interruptSignal()) {
+        j["interrupted"] = true;
+        j["stopped_by"] = interruptSignalName();
+        j["stopped_at_t_s"] = solver.time_s();
+    }
     j["steps"] = steps;
     j["outputs"] = {{"vdb_sequence", frames},
                     {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
@@ -408,10 +448,14 @@ int runUnsteadySolve(const SolveRequest& req) {
                     {"finite", finite},
                     {"mean_step_s", stepCount ? solveSeconds / stepCount : 0.0}};
     j["total_s"] = secondsSince(t0);
-    if (!req.reportPath.empty()) {
-        const auto parent = std::filesystem::path(req.reportPath).parent_path();
-        if (!parent.empty()) std::filesystem::create_directories(parent);
-        writeTextAtomic(req.reportPath, j.dump(2) + "\n");
+    if (!req.reportPath.empty()) writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
+    staged.commit();
+    if (interruptSignal()) {
+        std::printf("solve: interrupted (%s) at t = %.3g s after %d steps: wrote %zu complete .vdb files "
+                    "(the last %s) and the report %s\n",
+                    interruptSignalName(), solver.time_s(), stepCount, frames.size(),
+                    frames.back()["path"].get<std::string>().c_str(), req.reportPath.c_str());
+        return interruptExitCode();
     }
     std::printf("solve: unsteady, %d steps to t = %.2f s (%zu .vdb files), max CFL %.2f, max projection iterations %d, "
                 "max|div u| h/U %.2e, %s, %.2f s (%.3f s per step)\n",
@@ -423,6 +467,10 @@ int runUnsteadySolve(const SolveRequest& req) {
 
 
 namespace fs = std::filesystem;
+
+/// Sequence files checked against the inputs by name; beyond this many (a limit far above any
+/// sequence gale check lets through) the names are not built.
+constexpr int MAX_ALIAS_CHECKED_FILES = 100000;
 
 int runSolveVerb(const SolveVerbOptions& options) {
     SceneRunOptions sceneOptions;
@@ -458,6 +506,24 @@ int runSolveVerb(const SolveVerbOptions& options) {
     // Each folder must be a folder or creatable (checked, not created): nothing is created for a
     // run that fails on input. runSolve creates them just before it writes.
     const std::string vdbWhere = options.vdbPath.empty() ? scene.where("output.folder") : "-o";
+    const std::string reportWhere = options.reportPath.empty() ? vdbWhere : "--report";
+    request.outputWhere = vdbWhere;
+    for (const auto& [path, where] : {std::pair{request.vdbPath, vdbWhere}, std::pair{request.reportPath, reportWhere}}) {
+        std::error_code ec;
+        if (fs::is_directory(path, ec))
+            throw InputError(where + ": '" + path + "' is a folder; give the name of the file to write");
+    }
+    {
+        std::vector<RunPath> outputs{{request.reportPath, reportWhere + " (the report)"}};
+        if (request.unsteady) {
+            const int files = int(std::ceil(request.unsteady->duration_s / request.unsteady->outputEvery_s - 1e-9)) + 1;
+            for (int n = 0; n < files && n < MAX_ALIAS_CHECKED_FILES; ++n)
+                outputs.push_back({sequencePath(request.vdbPath, n), vdbWhere + " (a .vdb of the sequence)"});
+        } else {
+            outputs.push_back({request.vdbPath, vdbWhere + " (the .vdb field)"});
+        }
+        refuseAliases(sceneInputs(scene), outputs);
+    }
     for (const std::string& path : {request.vdbPath, request.reportPath}) {
         const fs::path folder = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
         std::error_code ec;

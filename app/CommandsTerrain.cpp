@@ -2,20 +2,25 @@
 /// `gale terrain`: the scene's heightfield as a 16-bit greyscale PNG that a heightmap scene can
 /// read back.
 
+#include <cerrno>
 #include <memory>
+#include <vector>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
 
 #include "app/Cli.h"
 #include "app/Commands.h"
+#include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
+#include "app/io/ImageCheck.h"
+#include "app/io/Interrupt.h"
+#include "app/io/OutputLock.h"
 #include "app/scene/Heightmap.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
 
 namespace gale::app {
-
 int runTerrainExport(const TerrainExportOptions& options) {
     namespace fs = std::filesystem;
     const fs::path out(options.imagePath);
@@ -32,14 +37,26 @@ int runTerrainExport(const TerrainExportOptions& options) {
     if (!fs::is_directory(parent, ec))
         throw InputError("-o: folder '" + parent.string() + "' does not exist");
 
+    InterruptScope interrupt("while exporting the terrain: nothing written");
     const Scene scene = parseSceneFile(options.scenePath);
+    refuseAliases(sceneInputs(scene), {{options.imagePath, "-o"}});
     const sim::Heightfield field = buildHeightfield(scene);
+    const OutputLock lock(parent.string(), "-o");
+    removeStaleTemporaries(parent.string());
+    // Written to a temporary, read back whole, fsync'ed, then renamed over the destination: a
+    // full disk leaves the earlier file (if any) as it was.
+    StagedFiles staged;
+    const std::string tmp = staged.add(options.imagePath);
     HeightmapRange range;
+    errno = 0;
     try {
-        range = writeHeightmapPng16(field, options.imagePath);
+        range = writeHeightmapPng16(field, tmp);
     } catch (const std::runtime_error& e) {
-        throw InputError(std::string("-o: ") + e.what());
+        throw std::runtime_error(options.imagePath + ": cannot write: " + e.what());
     }
+    verifyImageFile(tmp, options.imagePath, field.nx, field.ny, errno);
+    staged.seal(options.imagePath);
+    staged.commit();
     std::printf("wrote %s: %d x %d pixels, 16-bit grey, heights %.6g .. %.6g m\n",
                 options.imagePath.c_str(), field.nx, field.ny, range.minHeight_m,
                 range.maxHeight_m);

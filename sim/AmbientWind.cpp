@@ -45,11 +45,20 @@ void AmbientWind::validate() const {
         throw std::invalid_argument("AmbientWind.referenceHeight_m must be > 0 and finite, got " +
                                     num(referenceHeight_m));
     if (profile == WindProfile::LogLaw) {
+        // z_ref / z0 at least this: ln(3) = 1.1 keeps u(z) within a factor ln(z / z0) / 1.1.
+        constexpr double MIN_REFERENCE_OVER_ROUGHNESS = 3.0;
         if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
             throw std::invalid_argument("AmbientWind.roughness_m must be > 0 and finite, got " + num(roughness_m));
-        if (!(referenceHeight_m > roughness_m))
+        // u(z) = U ln(z / z0) / ln(z_ref / z0): as z_ref nears z0 the denominator goes to 0 and
+        // the field to infinity (z_ref = 1.0000001 z0 gave 9e9 m/s) or, rounded, to nothing. The
+        // neutral log law describes the surface layer well above the roughness elements, so the
+        // reference height must be at least a few z0.
+        if (!(referenceHeight_m >= MIN_REFERENCE_OVER_ROUGHNESS * roughness_m))
             throw std::invalid_argument("AmbientWind.referenceHeight_m (" + num(referenceHeight_m) +
-                                        " m) must be above roughness_m (" + num(roughness_m) + " m)");
+                                        " m) must be at least " + num(MIN_REFERENCE_OVER_ROUGHNESS) +
+                                        " x roughness_m (" + num(roughness_m) + " m), i.e. >= " +
+                                        num(MIN_REFERENCE_OVER_ROUGHNESS * roughness_m) +
+                                        " m, for the log law to hold");
     }
 }
 

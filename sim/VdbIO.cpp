@@ -5,7 +5,10 @@
 #include <openvdb/tools/SignedFloodFill.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <filesystem>
 #include <stdexcept>
 
@@ -45,10 +48,23 @@ void writeGridsAtomic(const std::string& path, const openvdb::GridCPtrVec& grids
     namespace fs = std::filesystem;
     const fs::path target(path);
     const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()));
+    // openvdb::io::File::write never looks at its stream after writing, so a full disk gave a
+    // truncated file and no error: write the same archive to a stream we check.
+    struct CheckedArchive : openvdb::io::File {
+        using openvdb::io::File::File;
+        void writeTo(std::ostream& os, const openvdb::GridCPtrVec& g) const {
+            openvdb::io::Archive::write(os, g, /*seekable=*/true, openvdb::MetaMap());
+        }
+    };
     try {
-        openvdb::io::File file(tmp.string());
-        file.write(grids);
-        file.close();
+        std::ofstream os(tmp, std::ios_base::out | std::ios_base::binary | std::ios_base::trunc);
+        if (!os) throw std::runtime_error(std::string("cannot create it: ") + std::strerror(errno));
+        CheckedArchive(tmp.string()).writeTo(os, grids);
+        os.flush();
+        const int err = errno;
+        if (!os) throw std::runtime_error(std::strerror(err));
+        os.close();
+        if (os.fail()) throw std::runtime_error(std::strerror(errno));
         fs::rename(tmp, target);
     } catch (const std::exception& e) {
         std::error_code ec;

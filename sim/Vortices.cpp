@@ -74,9 +74,20 @@ double Whirlwind::tangentialSpeed_mps(double r) const {
 
 double Whirlwind::circulationWithin_m2ps(double r) const { return 2 * PI * r * tangentialSpeed_mps(r); }
 
-void addWhirlwind(const MacGrid& g, const Whirlwind& ww, std::array<double, 2> c, double scale, const GroundHeight& ground,
-                  double zTop, std::vector<double>& u, std::vector<double>& v, std::vector<double>& w,
-                  const std::array<const std::vector<uint8_t>*, 3>& masks) {
+Whirlwind withMinimumCore(const Whirlwind& given, double voxelSize_m) {
+    const double minCore_m = MIN_SMOOTHED_CORE_CELLS * voxelSize_m;
+    if (!(given.coreRadius_m < minCore_m)) return given;
+    Whirlwind smoothed = given;
+    smoothed.circulation_m2ps = given.circulation();  // the same circulation, spread wider
+    smoothed.peakSpeed_mps = 0.0;
+    smoothed.coreRadius_m = minCore_m;
+    return smoothed;
+}
+
+void addWhirlwind(const MacGrid& g, const Whirlwind& given, std::array<double, 2> c, double scale,
+                  const GroundHeight& ground, double zTop, std::vector<double>& u, std::vector<double>& v,
+                  std::vector<double>& w, const std::array<const std::vector<uint8_t>*, 3>& masks) {
+    const Whirlwind ww = withMinimumCore(given, g.voxelSize_m);
     const double rc = ww.coreRadius_m, rSeed = ww.outerRadiusFactor * rc, rEnd = WINDOW_END_FACTOR * rSeed;
     double updraft = ww.updraft_mps;
     const double groundC = ground ? ground(c[0], c[1]) : g.wsMin_m[2];

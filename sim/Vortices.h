@@ -61,10 +61,23 @@ struct Whirlwind {
 /// v_peak / (Gamma / (2 pi r_c)) of a profile (1 for Rankine, 0.6382 for Lamb-Oseen and Burgers).
 double peakSpeedFactor(VortexProfile p);
 
+/// The narrowest core the grid carries, in cells. A core far below a cell puts the whole swirl
+/// between the velocity samples: seeded as it is, a whirlwind with a 0.04-cell core vanished.
+/// Narrower cores are seeded as this wide, with the same circulation (a smoothed core): the
+/// flow outside the core, Gamma / (2 pi r), is unchanged; the peak speed is what the grid can
+/// resolve rather than the one asked for.
+inline constexpr double MIN_SMOOTHED_CORE_CELLS = 1.0;
+
+/// `given` with coreRadius_m raised to MIN_SMOOTHED_CORE_CELLS * voxelSize_m (metres) when it is
+/// below that, keeping its circulation (then held in circulation_m2ps, peakSpeed_mps = 0);
+/// otherwise `given` as it is. Throws nothing.
+Whirlwind withMinimumCore(const Whirlwind& given, double voxelSize_m);
+
 /// Ground height under a world (x, y), metres.
 using GroundHeight = std::function<double(double wsX_m, double wsY_m)>;
 
-/// Adds scale * (the whirlwind's windowed velocity, axis at wsAxis_m = (x, y)) to the MAC arrays;
+/// Adds scale * (the whirlwind's windowed velocity, axis at wsAxis_m = (x, y)) to the MAC arrays,
+/// a core below the grid smoothed to MIN_SMOOTHED_CORE_CELLS (withMinimumCore);
 /// only samples with mask != 0 (if given) change. zTop_m is the domain top (column height when
 /// height_m is 0).
 void addWhirlwind(const MacGrid& g, const Whirlwind& ww, std::array<double, 2> wsAxis_m, double scale,

@@ -1,49 +1,279 @@
 #include "app/io/AtomicFile.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
+#include <climits>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
+#include <unordered_map>
+
+#include "app/io/Errors.h"
 
 namespace gale::app {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+/// The signal-safe registry: fixed slots of fixed size, a slot is in use when its first byte is
+/// not 0. Written by the main thread only; the handler only reads.
+char gRegistered[REGISTERED_PATHS][PATH_MAX];
+
+[[noreturn]] void failWrite(const std::string& path, const std::string& reason,
+                            const std::string& tmpPath) {
+    if (!tmpPath.empty()) discardTemporary(tmpPath);
+    throw std::runtime_error(path + ": cannot write: " + reason);
+}
+
+/// The folder holding `path` ("." for a bare name).
+std::string folderOf(const std::string& path) {
+    const fs::path parent = fs::path(path).parent_path();
+    return parent.empty() ? "." : parent.string();
+}
+
+/// fsyncs a folder so a rename in it is durable; file systems that cannot sync folders
+/// (EINVAL) are fine.
+void syncFolder(const std::string& folder, const std::string& path) {
+    const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    const int r = ::fsync(fd);
+    const int err = errno;
+    ::close(fd);
+    if (r != 0 && err != EINVAL && err != EROFS)
+        throw std::runtime_error(path + ": cannot write: " + std::strerror(err));
+}
+
+bool processExists(long pid) {
+    if (pid <= 0 || pid > INT_MAX) return false;
+    return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+}
+
+/// The PID in a temporary's name, or -1 if the name is not one of ours.
+long temporaryOwner(const std::string& name) {
+    // ".NAME.tmp-PID-N[.ext]"
+    size_t at = name.rfind(".tmp-");
+    if (!name.empty() && name[0] == '.' && at != std::string::npos && at > 0) {
+        const size_t begin = at + 5, dash = name.find('-', begin);
+        if (dash == std::string::npos || dash == begin) return -1;
+        const std::string pid = name.substr(begin, dash - begin);
+        if (pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos) return -1;
+        return std::stol(pid);
+    }
+    // "NAME.tmpPID" (the .vdb writer's own temporary)
+    at = name.rfind(".tmp");
+    if (at == std::string::npos || at == 0) return -1;
+    const std::string pid = name.substr(at + 4);
+    if (pid.empty() || pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos)
+        return -1;
+    return std::stol(pid);
+}
+
+}  // namespace
+
+void registerForRemoval(const std::string& path) {
+    if (path.size() >= PATH_MAX) return;
+    for (char* slot : gRegistered)
+        if (slot[0] == '\0') {
+            std::memcpy(slot, path.c_str(), path.size() + 1);
+            return;
+        }
+}
+
+void unregisterForRemoval(const std::string& path) {
+    for (char* slot : gRegistered)
+        if (slot[0] != '\0' && path == slot) slot[0] = '\0';
+}
+
+void removeRegisteredTemporaries() {
+    for (const char* slot : gRegistered)
+        if (slot[0] != '\0') ::unlink(slot);
+}
 
 std::string temporaryPathFor(const std::string& path) {
     static std::atomic<unsigned> counter{0};
     const fs::path p(path);
     const std::string name = "." + p.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
                              std::to_string(counter++) + p.extension().string();
-    return (p.parent_path() / name).string();
+    const std::string tmp = (p.parent_path() / name).string();
+    registerForRemoval(tmp);
+    return tmp;
+}
+
+void discardTemporary(const std::string& tmpPath) {
+    ::unlink(tmpPath.c_str());
+    unregisterForRemoval(tmpPath);
+}
+
+void syncTemporary(const std::string& tmpPath, const std::string& path) {
+    const int fd = ::open(tmpPath.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) failWrite(path, std::strerror(errno), tmpPath);
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0) {
+        ::close(fd);
+        failWrite(path, "the writer left an empty file", tmpPath);
+    }
+    const int r = ::fsync(fd);
+    const int err = errno;
+    ::close(fd);
+    if (r != 0) failWrite(path, std::strerror(err), tmpPath);
 }
 
 void commitTemporary(const std::string& tmpPath, const std::string& path) {
-    std::error_code ec;
-    fs::rename(tmpPath, path, ec);
-    if (ec) {
-        std::error_code ignored;
-        fs::remove(tmpPath, ignored);
-        throw std::runtime_error(path + ": cannot write: " + ec.message());
-    }
+    syncTemporary(tmpPath, path);
+    if (::rename(tmpPath.c_str(), path.c_str()) != 0) failWrite(path, std::strerror(errno), tmpPath);
+    unregisterForRemoval(tmpPath);
+    syncFolder(folderOf(path), path);
 }
 
 void writeTextAtomic(const std::string& path, const std::string& text) {
     const std::string tmp = temporaryPathFor(path);
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
-    const bool wrote = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    const int err = errno;
-    const bool closed = std::fclose(f) == 0;
-    if (!wrote || !closed) {
-        std::remove(tmp.c_str());
-        throw std::runtime_error(path + ": cannot write: " + std::strerror(wrote ? errno : err));
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) failWrite(path, std::strerror(errno), tmp);
+    size_t done = 0;
+    while (done < text.size()) {
+        const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int err = n < 0 ? errno : ENOSPC;
+            ::close(fd);
+            failWrite(path, std::strerror(err), tmp);
+        }
+        done += static_cast<size_t>(n);
     }
-    commitTemporary(tmp, path);
+    if (::fsync(fd) != 0) {
+        const int err = errno;
+        ::close(fd);
+        failWrite(path, std::strerror(err), tmp);
+    }
+    if (::close(fd) != 0) failWrite(path, std::strerror(errno), tmp);
+    if (::rename(tmp.c_str(), path.c_str()) != 0) failWrite(path, std::strerror(errno), tmp);
+    unregisterForRemoval(tmp);
+    syncFolder(folderOf(path), path);
+}
+
+std::vector<std::string> staleTemporaries(const std::string& folder) {
+    std::vector<std::string> out;
+    std::error_code ec;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        const long pid = temporaryOwner(name);
+        if (pid > 0 && pid != ::getpid() && !processExists(pid) && it->is_regular_file(ec))
+            out.push_back(it->path().string());
+    }
+    return out;
+}
+
+int removeStaleTemporaries(const std::string& folder) {
+    const std::vector<std::string> stale = staleTemporaries(folder);
+    int removed = 0;
+    for (const std::string& p : stale) removed += ::unlink(p.c_str()) == 0;
+    if (removed > 0)
+        std::fprintf(stderr,
+                     "gale: note: removed %d temporary file%s left in %s by a run that was "
+                     "stopped (e.g. %s)\n",
+                     removed, removed == 1 ? "" : "s", folder.c_str(),
+                     fs::path(stale.front()).filename().c_str());
+    return removed;
+}
+
+}  // namespace gale::app
+
+namespace gale::app {
+
+StagedFiles::~StagedFiles() { discard(); }
+
+void StagedFiles::discard() {
+    for (const Entry& e : mEntries) discardTemporary(e.tmp);
+    mEntries.clear();
+}
+
+std::string StagedFiles::add(const std::string& path) {
+    mEntries.push_back({path, temporaryPathFor(path), false});
+    return mEntries.back().tmp;
+}
+
+double StagedFiles::seal(const std::string& path) {
+    for (Entry& e : mEntries)
+        if (e.path == path) {
+            syncTemporary(e.tmp, e.path);
+            e.sealed = true;
+            std::error_code ec;
+            const auto size = fs::file_size(e.tmp, ec);
+            return ec ? 0.0 : static_cast<double>(size);
+        }
+    throw std::logic_error("StagedFiles::seal: " + path + " was not added");
+}
+
+std::vector<std::string> StagedFiles::sealed() const {
+    std::vector<std::string> out;
+    for (const Entry& e : mEntries)
+        if (e.sealed) out.push_back(e.path);
+    return out;
+}
+
+void StagedFiles::commit() {
+    std::vector<Entry> entries;
+    entries.swap(mEntries);
+    std::vector<std::string> folders;
+    for (size_t k = 0; k < entries.size(); ++k) {
+        const Entry& e = entries[k];
+        if (!e.sealed) {
+            discardTemporary(e.tmp);
+            continue;
+        }
+        if (::rename(e.tmp.c_str(), e.path.c_str()) != 0) {
+            const int err = errno;
+            for (size_t j = k; j < entries.size(); ++j) discardTemporary(entries[j].tmp);
+            throw std::runtime_error(e.path + ": cannot write: " + std::strerror(err));
+        }
+        unregisterForRemoval(e.tmp);
+        const std::string folder = folderOf(e.path);
+        if (folders.empty() || folders.back() != folder) {
+            folders.push_back(folder);
+            syncFolder(folder, e.path);
+        }
+    }
+}
+
+void refuseAliases(const std::vector<RunPath>& inputs, const std::vector<RunPath>& outputs) {
+    // Resolving each folder once keeps this cheap for thousands of frames in one folder.
+    std::vector<std::pair<std::string, std::string>> folderCache;
+    auto resolve = [&](const std::string& path) {
+        const fs::path p(path);
+        const std::string folder = p.parent_path().empty() ? "." : p.parent_path().string();
+        std::string resolvedFolder;
+        for (const auto& [raw, resolved] : folderCache)
+            if (raw == folder) resolvedFolder = resolved;
+        std::error_code ec;
+        if (resolvedFolder.empty()) {
+            resolvedFolder = fs::weakly_canonical(fs::absolute(folder, ec), ec).string();
+            if (ec) resolvedFolder = fs::absolute(folder).lexically_normal().string();
+            folderCache.emplace_back(folder, resolvedFolder);
+        }
+        const fs::path full = fs::path(resolvedFolder) / p.filename();
+        // The file itself may be a symbolic link (to an input): resolve it too.
+        if (!fs::is_symlink(full, ec)) return full.string();
+        const fs::path target = fs::weakly_canonical(full, ec);
+        return (ec ? full : target).string();
+    };
+    std::unordered_map<std::string, const RunPath*> seen;
+    for (const RunPath& in : inputs)
+        if (!in.path.empty()) seen.emplace(resolve(in.path), &in);
+    for (const RunPath& out : outputs) {
+        if (out.path.empty()) continue;
+        const auto [it, fresh] = seen.emplace(resolve(out.path), &out);
+        if (!fresh)
+            throw InputError(out.role + ": '" + out.path + "' is also " + it->second->role +
+                             " ('" + it->second->path + "'); choose another output path");
+    }
 }
 
 }  // namespace gale::app

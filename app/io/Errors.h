@@ -16,7 +16,9 @@ inline constexpr int EXIT_FAILURE_INTERNAL = 1;  ///< a runtime failure: I/O, GL
 inline constexpr int EXIT_BAD_INPUT = 2;         ///< scene, image, arguments, output folder
 /// The run completed and wrote its outputs, but did not converge or missed its stated target.
 inline constexpr int EXIT_UNMET = 3;
-inline constexpr int EXIT_INTERRUPTED = 130;  ///< Ctrl-C (128 + SIGINT)
+/// Ctrl-C (128 + SIGINT); SIGTERM and SIGHUP exit 143 and 129 (128 + the signal,
+/// app/io/Interrupt.h).
+inline constexpr int EXIT_INTERRUPTED = 130;
 
 /// Bad input from the user: the message is complete and printed as it is, on one line.
 class InputError : public std::runtime_error {

@@ -6,6 +6,7 @@
 
 #include <map>
 #include <optional>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,8 @@ struct UnsteadySection {
     sim::UnsteadySettings settings;  ///< time step, advection, viscosity, gusts, whirlwinds
     double duration_s = 10.0;        ///< `gale solve`: simulated time, seconds
     double outputEvery_s = 1.0;      ///< `gale solve`: a .vdb every this many seconds
+    int64_t maxFiles = 10000;        ///< refuse runs planning more .vdb files (docs/reliability.md)
+    int64_t maxSteps = 1000000;      ///< refuse runs planning more time steps
 };
 
 struct OutputSection {

@@ -323,6 +323,11 @@ void readWind(Context& ctx, Section s) {
     if (!(a.referenceHeight_m > a.roughness_m))
         s.failKey("reference_height_m", "must be above roughness_m = " + Limit::num(a.roughness_m) +
                                             " (got " + Limit::num(a.referenceHeight_m) + ")");
+    try {
+        a.validate();  // the log law also needs z_ref a few z0 above the ground
+    } catch (const std::invalid_argument& e) {
+        s.failKey("reference_height_m", e.what());
+    }
 
     // How the grass answers the solved field (coupling/FieldWind.h).
     coupling::FieldWindSpec& r = w.response;
@@ -482,7 +487,24 @@ void readUnsteady(Context& ctx, Section s) {
     v.projection.relativeTolerance = s.number("tolerance", 1e-5, above(0.0, 0.5));
     v.projection.maxIterations = static_cast<int>(s.integer("max_iterations", 60, 1, 100000));
     u.outputEvery_s = s.number("output_every_s", 1.0, above(0.0, 1e7));
+    u.maxFiles = s.integer("max_files", DEFAULT_MAX_SEQUENCE_FILES, 1, 100000000);
+    u.maxSteps = s.integer("max_steps", DEFAULT_MAX_UNSTEADY_STEPS, 1, 1000000000000);
     s.finish();
+    if (ctx.scene->wind.kind == WindKind::Unsteady) {
+        // Bounds on work (docs/reliability.md): the files and steps this run plans, refused
+        // beyond the limits unless the scene raises them.
+        const double files = plannedSequenceFiles(u);
+        if (files > static_cast<double>(u.maxFiles))
+            s.failKey("output_every_s", "duration_s / output_every_s plans " + Limit::num(files) +
+                                            " .vdb files; at most " + std::to_string(u.maxFiles) +
+                                            " unless unsteady.max_files raises it");
+        const double steps = plannedUnsteadySteps(*ctx.scene);
+        if (steps > static_cast<double>(u.maxSteps))
+            s.failKey(s.given("dt_s") ? "dt_s" : "cfl",
+                      "plans at least " + Limit::num(steps) + " time steps over duration_s = " +
+                          Limit::num(u.duration_s) + " s; at most " + std::to_string(u.maxSteps) +
+                          " unless unsteady.max_steps raises it");
+    }
     if (s.present() && ctx.scene->wind.kind != WindKind::Unsteady)
         ctx.scene->notes.push_back(ctx.scene->where("unsteady") + ": used by wind.kind = \"unsteady\" only (ignored)");
 }
@@ -593,6 +615,23 @@ std::optional<BudgetProblem> outputBudgetProblem(const OutputSection& o) {
     return std::nullopt;
 }
 
+double plannedSequenceFiles(const UnsteadySection& u) {
+    return std::ceil(u.duration_s / u.outputEvery_s - 1e-9) + 1.0;
+}
+
+double plannedUnsteadySteps(const Scene& scene) {
+    const UnsteadySection& u = scene.unsteady;
+    const sim::UnsteadySettings& v = u.settings;
+    double dt_s = v.dt_s;
+    if (!(dt_s > 0.0)) {
+        // Adaptive: dt = cfl h / |u|max, at most max_dt_s. The field's peak is at least the
+        // ambient speed, so this dt is an upper bound and the count a lower one.
+        const double speed_mps = std::max(scene.wind.ambient.speed_mps, 1e-300);
+        dt_s = std::min(v.maxDt_s, v.cfl * scene.solver.domain.voxelSize_m / speed_mps);
+    }
+    return std::ceil(u.duration_s / dt_s);
+}
+
 double estimatePngBytes(const OutputSection& o) {
     return static_cast<double>(o.width) * o.height * o.frames * PNG_BYTES_PER_PIXEL;
 }
@@ -667,12 +706,20 @@ Scene parseSceneFile(const std::string& path) {
         throw SceneError(path + ": " + formatBytes(static_cast<double>(size)) +
                          " is too large for a scene file (at most " +
                          formatBytes(MAX_SCENE_FILE_BYTES) + ")");
+    // Read through a bounded buffer whatever the file is: a device (/dev/zero) or a pipe has no
+    // size to check first, and must not grow without bound.
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError(path + ": cannot read the scene: " + std::strerror(errno));
-    std::ostringstream text;
-    text << in.rdbuf();
+    std::string text;
+    char chunk[65536];
+    while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+        text.append(chunk, static_cast<size_t>(in.gcount()));
+        if (text.size() > MAX_SCENE_FILE_BYTES)
+            throw SceneError(path + ": more than " + formatBytes(MAX_SCENE_FILE_BYTES) +
+                             " of input: too large for a scene file (stopped reading there)");
+    }
     if (in.bad()) throw SceneError(path + ": cannot read the scene: read error");
-    return parseSceneString(text.str(), path);
+    return parseSceneString(text, path);
 }
 
 }  // namespace gale::app

@@ -23,6 +23,9 @@ namespace gale::app {
 inline constexpr int MAX_SHELLS = 256;           ///< render::kMaxShells
 inline constexpr int MAX_IMAGE_SIDE_PX = 16384;  ///< output width and height
 inline constexpr int MAX_FRAMES = 100000;
+/// Bounds on an unsteady run's work unless [unsteady] max_files / max_steps raise them.
+inline constexpr int64_t DEFAULT_MAX_SEQUENCE_FILES = 10000;
+inline constexpr int64_t DEFAULT_MAX_UNSTEADY_STEPS = 1000000;
 inline constexpr int MAX_SAMPLES_PER_SIDE = 16384;  ///< heightfield grid (also sim::makeTerrain's)
 inline constexpr double MAX_TERRAIN_BYTES = 4.0 * 1024 * 1024 * 1024;    ///< heightfield + mesh
 inline constexpr double MAX_FRAME_BYTES = 2.0 * 1024 * 1024 * 1024;      ///< GL buffers of a frame
@@ -56,6 +59,15 @@ struct BudgetProblem {
 /// Refuses frames whose GL buffers would exceed MAX_FRAME_BYTES and runs whose PNGs would exceed
 /// MAX_OUTPUT_BYTES (estimated); std::nullopt when the output is reasonable.
 std::optional<BudgetProblem> outputBudgetProblem(const OutputSection& output);
+
+/// The .vdb files an unsteady run writes: one at t = 0, one every output_every_s and one at
+/// duration_s.
+double plannedSequenceFiles(const UnsteadySection& unsteady);
+
+/// Time steps an unsteady run takes at least: duration_s / dt_s, or with the adaptive step
+/// duration_s / min(max_dt_s, cfl h / ambient speed) (the field's peak is at least the ambient
+/// speed, so the real count is higher).
+double plannedUnsteadySteps(const Scene& scene);
 
 /// Estimated bytes of all frames as PNG (noisy grass: about 2 bytes per pixel).
 double estimatePngBytes(const OutputSection& output);

@@ -91,7 +91,13 @@ TEST(Interrupt, CtrlCDuringRenderKeepsCompleteFramesNamesTheLastAndExits130) {
     const std::string folder = cwd / "frames";
     RunResult r;
     ASSERT_NO_FATAL_FAILURE(interruptWhenReady(
-        child, [&] { return fs::exists(folder + "/" + frameName(FRAMES_BEFORE_INTERRUPT)); }, r));
+        child,
+        [&] {
+            // Frames move into place when the run ends; its progress lines say how far it is.
+            return child.errSoFar().find(" " + std::to_string(FRAMES_BEFORE_INTERRUPT + 1) +
+                                         "/100000") != std::string::npos;
+        },
+        r));
 
     const nlohmann::json report = nlohmann::json::parse(readFile(folder + "/frame_report.json"));
     const int done = report["frames"];

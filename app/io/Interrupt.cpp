@@ -1,0 +1,77 @@
+#include "app/io/Interrupt.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstring>
+
+#include "app/io/AtomicFile.h"
+
+namespace gale::app {
+namespace {
+
+constexpr int SIGNALS[] = {SIGINT, SIGTERM, SIGHUP};
+volatile sig_atomic_t gSignal = 0;
+volatile sig_atomic_t gDeferred = 0;
+const char* volatile gStage = "";
+struct sigaction gPrevious[3];
+
+void say(const char* text) { (void)!::write(STDERR_FILENO, text, std::strlen(text)); }
+
+const char* nameOf(int sig) {
+    switch (sig) {
+        case SIGINT: return "SIGINT";
+        case SIGTERM: return "SIGTERM";
+        case SIGHUP: return "SIGHUP";
+        default: return "a signal";
+    }
+}
+
+/// Everything here is async-signal-safe: unlink, write, _exit.
+[[noreturn]] void exitNow(int sig) {
+    removeRegisteredTemporaries();
+    say("gale: interrupted (");
+    say(nameOf(sig));
+    say(") ");
+    say(gStage);
+    say("\n");
+    ::_exit(128 + sig);
+}
+
+extern "C" void onSignal(int sig) {
+    if (gSignal == 0) gSignal = sig;
+    if (!gDeferred) exitNow(sig);
+}
+
+}  // namespace
+
+InterruptScope::InterruptScope(const char* stage) {
+    gSignal = 0;
+    gStage = stage;
+    gDeferred = 0;
+    struct sigaction sa {};
+    sa.sa_handler = onSignal;
+    sigemptyset(&sa.sa_mask);
+    for (int s : SIGNALS) sigaddset(&sa.sa_mask, s);  // one handler at a time
+    for (int i = 0; i < 3; ++i) sigaction(SIGNALS[i], &sa, &gPrevious[i]);
+}
+
+InterruptScope::~InterruptScope() {
+    for (int i = 0; i < 3; ++i) sigaction(SIGNALS[i], &gPrevious[i], nullptr);
+}
+
+void InterruptScope::exitAtOnce(const char* stage) {
+    gStage = stage;
+    gDeferred = 0;
+    if (gSignal != 0) exitNow(gSignal);
+}
+
+void InterruptScope::defer() { gDeferred = 1; }
+
+int interruptSignal() { return gSignal; }
+
+int interruptExitCode() { return gSignal == 0 ? 0 : 128 + gSignal; }
+
+const char* interruptSignalName() { return nameOf(gSignal); }
+
+}  // namespace gale::app
