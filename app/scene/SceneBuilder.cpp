@@ -35,6 +35,18 @@ constexpr double DEFAULT_ELEVATION_DEG = 28.0;
     throw SceneError(scene.where(key) + ": " + reason);
 }
 
+/// What the grass reads below the first solved faces: the log law of the wall stress for the
+/// momentum model, the free-slip tangential law for the mass-consistent one (coupling/NearGround.h).
+coupling::NearGround nearGroundOf(const Scene& scene) {
+    coupling::NearGround n;
+    if (scene.solver.model == sim::SteadyModel::Momentum) {
+        n.model = coupling::NearGroundModel::LogLaw;
+        n.roughness_m = scene.wind.ambient.roughness_m;
+        n.displacement_m = scene.solver.momentum.displacementHeight_m;
+    }
+    return n;
+}
+
 }  // namespace
 
 void rethrowAsSceneError(const Scene& scene, const std::string& fallbackKey,
@@ -145,7 +157,7 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
     // Kept alive in the wind source for views of the field (coupling/FieldOverlayBuilder).
     auto field = std::make_shared<const sim::WindField>(std::move(result.field));
     const std::vector<glm::vec3> velocity =
-        coupling::sampleAtGrass(*field, built.mesh, sampleHeight_m);
+        coupling::sampleAtGrass(*field, built.mesh, sampleHeight_m, nearGroundOf(scene));
     try {
         if (scene.wind.gusts) {
             coupling::SteadyGustSpec spec;
