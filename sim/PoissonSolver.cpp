@@ -168,6 +168,33 @@ void PoissonSolver::applyOperator(const std::vector<double>& x, std::vector<doub
             for (int i = 0; i < L.nx; ++i) out[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)] = res[L.at(i, j, k)];
 }
 
+void PoissonSolver::applyPreconditioner(const std::vector<double>& r, std::vector<double>& z, int smoothingSweeps) {
+    Impl& m = *mImpl;
+    const Level& L = m.levels[0];
+    if (r.size() != L.cells())
+        throw std::invalid_argument("applyPreconditioner: r must have " + std::to_string(L.cells()) + " entries");
+    if (smoothingSweeps < 1 || smoothingSweeps > 8)
+        throw std::invalid_argument("applyPreconditioner: smoothingSweeps must be in 1..8, got " +
+                                    std::to_string(smoothingSweeps));
+    m.sweeps = smoothingSweeps;
+    double *rs = m.rs.data(), *zs = m.zs.data();
+    std::fill(m.rs.begin(), m.rs.end(), 0.0);
+    for (int k = 0; k < L.nz; ++k)
+        for (int j = 0; j < L.ny; ++j)
+            for (int i = 0; i < L.nx; ++i) {
+                const size_t p = L.at(i, j, k);
+                rs[p] = L.active[p] ? r[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)] : 0.0;
+            }
+    m.vcycle(0, rs, zs, m.qs.data());
+    z.assign(L.cells(), 0.0);
+    for (int k = 0; k < L.nz; ++k)
+        for (int j = 0; j < L.ny; ++j)
+            for (int i = 0; i < L.nx; ++i) {
+                const size_t p = L.at(i, j, k);
+                z[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)] = L.active[p] ? zs[p] : 0.0;
+            }
+}
+
 SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<double>& solution,
                                  const SolverSettings& settings) {
     const auto t0 = std::chrono::steady_clock::now();

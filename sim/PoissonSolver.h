@@ -118,6 +118,14 @@ public:
     /// out = A x (cellCount() entries each), for tests and diagnostics.
     void applyOperator(const std::vector<double>& x, std::vector<double>& out) const;
 
+    /// z = M^-1 r: one V(n, n) cycle from zero with n = smoothingSweeps (the preconditioner CG
+    /// applies each iteration), cellCount() entries each, 0 in inactive cells; entries of r in
+    /// inactive cells are ignored. M^-1 is symmetric positive definite on the active cells, which
+    /// is what lets CG keep its guarantees (tested: <a, M^-1 b> = <b, M^-1 a>). Uses the solver's
+    /// scratch vectors (not re-entrant). Throws std::invalid_argument for a wrong size or
+    /// smoothingSweeps outside 1..8.
+    void applyPreconditioner(const std::vector<double>& r, std::vector<double>& z, int smoothingSweeps = 2);
+
     int levelCount() const;
     size_t activeCellCount() const;
     /// Bytes held by the hierarchy and the PCG vectors.
