@@ -28,7 +28,9 @@ enum class RoughTerrainKind {
 /// "fractal" or "sharp_features".
 const char* roughTerrainName(RoughTerrainKind kind);
 
-/// Builds the terrain; relief (max - min height) is about relief_m. Throws std::invalid_argument
+/// Builds the terrain. Fractal: relief_m is ignored, the relief follows from the slope (about 17
+/// spacings). SharpFeatures: relief_m is the spike's height above its surroundings; the base
+/// spans 0.25, the cliff 0.35, the gullies 0.3 and the mesa 0.5 of it. Throws std::invalid_argument
 /// naming the parameter when size_m, spacing_m or relief_m is not positive and finite, or size_m
 /// holds fewer than 16 samples per side.
 Heightfield makeRoughTerrain(RoughTerrainKind kind, double size_m, double spacing_m, double relief_m,
