@@ -121,14 +121,21 @@ constexpr int TERRAIN_BISECTIONS = 12;
 /// The substepped midpoint trace of traceBack() in index space (Advection.h, "Traces"):
 /// displacements in cells are dt u / h through MacGrid::cellsFromMetres. velocityIs(is, u) gives
 /// the velocity (m/s) at an index-space point, the far field outside the box.
+/// Index-space z above which no terrain lies (-inf: no terrain): traces above it skip the
+/// surface test, which is most of the box.
+double terrainTopIs(const MacGrid& g) {
+    return g.terrain ? g.isFromWs({0.0, 0.0, g.terrain->maxHeight_m()})[2] : -HUGE_VAL;
+}
+
 template <class VelocityIs>
-void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, double dt, double* dep) {
+void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, double dt, double groundTopIs,
+             double* dep) {
     double x[3] = {x0[0], x0[1], x0[2]};
     const double sign = dt < 0.0 ? -1.0 : 1.0;
     double remaining = std::abs(dt);
     // Only a trace that starts above the surface is stopped by it (samples inside cut cells may
     // sit below the bilinear surface; they are traced freely until they emerge).
-    bool above = aboveGroundCells(g, x) >= 0.0;
+    bool above = x[2] > groundTopIs || aboveGroundCells(g, x) >= 0.0;
     // A trace that would need more substeps than this is stalled in a near-zero velocity field
     // (each substep covers the whole remaining time once the speed is small): cannot happen,
     // but the cap keeps every trace finite whatever the field holds.
@@ -151,7 +158,7 @@ void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, d
         for (int a = 0; a < 3; ++a) xm[a] = x[a] - sign * g.cellsFromMetres(0.5 * s * u0[a]);
         velocityIs(xm, u1);
         for (int a = 0; a < 3; ++a) xn[a] = x[a] - sign * g.cellsFromMetres(s * u1[a]);
-        const double heightNew = aboveGroundCells(g, xn);
+        const double heightNew = xn[2] > groundTopIs ? HUGE_VAL : aboveGroundCells(g, xn);
         if (above && heightNew < 0.0) {
             // Crossed into the rock: bisect for the last point above the surface and stop there.
             double lo = 0.0, hi = 1.0;
@@ -181,6 +188,7 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
     if (lo) lo->resize(q.size()), hi->resize(q.size());
     const IndexSampler Su(g, Placement::FaceX, *vel.u), Sv(g, Placement::FaceY, *vel.v), Sw(g, Placement::FaceZ, *vel.w);
     const IndexSampler Q(g, p, q);
+    const double groundTop = terrainTopIs(g);
     auto velocityIs = [&](const double* is, double* u) {
         if (far && outsideIs(g, is)) {
             const Vec3d f = far(g.wsFromIs({is[0], is[1], is[2]}));
@@ -200,7 +208,7 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                 }
                 const double x0[3] = {i + offset(p, 0), j + offset(p, 1), k + offset(p, 2)};
                 double dep[3];
-                traceIs(g, velocityIs, x0, dt, dep);
+                traceIs(g, velocityIs, x0, dt, groundTop, dep);
                 if (outside && outsideIs(g, dep)) {
                     out[idx] = outside(g.wsFromIs({dep[0], dep[1], dep[2]}));
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;  // no limiter on inflow
@@ -227,7 +235,7 @@ Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, c
     };
     const Vec3d is = g.isFromWs(ws);
     double dep[3];
-    traceIs(g, velocityIs, is.data(), dt, dep);
+    traceIs(g, velocityIs, is.data(), dt, terrainTopIs(g), dep);
     return g.wsFromIs({dep[0], dep[1], dep[2]});
 }
 

@@ -16,7 +16,7 @@
 ///
 /// Traces (every scheme). A trace is split into substeps of at most MAX_TRACE_CELLS_PER_SUBSTEP
 /// cells each (the substep length follows the local speed, so a trace at CFL 50 follows the
-/// streamline through ~35 midpoint steps instead of jumping 50 cells in one), and, when the grid
+/// streamline through ~25 midpoint steps instead of jumping 50 cells in one), and, when the grid
 /// names its terrain (MacGrid::terrain), a trace that crosses from above the terrain surface to
 /// below it stops on the surface (the crossing found by bisection along the substep): air next to
 /// the ground is never read from inside the rock. A trace that leaves the box finishes its
@@ -57,7 +57,7 @@ enum class Placement { FaceX = 0, FaceY = 1, FaceZ = 2, Cell = 3 };
 using Vec3d = std::array<double, 3>;
 
 /// Longest substep of a trace, in cells of travel (issue: at most 1-2 cells per substep).
-constexpr double MAX_TRACE_CELLS_PER_SUBSTEP = 1.5;
+constexpr double MAX_TRACE_CELLS_PER_SUBSTEP = 2.0;
 
 struct MacGrid {
     int nx = 0, ny = 0, nz = 0;

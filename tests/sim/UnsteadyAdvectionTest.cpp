@@ -122,8 +122,8 @@ TEST(Advection, TraceThatLeavesTheBoxReadsTheFarField) {
 }
 
 /// A solid-body rotation by 1 radian at 10 cells from the axis: one midpoint step would land 1.6
-/// cells off the circle (rotation error ~ r theta^3 / 6); substeps of <= 1.5 cells bring it under
-/// 0.05 cells. Trilinear interpolation is exact for the linear field, so only the trace errs.
+/// cells off the circle (rotation error ~ r theta^3 / 6); substeps of <= 2 cells bring it under
+/// 0.1 cells. Trilinear interpolation is exact for the linear field, so only the trace errs.
 constexpr double ROTATION_TRACE_TOLERANCE_CELLS = 0.1;
 /// Bisection puts the stop within 2^-12 of a substep above the surface.
 constexpr double TERRAIN_STOP_TOLERANCE_CELLS = 1e-3;
