@@ -89,8 +89,8 @@ struct Level {
     template <class G, class U>
     void segments(int j, int k, const G& general, const U& uniform) const {
         int i = 0;
-        const size_t r = rowIndex(j, k);
-        for (uint32_t n = rowRuns[r]; n < rowRuns[r + 1]; ++n) {
+        const size_t row = rowIndex(j, k);
+        for (uint32_t n = rowRuns[row]; n < rowRuns[row + 1]; ++n) {
             if (runs[n][0] > i) general(i, runs[n][0]);
             uniform(runs[n][0], runs[n][1]);
             i = runs[n][1];

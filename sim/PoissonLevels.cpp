@@ -103,7 +103,7 @@ void Level::findUniformRuns(float bx_, float by_, float bz_) {
     rowRuns.assign(size_t(ny) * nz + 1, 0);
     runs.clear();
     uint32_t acc = 0;
-    for (size_t r = 0; r < count.size(); ++r) rowRuns[r] = acc, acc += count[r];
+    for (size_t row = 0; row < count.size(); ++row) rowRuns[row] = acc, acc += count[row];
     rowRuns[count.size()] = acc;
     uniformCells = 0;
     for (const auto& v : perSlab) {

@@ -69,8 +69,11 @@ void expectSymmetric(int sweeps) {
     EXPECT_LE(std::abs(aMb - bMa) / scale, SYMMETRY_TOLERANCE)
         << "V(" << sweeps << "," << sweeps << "): <a,Mb> = " << aMb << ", <b,Ma> = " << bMa;
     // Inactive cells must hold no correction (restriction never reads them).
-    for (size_t c = 0; c < n; ++c)
-        if (!domain.airFlags()[c]) ASSERT_EQ(ma[c], 0.0) << "inactive cell " << c;
+    for (size_t c = 0; c < n; ++c) {
+        if (!domain.airFlags()[c]) {
+            ASSERT_EQ(ma[c], 0.0) << "inactive cell " << c;
+        }
+    }
 }
 
 TEST(PoissonTerrain, VCycleIsSymmetricOnFractalTerrainWithOneSweep) { expectSymmetric(1); }
@@ -125,8 +128,8 @@ TEST_P(RoughTerrain, IterationsStayAtMost20AsTheCellsHalve) {
 
 INSTANTIATE_TEST_SUITE_P(BothTerrains, RoughTerrain,
                          ::testing::Values(RoughTerrainKind::Fractal, RoughTerrainKind::SharpFeatures),
-                         [](const ::testing::TestParamInfo<RoughTerrainKind>& info) {
-                             return std::string(roughTerrainName(info.param));
+                         [](const ::testing::TestParamInfo<RoughTerrainKind>& kind) {
+                             return std::string(roughTerrainName(kind.param));
                          });
 
 TEST(PoissonTerrain, SubCellRoughnessWithThinCellsDoesNotStallTheSolve) {
