@@ -1,6 +1,6 @@
 #pragma once
 /// \file Advection.h
-/// Advection on the staggered (MAC) grid of the wind solvers (DESIGN 4.2).
+/// Advection on the staggered (MAC) grid of the wind solvers (docs/unsteady.md, "Method").
 ///
 /// Layout. A MacGrid is the AirDomain's box: nx * ny * nz cubic cells of edge h, cell (0, 0, 0)
 /// with its minimum corner at wsMin. Values live at four placements (Placement): u on x-faces at

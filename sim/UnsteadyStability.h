@@ -1,9 +1,9 @@
 #pragma once
 /// \file UnsteadyStability.h
-/// The stability suite of the unsteady wind (DESIGN 4.4): named extreme cases that exercise what
-/// they name, run and measured here, judged by the callers (the tests, with their own oracles:
-/// exact solutions and invariants; `gale bench stability`, which prints the table). This file
-/// computes no verdicts.
+/// The stability suite of the unsteady wind (docs/unsteady.md): named extreme cases that
+/// exercise what they name, run and measured here, judged by the callers (the tests, with their
+/// own oracles: exact solutions and invariants; `gale bench stability`, which prints the table).
+/// This file computes no verdicts.
 ///
 /// Cases (stabilityCaseNames):
 ///  - cfl5, cfl20, cfl50 (semi-Lagrangian) and cfl20_maccormack, cfl20_bfecc: 10 m/s over a
