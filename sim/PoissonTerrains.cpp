@@ -14,8 +14,8 @@ namespace {
 
 void requirePositive(double v, const char* name) {
     if (!(v > 0.0) || !std::isfinite(v))
-        throw std::invalid_argument(std::string("makeRoughTerrain: ") + name + " must be > 0 and finite, got " +
-                                    std::to_string(v));
+        throw std::invalid_argument(std::string("makeRoughTerrain: ") + name +
+                                    " must be > 0 and finite, got " + std::to_string(v));
 }
 
 /// Largest |grad h| by one-sided differences between neighbouring samples (dimensionless).
@@ -23,14 +23,17 @@ double maxSlope(const Heightfield& f) {
     double s = 0.0;
     for (int j = 0; j < f.ny; ++j)
         for (int i = 0; i < f.nx; ++i) {
-            if (i + 1 < f.nx) s = std::max(s, std::abs(double(f.at(i + 1, j)) - f.at(i, j)) / f.spacing_m);
-            if (j + 1 < f.ny) s = std::max(s, std::abs(double(f.at(i, j + 1)) - f.at(i, j)) / f.spacing_m);
+            if (i + 1 < f.nx)
+                s = std::max(s, std::abs(double(f.at(i + 1, j)) - f.at(i, j)) / f.spacing_m);
+            if (j + 1 < f.ny)
+                s = std::max(s, std::abs(double(f.at(i, j + 1)) - f.at(i, j)) / f.spacing_m);
         }
     return s;
 }
 
 /// fBm with heights in [0, relief] before slope scaling.
-Heightfield fractalBase(double size_m, double spacing_m, double relief_m, uint32_t seed, int octaves) {
+Heightfield fractalBase(double size_m, double spacing_m, double relief_m, uint32_t seed,
+                        int octaves) {
     TerrainSpec t;
     t.kind = TerrainKind::Fractal;
     t.sizeX_m = t.sizeY_m = size_m;
@@ -49,8 +52,8 @@ const char* roughTerrainName(RoughTerrainKind kind) {
     return kind == RoughTerrainKind::Fractal ? "fractal" : "sharp_features";
 }
 
-Heightfield makeRoughTerrain(RoughTerrainKind kind, double size_m, double spacing_m, double relief_m,
-                             uint32_t seed) {
+Heightfield makeRoughTerrain(RoughTerrainKind kind, double size_m, double spacing_m,
+                             double relief_m, uint32_t seed) {
     requirePositive(size_m, "size_m");
     requirePositive(spacing_m, "spacing_m");
     requirePositive(relief_m, "relief_m");

@@ -39,7 +39,8 @@ Heightfield ridge(double sx, double sy, double height, double halfWidth, double 
     TerrainSpec s;
     s.kind = TerrainKind::Ridge;
     s.sizeX_m = sx, s.sizeY_m = sy, s.spacing_m = 1.0;
-    s.height_m = height, s.radius_m = halfWidth, s.centerX_m = centreX, s.centerY_m = sy / 2, s.axis_deg = 90.0;
+    s.height_m = height, s.radius_m = halfWidth, s.centerX_m = centreX, s.centerY_m = sy / 2,
+    s.axis_deg = 90.0;
     return makeTerrain(s);
 }
 
@@ -59,8 +60,8 @@ Whirlwind vortex(double x, double y, double rc, double peak) {
 }
 
 /// The domain, its steady potential flow (the start and the far field) and the solver.
-StabilityRun setUp(const Heightfield& terrain, double voxel_m, std::optional<double> top_m, const AmbientWind& wind,
-                   UnsteadySettings settings) {
+StabilityRun setUp(const Heightfield& terrain, double voxel_m, std::optional<double> top_m,
+                   const AmbientWind& wind, UnsteadySettings settings) {
     StabilityRun r;
     settings.projection.relativeTolerance = 1e-7;
     settings.projection.maxIterations = 200;
@@ -70,7 +71,8 @@ StabilityRun setUp(const Heightfield& terrain, double voxel_m, std::optional<dou
     tight.maxIterations = 300;
     const SteadyWindResult steady = solveSteadyWind(*r.domain, wind, {}, tight);
     r.referenceSpeed_mps = wind.speed_mps > 0 ? wind.speed_mps : 1.0;
-    r.solver = std::make_unique<UnsteadyWindSolver>(*r.domain, steady.field, settings, wind.speed_mps);
+    r.solver =
+        std::make_unique<UnsteadyWindSolver>(*r.domain, steady.field, settings, wind.speed_mps);
     r.start = steady.field;
     return r;
 }
@@ -81,7 +83,8 @@ void advance(StabilityRun& r, int steps, double dt_s) {
     const auto t0 = std::chrono::steady_clock::now();
     const UnsteadySettings& s = r.solver->settings();
     r.forced = !s.gusts.empty() || s.vorticityConfinement > 0.0 ||
-               std::any_of(s.whirlwinds.begin(), s.whirlwinds.end(), [](const Whirlwind& w) { return w.forced; });
+               std::any_of(s.whirlwinds.begin(), s.whirlwinds.end(),
+                           [](const Whirlwind& w) { return w.forced; });
     const bool seeded = !s.whirlwinds.empty();
     r.dt_s = dt_s;
     r.keStart_m5ps2 = r.solver->kineticEnergy_m5ps2();
@@ -106,7 +109,8 @@ void advance(StabilityRun& r, int steps, double dt_s) {
     const AirDomain& d = *r.domain;
     const std::vector<double>* now[3] = {&f.u_mps(), &f.v_mps(), &f.w_mps()};
     const std::vector<double>* was[3] = {&r.start.u_mps(), &r.start.v_mps(), &r.start.w_mps()};
-    const std::vector<float>* open[3] = {&d.openFractionsX(), &d.openFractionsY(), &d.openFractionsZ()};
+    const std::vector<float>* open[3] = {&d.openFractionsX(), &d.openFractionsY(),
+                                         &d.openFractionsZ()};
     double changed = 0.0, held = 0.0;
     for (int c = 0; c < 3; ++c)
         for (size_t i = 0; i < now[c]->size(); ++i) {
@@ -126,7 +130,8 @@ StabilityRun ridgeAtCfl(double cfl, AdvectionScheme scheme) {
     s.advection = scheme;
     s.dt_s = cfl * H / U;
     s.openTop = true;  // the steady start has an open top: with a lid it would not be steady
-    StabilityRun r = setUp(ridge(length, 12, 8, 12, std::min(0.5 * length, 36.0 + 2.0 * cfl * H)), H, {}, uniformWind(U), s);
+    StabilityRun r = setUp(ridge(length, 12, 8, 12, std::min(0.5 * length, 36.0 + 2.0 * cfl * H)),
+                           H, {}, uniformWind(U), s);
     advance(r, 12, s.dt_s);
     return r;
 }
@@ -169,7 +174,8 @@ const std::vector<CaseDef>& cases() {
          [] {
              Heightfield h = flatTerrain(48, 32, 1.0);
              for (int j = 0; j < h.ny; ++j)
-                 for (int i = 0; i < h.nx; ++i) h.height_m[size_t(j) * h.nx + i] = i >= h.nx / 2 ? 10.0f : 0.0f;
+                 for (int i = 0; i < h.nx; ++i)
+                     h.height_m[size_t(j) * h.nx + i] = i >= h.nx / 2 ? 10.0f : 0.0f;
              UnsteadySettings s;
              s.dt_s = 2.0 * 2.0 / 10.0;
              StabilityRun r = setUp(h, 2.0, {}, uniformWind(10.0), s);
@@ -204,12 +210,14 @@ const std::vector<CaseDef>& cases() {
              advance(r, 8, 1.0);
              return r;
          }},
-        {"step_gust", "a gust with a step envelope (infinitely sharp attack), +10 m/s on 5 m/s", true,
+        {"step_gust", "a gust with a step envelope (infinitely sharp attack), +10 m/s on 5 m/s",
+         true,
          [] {
              UnsteadySettings s;
              s.dt_s = 2.0 * 2.0 / 15.0;
              GustEvent g;
-             g.envelope = GustEnvelope::Step, g.peak_mps = 10.0, g.duration_s = 3.0, g.start_s = 0.5;
+             g.envelope = GustEnvelope::Step, g.peak_mps = 10.0, g.duration_s = 3.0,
+             g.start_s = 0.5;
              s.gusts.push_back(g);
              StabilityRun r = setUp(hill(48, 32, 8, 6), 2.0, {}, uniformWind(5.0), s);
              advance(r, 20, s.dt_s);
@@ -238,7 +246,8 @@ const CaseDef& caseNamed(const std::string& name) {
 
 /// Azimuthal speed averaged around a ring of radius r (metres) at height z about axis (cx, cy).
 double ringSwirl_mps(const StabilityRun& run, double cx, double cy, double r, double z) {
-    return circulationAround(run.solver->grid(), run.solver->velocity(), {cx, cy}, r, z) / (2 * PI * r);
+    return circulationAround(run.solver->grid(), run.solver->velocity(), {cx, cy}, r, z) /
+           (2 * PI * r);
 }
 
 }  // namespace
@@ -250,7 +259,9 @@ std::vector<std::string> stabilityCaseNames(bool fastOnly) {
     return out;
 }
 
-std::string stabilityCaseDescription(const std::string& name) { return caseNamed(name).description; }
+std::string stabilityCaseDescription(const std::string& name) {
+    return caseNamed(name).description;
+}
 
 StabilityRun runStabilityCase(const std::string& name) {
     const CaseDef& c = caseNamed(name);
@@ -262,18 +273,23 @@ StabilityRun runStabilityCase(const std::string& name) {
 StabilityRun runTranslatingVortex(int cellsPerCore, double courant) {
     using S = TranslatingVortexSpec;
     if (cellsPerCore < 1 || !(courant > 0.0))
-        throw std::invalid_argument("runTranslatingVortex: cellsPerCore must be >= 1 and courant > 0");
+        throw std::invalid_argument(
+            "runTranslatingVortex: cellsPerCore must be >= 1 and courant > 0");
     const double h = S::CORE_M / cellsPerCore;
     UnsteadySettings s;
-    const int steps = std::max(1, int(std::ceil(S::TIME_S * (S::WIND_MPS + S::PEAK_MPS) / (courant * h))));
+    const int steps =
+        std::max(1, int(std::ceil(S::TIME_S * (S::WIND_MPS + S::PEAK_MPS) / (courant * h))));
     s.dt_s = S::TIME_S / steps;
     Whirlwind w = vortex(S::START_X_M, S::START_Y_M, S::CORE_M, S::PEAK_MPS);
     w.outerRadiusFactor = S::SEED_CORES;
     s.whirlwinds.push_back(w);
     // Box: the tapered swirl (1.5 SEED_CORES cores) stays clear of the sides over the run.
-    const double length = S::START_X_M + S::WIND_MPS * S::TIME_S + S::START_X_M, width = 2 * S::START_Y_M;
-    StabilityRun r = setUp(flatTerrain(length, width, std::min(h, 1.0)), h, 4 * h, uniformWind(S::WIND_MPS), s);
-    r.name = "translating_lamb_oseen_" + std::to_string(cellsPerCore) + "_cells_cfl_" + std::to_string(courant);
+    const double length = S::START_X_M + S::WIND_MPS * S::TIME_S + S::START_X_M,
+                 width = 2 * S::START_Y_M;
+    StabilityRun r =
+        setUp(flatTerrain(length, width, std::min(h, 1.0)), h, 4 * h, uniformWind(S::WIND_MPS), s);
+    r.name = "translating_lamb_oseen_" + std::to_string(cellsPerCore) + "_cells_cfl_" +
+             std::to_string(courant);
     // The seeding step is step 1: its start is the seeded field, so measure from t = 0 with the
     // energy after seeding (advance moves the start there).
     advance(r, steps, s.dt_s);
@@ -288,12 +304,14 @@ double translatingVortexError(const StabilityRun& run) {
     const double G = vortex(0, 0, S::CORE_M, S::PEAK_MPS).circulation();
     auto exact = [&](const Vec3d& p) {
         const double dx = p[0] - cx, dy = p[1] - cy, r2 = dx * dx + dy * dy;
-        const double f = r2 > 0 ? G / (2 * PI * r2) * -std::expm1(-r2 / (S::CORE_M * S::CORE_M)) : 0.0;
+        const double f =
+            r2 > 0 ? G / (2 * PI * r2) * -std::expm1(-r2 / (S::CORE_M * S::CORE_M)) : 0.0;
         return Vec3d{S::WIND_MPS - f * dy, f * dx, 0.0};
     };
     double sum = 0.0;
     size_t count = 0;
-    const std::vector<double>* arrays[2] = {&run.solver->field().u_mps(), &run.solver->field().v_mps()};
+    const std::vector<double>* arrays[2] = {&run.solver->field().u_mps(),
+                                            &run.solver->field().v_mps()};
     for (int c = 0; c < 2; ++c) {
         const Placement p = Placement(c);
         const auto n = g.dims(p);
@@ -302,7 +320,9 @@ double translatingVortexError(const StabilityRun& run) {
                 for (int i = 0; i < n[0]; ++i) {
                     const Vec3d ws = g.wsPosition(p, i, j, k);
                     if (std::hypot(ws[0] - cx, ws[1] - cy) > 2.0 * S::CORE_M) continue;
-                    const double d = (*arrays[c])[size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k)] - exact(ws)[c];
+                    const double d =
+                        (*arrays[c])[size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k)] -
+                        exact(ws)[c];
                     sum += d * d, ++count;
                 }
     }
@@ -311,12 +331,14 @@ double translatingVortexError(const StabilityRun& run) {
 
 StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore) {
     using S = BurgersSpec;
-    if (cellsPerCore < 1) throw std::invalid_argument("runBurgersVortex: cellsPerCore must be >= 1");
+    if (cellsPerCore < 1)
+        throw std::invalid_argument("runBurgersVortex: cellsPerCore must be >= 1");
     const double h = S::CORE_M / cellsPerCore, half = S::HALF_WIDTH_CORES * S::CORE_M;
     const double a = variant == BurgersVariant::NoStrain ? 0.0 : S::STRAIN_PER_S;
     StabilityRun r;
     const Heightfield terrain = flatTerrain(2 * half, 2 * half, std::min(h, 1.0));
-    r.domain = std::make_unique<AirDomain>(terrain, DomainSpec{h, S::HEIGHT_CORES * S::CORE_M, 2e9});
+    r.domain =
+        std::make_unique<AirDomain>(terrain, DomainSpec{h, S::HEIGHT_CORES * S::CORE_M, 2e9});
     const AirDomain& d = *r.domain;
     // The strain flow u_r = -a r / 2, w = a z as the mean flow (and far field): linear, so
     // discretely divergence-free on the MAC grid.
@@ -329,7 +351,9 @@ StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore) {
             for (int j = 0; j < n[1]; ++j)
                 for (int i = 0; i < n[0]; ++i) {
                     const Vec3d ws = g.wsPosition(Placement(c), i, j, k);
-                    const double v = c == 0 ? -0.5 * a * (ws[0] - half) : c == 1 ? -0.5 * a * (ws[1] - half) : a * ws[2];
+                    const double v = c == 0   ? -0.5 * a * (ws[0] - half)
+                                     : c == 1 ? -0.5 * a * (ws[1] - half)
+                                              : a * ws[2];
                     (*arrays[c])[size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k)] = v;
                 }
     }
@@ -350,8 +374,9 @@ StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore) {
     r.referenceSpeed_mps = S::PEAK_MPS;
     r.solver = std::make_unique<UnsteadyWindSolver>(d, mean, s, S::PEAK_MPS);
     r.start = mean;
-    r.name = std::string("burgers_") +
-             (variant == BurgersVariant::Balanced ? "balanced" : variant == BurgersVariant::NoViscosity ? "no_viscosity" : "no_strain");
+    r.name = std::string("burgers_") + (variant == BurgersVariant::Balanced      ? "balanced"
+                                        : variant == BurgersVariant::NoViscosity ? "no_viscosity"
+                                                                                 : "no_strain");
     advance(r, steps, s.dt_s);
     return r;
 }

@@ -43,7 +43,7 @@ namespace gale::sim {
 /// One case after its run: the solver (with the final field) and what was measured on the way.
 struct StabilityRun {
     std::string name, description;
-    std::unique_ptr<AirDomain> domain;          ///< declared before solver: outlives it
+    std::unique_ptr<AirDomain> domain;  ///< declared before solver: outlives it
     std::unique_ptr<UnsteadyWindSolver> solver;
     /// The field the case starts from once everything is seeded: the steady potential flow, or
     /// the field after the first step where a vortex is seeded in that step.
@@ -52,15 +52,15 @@ struct StabilityRun {
     bool forced = false;              ///< gusts or forcing add energy
     int steps = 0;
     double dt_s = 0;
-    double maxCfl = 0;                ///< max |u| dt / h over the steps (StepReport::cfl)
+    double maxCfl = 0;  ///< max |u| dt / h over the steps (StepReport::cfl)
     double maxSpeed_mps = 0;
-    double maxDivergenceScaled = 0;   ///< max over steps of the solver's max |div u| h / U
+    double maxDivergenceScaled = 0;  ///< max over steps of the solver's max |div u| h / U
     double keStart_m5ps2 = 0, keEnd_m5ps2 = 0, keMax_m5ps2 = 0;  ///< 1/2 sum theta u^2 h^3
-    double forcingEnergy_m5ps2 = 0;   ///< sum over steps of the energy the forces added (>= 0 part)
+    double forcingEnergy_m5ps2 = 0;  ///< sum over steps of the energy the forces added (>= 0 part)
     /// sqrt(sum theta (u - u_start)^2 / sum theta u_start^2) over all faces at the end: how far
     /// the field moved from its start (the numerical error where the start is steady).
     double deviationFromStart = 0;
-    bool finite = true;               ///< every StepReport finite
+    bool finite = true;  ///< every StepReport finite
     int maxProjectionIterations = 0;
     double wall_s = 0;
 };

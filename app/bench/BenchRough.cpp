@@ -34,14 +34,17 @@ int runBenchRough(const BenchRoughOptions& opt) {
     sim::SolverSettings settings;
     settings.relativeTolerance = TOLERANCE;
     settings.maxIterations = 200;
-    std::printf("steady solve to %.0e max-norm relative residual, uniform 10 m/s towards 30 deg, automatic top, "
-                "%.0f m square, %.0f m pixels\n",
-                TOLERANCE, size_m, PIXEL_M);
-    std::printf("%-15s %7s %14s %10s %7s %10s %11s %9s %9s\n", "terrain", "cell m", "cells", "air", "levels", "iterations",
-                "residual", "setup s", "solve s");
+    std::printf(
+        "steady solve to %.0e max-norm relative residual, uniform 10 m/s towards 30 deg, automatic "
+        "top, "
+        "%.0f m square, %.0f m pixels\n",
+        TOLERANCE, size_m, PIXEL_M);
+    std::printf("%-15s %7s %14s %10s %7s %10s %11s %9s %9s\n", "terrain", "cell m", "cells", "air",
+                "levels", "iterations", "residual", "setup s", "solve s");
     nlohmann::json rows = nlohmann::json::array();
     bool ok = true;
-    for (sim::RoughTerrainKind kind : {sim::RoughTerrainKind::Fractal, sim::RoughTerrainKind::SharpFeatures}) {
+    for (sim::RoughTerrainKind kind :
+         {sim::RoughTerrainKind::Fractal, sim::RoughTerrainKind::SharpFeatures}) {
         const sim::Heightfield terrain = sim::makeRoughTerrain(kind, size_m, PIXEL_M, RELIEF_M);
         for (double h : voxels_m) {
             std::fprintf(stderr, "bench rough: %s at %.0f m...\n", sim::roughTerrainName(kind), h);
@@ -58,9 +61,10 @@ int runBenchRough(const BenchRoughOptions& opt) {
             ok = ok && met;
             char cells[48];
             std::snprintf(cells, sizeof cells, "%dx%dx%d", domain.nx(), domain.ny(), domain.nz());
-            std::printf("%-15s %7.1f %14s %10zu %7d %10d %11.2e %9.2f %9.2f%s\n", sim::roughTerrainName(kind), h, cells,
-                        domain.activeCellCount(), rep.levels, rep.iterations, rep.relativeResidual, setup_s,
-                        rep.solveSeconds, met ? "" : "  MISSED");
+            std::printf("%-15s %7.1f %14s %10zu %7d %10d %11.2e %9.2f %9.2f%s\n",
+                        sim::roughTerrainName(kind), h, cells, domain.activeCellCount(), rep.levels,
+                        rep.iterations, rep.relativeResidual, setup_s, rep.solveSeconds,
+                        met ? "" : "  MISSED");
             rows.push_back({{"terrain", sim::roughTerrainName(kind)},
                             {"voxel_size_m", h},
                             {"cells", {domain.nx(), domain.ny(), domain.nz()}},
@@ -73,9 +77,11 @@ int runBenchRough(const BenchRoughOptions& opt) {
                             {"solve_s", rep.solveSeconds}});
         }
     }
-    std::printf("target: <= %d iterations at every resolution: %s\n", MAX_ITERATIONS_TARGET, ok ? "met" : "MISSED");
+    std::printf("target: <= %d iterations at every resolution: %s\n", MAX_ITERATIONS_TARGET,
+                ok ? "met" : "MISSED");
     if (!opt.jsonPath.empty())
-        writeTextAtomic(opt.jsonPath, nlohmann::json{{"rows", rows}, {"target_met", ok}}.dump(2) + "\n");
+        writeTextAtomic(opt.jsonPath,
+                        nlohmann::json{{"rows", rows}, {"target_met", ok}}.dump(2) + "\n");
     return ok ? EXIT_OK : EXIT_UNMET;
 }
 

@@ -42,8 +42,8 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
 
 /// The fractal terrain of the symmetry tests: 64 m square, 1 m cells, 5 multigrid levels.
 AirDomain symmetryDomain() {
-    static const Heightfield terrain =
-        makeRoughTerrain(RoughTerrainKind::Fractal, /*size_m=*/64.0, /*spacing_m=*/1.0, /*relief_m=*/16.0);
+    static const Heightfield terrain = makeRoughTerrain(RoughTerrainKind::Fractal, /*size_m=*/64.0,
+                                                        /*spacing_m=*/1.0, /*relief_m=*/16.0);
     DomainSpec spec;
     spec.voxelSize_m = 1.0;
     return AirDomain(terrain, spec);
@@ -114,20 +114,23 @@ int roughIterations(const Heightfield& terrain, double voxel_m) {
     set.maxIterations = 200;
     const SteadyWindResult res = solver.solve(test::uniformWind(10.0, 30.0), set);
     EXPECT_TRUE(res.report.converged) << res.report.message;
-    std::printf("  h %.2f m  %dx%dx%d  %d iterations  residual %.2e\n", voxel_m, domain.nx(), domain.ny(),
-                domain.nz(), res.report.iterations, res.report.relativeResidual);
+    std::printf("  h %.2f m  %dx%dx%d  %d iterations  residual %.2e\n", voxel_m, domain.nx(),
+                domain.ny(), domain.nz(), res.report.iterations, res.report.relativeResidual);
     return res.report.iterations;
 }
 
 class RoughTerrain : public ::testing::TestWithParam<RoughTerrainKind> {};
 
 TEST_P(RoughTerrain, IterationsStayAtMost20AsTheCellsHalve) {
-    const Heightfield terrain = makeRoughTerrain(GetParam(), /*size_m=*/64.0, /*spacing_m=*/1.0, /*relief_m=*/16.0);
-    for (double h : {4.0, 2.0, 1.0}) EXPECT_LE(roughIterations(terrain, h), MAX_ROUGH_ITERATIONS) << "h = " << h;
+    const Heightfield terrain =
+        makeRoughTerrain(GetParam(), /*size_m=*/64.0, /*spacing_m=*/1.0, /*relief_m=*/16.0);
+    for (double h : {4.0, 2.0, 1.0})
+        EXPECT_LE(roughIterations(terrain, h), MAX_ROUGH_ITERATIONS) << "h = " << h;
 }
 
 INSTANTIATE_TEST_SUITE_P(BothTerrains, RoughTerrain,
-                         ::testing::Values(RoughTerrainKind::Fractal, RoughTerrainKind::SharpFeatures),
+                         ::testing::Values(RoughTerrainKind::Fractal,
+                                           RoughTerrainKind::SharpFeatures),
                          [](const ::testing::TestParamInfo<RoughTerrainKind>& kind) {
                              return std::string(roughTerrainName(kind.param));
                          });
@@ -154,9 +157,11 @@ TEST(PoissonTerrain, SubCellRoughnessWithThinCellsDoesNotStallTheSolve) {
         for (int j = 0; j < domain.ny(); ++j)
             for (int i = 0; i < domain.nx(); ++i)
                 if (domain.isAir(i, j, k))
-                    weakest = std::min(weakest, double(domain.openFractionX(i, j, k)) + domain.openFractionX(i + 1, j, k) +
-                                                    domain.openFractionY(i, j, k) + domain.openFractionY(i, j + 1, k) +
-                                                    domain.openFractionZ(i, j, k) + domain.openFractionZ(i, j, k + 1));
+                    weakest = std::min(
+                        weakest,
+                        double(domain.openFractionX(i, j, k)) + domain.openFractionX(i + 1, j, k) +
+                            domain.openFractionY(i, j, k) + domain.openFractionY(i, j + 1, k) +
+                            domain.openFractionZ(i, j, k) + domain.openFractionZ(i, j, k + 1));
     constexpr double THIN = 0.05;  // a cell with this little open area is a sliver
     ASSERT_LT(weakest, THIN) << "the terrain must produce thin cells for the test to mean anything";
     SteadyWindSolver solver(domain);
@@ -182,7 +187,8 @@ TEST(PoissonTerrain, RoughTerrainsHaveTheAdvertisedFeatures) {
     // The spike rises at least 3/4 of the relief above each of its four neighbours.
     for (auto [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}})
         EXPECT_GT(s.at(i, j) - s.at(i + di, j + dj), 0.75 * 16.0);
-    EXPECT_THROW(makeRoughTerrain(RoughTerrainKind::Fractal, 64.0, 0.0, 16.0), std::invalid_argument);
+    EXPECT_THROW(makeRoughTerrain(RoughTerrainKind::Fractal, 64.0, 0.0, 16.0),
+                 std::invalid_argument);
 }
 
 }  // namespace

@@ -26,10 +26,12 @@ double kineticEnergy(const StabilityRun& run, const WindField& f) {
     const AirDomain& d = *run.domain;
     const double h = d.voxelSize_m();
     const std::vector<double>* a[3] = {&f.u_mps(), &f.v_mps(), &f.w_mps()};
-    const std::vector<float>* th[3] = {&d.openFractionsX(), &d.openFractionsY(), &d.openFractionsZ()};
+    const std::vector<float>* th[3] = {&d.openFractionsX(), &d.openFractionsY(),
+                                       &d.openFractionsZ()};
     double e = 0.0;
     for (int c = 0; c < 3; ++c)
-        for (size_t i = 0; i < a[c]->size(); ++i) e += double((*th[c])[i]) * (*a[c])[i] * (*a[c])[i];
+        for (size_t i = 0; i < a[c]->size(); ++i)
+            e += double((*th[c])[i]) * (*a[c])[i] * (*a[c])[i];
     return 0.5 * e * h * h * h;
 }
 
@@ -39,7 +41,8 @@ double relativeDeviation(const StabilityRun& run) {
     const WindField& f = run.solver->field();
     const std::vector<double>* a[3] = {&f.u_mps(), &f.v_mps(), &f.w_mps()};
     const std::vector<double>* s[3] = {&run.start.u_mps(), &run.start.v_mps(), &run.start.w_mps()};
-    const std::vector<float>* th[3] = {&d.openFractionsX(), &d.openFractionsY(), &d.openFractionsZ()};
+    const std::vector<float>* th[3] = {&d.openFractionsX(), &d.openFractionsY(),
+                                       &d.openFractionsZ()};
     double num = 0.0, den = 0.0;
     for (int c = 0; c < 3; ++c)
         for (size_t i = 0; i < a[c]->size(); ++i) {
@@ -63,7 +66,9 @@ double maxOutflowScaled(const StabilityRun& run) {
     for (int k = 0; k < d.nz(); ++k)
         for (int j = 0; j < d.ny(); ++j)
             for (int i = 0; i < d.nx(); ++i)
-                if (d.isAir(i, j, k)) m = std::max(m, std::abs(d.openOutflux(f.u_mps(), f.v_mps(), f.w_mps(), i, j, k)));
+                if (d.isAir(i, j, k))
+                    m = std::max(m,
+                                 std::abs(d.openOutflux(f.u_mps(), f.v_mps(), f.w_mps(), i, j, k)));
     return m / run.referenceSpeed_mps;
 }
 
@@ -94,8 +99,9 @@ TEST_P(Stability, StaysFiniteDivergenceFreeAndWithinItsEnergyBudget) {
     const Oracle o = oracleFor(r.name);
     const double ke0 = kineticEnergy(r, r.start), ke1 = kineticEnergy(r, r.solver->field());
     const double dev = relativeDeviation(r), div = maxOutflowScaled(r);
-    std::printf("%-24s steps %3d  CFL %6.2f  KE %.4g -> %.4g (%+.2f%%)  deviation %.2e  div %.2e\n", r.name.c_str(),
-                r.steps, r.maxCfl, ke0, ke1, ke0 > 0 ? 100.0 * (ke1 - ke0) / ke0 : 0.0, dev, div);
+    std::printf("%-24s steps %3d  CFL %6.2f  KE %.4g -> %.4g (%+.2f%%)  deviation %.2e  div %.2e\n",
+                r.name.c_str(), r.steps, r.maxCfl, ke0, ke1,
+                ke0 > 0 ? 100.0 * (ke1 - ke0) / ke0 : 0.0, dev, div);
     EXPECT_TRUE(allFinite(r.solver->field()));
     EXPECT_LE(div, DIVERGENCE_TOLERANCE);
     if (!o.forced) {
@@ -115,8 +121,11 @@ TEST_P(Stability, StaysFiniteDivergenceFreeAndWithinItsEnergyBudget) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(FastSubset, Stability, ::testing::ValuesIn(stabilityCaseNames(/*fastOnly=*/true)),
-                         [](const ::testing::TestParamInfo<std::string>& caseName) { return caseName.param; });
+INSTANTIATE_TEST_SUITE_P(FastSubset, Stability,
+                         ::testing::ValuesIn(stabilityCaseNames(/*fastOnly=*/true)),
+                         [](const ::testing::TestParamInfo<std::string>& caseName) {
+                             return caseName.param;
+                         });
 
 TEST(Stability, StepGustEnergyStaysBelowTheMeanFlowsAtTheGustPeak) {
     // 5 m/s with a +10 m/s gust: the inflow carries at most (15/5)^2 = 9 times the mean energy.
@@ -125,7 +134,9 @@ TEST(Stability, StepGustEnergyStaysBelowTheMeanFlowsAtTheGustPeak) {
     EXPECT_LE(r.keMax_m5ps2, GUST_FACTOR * kineticEnergy(r, r.start));
 }
 
-TEST(Stability, UnknownCaseNameThrows) { EXPECT_THROW(runStabilityCase("cfl_9000"), std::invalid_argument); }
+TEST(Stability, UnknownCaseNameThrows) {
+    EXPECT_THROW(runStabilityCase("cfl_9000"), std::invalid_argument);
+}
 
 // ---- exact solutions -----------------------------------------------------------------------
 
@@ -137,7 +148,8 @@ double translatingError(const StabilityRun& r) {
     // Lamb-Oseen's peak: v_peak = max_x (1 - e^{-x^2}) / x * Gamma / (2 pi r_c), the maximum found
     // here on a fine grid (0.6382 at x = 1.1209).
     double peakFactor = 0.0;
-    for (double x = 0.5; x < 2.0; x += 1e-5) peakFactor = std::max(peakFactor, (1 - std::exp(-x * x)) / x);
+    for (double x = 0.5; x < 2.0; x += 1e-5)
+        peakFactor = std::max(peakFactor, (1 - std::exp(-x * x)) / x);
     const double gamma = S::PEAK_MPS * 2 * PI * S::CORE_M / peakFactor;
     const MacGrid& g = r.solver->grid();
     const WindField& f = r.solver->field();
@@ -152,7 +164,9 @@ double translatingError(const StabilityRun& r) {
                     const Vec3d p = g.wsPosition(Placement(c), i, j, k);
                     const double dx = p[0] - cx, dy = p[1] - cy, r2 = dx * dx + dy * dy;
                     if (r2 > 4 * S::CORE_M * S::CORE_M) continue;
-                    const double vr = r2 > 0 ? gamma / (2 * PI * r2) * (1 - std::exp(-r2 / (S::CORE_M * S::CORE_M))) : 0;
+                    const double vr = r2 > 0 ? gamma / (2 * PI * r2) *
+                                                   (1 - std::exp(-r2 / (S::CORE_M * S::CORE_M)))
+                                             : 0;
                     const double exact = c == 0 ? S::WIND_MPS - vr * dy : vr * dx;
                     const double d = a[size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k)] - exact;
                     sum += d * d, ++count;
@@ -164,8 +178,8 @@ double translatingError(const StabilityRun& r) {
 TEST(TranslatingVortex, ConvergesToTheExactGalileanSolutionAsTheCellsHalveAtFixedCfl) {
     const double e4 = translatingError(runTranslatingVortex(4, 1.0));
     const double e8 = translatingError(runTranslatingVortex(8, 1.0));
-    std::printf("translating Lamb-Oseen, CFL 1: error %.4f (4 cells/core), %.4f (8), order %.2f\n", e4, e8,
-                std::log2(e4 / e8));
+    std::printf("translating Lamb-Oseen, CFL 1: error %.4f (4 cells/core), %.4f (8), order %.2f\n",
+                e4, e8, std::log2(e4 / e8));
     /// Semi-Lagrangian with trilinear interpolation at fixed CFL is first order (h^2 / dt ~ h).
     constexpr double MIN_ORDER = 0.7;
     EXPECT_GE(std::log2(e4 / e8), MIN_ORDER);
@@ -175,13 +189,19 @@ TEST(BurgersVortex, CoreHoldsItsRadiusOnlyWhenStrainAndViscosityBalance) {
     // Burgers 1948: r_c^2 = 4 nu / a is steady. Without viscosity the strain contracts the core
     // (r_c e^{-a t / 2}); without strain viscosity spreads it (sqrt(r_c^2 + 4 nu t)).
     using S = BurgersSpec;
-    const double balanced = burgersCoreRadius_m(runBurgersVortex(BurgersVariant::Balanced, 4)) / S::CORE_M;
-    const double inviscid = burgersCoreRadius_m(runBurgersVortex(BurgersVariant::NoViscosity, 4)) / S::CORE_M;
-    const double unstrained = burgersCoreRadius_m(runBurgersVortex(BurgersVariant::NoStrain, 4)) / S::CORE_M;
-    std::printf("Burgers core / r_c after a t = %.1f: balanced %.3f, no viscosity %.3f (exact %.3f), no strain %.3f "
-                "(exact %.3f)\n",
-                S::STRAIN_PER_S * S::TIME_S, balanced, inviscid, std::exp(-0.5 * S::STRAIN_PER_S * S::TIME_S), unstrained,
-                std::sqrt(1 + 4 * S::viscosity_m2ps() * S::TIME_S / (S::CORE_M * S::CORE_M)));
+    const double balanced =
+        burgersCoreRadius_m(runBurgersVortex(BurgersVariant::Balanced, 4)) / S::CORE_M;
+    const double inviscid =
+        burgersCoreRadius_m(runBurgersVortex(BurgersVariant::NoViscosity, 4)) / S::CORE_M;
+    const double unstrained =
+        burgersCoreRadius_m(runBurgersVortex(BurgersVariant::NoStrain, 4)) / S::CORE_M;
+    std::printf(
+        "Burgers core / r_c after a t = %.1f: balanced %.3f, no viscosity %.3f (exact %.3f), no "
+        "strain %.3f "
+        "(exact %.3f)\n",
+        S::STRAIN_PER_S * S::TIME_S, balanced, inviscid,
+        std::exp(-0.5 * S::STRAIN_PER_S * S::TIME_S), unstrained,
+        std::sqrt(1 + 4 * S::viscosity_m2ps() * S::TIME_S / (S::CORE_M * S::CORE_M)));
     // At 4 cells per core the interpolation adds a numerical viscosity of about nu / 4 (measured:
     // the unstrained core spreads to 1.50 r_c against the exact 1.41), and the p = 0 open top and
     // sides cannot carry the strain's pressure, so the strain inside the box weakens (to 0.73 a
