@@ -10,12 +10,13 @@
 #include <optional>
 #include <stdexcept>
 
+#include "base/Numbers.h"
 #include "sim/SteadyWind.h"
 
 namespace gale::sim {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 /// Lamb-Oseen's peak swirl sits at this many core radii (the root of d/dr[(1 - e^{-r^2}) / r]).
 constexpr double LAMB_OSEEN_PEAK_CORES = 1.1209;
 
@@ -294,39 +295,6 @@ StabilityRun runTranslatingVortex(int cellsPerCore, double courant) {
     // energy after seeding (advance moves the start there).
     advance(r, steps, s.dt_s);
     return r;
-}
-
-double translatingVortexError(const StabilityRun& run) {
-    using S = TranslatingVortexSpec;
-    const MacGrid& g = run.solver->grid();
-    const double t = run.solver->time_s();
-    const double cx = S::START_X_M + S::WIND_MPS * t, cy = S::START_Y_M;
-    const double G = vortex(0, 0, S::CORE_M, S::PEAK_MPS).circulation();
-    auto exact = [&](const Vec3d& p) {
-        const double dx = p[0] - cx, dy = p[1] - cy, r2 = dx * dx + dy * dy;
-        const double f =
-            r2 > 0 ? G / (2 * PI * r2) * -std::expm1(-r2 / (S::CORE_M * S::CORE_M)) : 0.0;
-        return Vec3d{S::WIND_MPS - f * dy, f * dx, 0.0};
-    };
-    double sum = 0.0;
-    size_t count = 0;
-    const std::vector<double>* arrays[2] = {&run.solver->field().u_mps(),
-                                            &run.solver->field().v_mps()};
-    for (int c = 0; c < 2; ++c) {
-        const Placement p = Placement(c);
-        const auto n = g.dims(p);
-        for (int k = 0; k < n[2]; ++k)
-            for (int j = 0; j < n[1]; ++j)
-                for (int i = 0; i < n[0]; ++i) {
-                    const Vec3d ws = g.wsPosition(p, i, j, k);
-                    if (std::hypot(ws[0] - cx, ws[1] - cy) > 2.0 * S::CORE_M) continue;
-                    const double d =
-                        (*arrays[c])[size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k)] -
-                        exact(ws)[c];
-                    sum += d * d, ++count;
-                }
-    }
-    return count ? std::sqrt(sum / double(count)) / S::PEAK_MPS : 0.0;
 }
 
 StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore) {

@@ -82,9 +82,6 @@ struct TranslatingVortexSpec {
 /// Runs it with cells of CORE_M / cellsPerCore and steps of courant h / (WIND_MPS + PEAK_MPS) up to
 /// TIME_S. Throws std::invalid_argument if cellsPerCore < 1 or courant <= 0.
 StabilityRun runTranslatingVortex(int cellsPerCore, double courant);
-/// RMS over horizontal faces within 2 cores of the exact axis of |u - u_exact| / PEAK_MPS at the
-/// run's final time (the bench's measure; the tests compute their own).
-double translatingVortexError(const StabilityRun& run);
 
 enum class BurgersVariant { Balanced, NoViscosity, NoStrain };
 /// Burgers' vortex of the file comment (metres, m/s, 1/s, seconds): core CORE_M, strain

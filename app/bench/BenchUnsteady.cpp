@@ -13,6 +13,7 @@
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/bench/SvgPlot.h"
+#include "app/bench/TranslatingVortex.h"
 #include "app/io/Timing.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
@@ -219,7 +220,7 @@ int runBenchStability(const BenchStabilityOptions& opt) {
         for (const auto& [cells, courant] : runs) {
             std::fprintf(stderr, "bench stability: translating vortex, %d cells per core, CFL %.1f...\n", cells, courant);
             const sim::StabilityRun r = sim::runTranslatingVortex(cells, courant);
-            const double e = sim::translatingVortexError(r);
+            const double e = exact::translatingVortexError(r);
             const double order = prev > 0 ? std::log2(prev / e) : NAN;
             if (prev > 0 && lastOrder) *lastOrder = order;
             prev = e;
