@@ -13,9 +13,12 @@ namespace gale::sim {
 
 const char* advectionSchemeName(AdvectionScheme s) {
     switch (s) {
-        case AdvectionScheme::SemiLagrangian: return "semi_lagrangian";
-        case AdvectionScheme::MacCormack: return "maccormack";
-        case AdvectionScheme::Bfecc: return "bfecc";
+        case AdvectionScheme::SemiLagrangian:
+            return "semi_lagrangian";
+        case AdvectionScheme::MacCormack:
+            return "maccormack";
+        case AdvectionScheme::Bfecc:
+            return "bfecc";
     }
     return "?";
 }
@@ -24,7 +27,8 @@ AdvectionScheme advectionSchemeFromName(const std::string& name) {
     if (name == "semi_lagrangian") return AdvectionScheme::SemiLagrangian;
     if (name == "maccormack") return AdvectionScheme::MacCormack;
     if (name == "bfecc") return AdvectionScheme::Bfecc;
-    throw std::invalid_argument("advection must be one of semi_lagrangian, maccormack, bfecc (got \"" + name + "\")");
+    throw std::invalid_argument(
+        "advection must be one of semi_lagrangian, maccormack, bfecc (got \"" + name + "\")");
 }
 
 namespace {
@@ -48,7 +52,8 @@ inline double blendCorners(const double (&c)[8], const double* t, double* lo, do
 
 }  // namespace
 
-double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, const Vec3d& ws, double* lo, double* hi) {
+double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, const Vec3d& ws,
+                double* lo, double* hi) {
     const auto n = g.dims(p);
     const Vec3d is = g.isFromWs(ws);
     int i0[3];
@@ -58,8 +63,11 @@ double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, con
         i0[a] = std::min(int(f), std::max(n[a] - 2, 0));
         t[a] = n[a] > 1 ? f - i0[a] : 0.0;
     }
-    const int i1 = std::min(i0[0] + 1, n[0] - 1), j1 = std::min(i0[1] + 1, n[1] - 1), k1 = std::min(i0[2] + 1, n[2] - 1);
-    auto at = [&](int x, int y, int z) { return q[size_t(x) + size_t(n[0]) * (y + size_t(n[1]) * z)]; };
+    const int i1 = std::min(i0[0] + 1, n[0] - 1), j1 = std::min(i0[1] + 1, n[1] - 1),
+              k1 = std::min(i0[2] + 1, n[2] - 1);
+    auto at = [&](int x, int y, int z) {
+        return q[size_t(x) + size_t(n[0]) * (y + size_t(n[1]) * z)];
+    };
     const double c[8] = {at(i0[0], i0[1], i0[2]), at(i1, i0[1], i0[2]), at(i0[0], j1, i0[2]),
                          at(i1, j1, i0[2]),       at(i0[0], i0[1], k1), at(i1, i0[1], k1),
                          at(i0[0], j1, k1),       at(i1, j1, k1)};
@@ -95,7 +103,8 @@ struct IndexSampler {
             i0[k] = i;
             t[k] = n[k] > 1 ? f - i : 0.0;
         }
-        const size_t sx = n[0] > 1 ? 1 : 0, sy = n[1] > 1 ? size_t(n[0]) : 0, sz = n[2] > 1 ? size_t(n[0]) * n[1] : 0;
+        const size_t sx = n[0] > 1 ? 1 : 0, sy = n[1] > 1 ? size_t(n[0]) : 0,
+                     sz = n[2] > 1 ? size_t(n[0]) * n[1] : 0;
         const double* p = a + size_t(i0[0]) + size_t(n[0]) * (i0[1] + size_t(n[1]) * i0[2]);
         const double c[8] = {p[0],  p[sx],      p[sy],      p[sx + sy],
                              p[sz], p[sx + sz], p[sy + sz], p[sx + sy + sz]};
@@ -128,8 +137,8 @@ double terrainTopIs(const MacGrid& g) {
 }
 
 template <class VelocityIs>
-void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, double dt, double groundTopIs,
-             double* dep) {
+void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, double dt,
+             double groundTopIs, double* dep) {
     double x[3] = {x0[0], x0[1], x0[2]};
     const double sign = dt < 0.0 ? -1.0 : 1.0;
     double remaining = std::abs(dt);
@@ -145,7 +154,8 @@ void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, d
         velocityIs(x, u0);
         if (outsideIs(g, x)) {
             // Outside the box: the far field is smooth, finish in one midpoint step.
-            for (int a = 0; a < 3; ++a) xm[a] = x[a] - sign * g.cellsFromMetres(0.5 * remaining * u0[a]);
+            for (int a = 0; a < 3; ++a)
+                xm[a] = x[a] - sign * g.cellsFromMetres(0.5 * remaining * u0[a]);
             velocityIs(xm, u1);
             for (int a = 0; a < 3; ++a) x[a] -= sign * g.cellsFromMetres(remaining * u1[a]);
             break;
@@ -153,7 +163,8 @@ void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, d
         const double speedCells =
             g.cellsFromMetres(std::max({std::abs(u0[0]), std::abs(u0[1]), std::abs(u0[2])}));
         double s = remaining;
-        if (speedCells * s > MAX_TRACE_CELLS_PER_SUBSTEP) s = MAX_TRACE_CELLS_PER_SUBSTEP / speedCells;
+        if (speedCells * s > MAX_TRACE_CELLS_PER_SUBSTEP)
+            s = MAX_TRACE_CELLS_PER_SUBSTEP / speedCells;
         if (!(s > 0.0)) break;  // infinite speed: stay put rather than spin
         for (int a = 0; a < 3; ++a) xm[a] = x[a] - sign * g.cellsFromMetres(0.5 * s * u0[a]);
         velocityIs(xm, u1);
@@ -180,13 +191,15 @@ void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, d
 
 /// One semi-Lagrangian pass; optionally records the min/max of the interpolation neighbours and
 /// whether the departure point left the box.
-void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
-                    const FarField& far, const OutsideValue& outside, double dt, std::vector<double>& out,
-                    const std::vector<uint8_t>* mask, std::vector<double>* lo, std::vector<double>* hi) {
+void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
+                    const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
+                    double dt, std::vector<double>& out, const std::vector<uint8_t>* mask,
+                    std::vector<double>* lo, std::vector<double>* hi) {
     const auto n = g.dims(p);
     out.resize(q.size());
     if (lo) lo->resize(q.size()), hi->resize(q.size());
-    const IndexSampler Su(g, Placement::FaceX, *vel.u), Sv(g, Placement::FaceY, *vel.v), Sw(g, Placement::FaceZ, *vel.w);
+    const IndexSampler Su(g, Placement::FaceX, *vel.u), Sv(g, Placement::FaceY, *vel.v),
+        Sw(g, Placement::FaceZ, *vel.w);
     const IndexSampler Q(g, p, q);
     const double groundTop = terrainTopIs(g);
     auto velocityIs = [&](const double* is, double* u) {
@@ -223,8 +236,10 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
 
 }  // namespace
 
-Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& ws, double dt) {
-    const IndexSampler Su(g, Placement::FaceX, *vel.u), Sv(g, Placement::FaceY, *vel.v), Sw(g, Placement::FaceZ, *vel.w);
+Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& ws,
+                double dt) {
+    const IndexSampler Su(g, Placement::FaceX, *vel.u), Sv(g, Placement::FaceY, *vel.v),
+        Sw(g, Placement::FaceZ, *vel.w);
     auto velocityIs = [&](const double* is, double* u) {
         if (far && outsideIs(g, is)) {
             const Vec3d f = far(g.wsFromIs({is[0], is[1], is[2]}));
@@ -239,14 +254,15 @@ Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, c
     return g.wsFromIs({dep[0], dep[1], dep[2]});
 }
 
-void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel, const FarField& far,
-            const OutsideValue& outside, double dt, AdvectionScheme scheme, std::vector<double>& out,
-            const std::vector<uint8_t>* mask) {
+void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
+            const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
+            std::vector<double>& out, const std::vector<uint8_t>* mask) {
     if (q.size() != g.count(p)) throw std::invalid_argument("advect: quantity has the wrong size");
     if (!vel.u || !vel.v || !vel.w || vel.u->size() != g.count(Placement::FaceX) ||
         vel.v->size() != g.count(Placement::FaceY) || vel.w->size() != g.count(Placement::FaceZ))
         throw std::invalid_argument("advect: velocity arrays have the wrong size");
-    if (mask && mask->size() != q.size()) throw std::invalid_argument("advect: mask has the wrong size");
+    if (mask && mask->size() != q.size())
+        throw std::invalid_argument("advect: mask has the wrong size");
     if (scheme == AdvectionScheme::SemiLagrangian) {
         semiLagrangian(g, p, q, vel, far, outside, dt, out, mask, nullptr, nullptr);
         return;
@@ -266,7 +282,8 @@ void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const M
     // Kim et al. 2005: advect phi + (phi - phi_b) / 2 forward once more, limited by the
     // neighbours of the plain forward pass.
     std::vector<double> corrected(q.size());
-    tbb::parallel_for(size_t(0), q.size(), [&](size_t idx) { corrected[idx] = q[idx] + 0.5 * (q[idx] - back[idx]); });
+    tbb::parallel_for(size_t(0), q.size(),
+                      [&](size_t idx) { corrected[idx] = q[idx] + 0.5 * (q[idx] - back[idx]); });
     semiLagrangian(g, p, corrected, vel, far, outside, dt, out, mask, nullptr, nullptr);
     tbb::parallel_for(size_t(0), q.size(), [&](size_t idx) {
         const double v = out[idx];

@@ -23,8 +23,8 @@
 /// remaining time in one midpoint step through the far field.
 ///  - MacCormack: Selle, Fedkiw, Kim, Liu, Osher 2008 ("An unconditionally stable MacCormack
 ///    method"): forward and backward semi-Lagrangian passes, phi = phi_f + (phi - phi_b) / 2,
-///    clamped to the min/max of the 8 interpolation neighbours of the forward departure point (their
-///    limiter, so the scheme stays bounded).
+///    clamped to the min/max of the 8 interpolation neighbours of the forward departure point
+///    (their limiter, so the scheme stays bounded).
 ///  - Bfecc: Kim, Liu, Llamas, Rossignac 2005 (back and forth error compensation and correction):
 ///    phi' = phi + (phi - phi_b) / 2 advected forward once more, clamped the same way.
 ///
@@ -77,11 +77,13 @@ struct MacGrid {
     }
     /// Index space -> world metres.
     Vec3d wsFromIs(const Vec3d& is) const {
-        return {wsMin_m[0] + is[0] * voxelSize_m, wsMin_m[1] + is[1] * voxelSize_m, wsMin_m[2] + is[2] * voxelSize_m};
+        return {wsMin_m[0] + is[0] * voxelSize_m, wsMin_m[1] + is[1] * voxelSize_m,
+                wsMin_m[2] + is[2] * voxelSize_m};
     }
     /// Samples along x, y, z of a placement (faces: one more along their axis).
     std::array<int, 3> dims(Placement p) const {
-        return {nx + (p == Placement::FaceX), ny + (p == Placement::FaceY), nz + (p == Placement::FaceZ)};
+        return {nx + (p == Placement::FaceX), ny + (p == Placement::FaceY),
+                nz + (p == Placement::FaceZ)};
     }
     size_t count(Placement p) const {
         const auto d = dims(p);
@@ -89,7 +91,8 @@ struct MacGrid {
     }
     /// World position of sample (i, j, k) of placement p, metres.
     Vec3d wsPosition(Placement p, int i, int j, int k) const {
-        return wsFromIs({i + (p == Placement::FaceX ? 0.0 : 0.5), j + (p == Placement::FaceY ? 0.0 : 0.5),
+        return wsFromIs({i + (p == Placement::FaceX ? 0.0 : 0.5),
+                         j + (p == Placement::FaceY ? 0.0 : 0.5),
                          k + (p == Placement::FaceZ ? 0.0 : 0.5)});
     }
     /// True if a world point lies outside the box through an x or y side or the top (the bottom
@@ -117,14 +120,16 @@ double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, con
 
 /// Velocity at a world position, m/s: the far field outside the box, else each component
 /// trilinearly from its own faces.
-Vec3d velocityAt(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& wsPos_m);
+Vec3d velocityAt(const MacGrid& g, const MacVelocity& vel, const FarField& far,
+                 const Vec3d& wsPos_m);
 
 /// Departure point of the particle that reaches wsPos_m after dt_s seconds (dt_s < 0: the forward
 /// arrival point), by explicit midpoint substeps through the frozen velocity,
 ///   x_mid = x - s/2 u(x),  x_next = x - s u(x_mid),
 /// each substep s at most MAX_TRACE_CELLS_PER_SUBSTEP cells long; stopped on the terrain surface
 /// (g.terrain) when it crosses it from above. Metres in, metres out.
-Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& wsPos_m, double dt_s);
+Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& wsPos_m,
+                double dt_s);
 
 /// Value of the advected quantity outside the box at a world position (same units as q).
 using OutsideValue = std::function<double(const Vec3d& wsPos_m)>;
@@ -133,8 +138,8 @@ using OutsideValue = std::function<double(const Vec3d& wsPos_m)>;
 /// the result to `out` (resized). Samples with mask[idx] == 0 (if mask is given) are copied
 /// unchanged. `outside` gives q where a trace leaves the box (empty: clamp to the box).
 /// Multithreaded (TBB). Throws std::invalid_argument on wrong sizes.
-void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel, const FarField& far,
-            const OutsideValue& outside, double dt_s, AdvectionScheme scheme, std::vector<double>& out,
-            const std::vector<uint8_t>* mask = nullptr);
+void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
+            const FarField& far, const OutsideValue& outside, double dt_s, AdvectionScheme scheme,
+            std::vector<double>& out, const std::vector<uint8_t>* mask = nullptr);
 
 }  // namespace gale::sim

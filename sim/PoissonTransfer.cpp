@@ -6,14 +6,14 @@
 /// own parent instead (constant extrapolation, the discrete no-flux condition; the "redirects"),
 /// with the transpose in restriction (docs/solver.md, "The linear solver").
 
-#include "sim/PoissonDetail.h"
-
 #include <tbb/parallel_for.h>
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include "sim/PoissonDetail.h"
 
 namespace gale::sim::multigrid {
 
@@ -105,8 +105,10 @@ void buildRedirects(Level& F, const Level& C, const std::array<BoundaryKind, 6>&
                             const double w = wk[a] * wj[b] * wi[c];
                             if (w == 0.0) continue;
                             const int I = ci[c], J = cj[b], K = ck[a];
-                            const bool inside = I >= 0 && J >= 0 && K >= 0 && I < C.nx && J < C.ny && K < C.nz;
-                            if (inside ? !C.active[C.at(I, J, K)] : ghostKind(I, J, K) == 1) lost += w;
+                            const bool inside =
+                                I >= 0 && J >= 0 && K >= 0 && I < C.nx && J < C.ny && K < C.nz;
+                            if (inside ? !C.active[C.at(I, J, K)] : ghostKind(I, J, K) == 1)
+                                lost += w;
                         }
                 // A home that is itself inactive holds 0 and never receives a residual: the
                 // weight is dropped in both directions (symmetric), rather than written into a
@@ -169,7 +171,8 @@ void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, in
     const size_t p0 = F.at(0, j, k);
     const uint8_t* active = F.active.data() + p0;
     for (int i = 0; i < F.nx; ++i)
-        if (active[i]) xf[p0 + i] += F.tx.w0[i] * t[F.tx.c0[i] + 1] + F.tx.w1[i] * t[F.tx.c1[i] + 1];
+        if (active[i])
+            xf[p0 + i] += F.tx.w0[i] * t[F.tx.c0[i] + 1] + F.tx.w1[i] * t[F.tx.c1[i] + 1];
 }
 
 void prolongRedirects(const Level& F, const double* xc, double* xf, int k) {

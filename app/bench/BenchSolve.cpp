@@ -3,7 +3,6 @@
 /// (docs/solver.md, "Speed"). The accuracy study is in BenchAccuracy.cpp.
 
 #include "app/bench/BenchSolve.h"
-#include "app/bench/SvgPlot.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/PoissonSolver.h>
@@ -24,12 +23,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "app/bench/ExactSolutions.h"
+#include "app/bench/SvgPlot.h"
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/io/Timing.h"
-#include "sim/SteadyWind.h"
 #include "base/Numbers.h"
-#include "app/bench/ExactSolutions.h"
+#include "sim/SteadyWind.h"
 
 namespace gale::app {
 
@@ -143,9 +143,11 @@ RunResult runOurs(int nx, int ny, int nz, double tol) {
     const sim::SolveReport rep = solver.solve(b, x, set);
     r.totalSeconds = secondsSince(t0);
     r.ok = 1, r.converged = rep.converged, r.iterations = rep.iterations, r.levels = rep.levels;
-    r.relativeResidual = rep.relativeResidual, r.setupSeconds = rep.setupSeconds, r.solveSeconds = rep.solveSeconds;
+    r.relativeResidual = rep.relativeResidual, r.setupSeconds = rep.setupSeconds,
+    r.solveSeconds = rep.solveSeconds;
     r.heldBytes = double(solver.memory_bytes());
-    r.bytesPerCellIteration = sim::PoissonSolver::bytesPerCellPerIteration(set.smoothingSweeps, solver.uniformCellFraction());
+    r.bytesPerCellIteration = sim::PoissonSolver::bytesPerCellPerIteration(
+        set.smoothingSweeps, solver.uniformCellFraction());
     std::snprintf(r.message, sizeof r.message, "%s", rep.message.c_str());
     return r;
 }
@@ -167,7 +169,8 @@ RunResult runOpenVdb(int nx, int ny, int nz, double tol, VdbPrecond pc) {
         tree::ValueAccessor<DoubleTree> acc(source);
         for (int k = 0; k < nz; ++k)
             for (int j = 0; j < ny; ++j)
-                for (int i = 0; i < nx; ++i) acc.setValueOn(Coord(i, j, k), -b[sys.cellIndex(i, j, k)]);
+                for (int i = 0; i < nx; ++i)
+                    acc.setValueOn(Coord(i, j, k), -b[sys.cellIndex(i, j, k)]);
     }
     // staggered = true selects OpenVDB's compact 7-point Laplacian (ours); its collocated variant
     // uses neighbours two voxels away (OPENVDB_TOOLS_POISSON_LAPLACIAN_STENCIL 2), another problem.
@@ -185,10 +188,12 @@ RunResult runOpenVdb(int nx, int ny, int nz, double tol, VdbPrecond pc) {
     DoubleTree::Ptr x;
     if (pc == VdbPrecond::Jacobi) {
         x = tools::poisson::solveWithBoundaryConditionsAndPreconditioner<
-            math::pcg::JacobiPreconditioner<tools::poisson::LaplacianMatrix>>(source, boundary, state, interrupter,
+            math::pcg::JacobiPreconditioner<tools::poisson::LaplacianMatrix>>(source, boundary,
+                                                                              state, interrupter,
                                                                               /*staggered=*/true);
     } else {
-        x = tools::poisson::solveWithBoundaryConditions(source, boundary, state, interrupter, /*staggered=*/true);
+        x = tools::poisson::solveWithBoundaryConditions(source, boundary, state, interrupter,
+                                                        /*staggered=*/true);
     }
     r.totalSeconds = r.solveSeconds = secondsSince(t0);
     r.peakRss_bytes = peakRssBytes();  // before our comparison solve below
@@ -210,7 +215,8 @@ RunResult runOpenVdb(int nx, int ny, int nz, double tol, VdbPrecond pc) {
                 norm = std::max(norm, std::abs(v));
             }
     r.solutionDifference = diff / norm;
-    std::snprintf(r.message, sizeof r.message, "%s", state.success ? "converged" : "stopped (divergence guard or limit)");
+    std::snprintf(r.message, sizeof r.message, "%s",
+                  state.success ? "converged" : "stopped (divergence guard or limit)");
     return r;
 }
 
@@ -222,9 +228,10 @@ RunResult runTriad() {
     double best = 0;
     for (int rep = 0; rep < 5; ++rep) {
         const auto t0 = Clock::now();
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 16), [&](const tbb::blocked_range<size_t>& q) {
-            for (size_t i = q.begin(); i < q.end(); ++i) a[i] = b[i] + 1.5 * c[i];
-        });
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 16),
+                          [&](const tbb::blocked_range<size_t>& q) {
+                              for (size_t i = q.begin(); i < q.end(); ++i) a[i] = b[i] + 1.5 * c[i];
+                          });
         best = std::max(best, 3.0 * 8.0 * double(n) / secondsSince(t0));
     }
     r.ok = a[7] == 6.5;
@@ -270,29 +277,41 @@ int runBenchSolve(const BenchSolveOptions& optIn) {
     };
     std::vector<Row> rows;
     for (const auto& s : opt.sizes) {
-        const std::string name = std::to_string(s[0]) + "x" + std::to_string(s[1]) + "x" + std::to_string(s[2]);
+        const std::string name =
+            std::to_string(s[0]) + "x" + std::to_string(s[1]) + "x" + std::to_string(s[2]);
         std::fprintf(stderr, "bench solve: %s ours (MGPCG)...\n", name.c_str());
-        rows.push_back({s, "gale MGPCG", inChild([&] { return runOurs(s[0], s[1], s[2], opt.relativeTolerance); })});
+        rows.push_back({s, "gale MGPCG",
+                        inChild([&] { return runOurs(s[0], s[1], s[2], opt.relativeTolerance); })});
         if (opt.openVdb) {
             std::fprintf(stderr, "bench solve: %s OpenVDB Jacobi-PCG...\n", name.c_str());
             rows.push_back({s, "openvdb Jacobi-PCG", inChild([&] {
-                                return runOpenVdb(s[0], s[1], s[2], opt.relativeTolerance, VdbPrecond::Jacobi);
+                                return runOpenVdb(s[0], s[1], s[2], opt.relativeTolerance,
+                                                  VdbPrecond::Jacobi);
                             })});
-            std::fprintf(stderr, "bench solve: %s OpenVDB IC-PCG (poisson::solve default)...\n", name.c_str());
+            std::fprintf(stderr, "bench solve: %s OpenVDB IC-PCG (poisson::solve default)...\n",
+                         name.c_str());
             rows.push_back({s, "openvdb IC-PCG", inChild([&] {
-                                return runOpenVdb(s[0], s[1], s[2], opt.relativeTolerance, VdbPrecond::IncompleteCholesky);
+                                return runOpenVdb(s[0], s[1], s[2], opt.relativeTolerance,
+                                                  VdbPrecond::IncompleteCholesky);
                             })});
         }
     }
 
-    std::printf("Same elliptic problem for every solver: box of unit cells, 7-point Laplacian, Dirichlet 0 on the\n"
-                "faces of the sides and top, Neumann ground, pseudo-random right-hand side; stop at max-norm\n"
-                "relative residual %.0e. Peak memory = the solver process's peak RSS minus an idle child's (%.0f MB).\n"
-                "Triad bandwidth %.1f GB/s. Floor = our traffic model (bytes per cell per iteration, V(%d,%d): %.0f with\n"
-                "every weight read, less on full-open cells; per row below) x cells x iterations / triad bandwidth.\n\n",
-                opt.relativeTolerance, baseline / 1e6, bw / 1e9, sweeps, sweeps, bytesGeneral);
-    std::printf("%-12s %-19s %5s %5s %9s %8s %8s %8s %8s %9s %8s %9s\n", "size", "solver", "its", "conv", "rel.res",
-                "setup s", "solve s", "total s", "peak MB", "vs gale", "floor s", "x floor");
+    std::printf(
+        "Same elliptic problem for every solver: box of unit cells, 7-point Laplacian, Dirichlet 0 "
+        "on the\n"
+        "faces of the sides and top, Neumann ground, pseudo-random right-hand side; stop at "
+        "max-norm\n"
+        "relative residual %.0e. Peak memory = the solver process's peak RSS minus an idle child's "
+        "(%.0f MB).\n"
+        "Triad bandwidth %.1f GB/s. Floor = our traffic model (bytes per cell per iteration, "
+        "V(%d,%d): %.0f with\n"
+        "every weight read, less on full-open cells; per row below) x cells x iterations / triad "
+        "bandwidth.\n\n",
+        opt.relativeTolerance, baseline / 1e6, bw / 1e9, sweeps, sweeps, bytesGeneral);
+    std::printf("%-12s %-19s %5s %5s %9s %8s %8s %8s %8s %9s %8s %9s\n", "size", "solver", "its",
+                "conv", "rel.res", "setup s", "solve s", "total s", "peak MB", "vs gale", "floor s",
+                "x floor");
     nlohmann::json j;
     j["triad_GBps"] = bw / 1e9;
     j["bytes_per_cell_per_iteration_all_weights"] = bytesGeneral;
@@ -304,7 +323,8 @@ int runBenchSolve(const BenchSolveOptions& optIn) {
         const RunResult& r = row.r;
         const double cells = double(row.size[0]) * row.size[1] * row.size[2];
         const bool ours = row.solver == "gale MGPCG";
-        const std::string name = std::to_string(row.size[0]) + "x" + std::to_string(row.size[1]) + "x" + std::to_string(row.size[2]);
+        const std::string name = std::to_string(row.size[0]) + "x" + std::to_string(row.size[1]) +
+                                 "x" + std::to_string(row.size[2]);
         double floorS = 0;
         if (ours) {
             oursTotal = r.totalSeconds;
@@ -314,33 +334,47 @@ int runBenchSolve(const BenchSolveOptions& optIn) {
             itsLast = r.iterations;
         }
         const double peakMB = std::max(0.0, r.peakRss_bytes - baseline) / 1e6;
-        std::printf("%-12s %-19s %5d %5s %9.1e %8.3f %8.3f %8.3f %8.0f %9s %8s %9s%s\n", name.c_str(), row.solver.c_str(),
-                    r.iterations, r.converged ? "yes" : "NO", r.relativeResidual, r.setupSeconds, r.solveSeconds,
-                    r.totalSeconds, peakMB, ours ? "1" : (formatG(r.totalSeconds / oursTotal, 3) + "x").c_str(),
-                    ours ? formatG(floorS, 3).c_str() : "", ours ? formatG(r.solveSeconds / floorS, 3).c_str() : "",
+        std::printf("%-12s %-19s %5d %5s %9.1e %8.3f %8.3f %8.3f %8.0f %9s %8s %9s%s\n",
+                    name.c_str(), row.solver.c_str(), r.iterations, r.converged ? "yes" : "NO",
+                    r.relativeResidual, r.setupSeconds, r.solveSeconds, r.totalSeconds, peakMB,
+                    ours ? "1" : (formatG(r.totalSeconds / oursTotal, 3) + "x").c_str(),
+                    ours ? formatG(floorS, 3).c_str() : "",
+                    ours ? formatG(r.solveSeconds / floorS, 3).c_str() : "",
                     r.ok ? "" : (std::string("  FAILED: ") + r.message).c_str());
         if (ours)
-            std::printf("%-12s %-19s traffic model %.0f B/cell/iteration, %.0f ms/iteration\n", "", "",
-                        r.bytesPerCellIteration, 1e3 * r.solveSeconds / std::max(1, r.iterations));
+            std::printf("%-12s %-19s traffic model %.0f B/cell/iteration, %.0f ms/iteration\n", "",
+                        "", r.bytesPerCellIteration,
+                        1e3 * r.solveSeconds / std::max(1, r.iterations));
         if (!ours && r.solutionDifference >= 0 && !std::isnan(r.solutionDifference))
-            std::printf("%-12s %-19s max |x - x_gale| / max |x_gale| = %.1e (%s)\n", "", "", r.solutionDifference, r.message);
-        j["rows"].push_back({{"size", row.size}, {"solver", row.solver}, {"iterations", r.iterations},
-                             {"converged", bool(r.converged)}, {"relative_residual", r.relativeResidual},
-                             {"setup_s", r.setupSeconds}, {"solve_s", r.solveSeconds}, {"total_s", r.totalSeconds},
-                             {"peak_rss_MB", peakMB}, {"held_MB", r.heldBytes / 1e6},
+            std::printf("%-12s %-19s max |x - x_gale| / max |x_gale| = %.1e (%s)\n", "", "",
+                        r.solutionDifference, r.message);
+        j["rows"].push_back({{"size", row.size},
+                             {"solver", row.solver},
+                             {"iterations", r.iterations},
+                             {"converged", bool(r.converged)},
+                             {"relative_residual", r.relativeResidual},
+                             {"setup_s", r.setupSeconds},
+                             {"solve_s", r.solveSeconds},
+                             {"total_s", r.totalSeconds},
+                             {"peak_rss_MB", peakMB},
+                             {"held_MB", r.heldBytes / 1e6},
                              {"ratio_to_gale_total", ours ? 1.0 : r.totalSeconds / oursTotal},
-                             {"floor_s", floorS}, {"bytes_per_cell_per_iteration", r.bytesPerCellIteration}, {"solution_difference", r.solutionDifference},
+                             {"floor_s", floorS},
+                             {"bytes_per_cell_per_iteration", r.bytesPerCellIteration},
+                             {"solution_difference", r.solutionDifference},
                              {"message", r.message}});
     }
     const double loadAfter = loadAverage();
-    std::printf("\nLoad average (1 min) before / after: %.2f / %.2f on %ld cores: above the core count, times are\n"
-                "inflated for every solver alike, and the floor ratio grows.\n",
-                loadBefore, loadAfter, sysconf(_SC_NPROCESSORS_ONLN));
+    std::printf(
+        "\nLoad average (1 min) before / after: %.2f / %.2f on %ld cores: above the core count, "
+        "times are\n"
+        "inflated for every solver alike, and the floor ratio grows.\n",
+        loadBefore, loadAfter, sysconf(_SC_NPROCESSORS_ONLN));
     j["load_average_before"] = loadBefore;
     j["load_average_after"] = loadAfter;
     if (itsFirst > 0)
-        std::printf("\nIteration growth smallest -> largest: %d -> %d (%.2fx; target <= 1.5x)\n", itsFirst, itsLast,
-                    double(itsLast) / itsFirst);
+        std::printf("\nIteration growth smallest -> largest: %d -> %d (%.2fx; target <= 1.5x)\n",
+                    itsFirst, itsLast, double(itsLast) / itsFirst);
     j["iteration_growth"] = itsFirst > 0 ? double(itsLast) / itsFirst : 0.0;
     if (!opt.jsonPath.empty()) writeTextAtomic(opt.jsonPath, j.dump(2) + "\n");
     return allConverged ? EXIT_OK : EXIT_UNMET;
