@@ -14,6 +14,7 @@
 #include "app/Cli.h"
 #include "app/bench/BenchCoupling.h"
 #include "app/bench/BenchRender.h"
+#include "app/bench/BenchRough.h"
 #include "app/bench/BenchSolve.h"
 #include "app/bench/BenchUnsteady.h"
 #include "app/io/Errors.h"
@@ -109,12 +110,24 @@ void addCoupling(CLI::App& bench, VerbTable& verbs) {
     verbs.add(verb, [o] { return runBench([o] { return runBenchCoupling(*o); }); });
 }
 
+void addRough(CLI::App& bench, VerbTable& verbs) {
+    auto o = std::make_shared<BenchRoughOptions>();
+    CLI::App* verb = bench.add_subcommand(
+        "rough", "Steady-solve iterations on a fractal and a sharp-feature terrain at 20, 10 and 5 m "
+                 "cells (target: <= 20 at every resolution)");
+    verb->add_flag("--quick", o->quick, "A 320 m square instead of 1280 m (a CI smoke run)");
+    verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
+    verb->footer(EXIT_CODES_FOOTER);
+    verbs.add(verb, [o] { return runBench([o] { return runBenchRough(*o); }); });
+}
+
 void addStability(CLI::App& bench, VerbTable& verbs) {
     auto o = std::make_shared<BenchStabilityOptions>();
     CLI::App* verb = bench.add_subcommand(
-        "stability", "The unsteady wind's extreme cases (CFL 50, 0 and 100 m/s, cliff, spike, "
-                     "sub-cell vortex, nu dt/h^2 = 1000, step gust): finite, divergence-free, "
-                     "energy bounded");
+        "stability", "The unsteady wind's stability suite: CFL 5/20/50 over a ridge, 0 and 100 m/s, "
+                     "cliff, spike, sub-cell vortex, nu dt/h^2 = 1000, gusts (energy budgets, "
+                     "deviation from the steady start); the translating Lamb-Oseen vortex's orders "
+                     "and Burgers' vortex against their exact solutions");
     verb->add_flag("--quick", o->quick, "Only the fast subset (what sim_tests runs)");
     verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
     verb->footer(EXIT_CODES_FOOTER);
@@ -147,6 +160,7 @@ void addBenchVerbs(CLI::App& app, VerbTable& verbs) {
     addAccuracy(*bench, verbs);
     addSolve(*bench, verbs);
     addCoupling(*bench, verbs);
+    addRough(*bench, verbs);
     addStability(*bench, verbs);
     addUnsteady(*bench, verbs);
 }

@@ -1,6 +1,6 @@
 /// \file Advection.cpp
 /// Semi-Lagrangian (Stam 1999), MacCormack (Selle et al. 2008) and BFECC (Kim et al. 2005)
-/// advection on the MAC grid.
+/// advection on the MAC grid, with substepped traces stopped at the terrain (Advection.h).
 #include "sim/Advection.h"
 
 #include <tbb/parallel_for.h>
@@ -13,9 +13,12 @@ namespace gale::sim {
 
 const char* advectionSchemeName(AdvectionScheme s) {
     switch (s) {
-        case AdvectionScheme::SemiLagrangian: return "semi_lagrangian";
-        case AdvectionScheme::MacCormack: return "maccormack";
-        case AdvectionScheme::Bfecc: return "bfecc";
+        case AdvectionScheme::SemiLagrangian:
+            return "semi_lagrangian";
+        case AdvectionScheme::MacCormack:
+            return "maccormack";
+        case AdvectionScheme::Bfecc:
+            return "bfecc";
     }
     return "?";
 }
@@ -24,7 +27,8 @@ AdvectionScheme advectionSchemeFromName(const std::string& name) {
     if (name == "semi_lagrangian") return AdvectionScheme::SemiLagrangian;
     if (name == "maccormack") return AdvectionScheme::MacCormack;
     if (name == "bfecc") return AdvectionScheme::Bfecc;
-    throw std::invalid_argument("advection must be one of semi_lagrangian, maccormack, bfecc (got \"" + name + "\")");
+    throw std::invalid_argument(
+        "advection must be one of semi_lagrangian, maccormack, bfecc (got \"" + name + "\")");
 }
 
 namespace {
@@ -48,7 +52,8 @@ inline double blendCorners(const double (&c)[8], const double* t, double* lo, do
 
 }  // namespace
 
-double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, const Vec3d& ws, double* lo, double* hi) {
+double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, const Vec3d& ws,
+                double* lo, double* hi) {
     const auto n = g.dims(p);
     const Vec3d is = g.isFromWs(ws);
     int i0[3];
@@ -58,8 +63,11 @@ double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, con
         i0[a] = std::min(int(f), std::max(n[a] - 2, 0));
         t[a] = n[a] > 1 ? f - i0[a] : 0.0;
     }
-    const int i1 = std::min(i0[0] + 1, n[0] - 1), j1 = std::min(i0[1] + 1, n[1] - 1), k1 = std::min(i0[2] + 1, n[2] - 1);
-    auto at = [&](int x, int y, int z) { return q[size_t(x) + size_t(n[0]) * (y + size_t(n[1]) * z)]; };
+    const int i1 = std::min(i0[0] + 1, n[0] - 1), j1 = std::min(i0[1] + 1, n[1] - 1),
+              k1 = std::min(i0[2] + 1, n[2] - 1);
+    auto at = [&](int x, int y, int z) {
+        return q[size_t(x) + size_t(n[0]) * (y + size_t(n[1]) * z)];
+    };
     const double c[8] = {at(i0[0], i0[1], i0[2]), at(i1, i0[1], i0[2]), at(i0[0], j1, i0[2]),
                          at(i1, j1, i0[2]),       at(i0[0], i0[1], k1), at(i1, i0[1], k1),
                          at(i0[0], j1, k1),       at(i1, j1, k1)};
@@ -70,13 +78,6 @@ Vec3d velocityAt(const MacGrid& g, const MacVelocity& vel, const FarField& far, 
     if (far && g.outside(ws)) return far(ws);
     return {sampleAt(g, Placement::FaceX, *vel.u, ws), sampleAt(g, Placement::FaceY, *vel.v, ws),
             sampleAt(g, Placement::FaceZ, *vel.w, ws)};
-}
-
-Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& x, double dt) {
-    const Vec3d u0 = velocityAt(g, vel, far, x);
-    const Vec3d mid{x[0] - 0.5 * dt * u0[0], x[1] - 0.5 * dt * u0[1], x[2] - 0.5 * dt * u0[2]};
-    const Vec3d u1 = velocityAt(g, vel, far, mid);
-    return {x[0] - dt * u1[0], x[1] - dt * u1[1], x[2] - dt * u1[2]};
 }
 
 namespace {
@@ -102,7 +103,8 @@ struct IndexSampler {
             i0[k] = i;
             t[k] = n[k] > 1 ? f - i : 0.0;
         }
-        const size_t sx = n[0] > 1 ? 1 : 0, sy = n[1] > 1 ? size_t(n[0]) : 0, sz = n[2] > 1 ? size_t(n[0]) * n[1] : 0;
+        const size_t sx = n[0] > 1 ? 1 : 0, sy = n[1] > 1 ? size_t(n[0]) : 0,
+                     sz = n[2] > 1 ? size_t(n[0]) * n[1] : 0;
         const double* p = a + size_t(i0[0]) + size_t(n[0]) * (i0[1] + size_t(n[1]) * i0[2]);
         const double c[8] = {p[0],  p[sx],      p[sy],      p[sx + sy],
                              p[sz], p[sx + sz], p[sy + sz], p[sx + sy + sz]};
@@ -110,21 +112,98 @@ struct IndexSampler {
     }
 };
 
+bool outsideIs(const MacGrid& g, const double* is) {
+    return !(is[0] >= 0.0 && is[0] <= g.nx && is[1] >= 0.0 && is[1] <= g.ny && is[2] <= g.nz);
+}
+
+/// Height of the point above the terrain surface in cells (negative below); +inf without terrain.
+double aboveGroundCells(const MacGrid& g, const double* is) {
+    if (!g.terrain) return HUGE_VAL;
+    const Vec3d ws = g.wsFromIs({is[0], is[1], is[2]});
+    return g.cellsFromMetres(ws[2] - g.terrain->sample(ws[0], ws[1]));
+}
+
+/// Bisection steps locating where a substep crosses the terrain: the stop lies within
+/// 2^-TERRAIN_BISECTIONS of a substep (< 1e-3 cells) above the surface.
+constexpr int TERRAIN_BISECTIONS = 12;
+
+/// The substepped midpoint trace of traceBack() in index space (Advection.h, "Traces"):
+/// displacements in cells are dt u / h through MacGrid::cellsFromMetres. velocityIs(is, u) gives
+/// the velocity (m/s) at an index-space point, the far field outside the box.
+/// Index-space z above which no terrain lies (-inf: no terrain): traces above it skip the
+/// surface test, which is most of the box.
+double terrainTopIs(const MacGrid& g) {
+    return g.terrain ? g.isFromWs({0.0, 0.0, g.terrain->maxHeight_m()})[2] : -HUGE_VAL;
+}
+
+template <class VelocityIs>
+void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, double dt,
+             double groundTopIs, double* dep) {
+    double x[3] = {x0[0], x0[1], x0[2]};
+    const double sign = dt < 0.0 ? -1.0 : 1.0;
+    double remaining = std::abs(dt);
+    // Only a trace that starts above the surface is stopped by it (samples inside cut cells may
+    // sit below the bilinear surface; they are traced freely until they emerge).
+    bool above = x[2] > groundTopIs || aboveGroundCells(g, x) >= 0.0;
+    // A trace that would need more substeps than this is stalled in a near-zero velocity field
+    // (each substep covers the whole remaining time once the speed is small): cannot happen,
+    // but the cap keeps every trace finite whatever the field holds.
+    constexpr int MAX_SUBSTEPS = 4096;
+    for (int n = 0; n < MAX_SUBSTEPS && remaining > 0.0; ++n) {
+        double u0[3], xm[3], u1[3], xn[3];
+        velocityIs(x, u0);
+        if (outsideIs(g, x)) {
+            // Outside the box: the far field is smooth, finish in one midpoint step.
+            for (int a = 0; a < 3; ++a)
+                xm[a] = x[a] - sign * g.cellsFromMetres(0.5 * remaining * u0[a]);
+            velocityIs(xm, u1);
+            for (int a = 0; a < 3; ++a) x[a] -= sign * g.cellsFromMetres(remaining * u1[a]);
+            break;
+        }
+        const double speedCells =
+            g.cellsFromMetres(std::max({std::abs(u0[0]), std::abs(u0[1]), std::abs(u0[2])}));
+        double s = remaining;
+        if (speedCells * s > MAX_TRACE_CELLS_PER_SUBSTEP)
+            s = MAX_TRACE_CELLS_PER_SUBSTEP / speedCells;
+        if (!(s > 0.0)) break;  // infinite speed: stay put rather than spin
+        for (int a = 0; a < 3; ++a) xm[a] = x[a] - sign * g.cellsFromMetres(0.5 * s * u0[a]);
+        velocityIs(xm, u1);
+        for (int a = 0; a < 3; ++a) xn[a] = x[a] - sign * g.cellsFromMetres(s * u1[a]);
+        const double heightNew = xn[2] > groundTopIs ? HUGE_VAL : aboveGroundCells(g, xn);
+        if (above && heightNew < 0.0) {
+            // Crossed into the rock: bisect for the last point above the surface and stop there.
+            double lo = 0.0, hi = 1.0;
+            for (int b = 0; b < TERRAIN_BISECTIONS; ++b) {
+                const double mid = 0.5 * (lo + hi);
+                const double p[3] = {x[0] + mid * (xn[0] - x[0]), x[1] + mid * (xn[1] - x[1]),
+                                     x[2] + mid * (xn[2] - x[2])};
+                (aboveGroundCells(g, p) >= 0.0 ? lo : hi) = mid;
+            }
+            for (int a = 0; a < 3; ++a) x[a] += lo * (xn[a] - x[a]);
+            break;
+        }
+        above = above || heightNew >= 0.0;
+        for (int a = 0; a < 3; ++a) x[a] = xn[a];
+        remaining -= s;
+    }
+    for (int a = 0; a < 3; ++a) dep[a] = x[a];
+}
+
 /// One semi-Lagrangian pass; optionally records the min/max of the interpolation neighbours and
 /// whether the departure point left the box.
-void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
-                    const FarField& far, const OutsideValue& outside, double dt, std::vector<double>& out,
-                    const std::vector<uint8_t>* mask, std::vector<double>* lo, std::vector<double>* hi) {
+void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
+                    const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
+                    double dt, std::vector<double>& out, const std::vector<uint8_t>* mask,
+                    std::vector<double>* lo, std::vector<double>* hi) {
     const auto n = g.dims(p);
     out.resize(q.size());
     if (lo) lo->resize(q.size()), hi->resize(q.size());
-    const IndexSampler Su(g, Placement::FaceX, *vel.u), Sv(g, Placement::FaceY, *vel.v), Sw(g, Placement::FaceZ, *vel.w);
+    const IndexSampler Su(g, Placement::FaceX, *vel.u), Sv(g, Placement::FaceY, *vel.v),
+        Sw(g, Placement::FaceZ, *vel.w);
     const IndexSampler Q(g, p, q);
-    auto outsideIs = [&](const double* is) {
-        return !(is[0] >= 0.0 && is[0] <= g.nx && is[1] >= 0.0 && is[1] <= g.ny && is[2] <= g.nz);
-    };
+    const double groundTop = terrainTopIs(g);
     auto velocityIs = [&](const double* is, double* u) {
-        if (far && outsideIs(is)) {
+        if (far && outsideIs(g, is)) {
             const Vec3d f = far(g.wsFromIs({is[0], is[1], is[2]}));
             u[0] = f[0], u[1] = f[1], u[2] = f[2];
             return;
@@ -140,15 +219,10 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;
                     continue;
                 }
-                // The midpoint trace of traceBack(), in index space: displacements in cells are
-                // dt u / h through MacGrid::cellsFromMetres.
                 const double x0[3] = {i + offset(p, 0), j + offset(p, 1), k + offset(p, 2)};
-                double u0[3], xm[3], u1[3], dep[3];
-                velocityIs(x0, u0);
-                for (int a = 0; a < 3; ++a) xm[a] = x0[a] - g.cellsFromMetres(0.5 * dt * u0[a]);
-                velocityIs(xm, u1);
-                for (int a = 0; a < 3; ++a) dep[a] = x0[a] - g.cellsFromMetres(dt * u1[a]);
-                if (outside && outsideIs(dep)) {
+                double dep[3];
+                traceIs(g, velocityIs, x0, dt, groundTop, dep);
+                if (outside && outsideIs(g, dep)) {
                     out[idx] = outside(g.wsFromIs({dep[0], dep[1], dep[2]}));
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;  // no limiter on inflow
                 } else if (lo) {
@@ -162,14 +236,33 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
 
 }  // namespace
 
-void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel, const FarField& far,
-            const OutsideValue& outside, double dt, AdvectionScheme scheme, std::vector<double>& out,
-            const std::vector<uint8_t>* mask) {
+Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& ws,
+                double dt) {
+    const IndexSampler Su(g, Placement::FaceX, *vel.u), Sv(g, Placement::FaceY, *vel.v),
+        Sw(g, Placement::FaceZ, *vel.w);
+    auto velocityIs = [&](const double* is, double* u) {
+        if (far && outsideIs(g, is)) {
+            const Vec3d f = far(g.wsFromIs({is[0], is[1], is[2]}));
+            u[0] = f[0], u[1] = f[1], u[2] = f[2];
+            return;
+        }
+        u[0] = Su(is), u[1] = Sv(is), u[2] = Sw(is);
+    };
+    const Vec3d is = g.isFromWs(ws);
+    double dep[3];
+    traceIs(g, velocityIs, is.data(), dt, terrainTopIs(g), dep);
+    return g.wsFromIs({dep[0], dep[1], dep[2]});
+}
+
+void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
+            const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
+            std::vector<double>& out, const std::vector<uint8_t>* mask) {
     if (q.size() != g.count(p)) throw std::invalid_argument("advect: quantity has the wrong size");
     if (!vel.u || !vel.v || !vel.w || vel.u->size() != g.count(Placement::FaceX) ||
         vel.v->size() != g.count(Placement::FaceY) || vel.w->size() != g.count(Placement::FaceZ))
         throw std::invalid_argument("advect: velocity arrays have the wrong size");
-    if (mask && mask->size() != q.size()) throw std::invalid_argument("advect: mask has the wrong size");
+    if (mask && mask->size() != q.size())
+        throw std::invalid_argument("advect: mask has the wrong size");
     if (scheme == AdvectionScheme::SemiLagrangian) {
         semiLagrangian(g, p, q, vel, far, outside, dt, out, mask, nullptr, nullptr);
         return;
@@ -189,7 +282,8 @@ void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const M
     // Kim et al. 2005: advect phi + (phi - phi_b) / 2 forward once more, limited by the
     // neighbours of the plain forward pass.
     std::vector<double> corrected(q.size());
-    tbb::parallel_for(size_t(0), q.size(), [&](size_t idx) { corrected[idx] = q[idx] + 0.5 * (q[idx] - back[idx]); });
+    tbb::parallel_for(size_t(0), q.size(),
+                      [&](size_t idx) { corrected[idx] = q[idx] + 0.5 * (q[idx] - back[idx]); });
     semiLagrangian(g, p, corrected, vel, far, outside, dt, out, mask, nullptr, nullptr);
     tbb::parallel_for(size_t(0), q.size(), [&](size_t idx) {
         const double v = out[idx];

@@ -1,6 +1,6 @@
 #pragma once
 /// \file Advection.h
-/// Advection on the staggered (MAC) grid of the wind solvers (DESIGN 4.2).
+/// Advection on the staggered (MAC) grid of the wind solvers (docs/unsteady.md, "Method").
 ///
 /// Layout. A MacGrid is the AirDomain's box: nx * ny * nz cubic cells of edge h, cell (0, 0, 0)
 /// with its minimum corner at wsMin. Values live at four placements (Placement): u on x-faces at
@@ -13,10 +13,18 @@
 ///  - SemiLagrangian: Stam 1999 ("Stable fluids"), with a second-order (explicit midpoint, RK2)
 ///    backward trace through the frozen velocity and trilinear interpolation. Unconditionally
 ///    stable: each new value is a convex combination of old ones.
+///
+/// Traces (every scheme). A trace is split into substeps of at most MAX_TRACE_CELLS_PER_SUBSTEP
+/// cells each (the substep length follows the local speed, so a trace at CFL 50 follows the
+/// streamline through ~25 midpoint steps instead of jumping 50 cells in one), and, when the grid
+/// names its terrain (MacGrid::terrain), a trace that crosses from above the terrain surface to
+/// below it stops on the surface (the crossing found by bisection along the substep): air next to
+/// the ground is never read from inside the rock. A trace that leaves the box finishes its
+/// remaining time in one midpoint step through the far field.
 ///  - MacCormack: Selle, Fedkiw, Kim, Liu, Osher 2008 ("An unconditionally stable MacCormack
 ///    method"): forward and backward semi-Lagrangian passes, phi = phi_f + (phi - phi_b) / 2,
-///    clamped to the min/max of the 8 interpolation neighbours of the forward departure point (their
-///    limiter, so the scheme stays bounded).
+///    clamped to the min/max of the 8 interpolation neighbours of the forward departure point
+///    (their limiter, so the scheme stays bounded).
 ///  - Bfecc: Kim, Liu, Llamas, Rossignac 2005 (back and forth error compensation and correction):
 ///    phi' = phi + (phi - phi_b) / 2 advected forward once more, clamped the same way.
 ///
@@ -32,6 +40,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/Heightfield.h"
+
 namespace gale::sim {
 
 enum class AdvectionScheme { SemiLagrangian, MacCormack, Bfecc };
@@ -46,10 +56,16 @@ enum class Placement { FaceX = 0, FaceY = 1, FaceZ = 2, Cell = 3 };
 
 using Vec3d = std::array<double, 3>;
 
+/// Longest substep of a trace, in cells of travel (issue: at most 1-2 cells per substep).
+constexpr double MAX_TRACE_CELLS_PER_SUBSTEP = 2.0;
+
 struct MacGrid {
     int nx = 0, ny = 0, nz = 0;
     double voxelSize_m = 1.0;  ///< h, metres
     Vec3d wsMin_m{};           ///< world position of the minimum corner of cell (0, 0, 0)
+    /// The terrain surface traces stop at (world metres, not owned; must outlive the grid's
+    /// users). nullptr: no terrain, traces run their full time.
+    const Heightfield* terrain = nullptr;
 
     /// A length in metres as a length in cells: l / h. The only metres-to-cells conversion;
     /// isFromWs and the advection's traces go through it.
@@ -61,11 +77,13 @@ struct MacGrid {
     }
     /// Index space -> world metres.
     Vec3d wsFromIs(const Vec3d& is) const {
-        return {wsMin_m[0] + is[0] * voxelSize_m, wsMin_m[1] + is[1] * voxelSize_m, wsMin_m[2] + is[2] * voxelSize_m};
+        return {wsMin_m[0] + is[0] * voxelSize_m, wsMin_m[1] + is[1] * voxelSize_m,
+                wsMin_m[2] + is[2] * voxelSize_m};
     }
     /// Samples along x, y, z of a placement (faces: one more along their axis).
     std::array<int, 3> dims(Placement p) const {
-        return {nx + (p == Placement::FaceX), ny + (p == Placement::FaceY), nz + (p == Placement::FaceZ)};
+        return {nx + (p == Placement::FaceX), ny + (p == Placement::FaceY),
+                nz + (p == Placement::FaceZ)};
     }
     size_t count(Placement p) const {
         const auto d = dims(p);
@@ -73,7 +91,8 @@ struct MacGrid {
     }
     /// World position of sample (i, j, k) of placement p, metres.
     Vec3d wsPosition(Placement p, int i, int j, int k) const {
-        return wsFromIs({i + (p == Placement::FaceX ? 0.0 : 0.5), j + (p == Placement::FaceY ? 0.0 : 0.5),
+        return wsFromIs({i + (p == Placement::FaceX ? 0.0 : 0.5),
+                         j + (p == Placement::FaceY ? 0.0 : 0.5),
                          k + (p == Placement::FaceZ ? 0.0 : 0.5)});
     }
     /// True if a world point lies outside the box through an x or y side or the top (the bottom
@@ -101,12 +120,16 @@ double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, con
 
 /// Velocity at a world position, m/s: the far field outside the box, else each component
 /// trilinearly from its own faces.
-Vec3d velocityAt(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& wsPos_m);
+Vec3d velocityAt(const MacGrid& g, const MacVelocity& vel, const FarField& far,
+                 const Vec3d& wsPos_m);
 
 /// Departure point of the particle that reaches wsPos_m after dt_s seconds (dt_s < 0: the forward
-/// arrival point), by the explicit midpoint rule through the frozen velocity:
-///   x_mid = x - dt/2 u(x),  x_dep = x - dt u(x_mid).   Metres in, metres out.
-Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& wsPos_m, double dt_s);
+/// arrival point), by explicit midpoint substeps through the frozen velocity,
+///   x_mid = x - s/2 u(x),  x_next = x - s u(x_mid),
+/// each substep s at most MAX_TRACE_CELLS_PER_SUBSTEP cells long; stopped on the terrain surface
+/// (g.terrain) when it crosses it from above. Metres in, metres out.
+Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& wsPos_m,
+                double dt_s);
 
 /// Value of the advected quantity outside the box at a world position (same units as q).
 using OutsideValue = std::function<double(const Vec3d& wsPos_m)>;
@@ -115,8 +138,8 @@ using OutsideValue = std::function<double(const Vec3d& wsPos_m)>;
 /// the result to `out` (resized). Samples with mask[idx] == 0 (if mask is given) are copied
 /// unchanged. `outside` gives q where a trace leaves the box (empty: clamp to the box).
 /// Multithreaded (TBB). Throws std::invalid_argument on wrong sizes.
-void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel, const FarField& far,
-            const OutsideValue& outside, double dt_s, AdvectionScheme scheme, std::vector<double>& out,
-            const std::vector<uint8_t>* mask = nullptr);
+void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
+            const FarField& far, const OutsideValue& outside, double dt_s, AdvectionScheme scheme,
+            std::vector<double>& out, const std::vector<uint8_t>* mask = nullptr);
 
 }  // namespace gale::sim

@@ -1,9 +1,9 @@
 #pragma once
 /// \file PoissonDetail.h
 /// Internal to PoissonSolver (namespace gale::sim::multigrid, so its plain names such as Level
-/// cannot collide with other sim internals), not part of gale_sim's interface: the multigrid level (padded
-/// arrays, uniform runs, transfers to the next level), the row loops every kernel runs on, and the
-/// kernels the solver's files share. MGPCG after McAdams, Sifakis, Teran 2010 ("A parallel
+/// cannot collide with other sim internals), not part of gale_sim's interface: the multigrid level
+/// (padded arrays, uniform runs, transfers to the next level), the row loops every kernel runs on,
+/// and the kernels the solver's files share. MGPCG after McAdams, Sifakis, Teran 2010 ("A parallel
 /// multigrid Poisson solver for fluids simulation on large grids"); the parts live in
 ///   PoissonLevels.cpp     the hierarchy: level 0 from the PoissonSystem, coarsening, uniform runs,
 ///                         the dense Cholesky of the coarsest level;
@@ -18,8 +18,6 @@
 /// weight of a face is stored in the padded cell on its high side: weight of the face between
 /// cells (i-1, j, k) and (i, j, k) is wx[at(i, j, k)], i in [0, nx].
 
-#include "sim/PoissonSolver.h"
-
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -29,6 +27,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include "sim/PoissonSolver.h"
 
 namespace gale::sim::multigrid {
 
@@ -57,11 +57,11 @@ struct Level {
     /// runs along x; kernels treat them with constant coefficients and never read their weights.
     float bx = 0, by = 0, bz = 0;
     double uniformDiag = 0, uniformInvDiag = 0;
-    std::vector<uint32_t> rowRuns;           // runs of row (j, k) are runs[rowRuns[r] .. rowRuns[r+1])
-    std::vector<std::array<int, 2>> runs;    // [i0, i1)
+    std::vector<uint32_t> rowRuns;  // runs of row (j, k) are runs[rowRuns[r] .. rowRuns[r+1])
+    std::vector<std::array<int, 2>> runs;  // [i0, i1)
     size_t uniformCells = 0;
-    int cx = 1, cy = 1, cz = 1;     // coarsening factors to the next level
-    Transfer1D tx, ty, tz;          // transfers to the next level
+    int cx = 1, cy = 1, cz = 1;  // coarsening factors to the next level
+    Transfer1D tx, ty, tz;       // transfers to the next level
     /// Fine cells next to an inactive coarse cell or a Neumann side: the trilinear weight those
     /// coarse values would carry goes to the cell's own coarse parent instead (constant
     /// extrapolation, the discrete analogue of the no-flux condition). Restriction applies the
@@ -71,7 +71,8 @@ struct Level {
         double weight;
     };
     std::vector<Redirect> redirects;
-    std::vector<size_t> redirectSlab;  // redirects of fine slab k: [redirectSlab[k], redirectSlab[k+1])
+    std::vector<size_t>
+        redirectSlab;  // redirects of fine slab k: [redirectSlab[k], redirectSlab[k+1])
 
     void resize(int nx_, int ny_, int nz_) {
         nx = nx_, ny = ny_, nz = nz_;
@@ -83,14 +84,16 @@ struct Level {
         wz.assign(total, 0.f);
     }
     size_t cells() const { return size_t(nx) * ny * nz; }
-    size_t at(int i, int j, int k) const { return size_t(i + 1) + sx * (size_t(j + 1) + sy * size_t(k + 1)); }
+    size_t at(int i, int j, int k) const {
+        return size_t(i + 1) + sx * (size_t(j + 1) + sy * size_t(k + 1));
+    }
     size_t rowIndex(int j, int k) const { return size_t(j) + size_t(ny) * k; }
     /// Calls general(i0, i1) and uniform(i0, i1) over the segments of row (j, k), in order.
     template <class G, class U>
     void segments(int j, int k, const G& general, const U& uniform) const {
         int i = 0;
-        const size_t r = rowIndex(j, k);
-        for (uint32_t n = rowRuns[r]; n < rowRuns[r + 1]; ++n) {
+        const size_t row = rowIndex(j, k);
+        for (uint32_t n = rowRuns[row]; n < rowRuns[row + 1]; ++n) {
             if (runs[n][0] > i) general(i, runs[n][0]);
             uniform(runs[n][0], runs[n][1]);
             i = runs[n][1];
@@ -190,21 +193,24 @@ inline void residualSpan(const Level& L, const double* x, const double* b, doubl
 /// tmp[i - i0] = (b + sum of weighted neighbours) / D for i in [i0, i1) of the uniform run that
 /// starts the row at padded index p0: the Gauss-Seidel value of every cell of the run, from the
 /// current x (the caller keeps one colour).
-void uniformCandidates(const double* __restrict x, const double* __restrict b, double* __restrict tmp, size_t p0,
-                       int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx, double by, double bz, double invD);
+void uniformCandidates(const double* __restrict x, const double* __restrict b,
+                       double* __restrict tmp, size_t p0, int i0, int i1, std::ptrdiff_t sx,
+                       std::ptrdiff_t sxy, double bx, double by, double bz, double invD);
 
 /// out = b - A x on a uniform run (residual), or out = A x with b == nullptr; returns sum out * x
 /// (0 for the residual).
-double uniformApply(const double* __restrict x, const double* __restrict b, double* __restrict out, size_t p0, int i0,
-                    int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx, double by, double bz, double D);
+double uniformApply(const double* __restrict x, const double* __restrict b, double* __restrict out,
+                    size_t p0, int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx,
+                    double by, double bz, double D);
 
 // --- smoothing (PoissonSmoothing.cpp) ----------------------------------------------------------
 
 /// One red-black Gauss-Seidel sweep on level L, pipelined slab by slab; optionally starting from
 /// x = 0, adding the coarse correction P xc first, forming the residual, and summing b . x. The
 /// result equals the unpipelined sweep exactly, serial or threaded (details at the definition).
-void fusedSweep(const Level& L, double* x, const double* b, int first, bool fromZero, double* residualOut,
-                const Level* C = nullptr, const double* xc = nullptr, double* dotOut = nullptr);
+void fusedSweep(const Level& L, double* x, const double* b, int first, bool fromZero,
+                double* residualOut, const Level* C = nullptr, const double* xc = nullptr,
+                double* dotOut = nullptr);
 
 // --- transfers (PoissonTransfer.cpp) -----------------------------------------------------------
 

@@ -8,8 +8,6 @@
 /// exact solve of the coarsest level by dense Cholesky (another difference from the paper)
 /// (docs/solver.md, "The linear solver").
 
-#include "sim/PoissonDetail.h"
-
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -19,6 +17,8 @@
 #include <cstdint>
 #include <utility>
 #include <vector>
+
+#include "sim/PoissonDetail.h"
 
 namespace gale::sim::multigrid {
 namespace {
@@ -48,7 +48,9 @@ void buildCoarse(const Level& F, Level& C) {
         for (int d = 0; d < 3; ++d)
             if (d != axis) hi[d] = std::min(hi[d], n[d]);
         const std::vector<float>& w = axis == 0 ? F.wx : axis == 1 ? F.wy : F.wz;
-        const double small = COARSE_MIN_OPEN_FRACTION * (axis == 0 ? F.bx : axis == 1 ? F.by : F.bz);
+        const double small = COARSE_MIN_OPEN_FRACTION * (axis == 0   ? F.bx
+                                                         : axis == 1 ? F.by
+                                                                     : F.bz);
         double s = 0.0;
         for (int k = lo[2]; k < hi[2]; ++k)
             for (int j = lo[1]; j < hi[1]; ++j)
@@ -89,12 +91,13 @@ void Level::findUniformRuns(float bx_, float by_, float bz_) {
                 bool u = false;
                 if (i < nx && uniformDiag > 0) {
                     const size_t p = at(i, j, k);
-                    u = wx[p] == bx && wx[p + 1] == bx && wy[p] == by && wy[p + sx] == by && wz[p] == bz &&
-                        wz[p + sxy] == bz;
+                    u = wx[p] == bx && wx[p + 1] == bx && wy[p] == by && wy[p + sx] == by &&
+                        wz[p] == bz && wz[p + sxy] == bz;
                 }
                 if (u && start < 0) start = i;
                 if (!u && start >= 0) {
-                    if (i - start >= MIN_RUN) perSlab[size_t(k)].push_back({start, i}), ++count[rowIndex(j, k)];
+                    if (i - start >= MIN_RUN)
+                        perSlab[size_t(k)].push_back({start, i}), ++count[rowIndex(j, k)];
                     start = -1;
                 }
             }
@@ -103,7 +106,7 @@ void Level::findUniformRuns(float bx_, float by_, float bz_) {
     rowRuns.assign(size_t(ny) * nz + 1, 0);
     runs.clear();
     uint32_t acc = 0;
-    for (size_t r = 0; r < count.size(); ++r) rowRuns[r] = acc, acc += count[r];
+    for (size_t row = 0; row < count.size(); ++row) rowRuns[row] = acc, acc += count[row];
     rowRuns[count.size()] = acc;
     uniformCells = 0;
     for (const auto& v : perSlab) {
@@ -128,23 +131,31 @@ size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels) {
     L.resize(sys.nx, sys.ny, sys.nz);
     // Boundary faces: Dirichlet data sits on the face, half a cell from the centre (weight x 2);
     // Neumann faces carry no flux (weight 0).
-    auto boundaryScale = [&](int side) { return sys.sides[side] == BoundaryKind::Dirichlet ? 2.f : 0.f; };
+    auto boundaryScale = [&](int side) {
+        return sys.sides[side] == BoundaryKind::Dirichlet ? 2.f : 0.f;
+    };
     tbb::parallel_for(0, sys.nz, [&](int k) {
         for (int j = 0; j < sys.ny; ++j)
             for (int i = 0; i <= sys.nx; ++i) {
-                const float s = i == 0 ? boundaryScale(SIDE_XMIN) : i == sys.nx ? boundaryScale(SIDE_XMAX) : 1.f;
+                const float s = i == 0        ? boundaryScale(SIDE_XMIN)
+                                : i == sys.nx ? boundaryScale(SIDE_XMAX)
+                                              : 1.f;
                 L.wx[L.at(i, j, k)] = s * sys.weightX[sys.faceXIndex(i, j, k)];
             }
         for (int j = 0; j <= sys.ny; ++j)
             for (int i = 0; i < sys.nx; ++i) {
-                const float s = j == 0 ? boundaryScale(SIDE_YMIN) : j == sys.ny ? boundaryScale(SIDE_YMAX) : 1.f;
+                const float s = j == 0        ? boundaryScale(SIDE_YMIN)
+                                : j == sys.ny ? boundaryScale(SIDE_YMAX)
+                                              : 1.f;
                 L.wy[L.at(i, j, k)] = s * sys.weightY[sys.faceYIndex(i, j, k)];
             }
     });
     tbb::parallel_for(0, sys.nz + 1, [&](int k) {
         for (int j = 0; j < sys.ny; ++j)
             for (int i = 0; i < sys.nx; ++i) {
-                const float s = k == 0 ? boundaryScale(SIDE_ZMIN) : k == sys.nz ? boundaryScale(SIDE_ZMAX) : 1.f;
+                const float s = k == 0        ? boundaryScale(SIDE_ZMIN)
+                                : k == sys.nz ? boundaryScale(SIDE_ZMAX)
+                                              : 1.f;
                 L.wz[L.at(i, j, k)] = s * sys.weightZ[sys.faceZIndex(i, j, k)];
             }
     });
@@ -185,7 +196,8 @@ size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels) {
         C.markActive();
         // A coarse face over full-open fine faces: (number of fine faces) * base / factor, exact
         // in floating point for the power-of-two factors used here.
-        C.findUniformRuns(float(double(F.bx) * F.cy * F.cz / F.cx), float(double(F.by) * F.cx * F.cz / F.cy),
+        C.findUniformRuns(float(double(F.bx) * F.cy * F.cz / F.cx),
+                          float(double(F.by) * F.cx * F.cz / F.cy),
                           float(double(F.bz) * F.cx * F.cy / F.cz));
         F.tx = makeTransfer(F.nx, C.nx, F.cx);
         F.ty = makeTransfer(F.ny, C.ny, F.cy);
@@ -213,9 +225,9 @@ void CoarseSolver::factor(const Level& L) {
         const double d = L.diag(p);
         maxDiag = std::max(maxDiag, d);
         chol[a * m + a] = d;
-        const std::pair<size_t, float> nb[6] = {{p - 1, L.wx[p]},        {p + 1, L.wx[p + 1]},
-                                                {p - L.sx, L.wy[p]},     {p + L.sx, L.wy[p + L.sx]},
-                                                {p - L.sxy, L.wz[p]},    {p + L.sxy, L.wz[p + L.sxy]}};
+        const std::pair<size_t, float> nb[6] = {{p - 1, L.wx[p]},     {p + 1, L.wx[p + 1]},
+                                                {p - L.sx, L.wy[p]},  {p + L.sx, L.wy[p + L.sx]},
+                                                {p - L.sxy, L.wz[p]}, {p + L.sxy, L.wz[p + L.sxy]}};
         for (const auto& [q, w] : nb)
             if (slot[q] >= 0) chol[a * m + size_t(slot[q])] -= w;
     }

@@ -24,8 +24,9 @@ namespace gale::sim::multigrid {
 
 // The strides are signed so that xr[i - sx] steps back (an unsigned i - sx wraps: UB, UBSan).
 GALE_VECTOR_CLONES
-void uniformCandidates(const double* __restrict x, const double* __restrict b, double* __restrict tmp, size_t p0,
-                       int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx, double by, double bz, double invD) {
+void uniformCandidates(const double* __restrict x, const double* __restrict b,
+                       double* __restrict tmp, size_t p0, int i0, int i1, std::ptrdiff_t sx,
+                       std::ptrdiff_t sxy, double bx, double by, double bz, double invD) {
     const double* xr = x + p0;
     const double* br = b + p0;
     for (int i = i0; i < i1; ++i)
@@ -35,21 +36,24 @@ void uniformCandidates(const double* __restrict x, const double* __restrict b, d
 }
 
 GALE_VECTOR_CLONES
-double uniformApply(const double* __restrict x, const double* __restrict b, double* __restrict out, size_t p0, int i0,
-                    int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx, double by, double bz, double D) {
+double uniformApply(const double* __restrict x, const double* __restrict b, double* __restrict out,
+                    size_t p0, int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx,
+                    double by, double bz, double D) {
     const double* xr = x + p0;
     double* o = out + p0;
     double acc = 0.0;
     if (b) {
         const double* br = b + p0;
         for (int i = i0; i < i1; ++i)
-            o[i] = br[i] - (D * xr[i] - (bx * (xr[i - 1] + xr[i + 1]) + by * (xr[i - sx] + xr[i + sx]) +
-                                         bz * (xr[i - sxy] + xr[i + sxy])));
+            o[i] = br[i] -
+                   (D * xr[i] - (bx * (xr[i - 1] + xr[i + 1]) + by * (xr[i - sx] + xr[i + sx]) +
+                                 bz * (xr[i - sxy] + xr[i + sxy])));
         return 0.0;
     }
     for (int i = i0; i < i1; ++i) {
-        const double v = D * xr[i] - (bx * (xr[i - 1] + xr[i + 1]) + by * (xr[i - sx] + xr[i + sx]) +
-                                      bz * (xr[i - sxy] + xr[i + sxy]));
+        const double v =
+            D * xr[i] - (bx * (xr[i - 1] + xr[i + 1]) + by * (xr[i - sx] + xr[i + sx]) +
+                         bz * (xr[i - sxy] + xr[i + sxy]));
         o[i] = v;
         acc += v * xr[i];
     }
@@ -69,10 +73,12 @@ double applyDot(const Level& L, const double* in, double* out) {
                 j, k,
                 [&](int i0, int i1) {
                     for (size_t p = p0 + i0; p < p0 + size_t(i1); ++p) {
-                        const double d = double(wx[p]) + wx[p + 1] + wy[p] + wy[p + sx] + wz[p] + wz[p + sxy];
-                        const double v = d * in[p] - (wx[p] * in[p - 1] + wx[p + 1] * in[p + 1] +
-                                                      wy[p] * in[p - sx] + wy[p + sx] * in[p + sx] +
-                                                      wz[p] * in[p - sxy] + wz[p + sxy] * in[p + sxy]);
+                        const double d =
+                            double(wx[p]) + wx[p + 1] + wy[p] + wy[p + sx] + wz[p] + wz[p + sxy];
+                        const double v =
+                            d * in[p] - (wx[p] * in[p - 1] + wx[p + 1] * in[p + 1] +
+                                         wy[p] * in[p - sx] + wy[p + sx] * in[p + sx] +
+                                         wz[p] * in[p - sxy] + wz[p + sxy] * in[p + sxy]);
                         out[p] = v;
                         acc += v * in[p];
                     }

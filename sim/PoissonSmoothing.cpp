@@ -6,13 +6,13 @@
 /// streams each array from memory once (docs/solver.md, "The linear solver"). Runs of full-open
 /// cells take the constant-coefficient kernels of PoissonOperator.cpp.
 
-#include "sim/PoissonDetail.h"
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <cstddef>
 #include <vector>
+
+#include "sim/PoissonDetail.h"
 
 namespace gale::sim::multigrid {
 
@@ -25,8 +25,8 @@ namespace gale::sim::multigrid {
 // C, xc: first add the coarse correction P xc (prolongation fused into the sweep, one slab
 // ahead of the colour-A update that first reads it). dotOut: also sum b . x over the final x
 // (row partial sums added in row order: deterministic).
-void fusedSweep(const Level& L, double* x, const double* b, int first, bool fromZero, double* residualOut,
-                const Level* C, const double* xc, double* dotOut) {
+void fusedSweep(const Level& L, double* x, const double* b, int first, bool fromZero,
+                double* residualOut, const Level* C, const double* xc, double* dotOut) {
     const size_t sx = L.sx, sxy = L.sxy;
     const float *wx = L.wx.data(), *wy = L.wy.data(), *wz = L.wz.data();
     const double bx = L.bx, by = L.by, bz = L.bz, D = L.uniformDiag, invD = L.uniformInvDiag;
@@ -37,10 +37,12 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
             j, k,
             [&](int i0, int i1) {
                 for (size_t p = p0 + i0 + ((i0 + par) & 1); p < p0 + size_t(i1); p += 2) {
-                    const double d = double(wx[p]) + wx[p + 1] + wy[p] + wy[p + sx] + wz[p] + wz[p + sxy];
+                    const double d =
+                        double(wx[p]) + wx[p + 1] + wy[p] + wy[p + sx] + wz[p] + wz[p + sxy];
                     if (d > 0.0)
                         x[p] = (b[p] + wx[p] * x[p - 1] + wx[p + 1] * x[p + 1] + wy[p] * x[p - sx] +
-                                wy[p + sx] * x[p + sx] + wz[p] * x[p - sxy] + wz[p + sxy] * x[p + sxy]) /
+                                wy[p + sx] * x[p + sx] + wz[p] * x[p - sxy] +
+                                wz[p + sxy] * x[p + sxy]) /
                                d;
                 }
             },
@@ -63,7 +65,8 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
                         x[p] = 0.0;
                         continue;
                     }
-                    const double d = double(wx[p]) + wx[p + 1] + wy[p] + wy[p + sx] + wz[p] + wz[p + sxy];
+                    const double d =
+                        double(wx[p]) + wx[p + 1] + wy[p] + wy[p + sx] + wz[p] + wz[p + sxy];
                     x[p] = d > 0.0 ? b[p] / d : 0.0;
                 }
             },
@@ -76,7 +79,9 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
         L.segments(
             j, k,
             [&](int i0, int i1) { residualSpan(L, x, b, residualOut, p0 + i0, p0 + size_t(i1)); },
-            [&](int i0, int i1) { uniformApply(x, b, residualOut, p0, i0, i1, sx, sxy, bx, by, bz, D); });
+            [&](int i0, int i1) {
+                uniformApply(x, b, residualOut, p0, i0, i1, sx, sxy, bx, by, bz, D);
+            });
     };
     std::vector<double> rowDots;  // shared by the row tasks, one slot per row
     if (dotOut) rowDots.assign(size_t(L.ny) * L.nz, 0.0);
@@ -91,9 +96,11 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
         if (serialRows) {
             for (int j = 0; j < L.ny; ++j) prolongRow(*C, xc, L, x, j, k);
         } else {
-            tbb::parallel_for(tbb::blocked_range<int>(0, L.ny, 16), [&](const tbb::blocked_range<int>& r) {
-                for (int j = r.begin(); j < r.end(); ++j) prolongRow(*C, xc, L, x, j, k);
-            });
+            tbb::parallel_for(tbb::blocked_range<int>(0, L.ny, 16),
+                              [&](const tbb::blocked_range<int>& r) {
+                                  for (int j = r.begin(); j < r.end(); ++j)
+                                      prolongRow(*C, xc, L, x, j, k);
+                              });
         }
     };
     const int steps = L.nz + (residualOut ? 3 : 1);
@@ -107,8 +114,10 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
             for (int j = j0; j < j1; ++j) {
                 if (prolongNext) prolongRow(*C, xc, L, x, j, s + 1);
                 if (s < L.nz) {
-                    if (fromZero) startRow(j, s);
-                    else update(j, s, first);
+                    if (fromZero)
+                        startRow(j, s);
+                    else
+                        update(j, s, first);
                 }
                 if (s >= 1 && s - 1 < L.nz) {
                     update(j, s - 1, 1 - first);

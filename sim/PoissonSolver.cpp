@@ -17,8 +17,6 @@
 
 #include "sim/PoissonSolver.h"
 
-#include "sim/PoissonDetail.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,6 +25,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "sim/PoissonDetail.h"
 
 namespace gale::sim {
 
@@ -57,7 +57,7 @@ struct PoissonSolver::Impl {
         // Pre-smoothing V(n, .) in red-black order; the last sweep also forms the residual.
         for (int s = 0; s < sweeps; ++s)
             multigrid::fusedSweep(L, x, b, /*first=*/0, /*fromZero=*/s == 0,
-                               /*residualOut=*/s + 1 == sweeps ? scratch : nullptr);
+                                  /*residualOut=*/s + 1 == sweeps ? scratch : nullptr);
         Level& C = levels[l + 1];
         multigrid::restrictTo(L, scratch, C);
         vcycle(l + 1, C.b.data(), C.x.data(), C.r.data());
@@ -65,8 +65,9 @@ struct PoissonSolver::Impl {
         // symmetric preconditioner as CG requires. The first post-sweep adds the coarse
         // correction as it goes; the last one sums b . x.
         for (int s = 0; s < sweeps; ++s)
-            multigrid::fusedSweep(L, x, b, /*first=*/1, /*fromZero=*/false, nullptr, s == 0 ? &C : nullptr,
-                               s == 0 ? C.x.data() : nullptr, s + 1 == sweeps ? dotOut : nullptr);
+            multigrid::fusedSweep(L, x, b, /*first=*/1, /*fromZero=*/false, nullptr,
+                                  s == 0 ? &C : nullptr, s == 0 ? C.x.data() : nullptr,
+                                  s + 1 == sweeps ? dotOut : nullptr);
     }
 };
 
@@ -82,14 +83,17 @@ PoissonSystem PoissonSystem::uniformBox(int nx, int ny, int nz) {
 PoissonSolver::PoissonSolver(const PoissonSystem& sys) : mImpl(std::make_unique<Impl>()) {
     const auto t0 = std::chrono::steady_clock::now();
     if (sys.nx < 1 || sys.ny < 1 || sys.nz < 1)
-        throw std::invalid_argument("PoissonSystem: nx, ny, nz must be >= 1, got " + std::to_string(sys.nx) +
-                                    ", " + std::to_string(sys.ny) + ", " + std::to_string(sys.nz));
-    const size_t nxF = size_t(sys.nx + 1) * sys.ny * sys.nz, nyF = size_t(sys.nx) * (sys.ny + 1) * sys.nz,
+        throw std::invalid_argument("PoissonSystem: nx, ny, nz must be >= 1, got " +
+                                    std::to_string(sys.nx) + ", " + std::to_string(sys.ny) + ", " +
+                                    std::to_string(sys.nz));
+    const size_t nxF = size_t(sys.nx + 1) * sys.ny * sys.nz,
+                 nyF = size_t(sys.nx) * (sys.ny + 1) * sys.nz,
                  nzF = size_t(sys.nx) * sys.ny * (sys.nz + 1);
     auto checkWeights = [](const std::vector<float>& w, size_t n, const char* name) {
         if (w.size() != n)
-            throw std::invalid_argument(std::string("PoissonSystem.") + name + " must have " + std::to_string(n) +
-                                        " entries, got " + std::to_string(w.size()));
+            throw std::invalid_argument(std::string("PoissonSystem.") + name + " must have " +
+                                        std::to_string(n) + " entries, got " +
+                                        std::to_string(w.size()));
         for (float v : w)
             if (!(v >= 0.f) || !std::isfinite(v))
                 throw std::invalid_argument(std::string("PoissonSystem.") + name +
@@ -156,16 +160,48 @@ double PoissonSolver::uniformCellFraction() const {
 void PoissonSolver::applyOperator(const std::vector<double>& x, std::vector<double>& out) const {
     const Level& L = mImpl->levels[0];
     if (x.size() != L.cells())
-        throw std::invalid_argument("applyOperator: x must have " + std::to_string(L.cells()) + " entries");
+        throw std::invalid_argument("applyOperator: x must have " + std::to_string(L.cells()) +
+                                    " entries");
     std::vector<double> in(L.total, 0.0), res(L.total, 0.0);
     for (int k = 0; k < L.nz; ++k)
         for (int j = 0; j < L.ny; ++j)
-            for (int i = 0; i < L.nx; ++i) in[L.at(i, j, k)] = x[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)];
+            for (int i = 0; i < L.nx; ++i)
+                in[L.at(i, j, k)] = x[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)];
     (void)multigrid::applyDot(L, in.data(), res.data());
     out.assign(L.cells(), 0.0);
     for (int k = 0; k < L.nz; ++k)
         for (int j = 0; j < L.ny; ++j)
-            for (int i = 0; i < L.nx; ++i) out[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)] = res[L.at(i, j, k)];
+            for (int i = 0; i < L.nx; ++i)
+                out[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)] = res[L.at(i, j, k)];
+}
+
+void PoissonSolver::applyPreconditioner(const std::vector<double>& r, std::vector<double>& z,
+                                        int smoothingSweeps) {
+    Impl& m = *mImpl;
+    const Level& L = m.levels[0];
+    if (r.size() != L.cells())
+        throw std::invalid_argument("applyPreconditioner: r must have " +
+                                    std::to_string(L.cells()) + " entries");
+    if (smoothingSweeps < 1 || smoothingSweeps > 8)
+        throw std::invalid_argument("applyPreconditioner: smoothingSweeps must be in 1..8, got " +
+                                    std::to_string(smoothingSweeps));
+    m.sweeps = smoothingSweeps;
+    double *rs = m.rs.data(), *zs = m.zs.data();
+    std::fill(m.rs.begin(), m.rs.end(), 0.0);
+    for (int k = 0; k < L.nz; ++k)
+        for (int j = 0; j < L.ny; ++j)
+            for (int i = 0; i < L.nx; ++i) {
+                const size_t p = L.at(i, j, k);
+                rs[p] = L.active[p] ? r[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)] : 0.0;
+            }
+    m.vcycle(0, rs, zs, m.qs.data());
+    z.assign(L.cells(), 0.0);
+    for (int k = 0; k < L.nz; ++k)
+        for (int j = 0; j < L.ny; ++j)
+            for (int i = 0; i < L.nx; ++i) {
+                const size_t p = L.at(i, j, k);
+                z[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)] = L.active[p] ? zs[p] : 0.0;
+            }
 }
 
 SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<double>& solution,
@@ -175,11 +211,12 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
     Level& L = m.levels[0];
     const size_t n = L.cells();
     if (rhs.size() != n)
-        throw std::invalid_argument("PoissonSolver::solve: rhs must have " + std::to_string(n) + " entries, got " +
-                                    std::to_string(rhs.size()));
+        throw std::invalid_argument("PoissonSolver::solve: rhs must have " + std::to_string(n) +
+                                    " entries, got " + std::to_string(rhs.size()));
     if (!solution.empty() && solution.size() != n)
-        throw std::invalid_argument("PoissonSolver::solve: solution (warm start) must be empty or have " +
-                                    std::to_string(n) + " entries, got " + std::to_string(solution.size()));
+        throw std::invalid_argument(
+            "PoissonSolver::solve: solution (warm start) must be empty or have " +
+            std::to_string(n) + " entries, got " + std::to_string(solution.size()));
     if (!(settings.relativeTolerance > 0.0 && settings.relativeTolerance < 1.0))
         throw std::invalid_argument("SolverSettings.relativeTolerance must be in (0, 1), got " +
                                     std::to_string(settings.relativeTolerance));
@@ -225,11 +262,13 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
             for (int i = 0; i < L.nx; ++i) solution[c0 + i] = L.active[p0 + i] ? x[p0 + i] : 0.0;
         });
         rep.message = why;
-        rep.solveSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        rep.solveSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     };
     if (!std::isfinite(normB)) {
         rep.converged = false;
-        rep.initialRelativeResidual = rep.relativeResidual = std::numeric_limits<double>::infinity();
+        rep.initialRelativeResidual = rep.relativeResidual =
+            std::numeric_limits<double>::infinity();
         std::fill(x, x + L.total, 0.0);
         finish("right-hand side is not finite");
         return rep;

@@ -57,10 +57,18 @@ struct PoissonSystem {
 
     size_t cellCount() const { return size_t(nx) * ny * nz; }
     /// Index of cell (i, j, k) in solution and right-hand-side vectors: i fastest.
-    size_t cellIndex(int i, int j, int k) const { return size_t(i) + size_t(nx) * (j + size_t(ny) * k); }
-    size_t faceXIndex(int i, int j, int k) const { return size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k); }
-    size_t faceYIndex(int i, int j, int k) const { return size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k); }
-    size_t faceZIndex(int i, int j, int k) const { return size_t(i) + size_t(nx) * (j + size_t(ny) * k); }
+    size_t cellIndex(int i, int j, int k) const {
+        return size_t(i) + size_t(nx) * (j + size_t(ny) * k);
+    }
+    size_t faceXIndex(int i, int j, int k) const {
+        return size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k);
+    }
+    size_t faceYIndex(int i, int j, int k) const {
+        return size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k);
+    }
+    size_t faceZIndex(int i, int j, int k) const {
+        return size_t(i) + size_t(nx) * (j + size_t(ny) * k);
+    }
 
     /// All weights 1 (the plain Laplacian scaled by h), all sides Dirichlet.
     static PoissonSystem uniformBox(int nx, int ny, int nz);
@@ -81,13 +89,13 @@ struct SolverSettings {
 /// What a solve reached. Non-convergence is reported here, never thrown.
 struct [[nodiscard]] SolveReport {
     bool converged = false;
-    int iterations = 0;                 ///< PCG iterations done (0: the start already met the criteria)
-    double initialRelativeResidual = 0; ///< max|b - A x0| / max|b|
-    double relativeResidual = 0;        ///< max|b - A x| / max|b| on return (recurrence residual)
-    double solveSeconds = 0;            ///< wall time of solve()
-    double setupSeconds = 0;            ///< wall time of building the hierarchy (constructor)
-    int levels = 0;                     ///< multigrid levels (1: no coarsening)
-    std::string message;                ///< why it stopped, in words
+    int iterations = 0;  ///< PCG iterations done (0: the start already met the criteria)
+    double initialRelativeResidual = 0;  ///< max|b - A x0| / max|b|
+    double relativeResidual = 0;         ///< max|b - A x| / max|b| on return (recurrence residual)
+    double solveSeconds = 0;             ///< wall time of solve()
+    double setupSeconds = 0;             ///< wall time of building the hierarchy (constructor)
+    int levels = 0;                      ///< multigrid levels (1: no coarsening)
+    std::string message;                 ///< why it stopped, in words
     /// Filled by callers that know the physics (SteadyWind): max |div u| * h / U over air cells.
     double maxDivergenceScaled = 0;
 };
@@ -98,7 +106,7 @@ struct [[nodiscard]] SolveReport {
 /// spacing, as McAdams et al. 2010 coarsen their cell types). Not copyable; solve() is not
 /// re-entrant (it uses the solver's scratch vectors), but every kernel runs on TBB threads.
 class PoissonSolver {
-public:
+  public:
     /// Throws std::invalid_argument naming the field when a size is < 1, a weight vector has the
     /// wrong length, or a weight is negative or not finite.
     explicit PoissonSolver(const PoissonSystem& system);
@@ -118,6 +126,15 @@ public:
     /// out = A x (cellCount() entries each), for tests and diagnostics.
     void applyOperator(const std::vector<double>& x, std::vector<double>& out) const;
 
+    /// z = M^-1 r: one V(n, n) cycle from zero with n = smoothingSweeps (the preconditioner CG
+    /// applies each iteration), cellCount() entries each, 0 in inactive cells; entries of r in
+    /// inactive cells are ignored. M^-1 is symmetric positive definite on the active cells, which
+    /// is what lets CG keep its guarantees (tested: <a, M^-1 b> = <b, M^-1 a>). Uses the solver's
+    /// scratch vectors (not re-entrant). Throws std::invalid_argument for a wrong size or
+    /// smoothingSweeps outside 1..8.
+    void applyPreconditioner(const std::vector<double>& r, std::vector<double>& z,
+                             int smoothingSweeps = 2);
+
     int levelCount() const;
     size_t activeCellCount() const;
     /// Bytes held by the hierarchy and the PCG vectors.
@@ -132,7 +149,7 @@ public:
     /// Fraction of the finest level's cells on the constant-coefficient fast path.
     double uniformCellFraction() const;
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };

@@ -6,14 +6,14 @@
 /// own parent instead (constant extrapolation, the discrete no-flux condition; the "redirects"),
 /// with the transpose in restriction (docs/solver.md, "The linear solver").
 
-#include "sim/PoissonDetail.h"
-
 #include <tbb/parallel_for.h>
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include "sim/PoissonDetail.h"
 
 namespace gale::sim::multigrid {
 
@@ -105,10 +105,16 @@ void buildRedirects(Level& F, const Level& C, const std::array<BoundaryKind, 6>&
                             const double w = wk[a] * wj[b] * wi[c];
                             if (w == 0.0) continue;
                             const int I = ci[c], J = cj[b], K = ck[a];
-                            const bool inside = I >= 0 && J >= 0 && K >= 0 && I < C.nx && J < C.ny && K < C.nz;
-                            if (inside ? !C.active[C.at(I, J, K)] : ghostKind(I, J, K) == 1) lost += w;
+                            const bool inside =
+                                I >= 0 && J >= 0 && K >= 0 && I < C.nx && J < C.ny && K < C.nz;
+                            if (inside ? !C.active[C.at(I, J, K)] : ghostKind(I, J, K) == 1)
+                                lost += w;
                         }
-                if (lost > 0.0) out.push_back({p, C.at(ci[0], cj[0], ck[0]), lost});
+                // A home that is itself inactive holds 0 and never receives a residual: the
+                // weight is dropped in both directions (symmetric), rather than written into a
+                // cell no level reads.
+                const size_t home = C.at(ci[0], cj[0], ck[0]);
+                if (lost > 0.0 && C.active[home]) out.push_back({p, home, lost});
             }
     });
     F.redirectSlab.assign(size_t(F.nz) + 1, 0);
@@ -143,8 +149,11 @@ void restrictTo(const Level& F, const double* rf, Level& C) {
 }
 
 // x_fine += P x_coarse on fine row (j, k), trilinear part only (prolongRedirects adds the
-// redirects). Inactive fine cells may receive values; they are decoupled (all their weights
-// are 0) and the solver masks them on output.
+// redirects). Inactive fine cells receive nothing: restriction never reads them (their residual
+// is 0) and never writes inactive coarse cells, so a value left there would make P differ from
+// the transpose of restriction on the next finer level and the V-cycle unsymmetric. With every
+// inactive cell 0 on every level, the trilinear weight of an inactive coarse neighbour meets a 0
+// and only its redirect to the home cell carries the correction, in both directions.
 void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, int j, int k) {
     thread_local std::vector<double> t;
     t.assign(size_t(C.sx), 0.0);
@@ -160,7 +169,10 @@ void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, in
             for (int I = 0; I < C.sx; ++I) t[I] += w * row[I];
         }
     const size_t p0 = F.at(0, j, k);
-    for (int i = 0; i < F.nx; ++i) xf[p0 + i] += F.tx.w0[i] * t[F.tx.c0[i] + 1] + F.tx.w1[i] * t[F.tx.c1[i] + 1];
+    const uint8_t* active = F.active.data() + p0;
+    for (int i = 0; i < F.nx; ++i)
+        if (active[i])
+            xf[p0 + i] += F.tx.w0[i] * t[F.tx.c0[i] + 1] + F.tx.w1[i] * t[F.tx.c1[i] + 1];
 }
 
 void prolongRedirects(const Level& F, const double* xc, double* xf, int k) {

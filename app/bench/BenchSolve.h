@@ -30,8 +30,8 @@ struct BenchSolveOptions {
     std::string jsonPath;  ///< if set, the table as JSON (atomically)
     /// Boxes nx, ny, nz; empty: 64x64x32, 128x128x64, 256x256x64.
     std::vector<std::array<int, 3>> sizes;
-    bool quick = false;           ///< only the first size (CI smoke run)
-    bool openVdb = true;          ///< also run openvdb::tools::poisson (Jacobi-PCG and IC-PCG)
+    bool quick = false;               ///< only the first size (CI smoke run)
+    bool openVdb = true;              ///< also run openvdb::tools::poisson (Jacobi-PCG and IC-PCG)
     double relativeTolerance = 1e-6;  ///< max-norm relative residual, both solvers
 };
 

@@ -13,6 +13,7 @@
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/bench/SvgPlot.h"
+#include "app/bench/TranslatingVortex.h"
 #include "app/io/Timing.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
@@ -151,47 +152,124 @@ TimingRow timeSteps(int n, int nz, sim::AdvectionScheme scheme, int steps) {
 
 }  // namespace
 
+// ---- stability suite ---------------------------------------------------------------------------
+// The bench's own rules (the library measures, it does not judge); the tests in
+// tests/sim/UnsteadyStabilityTest.cpp hold the same limits with their reasons.
+
+/// Largest max|div u| h / U accepted after a projection (the projection solves to 1e-7).
+constexpr double DIVERGENCE_LIMIT = 1e-4;
+/// Unforced energy may not grow beyond the projection's round-off.
+constexpr double ENERGY_GROWTH_LIMIT = 1e-3;
+/// The CFL cases start from an exact steady solution; 12 steps move them 4-6% (near the ground).
+constexpr double STEADY_DEVIATION_LIMIT = 0.1;
+/// Semi-Lagrangian at fixed CFL is first order in h.
+constexpr double MIN_H_ORDER = 0.7;
+/// Burgers' balanced core stays within 10% of r_c over one strain time.
+constexpr double BURGERS_CORE_LIMIT = 0.1;
+
 int runBenchStability(const BenchStabilityOptions& opt) {
-    const std::vector<std::string> names = sim::stabilityCaseNames(opt.quick);
-    std::printf("%-26s %6s %12s %12s %12s %10s %8s %5s  %s\n", "case", "steps", "max |u| m/s", "KE start", "KE end",
-                "max div", "NaN/Inf", "pass", "description / why");
-    nlohmann::json rows = nlohmann::json::array();
     bool all = true;
-    for (const std::string& n : names) {
+    nlohmann::json rows = nlohmann::json::array();
+    std::printf("%-24s %5s %7s %7s %11s %11s %8s %9s %9s %9s %6s %7s  %s\n", "case", "steps", "dt s", "CFL",
+                "KE start", "KE end", "KE %", "forcing", "deviation", "max div", "finite", "wall s", "verdict");
+    for (const std::string& n : sim::stabilityCaseNames(opt.quick)) {
         std::fprintf(stderr, "bench stability: %s...\n", n.c_str());
-        const sim::StabilityResult r = sim::runStabilityCase(n);
-        all = all && r.pass;
-        std::printf("%-26s %6d %12.4g %12.4g %12.4g %10.2e %8s %5s  %s\n", r.name.c_str(), r.steps, r.maxSpeed_mps,
-                    r.keStart_m5ps2, r.keEnd_m5ps2, r.maxDivergenceScaled, r.finite ? "none" : "YES",
-                    r.pass ? "yes" : "NO",
-                    (r.refused ? r.refusal : r.description + (r.why.empty() ? "" : " -- " + r.why)).c_str());
-        rows.push_back({{"case", r.name},
+        const sim::StabilityRun r = sim::runStabilityCase(n);
+        const bool cflCase = n.rfind("cfl", 0) == 0;
+        std::string why;
+        if (!r.finite) why += "NaN/Inf; ";
+        if (!(r.maxDivergenceScaled <= DIVERGENCE_LIMIT)) why += "divergence; ";
+        if (!r.forced && !(r.keEnd_m5ps2 <= r.keStart_m5ps2 * (1 + ENERGY_GROWTH_LIMIT))) why += "energy grew; ";
+        if (cflCase && !(r.deviationFromStart <= STEADY_DEVIATION_LIMIT)) why += "left the steady flow; ";
+        all = all && why.empty();
+        const double change = r.keStart_m5ps2 > 0 ? 100.0 * (r.keEnd_m5ps2 - r.keStart_m5ps2) / r.keStart_m5ps2 : 0.0;
+        std::printf("%-24s %5d %7.3f %7.2f %11.4g %11.4g %+8.2f %9.3g %9.2e %9.2e %6s %7.2f  %s\n", n.c_str(), r.steps,
+                    r.dt_s, r.maxCfl, r.keStart_m5ps2, r.keEnd_m5ps2, change, r.forcingEnergy_m5ps2,
+                    r.deviationFromStart, r.maxDivergenceScaled, r.finite ? "yes" : "NO", r.wall_s,
+                    why.empty() ? "ok" : why.c_str());
+        rows.push_back({{"case", n},
                         {"description", r.description},
                         {"steps", r.steps},
+                        {"dt_s", r.dt_s},
+                        {"max_cfl", r.maxCfl},
                         {"max_speed_mps", r.maxSpeed_mps},
                         {"kinetic_energy_start_m5ps2", r.keStart_m5ps2},
                         {"kinetic_energy_end_m5ps2", r.keEnd_m5ps2},
                         {"kinetic_energy_max_m5ps2", r.keMax_m5ps2},
-                        {"kinetic_energy_bound_m5ps2", r.keBound_m5ps2},
-                        {"max_step_energy_growth", r.maxGrowth},
-                        {"forced", r.forced},
+                        {"forcing_energy_m5ps2", r.forcingEnergy_m5ps2},
+                        {"deviation_from_start", r.deviationFromStart},
                         {"max_div_u_h_over_U", r.maxDivergenceScaled},
-                        {"max_cfl", r.maxCfl},
-                        {"nan_or_inf", !r.finite},
-                        {"refused", r.refused},
-                        {"refusal", r.refusal},
-                        {"pass", r.pass},
-                        {"why", r.why},
-                        {"wall_s", r.wall_s}});
+                        {"finite", r.finite},
+                        {"wall_s", r.wall_s},
+                        {"failed", why}});
     }
-    std::printf("rules: no NaN/Inf; max|div u| h/U <= %.0e after every projection; unforced: step-to-step energy growth "
-                "<= %.0e; forced: energy <= mean flow at the gusts' peak + injected\n",
-                sim::STABILITY_DIVERGENCE_TOLERANCE, sim::STABILITY_ENERGY_GROWTH_TOLERANCE);
-    std::printf("%s\n", all ? "stability: every case passes" : "stability: SOME CASES FAIL");
+    std::printf("deviation: |u_end - u_start| / |u_start| (open-fraction weighted); the CFL cases start from the "
+                "steady potential flow, an exact steady Euler solution\n");
+
+    // Translating inviscid Lamb-Oseen against its exact Galilean solution.
+    using TV = sim::TranslatingVortexSpec;
+    std::printf("\ntranslating Lamb-Oseen (r_c %.0f m, peak %.0f m/s, wind %.0f m/s, t = %.0f s, no viscosity): "
+                "error = RMS |u - u_exact| / v_peak within 2 r_c\n",
+                TV::CORE_M, TV::PEAK_MPS, TV::WIND_MPS, TV::TIME_S);
+    std::printf("%-14s %9s %6s %7s %9s %8s %10s %8s\n", "refine", "cells/r_c", "CFL", "steps", "error", "order",
+                "KE change", "wall s");
+    nlohmann::json vortexRows = nlohmann::json::array();
+    double hOrder = 0.0;
+    auto study = [&](const char* what, const std::vector<std::pair<int, double>>& runs, double* lastOrder) {
+        double prev = 0.0;
+        for (const auto& [cells, courant] : runs) {
+            std::fprintf(stderr, "bench stability: translating vortex, %d cells per core, CFL %.1f...\n", cells, courant);
+            const sim::StabilityRun r = sim::runTranslatingVortex(cells, courant);
+            const double e = exact::translatingVortexError(r);
+            const double order = prev > 0 ? std::log2(prev / e) : NAN;
+            if (prev > 0 && lastOrder) *lastOrder = order;
+            prev = e;
+            std::printf("%-14s %9d %6.2f %7d %9.4f %8.2f %+9.2f%% %8.2f\n", what, cells, courant, r.steps, e, order,
+                        100.0 * (r.keEnd_m5ps2 - r.keStart_m5ps2) / r.keStart_m5ps2, r.wall_s);
+            vortexRows.push_back({{"refine", what}, {"cells_per_core", cells}, {"cfl", courant}, {"steps", r.steps},
+                                  {"error", e}, {"kinetic_energy_start_m5ps2", r.keStart_m5ps2},
+                                  {"kinetic_energy_end_m5ps2", r.keEnd_m5ps2}, {"wall_s", r.wall_s}});
+        }
+    };
+    study("h, CFL 1", opt.quick ? std::vector<std::pair<int, double>>{{4, 1.0}, {8, 1.0}}
+                                : std::vector<std::pair<int, double>>{{4, 1.0}, {8, 1.0}, {16, 1.0}},
+          &hOrder);
+    if (!opt.quick) study("dt, h fixed", {{8, 4.0}, {8, 2.0}, {8, 1.0}, {8, 0.5}}, nullptr);
+    const bool orderOk = hOrder >= MIN_H_ORDER;
+    all = all && orderOk;
+    std::printf("order in h at fixed CFL: %.2f (needs >= %.1f) %s\n", hOrder, MIN_H_ORDER, orderOk ? "ok" : "MISSED");
+
+    // Burgers' vortex: held by strain against viscosity.
+    using B = sim::BurgersSpec;
+    const int burgersCells = opt.quick ? 4 : 8;
+    const double aT = B::STRAIN_PER_S * B::TIME_S;
+    std::printf("\nBurgers vortex (r_c %.0f m, a %.2f 1/s, nu = a r_c^2 / 4 = %.2f m^2/s, t = %.0f s, %d cells per "
+                "core): core radius / r_c\n",
+                B::CORE_M, B::STRAIN_PER_S, B::viscosity_m2ps(), B::TIME_S, burgersCells);
+    const double exact[3] = {1.0, std::exp(-0.5 * aT), std::sqrt(1.0 + aT)};
+    const char* variants[3] = {"balanced", "no viscosity", "no strain"};
+    nlohmann::json burgersRows = nlohmann::json::array();
+    double balanced = 0.0;
+    for (int v = 0; v < 3; ++v) {
+        std::fprintf(stderr, "bench stability: Burgers vortex, %s...\n", variants[v]);
+        const sim::StabilityRun r = sim::runBurgersVortex(sim::BurgersVariant(v), burgersCells);
+        const double core = sim::burgersCoreRadius_m(r) / B::CORE_M;
+        if (v == 0) balanced = core;
+        std::printf("%-14s core %.3f (exact %.3f)  KE %.4g -> %.4g  steps %d  wall %.2f s\n", variants[v], core,
+                    exact[v], r.keStart_m5ps2, r.keEnd_m5ps2, r.steps, r.wall_s);
+        burgersRows.push_back({{"variant", variants[v]}, {"core_over_rc", core}, {"exact", exact[v]},
+                               {"kinetic_energy_start_m5ps2", r.keStart_m5ps2},
+                               {"kinetic_energy_end_m5ps2", r.keEnd_m5ps2}, {"steps", r.steps}, {"wall_s", r.wall_s}});
+    }
+    const bool coreOk = std::abs(balanced - 1.0) <= BURGERS_CORE_LIMIT;
+    all = all && coreOk;
+    std::printf("balanced core within %.0f%% of r_c: %s\n", 100 * BURGERS_CORE_LIMIT, coreOk ? "ok" : "MISSED");
+    std::printf("%s\n", all ? "stability: every rule holds" : "stability: SOME RULES FAIL");
     writeJson(opt.jsonPath, {{"cases", rows},
-                             {"divergence_tolerance", sim::STABILITY_DIVERGENCE_TOLERANCE},
-                             {"energy_growth_tolerance", sim::STABILITY_ENERGY_GROWTH_TOLERANCE},
-                             {"all_pass", all}});
+                             {"translating_vortex", vortexRows},
+                             {"order_in_h", hOrder},
+                             {"burgers", burgersRows},
+                             {"all_hold", all}});
     return all ? EXIT_OK : EXIT_UNMET;
 }
 

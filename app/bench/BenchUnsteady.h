@@ -2,7 +2,9 @@
 /// \file BenchUnsteady.h
 /// The unsteady wind's benchmarks (docs/unsteady.md has the method and the measured tables):
 ///  - `gale bench stability`: the named extreme cases of sim/UnsteadyStability.h as a table
-///    (case, steps, max speed, kinetic energy start/end, max divergence, NaN/Inf, pass);
+///    (case, steps, dt, CFL, kinetic energy budget, deviation from the steady start, divergence,
+///    finiteness), the translating Lamb-Oseen vortex's errors and orders (h at fixed CFL, dt at
+///    fixed h) and Burgers' vortex core, judged by the bench's own rules;
 ///  - `gale bench unsteady`: error against wall time on the exact viscous Lamb-Oseen vortex for
 ///    each advection scheme over resolutions and time steps (CSV + SVG via app/bench/SvgPlot, observed
 ///    orders), and the time per step and its parts over a hill at 128x128x48 (and 256x256x48).
@@ -17,7 +19,7 @@ struct BenchStabilityOptions {
     std::string jsonPath;  ///< if set, the table as JSON (atomically)
 };
 
-/// Returns 0 when every case passes, 1 otherwise. Throws std::runtime_error if the JSON cannot
+/// Returns EXIT_OK when every rule holds, EXIT_UNMET otherwise. Throws std::runtime_error if the JSON cannot
 /// be written.
 int runBenchStability(const BenchStabilityOptions& options);
 

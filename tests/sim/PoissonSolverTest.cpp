@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim/PoissonSolver.h"
 #include "base/Numbers.h"
+#include "sim/PoissonSolver.h"
 
 namespace gale::sim {
 namespace {
@@ -37,7 +37,8 @@ double manufacturedError(int n, bool neumannBottom) {
     const double h = 1.0 / n;
     const double kz = neumannBottom ? 0.5 * PI : PI;
     auto exact = [&](double x, double y, double z) {
-        return std::sin(PI * x) * std::sin(PI * y) * (neumannBottom ? std::cos(kz * z) : std::sin(kz * z));
+        return std::sin(PI * x) * std::sin(PI * y) *
+               (neumannBottom ? std::cos(kz * z) : std::sin(kz * z));
     };
     std::vector<double> rhs(sys.cellCount()), x;
     for (int k = 0; k < n; ++k)
@@ -56,7 +57,8 @@ double manufacturedError(int n, bool neumannBottom) {
     for (int k = 0; k < n; ++k)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i)
-                err = std::max(err, std::abs(x[sys.cellIndex(i, j, k)] - exact((i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h)));
+                err = std::max(err, std::abs(x[sys.cellIndex(i, j, k)] -
+                                             exact((i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h)));
     return err;
 }
 
@@ -145,7 +147,8 @@ TEST(PoissonSolver, JacobiPreconditionerReachesTheSameSolution) {
     ASSERT_TRUE(rep.converged) << rep.message;
     constexpr double SAME = 1e-7;  // both to 1e-10 relative residual; conditioning ~1e2
     double diff = 0, norm = 0;
-    for (size_t n = 0; n < xMg.size(); ++n) diff = std::max(diff, std::abs(xMg[n] - xJac[n])), norm = std::max(norm, std::abs(xMg[n]));
+    for (size_t n = 0; n < xMg.size(); ++n)
+        diff = std::max(diff, std::abs(xMg[n] - xJac[n])), norm = std::max(norm, std::abs(xMg[n]));
     EXPECT_LE(diff / norm, SAME);
 }
 
@@ -163,7 +166,8 @@ TEST(PoissonSolver, InactiveCellsStayZeroAndAreIgnored) {
     PoissonSolver solver(sys);
     EXPECT_EQ(solver.activeCellCount(), size_t(512 - 27));
     std::vector<double> x;
-    const SolveReport rep = solver.solve(std::vector<double>(sys.cellCount(), 1.0), x, SolverSettings{});
+    const SolveReport rep =
+        solver.solve(std::vector<double>(sys.cellCount(), 1.0), x, SolverSettings{});
     ASSERT_TRUE(rep.converged) << rep.message;
     EXPECT_EQ(x[sys.cellIndex(3, 3, 3)], 0.0);
     for (double v : x) EXPECT_TRUE(std::isfinite(v));

@@ -44,12 +44,15 @@ TEST_P(Translation, UniformFlowMovesProfileByUDt) {
     const MacVelocity vel{&u, &v, &w};
     const auto n = g.dims(c.placement);
     const double sigma_m = 3.0 * H_M, x0_m = g.wsMin_m[0] + 30.0 * H_M;
-    auto profile = [&](double x) { return std::exp(-0.5 * (x - x0_m) * (x - x0_m) / (sigma_m * sigma_m)); };
+    auto profile = [&](double x) {
+        return std::exp(-0.5 * (x - x0_m) * (x - x0_m) / (sigma_m * sigma_m));
+    };
     std::vector<double> q(g.count(c.placement));
     for (int k = 0; k < n[2]; ++k)
         for (int j = 0; j < n[1]; ++j)
             for (int i = 0; i < n[0]; ++i)
-                q[size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k)] = profile(g.wsPosition(c.placement, i, j, k)[0]);
+                q[size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k)] =
+                    profile(g.wsPosition(c.placement, i, j, k)[0]);
     const double dt_s = c.cellsPerStep * H_M / U_MPS;
     const int steps = std::max(1, int(std::lround(3.0 / c.cellsPerStep)));
     auto centroid = [&](const std::vector<double>& a) {
@@ -68,15 +71,19 @@ TEST_P(Translation, UniformFlowMovesProfileByUDt) {
     }
     const double shift_m = U_MPS * dt_s * steps;
     EXPECT_NEAR((centroid(q) - before_m) / H_M, shift_m / H_M,
-                c.scheme == AdvectionScheme::SemiLagrangian ? CENTROID_TOLERANCE_CELLS : CENTROID_TOLERANCE_LIMITED_CELLS)
+                c.scheme == AdvectionScheme::SemiLagrangian ? CENTROID_TOLERANCE_CELLS
+                                                            : CENTROID_TOLERANCE_LIMITED_CELLS)
         << advectionSchemeName(c.scheme) << " moved the profile by the wrong distance";
     double err = 0;
     for (int i = 0; i < n[0]; ++i) {
         const size_t idx = size_t(i) + size_t(n[0]) * (1 + size_t(n[1]) * 1);
-        err = std::max(err, std::abs(q[idx] - profile(g.wsPosition(c.placement, i, 1, 1)[0] - shift_m)));
+        err = std::max(err,
+                       std::abs(q[idx] - profile(g.wsPosition(c.placement, i, 1, 1)[0] - shift_m)));
     }
-    std::printf("%s placement %d, %.2f cells/step: max error %.4f\n", advectionSchemeName(c.scheme), int(c.placement), c.cellsPerStep, err);
-    EXPECT_LT(err, c.scheme == AdvectionScheme::SemiLagrangian ? POINTWISE_TOLERANCE_SL : POINTWISE_TOLERANCE_HIGH_ORDER);
+    std::printf("%s placement %d, %.2f cells/step: max error %.4f\n", advectionSchemeName(c.scheme),
+                int(c.placement), c.cellsPerStep, err);
+    EXPECT_LT(err, c.scheme == AdvectionScheme::SemiLagrangian ? POINTWISE_TOLERANCE_SL
+                                                               : POINTWISE_TOLERANCE_HIGH_ORDER);
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -114,15 +121,65 @@ TEST(Advection, TraceThatLeavesTheBoxReadsTheFarField) {
     std::vector<double> u(g.count(Placement::FaceX), 2.0), v(g.count(Placement::FaceY), 0.0),
         w(g.count(Placement::FaceZ), 0.0), q(g.count(Placement::Cell), 0.0), out;
     const FarField far = [](const Vec3d&) { return Vec3d{2.0, 0.0, 0.0}; };
-    advect(g, Placement::Cell, q, {&u, &v, &w}, far, [](const Vec3d&) { return 7.0; }, 1.0,
-           AdvectionScheme::SemiLagrangian, out);
+    advect(
+        g, Placement::Cell, q, {&u, &v, &w}, far, [](const Vec3d&) { return 7.0; }, 1.0,
+        AdvectionScheme::SemiLagrangian, out);
     EXPECT_DOUBLE_EQ(out[0], 7.0);  // cell 0 centre - 2 m lies outside the box: inflow value
     EXPECT_DOUBLE_EQ(out[1], 7.0);
     EXPECT_DOUBLE_EQ(out[2], 0.0);
 }
 
+/// A solid-body rotation by 1 radian at 10 cells from the axis: one midpoint step would land 1.6
+/// cells off the circle (rotation error ~ r theta^3 / 6); substeps of <= 2 cells bring it under
+/// 0.1 cells. Trilinear interpolation is exact for the linear field, so only the trace errs.
+constexpr double ROTATION_TRACE_TOLERANCE_CELLS = 0.1;
+/// Bisection puts the stop within 2^-12 of a substep above the surface.
+constexpr double TERRAIN_STOP_TOLERANCE_CELLS = 1e-3;
+
+TEST(Advection, SubstepsKeepALongTraceOnItsCurvedStreamline) {
+    const double h = 2.0, omega = 0.5, dt = 1.0 / omega;  // omega dt = 1 rad
+    MacGrid g{48, 48, 2, h, {-48.0, -48.0, 0.0}};
+    std::vector<double> u(g.count(Placement::FaceX)), v(g.count(Placement::FaceY)),
+        w(g.count(Placement::FaceZ), 0.0);
+    for (int k = 0; k < 2; ++k)
+        for (int j = 0; j < 48; ++j)
+            for (int i = 0; i <= 48; ++i)
+                u[size_t(i) + 49 * (j + size_t(48) * k)] =
+                    -omega * g.wsPosition(Placement::FaceX, i, j, k)[1];
+    for (int k = 0; k < 2; ++k)
+        for (int j = 0; j <= 48; ++j)
+            for (int i = 0; i < 48; ++i)
+                v[size_t(i) + 48 * (j + size_t(49) * k)] =
+                    omega * g.wsPosition(Placement::FaceY, i, j, k)[0];
+    const double r = 10.0 * h;
+    const Vec3d dep = traceBack(g, {&u, &v, &w}, {}, {r, 0.0, 1.0}, dt);
+    // Exact: the particle was at angle -omega dt on the same circle.
+    EXPECT_NEAR(dep[0] / h, r * std::cos(-1.0) / h, ROTATION_TRACE_TOLERANCE_CELLS);
+    EXPECT_NEAR(dep[1] / h, r * std::sin(-1.0) / h, ROTATION_TRACE_TOLERANCE_CELLS);
+}
+
+TEST(Advection, TraceStopsOnTheTerrainSurface) {
+    // Updraft of 1 m/s over ground at z = 2 m: tracing back 10 s from z = 5 m would end at -5 m,
+    // inside the rock; the trace must stop on the surface.
+    TerrainSpec flat;
+    flat.kind = TerrainKind::Flat;
+    flat.sizeX_m = flat.sizeY_m = 16.0;
+    Heightfield ground = makeTerrain(flat);
+    for (float& z : ground.height_m) z = 2.0f;
+    MacGrid g{8, 8, 8, 2.0, {0.0, 0.0, 0.0}, &ground};
+    std::vector<double> u(g.count(Placement::FaceX), 0.0), v(g.count(Placement::FaceY), 0.0),
+        w(g.count(Placement::FaceZ), 1.0);
+    const Vec3d dep = traceBack(g, {&u, &v, &w}, {}, {7.0, 7.0, 5.0}, 10.0);
+    EXPECT_NEAR(dep[2], 2.0, TERRAIN_STOP_TOLERANCE_CELLS * g.voxelSize_m);
+    EXPECT_GE(dep[2], 2.0);
+    // Without the terrain the same trace runs its full time (through the clamped field).
+    g.terrain = nullptr;
+    EXPECT_NEAR(traceBack(g, {&u, &v, &w}, {}, {7.0, 7.0, 5.0}, 10.0)[2], -5.0, 1e-9);
+}
+
 TEST(Advection, SchemeNamesRoundTripAndUnknownNamesThrow) {
-    for (AdvectionScheme s : {AdvectionScheme::SemiLagrangian, AdvectionScheme::MacCormack, AdvectionScheme::Bfecc})
+    for (AdvectionScheme s :
+         {AdvectionScheme::SemiLagrangian, AdvectionScheme::MacCormack, AdvectionScheme::Bfecc})
         EXPECT_EQ(advectionSchemeFromName(advectionSchemeName(s)), s);
     EXPECT_THROW(advectionSchemeFromName("rk4"), std::invalid_argument);
 }

@@ -1,30 +1,185 @@
-// The fast subset of the unsteady wind's stability suite (`gale bench stability` runs them all):
-// no NaN/Inf, divergence-free after every projection, kinetic energy that does not grow without
-// forcing and stays bounded by what is injected with it.
+// The fast subset of the unsteady wind's stability suite (`gale bench stability` runs them all),
+// judged here by the tests' own oracles: every velocity finite (scanned here), every air cell's
+// net outflow (computed here from the open fractions) below the projection's tolerance, kinetic
+// energy (computed here) that does not grow without forcing, and for the cases that start from a
+// steady potential flow (an exact steady Euler solution) a field that stays near where it started.
+// The vortex studies compare with exact solutions (app/bench/ExactSolutions.h and
+// TranslatingVortex.h, not the code under test) and contrasts between variants.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
+#include "app/bench/TranslatingVortex.h"
 #include "sim/UnsteadyStability.h"
 
 namespace gale::sim {
 namespace {
 
-class Stability : public ::testing::TestWithParam<std::string> {};
+/// The projection solves to 1e-7 relative; its worst cell's net outflow stays far below this
+/// (measured <= 2e-7 U).
+constexpr double DIVERGENCE_TOLERANCE = 1e-4;
+/// Without forcing the energy may not grow; the projection's tolerance leaves round-off.
+constexpr double ENERGY_GROWTH_TOLERANCE = 1e-3;
 
-TEST_P(Stability, StaysFiniteDivergenceFreeAndEnergyBounded) {
-    const StabilityResult r = runStabilityCase(GetParam());
-    std::printf("%-26s steps %3d  max speed %8.3f m/s  KE %.4g -> %.4g (max %.4g, bound %.4g, growth %.2e)  div %.2e%s\n",
-                r.name.c_str(), r.steps, r.maxSpeed_mps, r.keStart_m5ps2, r.keEnd_m5ps2, r.keMax_m5ps2, r.keBound_m5ps2,
-                r.maxGrowth, r.maxDivergenceScaled, r.refused ? ("  " + r.refusal).c_str() : "");
-    EXPECT_TRUE(r.pass) << r.name << ": " << r.why;
-    EXPECT_TRUE(r.finite);
+/// Kinetic energy per unit density, 1/2 sum_f theta_f u_f^2 h^3, of a field on the run's domain.
+double kineticEnergy(const StabilityRun& run, const WindField& f) {
+    const AirDomain& d = *run.domain;
+    const double h = d.voxelSize_m();
+    const std::vector<double>* a[3] = {&f.u_mps(), &f.v_mps(), &f.w_mps()};
+    const std::vector<float>* th[3] = {&d.openFractionsX(), &d.openFractionsY(),
+                                       &d.openFractionsZ()};
+    double e = 0.0;
+    for (int c = 0; c < 3; ++c)
+        for (size_t i = 0; i < a[c]->size(); ++i)
+            e += double((*th[c])[i]) * (*a[c])[i] * (*a[c])[i];
+    return 0.5 * e * h * h * h;
 }
 
-INSTANTIATE_TEST_SUITE_P(FastSubset, Stability, ::testing::ValuesIn(stabilityCaseNames(/*fastOnly=*/true)),
-                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+/// sqrt(sum theta (u - u_start)^2 / sum theta u_start^2): how far the field moved from its start.
+double relativeDeviation(const StabilityRun& run) {
+    const AirDomain& d = *run.domain;
+    const WindField& f = run.solver->field();
+    const std::vector<double>* a[3] = {&f.u_mps(), &f.v_mps(), &f.w_mps()};
+    const std::vector<double>* s[3] = {&run.start.u_mps(), &run.start.v_mps(), &run.start.w_mps()};
+    const std::vector<float>* th[3] = {&d.openFractionsX(), &d.openFractionsY(),
+                                       &d.openFractionsZ()};
+    double num = 0.0, den = 0.0;
+    for (int c = 0; c < 3; ++c)
+        for (size_t i = 0; i < a[c]->size(); ++i) {
+            const double diff = (*a[c])[i] - (*s[c])[i];
+            num += (*th[c])[i] * diff * diff, den += (*th[c])[i] * (*s[c])[i] * (*s[c])[i];
+        }
+    return den > 0 ? std::sqrt(num / den) : std::sqrt(num);
+}
 
-TEST(Stability, UnknownCaseNameThrows) { EXPECT_THROW(runStabilityCase("cfl_9000"), std::invalid_argument); }
+bool allFinite(const WindField& f) {
+    for (const auto* a : {&f.u_mps(), &f.v_mps(), &f.w_mps()})
+        for (double x : *a)
+            if (!std::isfinite(x)) return false;
+    return true;
+}
+
+double maxOutflowScaled(const StabilityRun& run) {
+    const AirDomain& d = *run.domain;
+    const WindField& f = run.solver->field();
+    double m = 0.0;
+    for (int k = 0; k < d.nz(); ++k)
+        for (int j = 0; j < d.ny(); ++j)
+            for (int i = 0; i < d.nx(); ++i)
+                if (d.isAir(i, j, k))
+                    m = std::max(m,
+                                 std::abs(d.openOutflux(f.u_mps(), f.v_mps(), f.w_mps(), i, j, k)));
+    return m / run.referenceSpeed_mps;
+}
+
+/// Per case: the deviation from the starting field allowed (0: not checked) and whether energy
+/// may grow (forcing).
+struct Oracle {
+    double maxDeviation;
+    bool forced;
+};
+
+/// The CFL cases start from the potential flow over a smooth ridge, an exact steady solution:
+/// after 12 steps the field is within 5.5% of it (measured; the error sits in the four cell layers
+/// of cut cells next to the ridge, < 0.2% above eight cells), so 10% catches a real regression.
+/// The cliff and the spike have corners where the potential flow is singular: their discrete
+/// start is no smooth solution, and only finiteness, divergence and energy are judged there.
+constexpr double STEADY_DEVIATION_TOLERANCE = 0.1;
+
+Oracle oracleFor(const std::string& name) {
+    if (name == "step_gust") return {0.0, true};
+    if (name.rfind("cfl", 0) == 0) return {STEADY_DEVIATION_TOLERANCE, false};
+    return {0.0, false};
+}
+
+class Stability : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Stability, StaysFiniteDivergenceFreeAndWithinItsEnergyBudget) {
+    const StabilityRun r = runStabilityCase(GetParam());
+    const Oracle o = oracleFor(r.name);
+    const double ke0 = kineticEnergy(r, r.start), ke1 = kineticEnergy(r, r.solver->field());
+    const double dev = relativeDeviation(r), div = maxOutflowScaled(r);
+    std::printf("%-24s steps %3d  CFL %6.2f  KE %.4g -> %.4g (%+.2f%%)  deviation %.2e  div %.2e\n",
+                r.name.c_str(), r.steps, r.maxCfl, ke0, ke1,
+                ke0 > 0 ? 100.0 * (ke1 - ke0) / ke0 : 0.0, dev, div);
+    EXPECT_TRUE(allFinite(r.solver->field()));
+    EXPECT_LE(div, DIVERGENCE_TOLERANCE);
+    if (!o.forced) {
+        EXPECT_LE(ke1, ke0 * (1.0 + ENERGY_GROWTH_TOLERANCE));
+    }
+    if (o.maxDeviation > 0) {
+        EXPECT_LE(dev, o.maxDeviation);
+    }
+    if (r.name.rfind("cfl", 0) == 0) {
+        // The named CFL is U dt / h of the 10 m/s wind (the speed-up over the ridge only raises
+        // the reached one), and the box holds at least 10 U dt, so traces cross the terrain
+        // inside the box instead of all reading the far field.
+        const double named = std::stod(r.name.substr(3)), h = r.domain->voxelSize_m();
+        EXPECT_NEAR(10.0 * r.dt_s / h, named, 1e-9);
+        EXPECT_GE(r.maxCfl, named);
+        EXPECT_GE(r.domain->nx() * h, 10.0 * 10.0 * r.dt_s);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(FastSubset, Stability,
+                         ::testing::ValuesIn(stabilityCaseNames(/*fastOnly=*/true)),
+                         [](const ::testing::TestParamInfo<std::string>& caseName) {
+                             return caseName.param;
+                         });
+
+TEST(Stability, StepGustEnergyStaysBelowTheMeanFlowsAtTheGustPeak) {
+    // 5 m/s with a +10 m/s gust: the inflow carries at most (15/5)^2 = 9 times the mean energy.
+    const StabilityRun r = runStabilityCase("step_gust");
+    constexpr double GUST_FACTOR = 9.0;
+    EXPECT_LE(r.keMax_m5ps2, GUST_FACTOR * kineticEnergy(r, r.start));
+}
+
+TEST(Stability, UnknownCaseNameThrows) {
+    EXPECT_THROW(runStabilityCase("cfl_9000"), std::invalid_argument);
+}
+
+// ---- exact solutions -----------------------------------------------------------------------
+
+TEST(TranslatingVortex, ConvergesToTheExactGalileanSolutionAsTheCellsHalveAtFixedCfl) {
+    const double e4 = exact::translatingVortexError(runTranslatingVortex(4, 1.0));
+    const double e8 = exact::translatingVortexError(runTranslatingVortex(8, 1.0));
+    std::printf("translating Lamb-Oseen, CFL 1: error %.4f (4 cells/core), %.4f (8), order %.2f\n",
+                e4, e8, std::log2(e4 / e8));
+    /// Semi-Lagrangian with trilinear interpolation at fixed CFL is first order (h^2 / dt ~ h).
+    constexpr double MIN_ORDER = 0.7;
+    EXPECT_GE(std::log2(e4 / e8), MIN_ORDER);
+}
+
+TEST(BurgersVortex, CoreHoldsItsRadiusOnlyWhenStrainAndViscosityBalance) {
+    // Burgers 1948: r_c^2 = 4 nu / a is steady. Without viscosity the strain contracts the core
+    // (r_c e^{-a t / 2}); without strain viscosity spreads it (sqrt(r_c^2 + 4 nu t)).
+    using S = BurgersSpec;
+    const double balanced =
+        burgersCoreRadius_m(runBurgersVortex(BurgersVariant::Balanced, 4)) / S::CORE_M;
+    const double inviscid =
+        burgersCoreRadius_m(runBurgersVortex(BurgersVariant::NoViscosity, 4)) / S::CORE_M;
+    const double unstrained =
+        burgersCoreRadius_m(runBurgersVortex(BurgersVariant::NoStrain, 4)) / S::CORE_M;
+    std::printf(
+        "Burgers core / r_c after a t = %.1f: balanced %.3f, no viscosity %.3f (exact %.3f), no "
+        "strain %.3f "
+        "(exact %.3f)\n",
+        S::STRAIN_PER_S * S::TIME_S, balanced, inviscid,
+        std::exp(-0.5 * S::STRAIN_PER_S * S::TIME_S), unstrained,
+        std::sqrt(1 + 4 * S::viscosity_m2ps() * S::TIME_S / (S::CORE_M * S::CORE_M)));
+    // At 4 cells per core the interpolation adds a numerical viscosity of about nu / 4 (measured:
+    // the unstrained core spreads to 1.50 r_c against the exact 1.41), and the p = 0 open top and
+    // sides cannot carry the strain's pressure, so the strain inside the box weakens (to 0.73 a
+    // on the balanced axis, docs/unsteady.md): the inviscid core contracts far less than the exact
+    // e^{-a t / 2}. The claim tested is that the balance holds the core where either force alone
+    // moves it.
+    constexpr double CORE_TOLERANCE = 0.1;  // the balanced core within 10% of r_c after a t = 1
+    constexpr double MIN_CONTRAST = 0.1;    // each unbalanced variant at least 10% r_c away from it
+    EXPECT_NEAR(balanced, 1.0, CORE_TOLERANCE);
+    EXPECT_LT(inviscid, balanced - MIN_CONTRAST);
+    EXPECT_GT(unstrained, balanced + MIN_CONTRAST);
+}
 
 }  // namespace
 }  // namespace gale::sim
