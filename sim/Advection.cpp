@@ -189,6 +189,28 @@ void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, d
     for (int a = 0; a < 3; ++a) dep[a] = x[a];
 }
 
+/// The velocity (m/s, world axes) at an index-space point: interpolated from the staggered faces,
+/// or the far field's outside the box when one is given.
+struct FaceVelocitySampler {
+    FaceVelocitySampler(const MacGrid& grid, const MacVelocity& vel, const FarField& farField)
+        : g(grid),
+          far(farField),
+          Su(grid, Placement::FaceX, *vel.u),
+          Sv(grid, Placement::FaceY, *vel.v),
+          Sw(grid, Placement::FaceZ, *vel.w) {}
+    void operator()(const double* is, double* u) const {
+        if (far && outsideIs(g, is)) {
+            const Vec3d f = far(g.wsFromIs({is[0], is[1], is[2]}));
+            u[0] = f[0], u[1] = f[1], u[2] = f[2];
+            return;
+        }
+        u[0] = Su(is), u[1] = Sv(is), u[2] = Sw(is);
+    }
+    const MacGrid& g;
+    const FarField& far;
+    const IndexSampler Su, Sv, Sw;
+};
+
 /// One semi-Lagrangian pass; optionally records the min/max of the interpolation neighbours and
 /// whether the departure point left the box.
 void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
@@ -198,18 +220,9 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
     const auto n = g.dims(p);
     out.resize(q.size());
     if (lo) lo->resize(q.size()), hi->resize(q.size());
-    const IndexSampler Su(g, Placement::FaceX, *vel.u), Sv(g, Placement::FaceY, *vel.v),
-        Sw(g, Placement::FaceZ, *vel.w);
     const IndexSampler Q(g, p, q);
     const double groundTop = terrainTopIs(g);
-    auto velocityIs = [&](const double* is, double* u) {
-        if (far && outsideIs(g, is)) {
-            const Vec3d f = far(g.wsFromIs({is[0], is[1], is[2]}));
-            u[0] = f[0], u[1] = f[1], u[2] = f[2];
-            return;
-        }
-        u[0] = Su(is), u[1] = Sv(is), u[2] = Sw(is);
-    };
+    const FaceVelocitySampler velocityIs(g, vel, far);
     tbb::parallel_for(0, n[2], [&](int k) {
         for (int j = 0; j < n[1]; ++j)
             for (int i = 0; i < n[0]; ++i) {
@@ -238,16 +251,7 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
 
 Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& ws,
                 double dt) {
-    const IndexSampler Su(g, Placement::FaceX, *vel.u), Sv(g, Placement::FaceY, *vel.v),
-        Sw(g, Placement::FaceZ, *vel.w);
-    auto velocityIs = [&](const double* is, double* u) {
-        if (far && outsideIs(g, is)) {
-            const Vec3d f = far(g.wsFromIs({is[0], is[1], is[2]}));
-            u[0] = f[0], u[1] = f[1], u[2] = f[2];
-            return;
-        }
-        u[0] = Su(is), u[1] = Sv(is), u[2] = Sw(is);
-    };
+    const FaceVelocitySampler velocityIs(g, vel, far);
     const Vec3d is = g.isFromWs(ws);
     double dep[3];
     traceIs(g, velocityIs, is.data(), dt, terrainTopIs(g), dep);

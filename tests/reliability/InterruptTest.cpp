@@ -43,15 +43,6 @@ std::string frameName(int k) {
     return name;
 }
 
-/// Temporaries are hidden (".name.tmp-...") or carry ".tmp" (VDB); none may remain.
-std::vector<std::string> temporaries(const std::string& folder) {
-    std::vector<std::string> out;
-    for (const auto& [rel, size] : listTree(folder)) {
-        const std::string name = fs::path(rel).filename().string();
-        if (name[0] == '.' || name.find(".tmp") != std::string::npos) out.push_back(rel);
-    }
-    return out;
-}
 
 /// The frames in `folder` are exactly frame_0000 .. frame_<n-1>, each a complete w x h PNG.
 void expectCompleteFrames(const std::string& folder, int n, int width, int height) {
@@ -106,7 +97,7 @@ TEST(Interrupt, CtrlCDuringRenderKeepsCompleteFramesNamesTheLastAndExits130) {
     EXPECT_LT(done, 100000);
     EXPECT_EQ(report["files"].size(), static_cast<size_t>(done));
     expectCompleteFrames(folder, done, 64, 48);
-    EXPECT_TRUE(temporaries(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
+    EXPECT_TRUE(hiddenOrTemporary(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
     // Where it stopped: the message names the last finished frame and the count.
     EXPECT_NE(r.out.find("interrupted"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find(frameName(done - 1)), std::string::npos) << r.out;
@@ -128,7 +119,7 @@ TEST(Interrupt, CtrlCAtAnyMomentOfARenderLeavesNoPartialOrTemporaryFile) {
         const RunResult r = child.wait(STOP_TIMEOUT_S);
         ASSERT_FALSE(r.timedOut) << r.describe();
         EXPECT_TRUE(r.exitCode == EXIT_INTERRUPTED || r.signal == SIGINT) << r.describe();
-        EXPECT_TRUE(temporaries(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
+        EXPECT_TRUE(hiddenOrTemporary(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
         const std::string folder = cwd / "frames";
         if (fs::exists(folder + "/frame_report.json")) {
             const nlohmann::json report =
@@ -158,7 +149,7 @@ TEST(Interrupt, CtrlCDuringSolveWritesNoFieldSaysWhereAndExits130) {
     EXPECT_NE(r.err.find("nothing written"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(cwd / "field/wind.vdb"));
     EXPECT_FALSE(fs::exists(cwd / "field/wind.json"));
-    EXPECT_TRUE(temporaries(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
+    EXPECT_TRUE(hiddenOrTemporary(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
 }
 
 }  // namespace

@@ -19,4 +19,15 @@ using gale::test::runGale;
 using gale::test::sourcePath;
 using gale::test::writeFile;
 
+/// Files under `folder` that a finished run must not leave: temporaries are hidden
+/// (".name.tmp-...") or carry ".tmp" (VDB); the lock is ".gale.lock".
+inline std::vector<std::string> hiddenOrTemporary(const std::string& folder) {
+    std::vector<std::string> out;
+    for (const auto& [rel, size] : listTree(folder)) {
+        const std::string name = fs::path(rel).filename().string();
+        if (name[0] == '.' || name.find(".tmp") != std::string::npos) out.push_back(rel);
+    }
+    return out;
+}
+
 }  // namespace gale::reliability

@@ -57,15 +57,6 @@ bool waitFor(const std::function<bool()>& ready, double timeout_s) {
     return true;
 }
 
-/// Temporaries are hidden (".name.tmp-...") or carry ".tmp" (VDB); the lock is ".gale.lock".
-std::vector<std::string> leftovers(const std::string& folder) {
-    std::vector<std::string> out;
-    for (const auto& [rel, size] : listTree(folder)) {
-        const std::string name = fs::path(rel).filename().string();
-        if (name[0] == '.' || name.find(".tmp") != std::string::npos) out.push_back(rel);
-    }
-    return out;
-}
 
 /// A PID that no process has: a child that has exited and been reaped.
 pid_t deadPid() {
@@ -160,7 +151,7 @@ void expectRenderStopsCleanlyOn(int sig) {
         const render::Image image = render::readImageRgba8(cwd / ("frames/" + name.get<std::string>()));
         EXPECT_EQ(image.width, 64);
     }
-    EXPECT_TRUE(leftovers(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
+    EXPECT_TRUE(hiddenOrTemporary(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
 }
 
 TEST(Signals, SigtermDuringRenderKeepsCompleteFramesAndExits143) { expectRenderStopsCleanlyOn(SIGTERM); }
@@ -233,7 +224,7 @@ TEST(Leftovers, AKilledRunsTemporariesAreNamedByCheckAndRemovedByTheNextRun) {
     const RunResult render = runGale({"render", "scene.toml", "-o", "frames"}, cwd.str());
     EXPECT_EQ(render.exitCode, 0) << render.describe();
     EXPECT_NE(render.err.find("removed 2 temporary files"), std::string::npos) << render.err;
-    EXPECT_TRUE(leftovers(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
+    EXPECT_TRUE(hiddenOrTemporary(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
 }
 
 TEST(OneRunPerFolder, ASecondRenderIntoABusyFolderExits2NamingTheOwner) {
@@ -255,7 +246,7 @@ TEST(OneRunPerFolder, ASecondRenderIntoABusyFolderExits2NamingTheOwner) {
     // The first run's report and frames only: its scene, all its frames named.
     const nlohmann::json report = nlohmann::json::parse(readFile(cwd / "frames/frame_report.json"));
     EXPECT_EQ(report["frames_requested"], 100000);
-    EXPECT_TRUE(leftovers(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
+    EXPECT_TRUE(hiddenOrTemporary(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
 }
 
 TEST(OneRunPerFolder, ALockLeftByADeadRunIsTakenOverWithANote) {
@@ -267,7 +258,7 @@ TEST(OneRunPerFolder, ALockLeftByADeadRunIsTakenOverWithANote) {
     const RunResult r = runGale({"render", "scene.toml", "-o", "frames"}, cwd.str());
     EXPECT_EQ(r.exitCode, 0) << r.describe();
     EXPECT_NE(r.err.find("taking over frames/.gale.lock from PID " + dead), std::string::npos) << r.err;
-    EXPECT_TRUE(leftovers(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
+    EXPECT_TRUE(hiddenOrTemporary(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
 }
 
 TEST(BoundedInput, CheckOfAnEndlessDeviceStopsAt16MiBWithExit2) {

@@ -8,6 +8,7 @@
 
 #include "base/Numbers.h"
 #include "sim/PoissonSolver.h"
+#include "SimTestUtil.h"
 
 namespace gale::sim {
 namespace {
@@ -19,14 +20,7 @@ constexpr double MIN_SECOND_ORDER = 1.8;
 /// Solves in these tests go well below the discretisation error so it alone is measured.
 constexpr double TIGHT_TOLERANCE = 1e-10;
 
-std::vector<double> randomVector(size_t n, uint32_t seed) {
-    std::vector<double> v(n);
-    for (double& x : v) {
-        seed = seed * 1664525u + 1013904223u;
-        x = double(seed >> 8) / double(1u << 24) - 0.5;
-    }
-    return v;
-}
+using test::randomVector;
 
 // Max error of the solve of -Laplace(u) = f on the unit cube, n^3 cells, for
 //   u = sin(pi x) sin(pi y) sin(pi z)          (all sides Dirichlet u = 0), or

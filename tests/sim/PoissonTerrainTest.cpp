@@ -25,14 +25,7 @@ constexpr double SYMMETRY_TOLERANCE = 1e-10;
 constexpr int MAX_ROUGH_ITERATIONS = 20;
 constexpr double ROUGH_TOLERANCE = 1e-6;
 
-std::vector<double> randomVector(size_t n, uint32_t seed) {
-    std::vector<double> v(n);
-    for (double& x : v) {
-        seed = seed * 1664525u + 1013904223u;
-        x = double(seed >> 8) / double(1u << 24) - 0.5;
-    }
-    return v;
-}
+using test::randomVector;
 
 double dot(const std::vector<double>& a, const std::vector<double>& b) {
     double s = 0.0;

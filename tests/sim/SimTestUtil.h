@@ -2,10 +2,24 @@
 /// \file SimTestUtil.h
 /// Ambient winds and solver settings shared by the steady and unsteady wind tests.
 
+#include <cstdint>
+#include <vector>
+
 #include "sim/AmbientWind.h"
 #include "sim/PoissonSolver.h"
 
 namespace gale::sim::test {
+
+/// n reproducible values in [-0.5, 0.5) from a linear congruential generator (Numerical Recipes'
+/// constants): the same vector on every machine and run.
+inline std::vector<double> randomVector(size_t n, uint32_t seed) {
+    std::vector<double> v(n);
+    for (double& x : v) {
+        seed = seed * 1664525u + 1013904223u;
+        x = double(seed >> 8) / double(1u << 24) - 0.5;
+    }
+    return v;
+}
 
 /// A height-independent wind of speed_mps (m/s) blowing towards direction_deg (degrees
 /// counter-clockwise from +x, as AmbientWind; 0 blows along +x).
