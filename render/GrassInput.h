@@ -30,6 +30,16 @@ struct VertexWind {
     std::vector<glm::vec3> wsDirection;
     /// Animation-step group in [0, GrassWind::groupIntensity.size()).
     std::vector<uint32_t> group;
+    /// Width of the group grid: group g sits at column g % groupColumns, row g / groupColumns.
+    /// 0: the renderer chooses (rows of 1024). Sources whose groups are bins of one or two
+    /// quantities (intensity levels, arrival bands x levels, plan tiles) lay them out so grid
+    /// neighbours are neighbouring bins.
+    int groupColumns = 0;
+    /// Optional, empty or one per vertex: the vertex's continuous position in the group grid, in
+    /// group units (group g's bin centre at (g % groupColumns, g / groupColumns)). With it the
+    /// renderer blends the tip tilts of the four nearest groups bilinearly, so no stripes show
+    /// where groups change; without it each vertex takes its group's tilt alone.
+    std::vector<glm::vec2> groupCoord;
 };
 
 /// The wind as the shell renderer consumes it (paper section 3, Table 1): a tangent-plane wind
@@ -44,7 +54,8 @@ struct GrassWind {
     std::shared_ptr<const VertexWind> vertex;
     /// Changes whenever `vertex` changes, so the renderer re-uploads it only then.
     uint64_t revision = 0;
-    /// Per group: intensity I this frame (unitless; |I| = 1 lays the tip flat, more over-bends).
+    /// Per group: intensity I this frame (unitless). The tip tilts by (pi/2) I up to |I| = 1/2
+    /// and saturates smoothly above, short of the ground (render/Bend.h, tipTilt_rad).
     std::vector<float> groupIntensity;
 
     /// The per-vertex arrays; empty when `vertex` is null.

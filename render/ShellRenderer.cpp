@@ -1,7 +1,8 @@
 /// \file ShellRenderer.cpp
-/// Shell grass (Bakay 2003, chapter 3): the terrain mesh drawn N + 1 times, instanced, with the
-/// bend table per group built on the CPU once per frame (thesis Table 3.2) and the displacement,
-/// the Kajiya-Kay / Banks lighting and the alpha test in shaders/shell.vert and shell.frag.
+/// Shell grass (Bakay 2003, chapter 3): the terrain mesh drawn N + 1 times, instanced, with one
+/// tip tilt per group computed on the CPU once per frame and the bend read from a table of bends
+/// over tilts (render/BendTables.h, after thesis Table 3.2); the displacement, the Kajiya-Kay /
+/// Banks lighting and the alpha test are in shaders/shell.vert and shell.frag.
 
 #include "render/ShellRenderer.h"
 
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "render/Bend.h"
+#include "render/BendTables.h"
 #include "render/CameraMath.h"
 #include "render/GlInfo.h"
 #include "render/GlUtil.h"
@@ -39,10 +41,12 @@ constexpr GLuint kNormalLoc = 1;
 constexpr GLuint kUvLoc = 2;
 constexpr GLuint kWindDirLoc = 3;
 constexpr GLuint kGroupLoc = 4;
+constexpr GLuint kGroupCoordLoc = 5;
 
 // Texture units.
 constexpr GLint kGrassUnit = 0;
 constexpr GLint kBendUnit = 1;
+constexpr GLint kGroupUnit = 2;
 
 /// Static per-vertex data, interleaved.
 struct TerrainVertex {
@@ -55,6 +59,7 @@ struct TerrainVertex {
 struct WindVertex {
     float direction[3];
     uint32_t group;
+    float groupCoord[2];  ///< position in the group grid (VertexWind::groupCoord), or unused
 };
 
 GLint uniform(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
@@ -71,11 +76,12 @@ struct ShellRenderer::Impl {
     detail::Buffer windVbo;
     detail::Buffer indexBuffer;
     detail::Texture grassTexture;
-    detail::Texture bendTexture;
+    std::unique_ptr<detail::BendTables> tables;
 
     // Uniform locations of shell.vert / shell.frag.
     struct {
-        GLint clipFromWorld, eyePos, shells, topShell, bend, grass;
+        GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns,
+            blendGroups, maxTilt;
         GLint lightCount, lightPos, lightColor, lightAtten;
         GLint ambient, specularPower, specularStrength, shadowMin;
     } shellLoc{};
@@ -102,19 +108,14 @@ struct ShellRenderer::Impl {
     bool windWasNone = false;
     uint64_t windRevision = 0;
     uint32_t windMaxGroup = 0;
-
-    // Bend table: (N + 1) x groups texels of (n_i, w_i), metres.
-    int bendWidth = 0;
-    int bendHeight = 0;
-    std::vector<ShellOffset> bendRow;  ///< one group's offsets, double (Bend.h)
-    std::vector<float> bendTable;      ///< all groups, narrowed to float pairs for the upload
+    int windColumns = 0;       ///< VertexWind::groupColumns of the uploaded wind
+    bool windBlends = false;   ///< the uploaded wind carries groupCoord
 
     explicit Impl(GlContext& ctx) : context(ctx) {}
 
     void init();
     void uploadLighting();
     void uploadWind(const GrassWind& wind);
-    void buildBendTable(const GrassWind& wind);
     void requireReady(const char* what) const;
     void beginFrame();
 };
@@ -137,6 +138,10 @@ void ShellRenderer::Impl::init() {
     shellLoc.topShell = uniform(sp, "uTopShell");
     shellLoc.bend = uniform(sp, "uBend");
     shellLoc.grass = uniform(sp, "uGrass");
+    shellLoc.groups = uniform(sp, "uGroupTilt");
+    shellLoc.groupColumns = uniform(sp, "uGroupColumns");
+    shellLoc.blendGroups = uniform(sp, "uBlendGroups");
+    shellLoc.maxTilt = uniform(sp, "uMaxTilt");
     shellLoc.lightCount = uniform(sp, "uLightCount");
     shellLoc.lightPos = uniform(sp, "uLightPos");
     shellLoc.lightColor = uniform(sp, "uLightColor");
@@ -167,6 +172,8 @@ void ShellRenderer::Impl::init() {
     glUseProgram(sp);
     glUniform1i(shellLoc.grass, kGrassUnit);
     glUniform1i(shellLoc.bend, kBendUnit);
+    glUniform1i(shellLoc.groups, kGroupUnit);
+    glUniform1f(shellLoc.maxTilt, static_cast<float>(kMaxTipTilt_rad));
     glUseProgram(fp);
     glUniform1i(fillLoc.grass, kGrassUnit);
     glUseProgram(0);
@@ -182,8 +189,7 @@ void ShellRenderer::Impl::init() {
     indexBuffer = detail::Buffer(name);
     glGenTextures(1, &name);
     grassTexture = detail::Texture(name);
-    glGenTextures(1, &name);
-    bendTexture = detail::Texture(name);
+    tables = std::make_unique<detail::BendTables>();
 
     glBindVertexArray(vao.get());
     glBindBuffer(GL_ARRAY_BUFFER, terrainVbo.get());
@@ -205,16 +211,12 @@ void ShellRenderer::Impl::init() {
     glEnableVertexAttribArray(kGroupLoc);
     glVertexAttribIPointer(kGroupLoc, 1, GL_UNSIGNED_INT, windStride,
                            reinterpret_cast<const void*>(offsetof(WindVertex, group)));
+    glEnableVertexAttribArray(kGroupCoordLoc);
+    glVertexAttribPointer(kGroupCoordLoc, 2, GL_FLOAT, GL_FALSE, windStride,
+                          reinterpret_cast<const void*>(offsetof(WindVertex, groupCoord)));
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer.get());
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-
-    // The bend table is read with texelFetch only: no filtering, no MIP levels.
-    glBindTexture(GL_TEXTURE_2D, bendTexture.get());
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-    glBindTexture(GL_TEXTURE_2D, 0);
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     detail::checkFramebufferComplete("ShellRenderer (default framebuffer)");
@@ -272,11 +274,15 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
     const std::vector<uint32_t>& group = wind.group();
     checkSize("wsDirection", direction.size());
     checkSize("group", group.size());
+    static const std::vector<glm::vec2> kNoCoord;
+    const std::vector<glm::vec2>& coord = wind.vertex ? wind.vertex->groupCoord : kNoCoord;
+    const bool blends = !none && !coord.empty();
+    if (blends) checkSize("vertex->groupCoord", coord.size());
 
     const bool needUpload =
         !windUploaded || none != windWasNone || (!none && wind.revision != windRevision);
     if (needUpload) {
-        std::vector<WindVertex> data(n, WindVertex{{0.0f, 0.0f, 0.0f}, 0u});
+        std::vector<WindVertex> data(n, WindVertex{{0.0f, 0.0f, 0.0f}, 0u, {0.0f, 0.0f}});
         uint32_t maxGroup = 0;
         if (!none) {
             for (size_t v = 0; v < n; ++v) {
@@ -285,7 +291,12 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
                     throw std::invalid_argument("GrassWind.wsDirection[" + std::to_string(v) +
                                                 "] is not finite");
                 }
-                data[v] = WindVertex{{d.x, d.y, d.z}, group[v]};
+                const glm::vec2 c = blends ? coord[v] : glm::vec2(0.0f);
+                if (!std::isfinite(c.x) || !std::isfinite(c.y)) {
+                    throw std::invalid_argument("GrassWind.vertex->groupCoord[" +
+                                                std::to_string(v) + "] is not finite");
+                }
+                data[v] = WindVertex{{d.x, d.y, d.z}, group[v], {c.x, c.y}};
                 maxGroup = std::max(maxGroup, group[v]);
             }
         }
@@ -297,54 +308,13 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
         windWasNone = none;
         windRevision = wind.revision;
         windMaxGroup = maxGroup;
+        windColumns = wind.vertex ? wind.vertex->groupColumns : 0;
+        windBlends = blends;
     }
     if (!none && windMaxGroup >= wind.groupIntensity.size()) {
         throw std::invalid_argument("GrassWind.group holds group " + std::to_string(windMaxGroup) +
                                     ", but groupIntensity has only " +
                                     std::to_string(wind.groupIntensity.size()) + " groups");
-    }
-}
-
-void ShellRenderer::Impl::buildBendTable(const GrassWind& wind) {
-    const int shells = grass.shells;
-    const int width = shells + 1;
-    const int groups = std::max<int>(1, static_cast<int>(wind.groupIntensity.size()));
-    if (groups > maxTextureSize) {
-        throw std::invalid_argument("GrassWind.groupIntensity has " + std::to_string(groups) +
-                                    " groups; the bend table holds at most " +
-                                    std::to_string(maxTextureSize) + " (GL_MAX_TEXTURE_SIZE)");
-    }
-    bendTable.resize(static_cast<size_t>(width) * groups * 2u);
-    bendRow.resize(static_cast<size_t>(width));
-    for (int g = 0; g < groups; ++g) {
-        const float intensity =
-            wind.groupIntensity.empty() ? 0.0f : wind.groupIntensity[static_cast<size_t>(g)];
-        if (!std::isfinite(intensity)) {
-            throw std::invalid_argument("GrassWind.groupIntensity[" + std::to_string(g) +
-                                        "] is not finite");
-        }
-        if (shells == 0) {
-            bendRow[0] = ShellOffset{0.0, 0.0};
-        } else {
-            // DESIGN 5.1 / thesis 3.2: once per group per frame, never per vertex.
-            bendBladeInto(shells, grass.height_m, intensity, grass.stiffness, bendRow.data());
-        }
-        float* row = &bendTable[static_cast<size_t>(g) * width * 2u];
-        for (int i = 0; i < width; ++i) {
-            row[2 * i] = static_cast<float>(bendRow[i].n_m);
-            row[2 * i + 1] = static_cast<float>(bendRow[i].w_m);
-        }
-    }
-    glActiveTexture(GL_TEXTURE0 + kBendUnit);
-    glBindTexture(GL_TEXTURE_2D, bendTexture.get());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    if (width != bendWidth || groups != bendHeight) {
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, width, groups, 0, GL_RG, GL_FLOAT,
-                     bendTable.data());
-        bendWidth = width;
-        bendHeight = groups;
-    } else {
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, groups, GL_RG, GL_FLOAT, bendTable.data());
     }
 }
 
@@ -541,7 +511,12 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
     m.context.makeCurrent();
     m.uploadWind(wind);
-    m.buildBendTable(wind);
+    const int groupCount = static_cast<int>(wind.groupIntensity.size());
+    const int columns = m.windColumns > 0 ? m.windColumns
+                        : m.windBlends    ? groupCount
+                                          : detail::kDefaultGroupColumns;
+    m.tables->setBlade(m.grass.shells, m.grass.height_m, m.grass.stiffness);
+    m.tables->setGroups(wind, columns, m.maxTextureSize);
     FrameStats stats;
     stats.cpu_ms = msSince(cpuStart);
 
@@ -551,6 +526,12 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     glUniformMatrix4fv(m.shellLoc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(clipFromWorldM));
     glUniform3fv(m.shellLoc.eyePos, 1, glm::value_ptr(camera.wsPosition_m));
     glUniform1i(m.shellLoc.shells, m.grass.shells);
+    glUniform1i(m.shellLoc.groupColumns, m.tables->columns());
+    glUniform1i(m.shellLoc.blendGroups, m.windBlends && groupCount > 0 ? 1 : 0);
+    glActiveTexture(GL_TEXTURE0 + kBendUnit);
+    glBindTexture(GL_TEXTURE_2D, m.tables->bendTexture());
+    glActiveTexture(GL_TEXTURE0 + kGroupUnit);
+    glBindTexture(GL_TEXTURE_2D, m.tables->groupTexture());
     // The viewer's toggles: without grass the top shell is the ground; without terrain the
     // ground (shell 0) is left out.
     const int top = options.grass ? m.grass.shells : 0;
