@@ -8,9 +8,7 @@
 #include "render/Bend.h"
 
 namespace gale::render::detail {
-namespace {
-
-Texture newTable(GLint filter) {
+Texture newTableTexture(GLint filter) {
     GLuint name = 0;
     glGenTextures(1, &name);
     Texture texture(name);
@@ -24,12 +22,10 @@ Texture newTable(GLint filter) {
     return texture;
 }
 
-}  // namespace
-
 BendTables::BendTables()
     // The bend table is read with texelFetch and interpolated in the shader (full float weights);
     // the group table is sampled with bilinear filtering where vertices blend groups.
-    : mBend(newTable(GL_NEAREST)), mGroups(newTable(GL_LINEAR)) {}
+    : mBend(newTableTexture(GL_NEAREST)), mGroups(newTableTexture(GL_LINEAR)) {}
 
 void BendTables::setBlade(int shells, float height_m, float stiffness) {
     if (shells == mShells && height_m == mHeight_m && stiffness == mStiffness) return;
@@ -83,6 +79,49 @@ void BendTables::setGroups(const GrassWind& wind, int columns, int maxTextureSiz
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, columns, rows, GL_RED, GL_FLOAT, mTilts.data());
     }
     glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+DensityTables::DensityTables() : mMap(newTableTexture(GL_LINEAR)), mCuts(newTableTexture(GL_LINEAR)) {}
+
+void DensityTables::setCuts(const Image& level0) {
+    const std::vector<float> cuts = densityCuts(level0);
+    glBindTexture(GL_TEXTURE_2D, mCuts.get());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, kDensityCuts, 1, 0, GL_RED, GL_FLOAT, cuts.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void DensityTables::setMap(const DensityMap& map, int maxTextureSize) {
+    if (map.width == 0) {
+        mActive = false;
+        return;
+    }
+    const size_t texels = static_cast<size_t>(std::max(map.width, 0)) * std::max(map.height, 0);
+    if (map.width < 1 || map.height < 1 || map.width > maxTextureSize ||
+        map.height > maxTextureSize || map.density.size() != texels) {
+        throw std::invalid_argument("DensityMap is " + std::to_string(map.width) + " x " +
+                                    std::to_string(map.height) + " with " +
+                                    std::to_string(map.density.size()) +
+                                    " values; expected width * height values, each side 1.." +
+                                    std::to_string(maxTextureSize));
+    }
+    for (size_t t = 0; t < texels; ++t)
+        if (!std::isfinite(map.density[t]))
+            throw std::invalid_argument("DensityMap.density[" + std::to_string(t) +
+                                        "] is not finite");
+    const bool finite = std::isfinite(map.wsSize_m.x) && std::isfinite(map.wsSize_m.y) &&
+                        std::isfinite(map.wsMin_m.x) && std::isfinite(map.wsMin_m.y);
+    if (!finite || !(map.wsSize_m.x > 0.0f && map.wsSize_m.y > 0.0f))
+        throw std::invalid_argument("DensityMap.wsSize_m must be finite and > 0, wsMin_m finite");
+    glBindTexture(GL_TEXTURE_2D, mMap.get());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, map.width, map.height, 0, GL_RED, GL_FLOAT,
+                 map.density.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+    checkGlError("ShellRenderer::setDensityMap");
+    mActive = true;
+    mMin_m = map.wsMin_m;
+    mSize_m = map.wsSize_m;
 }
 
 }  // namespace gale::render::detail

@@ -98,6 +98,10 @@ struct GrassParams {
     int shells = 16;         ///< N: shells above the ground (N + 1 drawn with the ground), 1..256
     float stiffness = 1.0f;  ///< gamma in theta_j = (pi/2) I (j/N)^gamma; 1 is the paper's
     float tile_m = 2.0f;     ///< metres one repeat of the grass texture spans
+    /// Lay the texture aperiodically: each cell of a jittered grid (one texture repeat wide) shows
+    /// it turned, mirrored and shifted at random, so no repeat shows (docs/render.md). false: the
+    /// plain repeat.
+    bool aperiodic = true;
 };
 
 /// An RGBA8 image, rows top-down.

@@ -14,6 +14,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/Bend.h"
@@ -21,6 +22,7 @@
 #include "render/CameraMath.h"
 #include "render/GlInfo.h"
 #include "render/GlUtil.h"
+#include "render/TerrainGrid.h"
 
 namespace gale::render {
 namespace {
@@ -47,6 +49,8 @@ constexpr GLuint kGroupCoordLoc = 5;
 constexpr GLint kGrassUnit = 0;
 constexpr GLint kBendUnit = 1;
 constexpr GLint kGroupUnit = 2;
+constexpr GLint kDensityUnit = 3;
+constexpr GLint kDensityCutUnit = 4;
 
 /// Static per-vertex data, interleaved.
 struct TerrainVertex {
@@ -77,11 +81,13 @@ struct ShellRenderer::Impl {
     detail::Buffer indexBuffer;
     detail::Texture grassTexture;
     std::unique_ptr<detail::BendTables> tables;
+    std::unique_ptr<detail::DensityTables> density;
 
     // Uniform locations of shell.vert / shell.frag.
     struct {
         GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns,
-            blendGroups, maxTilt;
+            blendGroups, maxTilt, aperiodic, hasDensity, density, densityCut, densityMin,
+            densitySize;
         GLint lightCount, lightPos, lightColor, lightAtten;
         GLint ambient, specularPower, specularStrength, shadowMin;
     } shellLoc{};
@@ -132,24 +138,22 @@ void ShellRenderer::Impl::init() {
     fillProgram = detail::Program(detail::linkProgramFiles("fill.vert", "fill.frag"));
 
     const GLuint sp = shellProgram.get();
-    shellLoc.clipFromWorld = uniform(sp, "uClipFromWorld");
-    shellLoc.eyePos = uniform(sp, "uEyePos");
-    shellLoc.shells = uniform(sp, "uShells");
-    shellLoc.topShell = uniform(sp, "uTopShell");
-    shellLoc.bend = uniform(sp, "uBend");
-    shellLoc.grass = uniform(sp, "uGrass");
-    shellLoc.groups = uniform(sp, "uGroupTilt");
-    shellLoc.groupColumns = uniform(sp, "uGroupColumns");
-    shellLoc.blendGroups = uniform(sp, "uBlendGroups");
-    shellLoc.maxTilt = uniform(sp, "uMaxTilt");
-    shellLoc.lightCount = uniform(sp, "uLightCount");
-    shellLoc.lightPos = uniform(sp, "uLightPos");
-    shellLoc.lightColor = uniform(sp, "uLightColor");
-    shellLoc.lightAtten = uniform(sp, "uLightAtten");
-    shellLoc.ambient = uniform(sp, "uAmbient");
-    shellLoc.specularPower = uniform(sp, "uSpecularPower");
-    shellLoc.specularStrength = uniform(sp, "uSpecularStrength");
-    shellLoc.shadowMin = uniform(sp, "uShadowMin");
+    // Uniform locations of shell.vert / shell.frag (-1 for a name the compiler dropped).
+    const std::pair<GLint*, const char*> shellNames[] = {
+        {&shellLoc.clipFromWorld, "uClipFromWorld"}, {&shellLoc.eyePos, "uEyePos"},
+        {&shellLoc.shells, "uShells"}, {&shellLoc.topShell, "uTopShell"},
+        {&shellLoc.bend, "uBend"}, {&shellLoc.grass, "uGrass"}, {&shellLoc.groups, "uGroupTilt"},
+        {&shellLoc.groupColumns, "uGroupColumns"}, {&shellLoc.blendGroups, "uBlendGroups"},
+        {&shellLoc.maxTilt, "uMaxTilt"}, {&shellLoc.aperiodic, "uAperiodic"},
+        {&shellLoc.hasDensity, "uHasDensity"}, {&shellLoc.density, "uDensity"},
+        {&shellLoc.densityCut, "uDensityCut"}, {&shellLoc.densityMin, "uDensityMin"},
+        {&shellLoc.densitySize, "uDensitySize"}, {&shellLoc.lightCount, "uLightCount"},
+        {&shellLoc.lightPos, "uLightPos"}, {&shellLoc.lightColor, "uLightColor"},
+        {&shellLoc.lightAtten, "uLightAtten"}, {&shellLoc.ambient, "uAmbient"},
+        {&shellLoc.specularPower, "uSpecularPower"},
+        {&shellLoc.specularStrength, "uSpecularStrength"}, {&shellLoc.shadowMin, "uShadowMin"}
+    };
+    for (const auto& [loc, name] : shellNames) *loc = uniform(sp, name);
     // The shader's light arrays must be exactly kMaxLights long.
     GLint arraySize = 0;
     const GLuint index = glGetProgramResourceIndex(sp, GL_UNIFORM, "uLightPos[0]");
@@ -173,6 +177,8 @@ void ShellRenderer::Impl::init() {
     glUniform1i(shellLoc.grass, kGrassUnit);
     glUniform1i(shellLoc.bend, kBendUnit);
     glUniform1i(shellLoc.groups, kGroupUnit);
+    glUniform1i(shellLoc.density, kDensityUnit);
+    glUniform1i(shellLoc.densityCut, kDensityCutUnit);
     glUniform1f(shellLoc.maxTilt, static_cast<float>(kMaxTipTilt_rad));
     glUseProgram(fp);
     glUniform1i(fillLoc.grass, kGrassUnit);
@@ -190,6 +196,7 @@ void ShellRenderer::Impl::init() {
     glGenTextures(1, &name);
     grassTexture = detail::Texture(name);
     tables = std::make_unique<detail::BendTables>();
+    density = std::make_unique<detail::DensityTables>();
 
     glBindVertexArray(vao.get());
     glBindBuffer(GL_ARRAY_BUFFER, terrainVbo.get());
@@ -369,19 +376,8 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
         }
         vertices[v] = TerrainVertex{{p.x, p.y, p.z}, {nn.x, nn.y, nn.z}, {uv.x, uv.y}};
     }
-    // Two triangles per quad, i fastest.
-    std::vector<uint32_t> indices;
-    indices.reserve(static_cast<size_t>(mesh.nx - 1) * (mesh.ny - 1) * 6u);
-    for (int j = 0; j + 1 < mesh.ny; ++j) {
-        for (int i = 0; i + 1 < mesh.nx; ++i) {
-            const auto a = static_cast<uint32_t>(j * mesh.nx + i);
-            const auto b = a + 1u;
-            const auto c = a + static_cast<uint32_t>(mesh.nx);
-            const auto d = c + 1u;
-            indices.insert(indices.end(), {a, b, d, a, d, c});
-        }
-    }
-
+    const std::vector<uint32_t> indices =
+        detail::gridTriangleIndices(mesh.nx, 0, mesh.nx - 1, 0, mesh.ny - 1);
     Impl& m = *mImpl;
     m.context.makeCurrent();
     glBindVertexArray(0);
@@ -449,9 +445,16 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    m.density->setCuts(texture.levels[0]);
     detail::checkGlError("ShellRenderer::setGrass");
     m.grass = params;
     m.haveGrass = true;
+}
+
+void ShellRenderer::setDensityMap(const DensityMap& map) {
+    Impl& m = *mImpl;
+    m.context.makeCurrent();
+    m.density->setMap(map, m.maxTextureSize);
 }
 
 void ShellRenderer::setLighting(const Lighting& lighting) {
@@ -532,6 +535,14 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     glBindTexture(GL_TEXTURE_2D, m.tables->bendTexture());
     glActiveTexture(GL_TEXTURE0 + kGroupUnit);
     glBindTexture(GL_TEXTURE_2D, m.tables->groupTexture());
+    glUniform1i(m.shellLoc.aperiodic, m.grass.aperiodic ? 1 : 0);
+    glUniform1i(m.shellLoc.hasDensity, m.density->active() ? 1 : 0);
+    glUniform2fv(m.shellLoc.densityMin, 1, glm::value_ptr(m.density->wsMin_m()));
+    glUniform2fv(m.shellLoc.densitySize, 1, glm::value_ptr(m.density->wsSize_m()));
+    glActiveTexture(GL_TEXTURE0 + kDensityUnit);
+    glBindTexture(GL_TEXTURE_2D, m.density->mapTexture());
+    glActiveTexture(GL_TEXTURE0 + kDensityCutUnit);
+    glBindTexture(GL_TEXTURE_2D, m.density->cutTexture());
     // The viewer's toggles: without grass the top shell is the ground; without terrain the
     // ground (shell 0) is left out.
     const int top = options.grass ? m.grass.shells : 0;

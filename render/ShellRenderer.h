@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "render/DensityMap.h"
 #include "render/GlContext.h"
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"
@@ -41,6 +42,10 @@ public:
     /// (0 draws the ground only, the paper's one-shell row); stiffness > 0. Texture levels must be
     /// square, halving from a power of two. Throws std::invalid_argument otherwise.
     void setGrass(const GrassParams& params, const GrassTexture& texture);
+    /// Thins the grass by a density map (render/DensityMap.h); a map of width 0 removes it
+    /// (density 1 everywhere). Requires density.size() == width * height, values finite, width
+    /// and height within GL_MAX_TEXTURE_SIZE; throws std::invalid_argument naming the field.
+    void setDensityMap(const DensityMap& map);
     /// At most kMaxLights point lights (RenderLimits.h); attenuation coefficients >= 0 with
     /// k_c + k_l + k_q > 0; specularPower >= 0; selfShadowMin in [0, 1]. Throws
     /// std::invalid_argument otherwise.

@@ -40,7 +40,12 @@ uniform float uSpecularPower;
 uniform float uSpecularStrength;
 uniform float uShadowMin;  // Banks S_min
 
+// The density map's plan rectangle (render/DensityMap.h), metres.
+uniform vec2 uDensityMin;
+uniform vec2 uDensitySize;
+
 out vec2 vUv;
+out vec2 vDensityUv;       // where the blade's root is on the density map (row 0 = north)
 out vec3 vLight;           // light reaching the vertex, multiplies the texture colour
 flat out float vThreshold; // alpha test: keep texels with alpha >= vThreshold
 
@@ -70,6 +75,8 @@ void main() {
     vec3 pos = shellPosition(i, row);
     gl_Position = uClipFromWorld * vec4(pos, 1.0);
     vUv = aUv;
+    vec2 plan = (aPosition.xy - uDensityMin) / uDensitySize;
+    vDensityUv = vec2(plan.x, 1.0 - plan.y);
 
     // Thesis 3.1: shell i keeps texels with alpha >= i/N; the ground keeps every texel. Half an
     // 8-bit step of slack so a blade of alpha 255 i/N passes its shell despite rounding; never
