@@ -102,6 +102,10 @@ struct GrassParams {
     /// it turned, mirrored and shifted at random, so no repeat shows (docs/render.md). false: the
     /// plain repeat.
     bool aperiodic = true;
+    /// Level of detail (render/TerrainChunks.h): shells are dropped, thinning out first, where
+    /// the shells that remain are at most this many pixels apart on screen; 0 draws every shell
+    /// everywhere. >= 0.
+    float lodPixels = 2.0f;
 };
 
 /// An RGBA8 image, rows top-down.

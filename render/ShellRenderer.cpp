@@ -6,125 +6,10 @@
 
 #include "render/ShellRenderer.h"
 
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <glm/gtc/type_ptr.hpp>
-#include <stdexcept>
-#include <string>
-#include <utility>
-#include <vector>
-
-#include "render/Bend.h"
-#include "render/BendTables.h"
-#include "render/CameraMath.h"
-#include "render/GlInfo.h"
-#include "render/GlUtil.h"
-#include "render/TerrainGrid.h"
+#include "render/ShellRendererImpl.h"
 
 namespace gale::render {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-bool finite3(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-// Vertex attribute locations shared with shaders/shell.vert and fill.vert.
-constexpr GLuint kPositionLoc = 0;
-constexpr GLuint kNormalLoc = 1;
-constexpr GLuint kUvLoc = 2;
-constexpr GLuint kWindDirLoc = 3;
-constexpr GLuint kGroupLoc = 4;
-constexpr GLuint kGroupCoordLoc = 5;
-
-// Texture units.
-constexpr GLint kGrassUnit = 0;
-constexpr GLint kBendUnit = 1;
-constexpr GLint kGroupUnit = 2;
-constexpr GLint kDensityUnit = 3;
-constexpr GLint kDensityCutUnit = 4;
-
-/// Static per-vertex data, interleaved.
-struct TerrainVertex {
-    float position[3];
-    float normal[3];
-    float uv[2];
-};
-
-/// Per-vertex wind data, re-uploaded only when GrassWind::revision changes.
-struct WindVertex {
-    float direction[3];
-    uint32_t group;
-    float groupCoord[2];  ///< position in the group grid (VertexWind::groupCoord), or unused
-};
-
-GLint uniform(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
-
-}  // namespace
-
-struct ShellRenderer::Impl {
-    GlContext& context;
-
-    detail::Program shellProgram;
-    detail::Program fillProgram;
-    detail::VertexArray vao;
-    detail::Buffer terrainVbo;
-    detail::Buffer windVbo;
-    detail::Buffer indexBuffer;
-    detail::Texture grassTexture;
-    std::unique_ptr<detail::BendTables> tables;
-    std::unique_ptr<detail::DensityTables> density;
-
-    // Uniform locations of shell.vert / shell.frag.
-    struct {
-        GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns,
-            blendGroups, maxTilt, aperiodic, hasDensity, density, densityCut, densityMin,
-            densitySize;
-        GLint lightCount, lightPos, lightColor, lightAtten;
-        GLint ambient, specularPower, specularStrength, shadowMin;
-    } shellLoc{};
-    struct {
-        GLint clipFromWorld, shells, shellSpacing, grass;
-    } fillLoc{};
-
-    int maxTextureSize = 0;
-
-    // Terrain.
-    bool haveTerrain = false;
-    size_t vertexCount = 0;
-    GLsizei indexCount = 0;
-
-    // Grass.
-    bool haveGrass = false;
-    GrassParams grass;
-
-    // Lighting (uploaded to the shell program on setLighting).
-    Lighting lighting;
-
-    // Wind state on the GPU.
-    bool windUploaded = false;
-    bool windWasNone = false;
-    uint64_t windRevision = 0;
-    uint32_t windMaxGroup = 0;
-    int windColumns = 0;       ///< VertexWind::groupColumns of the uploaded wind
-    bool windBlends = false;   ///< the uploaded wind carries groupCoord
-
-    explicit Impl(GlContext& ctx) : context(ctx) {}
-
-    void init();
-    void uploadLighting();
-    void uploadWind(const GrassWind& wind);
-    void requireReady(const char* what) const;
-    void beginFrame();
-};
+using namespace shell_detail;
 
 void ShellRenderer::Impl::init() {
     context.makeCurrent();
@@ -141,7 +26,8 @@ void ShellRenderer::Impl::init() {
     // Uniform locations of shell.vert / shell.frag (-1 for a name the compiler dropped).
     const std::pair<GLint*, const char*> shellNames[] = {
         {&shellLoc.clipFromWorld, "uClipFromWorld"}, {&shellLoc.eyePos, "uEyePos"},
-        {&shellLoc.shells, "uShells"}, {&shellLoc.topShell, "uTopShell"},
+        {&shellLoc.shells, "uShells"}, {&shellLoc.topShell, "uTopShell"}, {&shellLoc.shellStride, "uShellStride"},
+        {&shellLoc.lodD1, "uLodD1"},
         {&shellLoc.bend, "uBend"}, {&shellLoc.grass, "uGrass"}, {&shellLoc.groups, "uGroupTilt"},
         {&shellLoc.groupColumns, "uGroupColumns"}, {&shellLoc.blendGroups, "uBlendGroups"},
         {&shellLoc.maxTilt, "uMaxTilt"}, {&shellLoc.aperiodic, "uAperiodic"},
@@ -325,22 +211,6 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
     }
 }
 
-void ShellRenderer::Impl::beginFrame() {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, context.width(), context.height());
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
-    // Shells are seen from below on slopes and at grazing angles: no culling.
-    glDisable(GL_CULL_FACE);
-    glClearColor(kSkyColor[0], kSkyColor[1], kSkyColor[2], 1.0f);
-    glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glActiveTexture(GL_TEXTURE0 + kGrassUnit);
-    glBindTexture(GL_TEXTURE_2D, grassTexture.get());
-}
-
 ShellRenderer::ShellRenderer(GlContext& context) : mImpl(std::make_unique<Impl>(context)) {
     mImpl->init();
 }
@@ -376,8 +246,9 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
         }
         vertices[v] = TerrainVertex{{p.x, p.y, p.z}, {nn.x, nn.y, nn.z}, {uv.x, uv.y}};
     }
-    const std::vector<uint32_t> indices =
-        detail::gridTriangleIndices(mesh.nx, 0, mesh.nx - 1, 0, mesh.ny - 1);
+    std::vector<uint32_t> indices;
+    std::vector<detail::TerrainChunk> chunks =
+        detail::buildChunks(mesh.nx, mesh.ny, mesh.wsPosition_m, indices);
     Impl& m = *mImpl;
     m.context.makeCurrent();
     glBindVertexArray(0);
@@ -393,6 +264,7 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     detail::checkGlError("ShellRenderer::setTerrain");
     m.vertexCount = n;
     m.indexCount = static_cast<GLsizei>(indices.size());
+    m.chunks = std::move(chunks);
     m.haveTerrain = true;
     m.windUploaded = false;  // the per-vertex wind arrays must match the new vertex count
 }
@@ -406,6 +278,10 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
         throw std::invalid_argument("GrassParams.shells must be in 0.." +
                                     std::to_string(kMaxShells) + ", got " +
                                     std::to_string(params.shells));
+    }
+    if (!(params.lodPixels >= 0.0f) || !std::isfinite(params.lodPixels)) {
+        throw std::invalid_argument("GrassParams.lodPixels must be >= 0, got " +
+                                    std::to_string(params.lodPixels));
     }
     if (!(params.stiffness > 0.0f) || !std::isfinite(params.stiffness)) {
         throw std::invalid_argument("GrassParams.stiffness must be > 0, got " +
@@ -488,10 +364,6 @@ void ShellRenderer::setLighting(const Lighting& lighting) {
     mImpl->uploadLighting();
 }
 
-FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind) {
-    return draw(camera, wind, DrawOptions{});
-}
-
 void ShellRenderer::setShellCount(int shells) {
     Impl& m = *mImpl;
     if (!m.haveGrass) throw std::logic_error("ShellRenderer::setShellCount before setGrass");
@@ -503,93 +375,5 @@ void ShellRenderer::setShellCount(int shells) {
 }
 
 int ShellRenderer::shellCount() const { return mImpl->grass.shells; }
-
-FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
-                               const DrawOptions& options) {
-    Impl& m = *mImpl;
-    m.requireReady("draw");
-    const auto cpuStart = Clock::now();
-    const float aspect =
-        static_cast<float>(m.context.width()) / static_cast<float>(m.context.height());
-    const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
-    m.context.makeCurrent();
-    m.uploadWind(wind);
-    const int groupCount = static_cast<int>(wind.groupIntensity.size());
-    const int columns = m.windColumns > 0 ? m.windColumns
-                        : m.windBlends    ? groupCount
-                                          : detail::kDefaultGroupColumns;
-    m.tables->setBlade(m.grass.shells, m.grass.height_m, m.grass.stiffness);
-    m.tables->setGroups(wind, columns, m.maxTextureSize);
-    FrameStats stats;
-    stats.cpu_ms = msSince(cpuStart);
-
-    const auto gpuStart = Clock::now();
-    m.beginFrame();
-    glUseProgram(m.shellProgram.get());
-    glUniformMatrix4fv(m.shellLoc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(clipFromWorldM));
-    glUniform3fv(m.shellLoc.eyePos, 1, glm::value_ptr(camera.wsPosition_m));
-    glUniform1i(m.shellLoc.shells, m.grass.shells);
-    glUniform1i(m.shellLoc.groupColumns, m.tables->columns());
-    glUniform1i(m.shellLoc.blendGroups, m.windBlends && groupCount > 0 ? 1 : 0);
-    glActiveTexture(GL_TEXTURE0 + kBendUnit);
-    glBindTexture(GL_TEXTURE_2D, m.tables->bendTexture());
-    glActiveTexture(GL_TEXTURE0 + kGroupUnit);
-    glBindTexture(GL_TEXTURE_2D, m.tables->groupTexture());
-    glUniform1i(m.shellLoc.aperiodic, m.grass.aperiodic ? 1 : 0);
-    glUniform1i(m.shellLoc.hasDensity, m.density->active() ? 1 : 0);
-    glUniform2fv(m.shellLoc.densityMin, 1, glm::value_ptr(m.density->wsMin_m()));
-    glUniform2fv(m.shellLoc.densitySize, 1, glm::value_ptr(m.density->wsSize_m()));
-    glActiveTexture(GL_TEXTURE0 + kDensityUnit);
-    glBindTexture(GL_TEXTURE_2D, m.density->mapTexture());
-    glActiveTexture(GL_TEXTURE0 + kDensityCutUnit);
-    glBindTexture(GL_TEXTURE_2D, m.density->cutTexture());
-    // The viewer's toggles: without grass the top shell is the ground; without terrain the
-    // ground (shell 0) is left out.
-    const int top = options.grass ? m.grass.shells : 0;
-    const int bottom = options.terrain ? 0 : 1;
-    glUniform1i(m.shellLoc.topShell, top);
-    glBindVertexArray(m.vao.get());
-    // Instance k is shell top - k: top shell first, ground last. The thesis (3.1) draws bottom to
-    // top because its shells were blended; ours are alpha-tested and opaque with the depth test on,
-    // so the image does not depend on the order, and top first lets the early depth test discard
-    // the lower shells' fragments hidden under blades (measured +5-18 % fill rate on llvmpipe).
-    if (top >= bottom)
-        glDrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
-                                top - bottom + 1);
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glFinish();
-    stats.gpu_ms = msSince(gpuStart);
-    detail::checkGlError("ShellRenderer::draw");
-    return stats;
-}
-
-FrameStats ShellRenderer::drawFillBaseline(const Camera& camera) {
-    Impl& m = *mImpl;
-    m.requireReady("drawFillBaseline");
-    const float aspect =
-        static_cast<float>(m.context.width()) / static_cast<float>(m.context.height());
-    const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
-    m.context.makeCurrent();
-    // fill.vert reads no wind, but the VAO's wind arrays must still be backed by a full buffer.
-    if (!m.windUploaded) m.uploadWind(GrassWind{});
-    FrameStats stats;
-    const auto gpuStart = Clock::now();
-    m.beginFrame();
-    glUseProgram(m.fillProgram.get());
-    glUniformMatrix4fv(m.fillLoc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(clipFromWorldM));
-    glUniform1i(m.fillLoc.shells, m.grass.shells);
-    glUniform1f(m.fillLoc.shellSpacing,
-                m.grass.shells > 0 ? m.grass.height_m / static_cast<float>(m.grass.shells) : 0.0f);
-    glBindVertexArray(m.vao.get());
-    glDrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
-                            m.grass.shells + 1);
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glFinish();
-    stats.gpu_ms = msSince(gpuStart);
-    detail::checkGlError("ShellRenderer::drawFillBaseline");
-    return stats;
-}
 
 }  // namespace gale::render

@@ -15,6 +15,7 @@ uniform sampler2D uDensityCut;  // 256 x 1: texel k is the alpha cut for density
 
 in vec2 vUv;
 in vec2 vDensityUv;
+in float vFade;
 in vec3 vLight;
 flat in float vThreshold;
 
@@ -68,10 +69,12 @@ vec4 aperiodicTexel(vec2 uv) {
 void main() {
     vec4 texel = (uAperiodic != 0) ? aperiodicTexel(vUv) : texture(uGrass, vUv);
     float threshold = vThreshold;
-    if (uHasDensity != 0 && threshold > 0.0) {
-        // The cut that keeps the map's fraction of blade area: blades shorter than it vanish
-        // whole, the others keep their full height.
-        float density = clamp(texture(uDensity, vDensityUv).r, 0.0, 1.0);
+    // The map's density times the level of detail's fade (render/TerrainChunks.h).
+    float density = vFade;
+    if (uHasDensity != 0) density *= clamp(texture(uDensity, vDensityUv).r, 0.0, 1.0);
+    if (density < 1.0 && threshold > 0.0) {
+        // The cut that keeps this share of blade area: blades shorter than it vanish whole, the
+        // others keep their full height.
         float cut = texture(uDensityCut, vec2((density * 255.0 + 0.5) / 256.0, 0.5)).r;
         threshold = max(threshold, cut);
     }

@@ -20,6 +20,10 @@ uniform mat4 uClipFromWorld;
 uniform vec3 uEyePos;          // camera position
 uniform int uShells;           // N
 uniform int uTopShell;         // shell of instance 0: N, or 0 when the grass is hidden (viewer)
+uniform int uShellStride;      // instance k draws shell uTopShell - k uShellStride (LOD)
+// Level of detail (render/TerrainChunks.h): shell i thins out between 0.7 D(i) and D(i), D(i) =
+// uLodD1 2^(trailing zero bits of i), metres from the eye; 0 = no level of detail.
+uniform float uLodD1;
 // Bends over tip tilts (render/BendTables.h): texel (i, l) holds (n_i, w_i) in metres for shell i
 // of a blade whose tip tilts by -uMaxTilt + 2 uMaxTilt l / (L - 1) (Bakay 2003, 3.2).
 uniform sampler2D uBend;
@@ -46,6 +50,7 @@ uniform vec2 uDensitySize;
 
 out vec2 vUv;
 out vec2 vDensityUv;       // where the blade's root is on the density map (row 0 = north)
+out float vFade;           // share of this shell's blades the level of detail keeps, [0, 1]
 out vec3 vLight;           // light reaching the vertex, multiplies the texture colour
 flat out float vThreshold; // alpha test: keep texels with alpha >= vThreshold
 
@@ -69,7 +74,7 @@ vec3 shellPosition(int i, float row) {
 }
 
 void main() {
-    int i = uTopShell - gl_InstanceID;
+    int i = uTopShell - gl_InstanceID * uShellStride;
     float last = float(textureSize(uBend, 0).y - 1);
     float row = clamp((groupTilt() / uMaxTilt * 0.5 + 0.5) * last, 0.0, last);
     vec3 pos = shellPosition(i, row);
@@ -77,6 +82,11 @@ void main() {
     vUv = aUv;
     vec2 plan = (aPosition.xy - uDensityMin) / uDensitySize;
     vDensityUv = vec2(plan.x, 1.0 - plan.y);
+    vFade = 1.0;
+    if (uLodD1 > 0.0 && i > 0) {
+        float drop = uLodD1 * float(1 << findLSB(i));
+        vFade = 1.0 - smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
+    }
 
     // Thesis 3.1: shell i keeps texels with alpha >= i/N; the ground keeps every texel. Half an
     // 8-bit step of slack so a blade of alpha 255 i/N passes its shell despite rounding; never
