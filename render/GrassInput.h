@@ -92,7 +92,7 @@ struct Camera {
     float far_m = 2000.0f;
 };
 
-/// Shell grass parameters (DESIGN 5.1, 6).
+/// Shell grass parameters (Bakay 2003, chapter 3; docs/render.md).
 struct GrassParams {
     float height_m = 0.5f;   ///< full blade height
     int shells = 16;         ///< N: shells above the ground (N + 1 drawn with the ground), 1..256

@@ -73,8 +73,10 @@ public:
 
     /// Benchmark baseline: the same terrain, shell count and texture with a minimal shader
     /// (shells extruded straight along the normal, texture fetch and alpha test, no bend, no
-    /// lighting). Same preconditions as draw; ends with glFinish.
-    FrameStats drawFillBaseline(const Camera& camera);
+    /// lighting). Same preconditions as draw; ends with glFinish. nearestSampling: the texture read
+    /// with GL_NEAREST_MIPMAP_NEAREST instead of the grass texture's trilinear filtering (the
+    /// floor of a fill on a software rasteriser, where trilinear filtering dominates the cost).
+    FrameStats drawFillBaseline(const Camera& camera, bool nearestSampling = false);
 
     /// Sky (clear) colour, linear RGB in [0, 1].
     static constexpr float kSkyColor[3] = {0.60f, 0.75f, 0.92f};

@@ -117,7 +117,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     return stats;
 }
 
-FrameStats ShellRenderer::drawFillBaseline(const Camera& camera) {
+FrameStats ShellRenderer::drawFillBaseline(const Camera& camera, bool nearestSampling) {
     Impl& m = *mImpl;
     m.requireReady("drawFillBaseline");
     const float aspect =
@@ -134,10 +134,24 @@ FrameStats ShellRenderer::drawFillBaseline(const Camera& camera) {
     glUniform1i(m.fillLoc.shells, m.grass.shells);
     glUniform1f(m.fillLoc.shellSpacing,
                 m.grass.shells > 0 ? m.grass.height_m / static_cast<float>(m.grass.shells) : 0.0f);
+    // A sampler object overrides the texture's own filtering while it is bound to the unit.
+    GLuint sampler = 0;
+    if (nearestSampling) {
+        glGenSamplers(1, &sampler);
+        glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+        glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        glBindSampler(kGrassUnit, sampler);
+    }
     glBindVertexArray(m.vao.get());
     glDrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
                             m.grass.shells + 1);
     glBindVertexArray(0);
+    if (nearestSampling) {
+        glBindSampler(kGrassUnit, 0);
+        glDeleteSamplers(1, &sampler);
+    }
     glUseProgram(0);
     glFinish();
     stats.gpu_ms = msSince(gpuStart);

@@ -98,6 +98,19 @@ TEST(ShellRenderer, BendingMovesPixels) {
     EXPECT_GT(diff.differingFraction, kMinMovedFraction);
 }
 
+TEST(ShellRenderer, TheNearestSampledBaselineLeavesTheGrassFilteringAlone) {
+    // The baseline's nearest sampling is a sampler bound for its draw only: frames drawn after it
+    // are those drawn before, and its own frame differs (nearest texels, no bend, no light).
+    ReferenceRig rig(160, 120);
+    const GrassWind wind = rig.scene.wind(0.35f, 0.9f);
+    const Image before = rig.frame(wind);
+    rig.renderer.drawFillBaseline(rig.scene.camera, /*nearestSampling=*/true);
+    Image nearest;
+    rig.context->readPixels(nearest);
+    EXPECT_NE(nearest.rgba, before.rgba);
+    EXPECT_EQ(rig.frame(wind).rgba, before.rgba);
+}
+
 TEST(ShellRenderer, EmptyGroupIntensityMeansNoWind) {
     ReferenceScene scene;
     GrassWind none;  // no per-vertex arrays, no groups
