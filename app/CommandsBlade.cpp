@@ -172,7 +172,8 @@ void addBladeVerb(CLI::App& app, VerbTable& verbs) {
         ->required()
         ->check(CLI::Range(1, MAX_SHELLS));
     verb->add_option("--intensity", options->intensity,
-                     "Wind intensity I (1 lays the tip flat; negative bends the other way)")
+                     "Wind intensity I (1 tilts the tip 76 degrees; the tilt saturates short of "
+                     "the ground; negative bends the other way)")
         ->required()
         ->check(CLI::Range(-4.0, 4.0));
     verb->add_option("--stiffness", options->stiffness,

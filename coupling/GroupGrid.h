@@ -35,10 +35,13 @@ inline void fillEmptyGroups(std::vector<double>& values, const std::vector<uint3
         // Groups previous+1 .. g-1 are empty; previous and g (if < n) are populated.
         for (int e = previous + 1; e < g; ++e) {
             if (previous < 0 && g == n) return;  // nothing populated
-            if (previous < 0) values[e] = values[g];
-            else if (g == n) values[e] = values[previous];
-            else values[e] = values[previous] + (values[g] - values[previous]) *
-                                                    double(e - previous) / double(g - previous);
+            if (previous < 0)
+                values[e] = values[g];
+            else if (g == n)
+                values[e] = values[previous];
+            else
+                values[e] = values[previous] + (values[g] - values[previous]) *
+                                                   double(e - previous) / double(g - previous);
         }
         previous = g;
     }
@@ -55,8 +58,8 @@ inline std::vector<float> blendedIntensity(const render::GrassWind& wind) {
     const int groups = static_cast<int>(wind.groupIntensity.size());
     if (!wind.vertex || groups == 0) return out;
     const std::vector<glm::vec2>& coord = wind.vertex->groupCoord;
-    const int columns = std::clamp(wind.vertex->groupColumns > 0 ? wind.vertex->groupColumns : groups,
-                                   1, groups);
+    const int columns =
+        std::clamp(wind.vertex->groupColumns > 0 ? wind.vertex->groupColumns : groups, 1, groups);
     const int rows = (groups + columns - 1) / columns;
     auto at = [&](int i, int j) {
         return double(wind.groupIntensity[std::min(j * columns + i, groups - 1)]);

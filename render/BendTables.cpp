@@ -81,7 +81,8 @@ void BendTables::setGroups(const GrassWind& wind, int columns, int maxTextureSiz
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-DensityTables::DensityTables() : mMap(newTableTexture(GL_LINEAR)), mCuts(newTableTexture(GL_LINEAR)) {}
+DensityTables::DensityTables()
+    : mMap(newTableTexture(GL_LINEAR)), mCuts(newTableTexture(GL_LINEAR)) {}
 
 void DensityTables::setCuts(const Image& level0) {
     const std::vector<float> cuts = densityCuts(level0);

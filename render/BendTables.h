@@ -15,9 +15,8 @@
 
 #include <GL/gl.h>
 
-#include <vector>
-
 #include <glm/vec2.hpp>
+#include <vector>
 
 #include "render/DensityMap.h"
 #include "render/GlUtil.h"

@@ -6,10 +6,9 @@
 /// cover the map's fraction of the texture's blade area: blades vanish whole, tallest last, and
 /// the blades that stay keep their full height and bend. docs/render.md.
 
+#include <glm/vec2.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/vec2.hpp>
 
 #include "render/GrassInput.h"
 
@@ -19,7 +18,7 @@ namespace gale::render {
 /// plan rectangle [wsMin_m, wsMin_m + wsSize_m] (world metres, x east, y north). Row 0 is the
 /// north edge (an image's top row), column 0 the west edge.
 struct DensityMap {
-    int width = 0;   ///< 0: no map (density 1 everywhere)
+    int width = 0;  ///< 0: no map (density 1 everywhere)
     int height = 0;
     std::vector<float> density;  ///< width * height, row-major from the north edge
     glm::vec2 wsMin_m{0.0f};
@@ -27,8 +26,9 @@ struct DensityMap {
 };
 
 /// Reads a density map from any image OpenImageIO reads (8/16-bit or float; the first channel,
-/// a grey image's grey: 0 = bare, full scale = full density) to cover the plan rectangle given. Throws std::runtime_error naming the path and the reason if the image
-/// cannot be read; std::invalid_argument if wsSize_m is not positive and finite.
+/// a grey image's grey: 0 = bare, full scale = full density) to cover the plan rectangle given.
+/// Throws std::runtime_error naming the path and the reason if the image cannot be read;
+/// std::invalid_argument if wsSize_m is not positive and finite.
 DensityMap loadDensityMap(const std::string& path, glm::vec2 wsMin_m, glm::vec2 wsSize_m);
 
 /// Entries of the density cut table: entry k is the cut for density k / (kDensityCuts - 1).

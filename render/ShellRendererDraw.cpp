@@ -73,21 +73,23 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     // Level of detail (render/TerrainChunks.h): D1 = 2 S f / P, f the focal length in pixels.
     const float focal_px = static_cast<float>(m.context.height()) /
                            (2.0f * std::tan(0.5f * glm::radians(camera.fovY_deg)));
-    const float d1_m = m.grass.lodPixels > 0.0f && shells > 0
-                           ? 2.0f * (m.grass.height_m / static_cast<float>(shells)) * focal_px /
-                                 m.grass.lodPixels
-                           : 0.0f;
+    const float d1_m =
+        m.grass.lodPixels > 0.0f && shells > 0
+            ? 2.0f * (m.grass.height_m / static_cast<float>(shells)) * focal_px / m.grass.lodPixels
+            : 0.0f;
     glUniform1f(m.shellLoc.lodD1, d1_m);
     // Visible chunks, nearest first (the early depth test then discards more of the far ones),
     // their boxes grown by the grass height: a bent blade reaches that far from its root.
     const glm::vec3 reach(m.grass.height_m);
     std::vector<std::pair<float, const detail::TerrainChunk*>> visible;
     for (const detail::TerrainChunk& chunk : m.chunks) {
-        if (!detail::boxMayBeVisible(clipFromWorldM, chunk.wsMin_m - reach, chunk.wsMax_m + reach)) {
+        if (!detail::boxMayBeVisible(clipFromWorldM, chunk.wsMin_m - reach,
+                                     chunk.wsMax_m + reach)) {
             ++stats.chunksCulled;
             continue;
         }
-        visible.emplace_back(detail::distanceToBox(camera.wsPosition_m, chunk.wsMin_m, chunk.wsMax_m), &chunk);
+        visible.emplace_back(
+            detail::distanceToBox(camera.wsPosition_m, chunk.wsMin_m, chunk.wsMax_m), &chunk);
     }
     std::sort(visible.begin(), visible.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -103,9 +105,9 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         const int count = (range.top - bottom) / range.stride + 1;
         glUniform1i(m.shellLoc.topShell, range.top);
         glUniform1i(m.shellLoc.shellStride, range.stride);
-        glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(chunk->indexCount), GL_UNSIGNED_INT,
-                                reinterpret_cast<const void*>(size_t(chunk->firstIndex) * sizeof(uint32_t)),
-                                count);
+        glDrawElementsInstanced(
+            GL_TRIANGLES, static_cast<GLsizei>(chunk->indexCount), GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(size_t(chunk->firstIndex) * sizeof(uint32_t)), count);
         ++stats.chunks;
         stats.layers += count;
     }

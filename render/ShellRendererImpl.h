@@ -3,8 +3,6 @@
 /// The shell renderer's GL state, shared by ShellRenderer.cpp (setup, uploads) and
 /// ShellRendererDraw.cpp (frames). Internal to render/.
 
-#include "render/ShellRenderer.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,6 +19,7 @@
 #include "render/CameraMath.h"
 #include "render/GlInfo.h"
 #include "render/GlUtil.h"
+#include "render/ShellRenderer.h"
 #include "render/TerrainChunks.h"
 
 namespace gale::render {
@@ -65,8 +64,9 @@ struct WindVertex {
     float groupCoord[2];  ///< position in the group grid (VertexWind::groupCoord), or unused
 };
 
-inline GLint uniform(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
-
+inline GLint uniform(GLuint program, const char* name) {
+    return glGetUniformLocation(program, name);
+}
 
 }  // namespace shell_detail
 
@@ -86,8 +86,8 @@ struct ShellRenderer::Impl {
     // Uniform locations of shell.vert / shell.frag.
     struct {
         GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns,
-            blendGroups, maxTilt, shellStride, lodD1, aperiodic, hasDensity, density, densityCut, densityMin,
-            densitySize;
+            blendGroups, maxTilt, shellStride, lodD1, aperiodic, hasDensity, density, densityCut,
+            densityMin, densitySize;
         GLint lightCount, lightPos, lightColor, lightAtten;
         GLint ambient, specularPower, specularStrength, shadowMin;
     } shellLoc{};
@@ -115,8 +115,8 @@ struct ShellRenderer::Impl {
     bool windWasNone = false;
     uint64_t windRevision = 0;
     uint32_t windMaxGroup = 0;
-    int windColumns = 0;       ///< VertexWind::groupColumns of the uploaded wind
-    bool windBlends = false;   ///< the uploaded wind carries groupCoord
+    int windColumns = 0;      ///< VertexWind::groupColumns of the uploaded wind
+    bool windBlends = false;  ///< the uploaded wind carries groupCoord
 
     explicit Impl(GlContext& ctx) : context(ctx) {}
 

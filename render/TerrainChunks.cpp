@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
@@ -15,7 +14,8 @@ std::vector<TerrainChunk> buildChunks(int nx, int ny, const std::vector<glm::vec
     std::vector<TerrainChunk> chunks;
     for (int j0 = 0; j0 + 1 < ny; j0 += kChunkQuads) {
         for (int i0 = 0; i0 + 1 < nx; i0 += kChunkQuads) {
-            const int i1 = std::min(i0 + kChunkQuads, nx - 1), j1 = std::min(j0 + kChunkQuads, ny - 1);
+            const int i1 = std::min(i0 + kChunkQuads, nx - 1),
+                      j1 = std::min(j0 + kChunkQuads, ny - 1);
             const std::vector<uint32_t> own = gridTriangleIndices(nx, i0, i1, j0, j1);
             TerrainChunk chunk;
             chunk.firstIndex = static_cast<uint32_t>(indices.size());

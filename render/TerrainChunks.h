@@ -15,10 +15,9 @@
 /// highest multiple of 2^k down to the ground.
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <vector>
 
 namespace gale::render::detail {
 

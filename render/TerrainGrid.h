@@ -10,7 +10,8 @@ namespace gale::render::detail {
 /// Two triangles per quad of the sub-grid [i0, i1] x [j0, j1] (vertex indices, inclusive, i
 /// fastest) of a grid nx vertices wide, taking every `step`-th vertex (the last row and column
 /// always). Requires 0 <= i0 < i1 < nx, 0 <= j0 < j1, step >= 1.
-inline std::vector<uint32_t> gridTriangleIndices(int nx, int i0, int i1, int j0, int j1, int step = 1) {
+inline std::vector<uint32_t> gridTriangleIndices(int nx, int i0, int i1, int j0, int j1,
+                                                 int step = 1) {
     std::vector<int> is, js;
     for (int i = i0; i < i1; i += step) is.push_back(i);
     is.push_back(i1);

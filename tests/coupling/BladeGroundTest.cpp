@@ -5,10 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
-
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "coupling/GroupOscillators.h"
 #include "coupling/TangentWind.h"

@@ -40,7 +40,8 @@ double maxNeighbourJump(const render::TerrainMesh& mesh, const std::vector<float
 
 TEST(GroupGrid, BinCentresSitAtIntegersAndTheEndsClamp) {
     // Four bins over [10, 18): centres at 11, 13, 15, 17 map to 0, 1, 2, 3.
-    for (int b = 0; b < 4; ++b) EXPECT_FLOAT_EQ(coupling::binCoord(11.0 + 2.0 * b, 10.0, 8.0, 4), float(b));
+    for (int b = 0; b < 4; ++b)
+        EXPECT_FLOAT_EQ(coupling::binCoord(11.0 + 2.0 * b, 10.0, 8.0, 4), float(b));
     EXPECT_FLOAT_EQ(coupling::binCoord(12.0, 10.0, 8.0, 4), 0.5f);  // a bin edge: half way
     EXPECT_FLOAT_EQ(coupling::binCoord(10.0, 10.0, 8.0, 4), 0.0f);
     EXPECT_FLOAT_EQ(coupling::binCoord(18.0, 10.0, 8.0, 4), 3.0f);
@@ -70,7 +71,8 @@ struct Ramp {
         spec.blendGroups = blend;
         coupling::FieldWind wind(mesh, spec);
         std::vector<glm::vec3> velocity;
-        for (const glm::vec3& p : mesh.wsPosition_m) velocity.emplace_back(1.0f + 0.06f * p.x, 0.0f, 0.0f);
+        for (const glm::vec3& p : mesh.wsPosition_m)
+            velocity.emplace_back(1.0f + 0.06f * p.x, 0.0f, 0.0f);
         wind.addFieldStep(0.0, velocity);
         wind.update(0.0, out);
         exact = wind.exactStaticIntensity(0.0);
@@ -86,8 +88,10 @@ constexpr double INSIDE_ERROR_TOL = 0.5 * RAMP_STEP;
 
 TEST(GroupGrid, BlendedLevelsFollowARampWithoutSteps) {
     const Ramp nearest(false), blended(true);
-    const double stepNearest = maxNeighbourJump(nearest.mesh, coupling::blendedIntensity(nearest.out));
-    const double stepBlended = maxNeighbourJump(blended.mesh, coupling::blendedIntensity(blended.out));
+    const double stepNearest =
+        maxNeighbourJump(nearest.mesh, coupling::blendedIntensity(nearest.out));
+    const double stepBlended =
+        maxNeighbourJump(blended.mesh, coupling::blendedIntensity(blended.out));
     EXPECT_GT(stepNearest, 5.0 * RAMP_STEP);  // the stripes: a level's width at once
     EXPECT_LE(stepBlended, RAMP_STEP * BLEND_SLOPE_FACTOR);
     // And the blend is closer to the exact per-vertex intensity everywhere inside the end bins'
@@ -117,17 +121,20 @@ TEST(GroupGrid, PointSourceRingsBlendAcrossTheirEdges) {
     // own row, whose distances are not uniform in x).
     double ringJump = 0.0;
     for (int g = 1; g < spec.steps; ++g)
-        ringJump = std::max(ringJump, double(std::abs(nearest.groupIntensity[g] - nearest.groupIntensity[g - 1])));
+        ringJump = std::max(
+            ringJump, double(std::abs(nearest.groupIntensity[g] - nearest.groupIntensity[g - 1])));
     ASSERT_GT(ringJump, 0.1);
     EXPECT_NEAR(maxNeighbourJump(mesh, coupling::blendedIntensity(nearest)), ringJump, 1e-6);
     constexpr double BLEND_FRACTION = 0.15;  // 1 m of a 10 m ring, with slack for the y offset
-    EXPECT_LT(maxNeighbourJump(mesh, coupling::blendedIntensity(blended)), BLEND_FRACTION * ringJump);
+    EXPECT_LT(maxNeighbourJump(mesh, coupling::blendedIntensity(blended)),
+              BLEND_FRACTION * ringJump);
 }
 
 TEST(GroupGrid, SteadyGustBandsAndLevelsBlendBilinearly) {
     const render::TerrainMesh mesh = strip();
     std::vector<glm::vec3> steady;
-    for (const glm::vec3& p : mesh.wsPosition_m) steady.emplace_back(4.0f + 0.05f * p.y, 0.0f, 0.0f);
+    for (const glm::vec3& p : mesh.wsPosition_m)
+        steady.emplace_back(4.0f + 0.05f * p.y, 0.0f, 0.0f);
     coupling::SteadyGustSpec spec;
     spec.arrivalBands = 6;
     spec.levels = 3;

@@ -20,7 +20,9 @@ namespace {
 Image fourHeightClasses() {
     Image image = test::makeUniformImage(16, 255, 255, 255, 255);
     for (int y = 0; y < 16; ++y)
-        for (int x = 0; x < 16; ++x) image.rgba[(size_t(y) * 16 + x) * 4 + 3] = uint8_t(64 * ((x + 2 * y) % 4 + 1) - ((x + 2 * y) % 4 == 3));
+        for (int x = 0; x < 16; ++x)
+            image.rgba[(size_t(y) * 16 + x) * 4 + 3] =
+                uint8_t(64 * ((x + 2 * y) % 4 + 1) - ((x + 2 * y) % 4 == 3));
     return image;
 }
 
@@ -28,10 +30,10 @@ TEST(DensityCuts, KeepTheWantedShareOfBladeAreaTallestFirst) {
     const std::vector<float> cuts = densityCuts(fourHeightClasses());
     ASSERT_EQ(cuts.size(), size_t(kDensityCuts));
     constexpr float HALF = 0.5f / 255.0f;
-    EXPECT_GT(cuts[0], 1.0f);                        // density 0: nothing
-    EXPECT_FLOAT_EQ(cuts[255], 0.0f);                // density 1: everything
-    EXPECT_FLOAT_EQ(cuts[128], 128.0f / 255 - HALF); // a half: the two tallest classes (and a bit)
-    EXPECT_FLOAT_EQ(cuts[64], 192.0f / 255 - HALF);  // a quarter: the tallest class
+    EXPECT_GT(cuts[0], 1.0f);                         // density 0: nothing
+    EXPECT_FLOAT_EQ(cuts[255], 0.0f);                 // density 1: everything
+    EXPECT_FLOAT_EQ(cuts[128], 128.0f / 255 - HALF);  // a half: the two tallest classes (and a bit)
+    EXPECT_FLOAT_EQ(cuts[64], 192.0f / 255 - HALF);   // a quarter: the tallest class
     for (int k = 1; k < kDensityCuts; ++k) EXPECT_LE(cuts[k], cuts[k - 1]);
     // A texture without blades: no cut.
     for (float c : densityCuts(test::makeUniformImage(4, 9, 9, 9, 0))) EXPECT_EQ(c, 0.0f);
@@ -55,7 +57,8 @@ struct TopView {
         lighting.ambient = glm::vec3(0.0f);
         lighting.specularStrength = 0.0f;
         lighting.selfShadowMin = 0.5f;
-        lighting.lights.push_back({glm::vec3(1.0e4f, 0.0f, 0.0f), glm::vec3(1.0f), glm::vec3(1.0f, 0.0f, 0.0f)});
+        lighting.lights.push_back(
+            {glm::vec3(1.0e4f, 0.0f, 0.0f), glm::vec3(1.0f), glm::vec3(1.0f, 0.0f, 0.0f)});
         renderer.setLighting(lighting);
     }
     Image draw(float fovY_deg = 45.0f) {
@@ -142,7 +145,7 @@ TEST(AperiodicTiling, TheTextureNoLongerRepeatsOneTileOver) {
     const double broken = shiftDifference(aperiodic.draw(fov_deg), 32);
     // Measured on llvmpipe: the plain repeat matches itself to rounding; two unrelated patches of
     // grass differ by about as much as the texture's own contrast.
-    constexpr double REPEAT_TOL = 2.0;   // 8-bit rounding and filtering of a shifted sample grid
+    constexpr double REPEAT_TOL = 2.0;  // 8-bit rounding and filtering of a shifted sample grid
     constexpr double UNRELATED = 10.0;
     EXPECT_LT(repeat, REPEAT_TOL);
     EXPECT_GT(broken, UNRELATED);

@@ -32,7 +32,8 @@ struct StripeScene {
         GrassParams grass;
         grass.height_m = 0.4f;
         grass.shells = 8;
-        renderer.setGrass(grass, grassTextureFromImage(test::makeUniformImage(16, 200, 200, 200, 255)));
+        renderer.setGrass(grass,
+                          grassTextureFromImage(test::makeUniformImage(16, 200, 200, 200, 255)));
         Lighting lighting;
         lighting.ambient = glm::vec3(0.05f);
         lighting.specularStrength = 0.0f;
@@ -54,7 +55,8 @@ struct StripeScene {
             vertex->group.push_back(static_cast<uint32_t>(std::clamp(int(bins), 0, kGroups - 1)));
             const float centre = float(vertex->group.back());
             if (mode == Coord::Continuous)
-                vertex->groupCoord.emplace_back(std::clamp(bins - 0.5f, 0.0f, kGroups - 1.0f), 0.0f);
+                vertex->groupCoord.emplace_back(std::clamp(bins - 0.5f, 0.0f, kGroups - 1.0f),
+                                                0.0f);
             if (mode == Coord::Centres) vertex->groupCoord.emplace_back(centre, 0.0f);
         }
         GrassWind w;

@@ -5,10 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/mat4x4.hpp>
 #include <memory>
 #include <set>
-
-#include <glm/mat4x4.hpp>
 
 #include "RenderTestUtil.h"
 #include "render/CameraMath.h"
@@ -55,7 +54,8 @@ TEST(LodShellRange, DropsShellsByTrailingZeroBitsOfTheirIndex) {
 }
 
 TEST(LodChunks, CoverEveryQuadOnceAndBoundTheirVertices) {
-    const TerrainMesh mesh = test::makeGridMesh(70, 40, 10.0f, 1.0f, [](float x, float y) { return 0.1f * x * y; });
+    const TerrainMesh mesh =
+        test::makeGridMesh(70, 40, 10.0f, 1.0f, [](float x, float y) { return 0.1f * x * y; });
     std::vector<uint32_t> indices;
     const auto chunks = detail::buildChunks(mesh.nx, mesh.ny, mesh.wsPosition_m, indices);
     EXPECT_EQ(chunks.size(), 3u * 2u);  // 69 x 39 quads in chunks of 32
@@ -82,9 +82,13 @@ TEST(LodCulling, BoxesBehindOrBesideTheCameraAreCulled) {
     const glm::mat4 m = clipFromWorld(camera, 4.0f / 3.0f);
     EXPECT_TRUE(detail::boxMayBeVisible(m, glm::vec3(-1, 9, 0), glm::vec3(1, 11, 1)));
     EXPECT_FALSE(detail::boxMayBeVisible(m, glm::vec3(-1, -11, 0), glm::vec3(1, -9, 1)));  // behind
-    EXPECT_FALSE(detail::boxMayBeVisible(m, glm::vec3(40, 9, 0), glm::vec3(42, 11, 1)));   // far right
-    EXPECT_TRUE(detail::boxMayBeVisible(m, glm::vec3(-50, -50, -1), glm::vec3(50, 50, 1)));  // around
-    EXPECT_FLOAT_EQ(detail::distanceToBox(glm::vec3(0, 0, 2), glm::vec3(3, -1, 0), glm::vec3(4, 1, 1)), std::hypot(3.0f, 1.0f));
+    EXPECT_FALSE(
+        detail::boxMayBeVisible(m, glm::vec3(40, 9, 0), glm::vec3(42, 11, 1)));  // far right
+    EXPECT_TRUE(
+        detail::boxMayBeVisible(m, glm::vec3(-50, -50, -1), glm::vec3(50, 50, 1)));  // around
+    EXPECT_FLOAT_EQ(
+        detail::distanceToBox(glm::vec3(0, 0, 2), glm::vec3(3, -1, 0), glm::vec3(4, 1, 1)),
+        std::hypot(3.0f, 1.0f));
     EXPECT_EQ(detail::distanceToBox(glm::vec3(0.5f), glm::vec3(0), glm::vec3(1)), 0.0f);
 }
 
@@ -152,7 +156,7 @@ TEST(LodFrames, OnlyDistantGrassDiffersAndLessIsDrawn) {
     // The near third of the frame (its bottom rows) is the same grass, pixel for pixel within
     // the reference tolerance; the whole frame differs in a minority of pixels, all farther up.
     EXPECT_LT(differingRows(off, on, 80, 120, kChannelTolerance), 0.002);  // measured 0
-    EXPECT_LT(differingRows(off, on, 0, 120, kChannelTolerance), 0.01);  // measured 0.0005
+    EXPECT_LT(differingRows(off, on, 0, 120, kChannelTolerance), 0.01);    // measured 0.0005
     EXPECT_LT(lod.layers * 2, full.layers);  // measured 87 of 234 chunk layers
     EXPECT_GT(lod.chunksCulled, 0);          // the chunks behind the camera
 }
