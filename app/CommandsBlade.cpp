@@ -85,7 +85,7 @@ std::string bladeSvg(const BladeOptions& o) {
     auto Y = [&](double n) { return y0 - scale * n; };
 
     const render::ShellOffset tip = shells.back();
-    const double tiltDeg = render::tipTilt_rad(o.intensity) * 180.0 / 3.14159265358979323846;
+    const double tiltDeg = render::tipTilt_rad(o.intensity) * 180.0 / PI;
     const double segment = h / o.shells;
 
     std::ostringstream svg;

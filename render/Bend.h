@@ -17,6 +17,8 @@
 
 #include <vector>
 
+#include "base/Numbers.h"
+
 namespace gale::render {
 
 /// Double precision so that segment lengths hold to 1e-7 relative even at 256 shells; the renderer
@@ -33,9 +35,9 @@ struct ShellOffset {
 /// faces turn by less than the margin.
 inline constexpr double kGroundMargin_rad = 0.15;
 /// The bound of |tip tilt|, radians: pi/2 - kGroundMargin_rad (about 81.4 degrees).
-inline constexpr double kMaxTipTilt_rad = 0.5 * 3.14159265358979323846 - kGroundMargin_rad;
+inline constexpr double kMaxTipTilt_rad = 0.5 * PI - kGroundMargin_rad;
 /// The tip tilt below which the bend is the paper's exactly: (pi/2) * 1/2, radians.
-inline constexpr double kTipTiltKnee_rad = 0.25 * 3.14159265358979323846;
+inline constexpr double kTipTiltKnee_rad = 0.25 * PI;
 
 /// Tip tilt for intensity I, radians, signed like I: x = (pi/2) I up to |x| = kTipTiltKnee_rad,
 /// then knee + (max - knee) tanh((|x| - knee) / (max - knee)): continuous with its first and

@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
+#include "base/Numbers.h"
 #include "coupling/GroupOscillators.h"
 #include "coupling/TangentWind.h"
 #include "render/Bend.h"
@@ -17,7 +18,6 @@ using namespace gale;
 
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
 constexpr int SHELLS = 17;
 constexpr double HEIGHT_M = 0.5;
 // The bowl is 20 % more curved-tolerant than the margin's documented limit R = h / (2 margin).

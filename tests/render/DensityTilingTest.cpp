@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "RenderTestUtil.h"
+#include "base/Numbers.h"
 #include "render/DensityMap.h"
 #include "render/GlContext.h"
 #include "render/GrassTexture.h"
@@ -139,7 +140,7 @@ TEST(AperiodicTiling, TheTextureNoLongerRepeatsOneTileOver) {
     spec.size = 64;
     spec.seed = 11;
     const Image texture = generateGrassTexture(spec).levels[0];
-    const float fov_deg = float(2.0 * std::atan(0.2) * 180.0 / 3.14159265358979323846);
+    const float fov_deg = float(2.0 * std::atan(0.2) * 180.0 / gale::PI);
     TopView plain(128, texture, 1.0f, 0, false), aperiodic(128, texture, 1.0f, 0, true);
     const double repeat = shiftDifference(plain.draw(fov_deg), 32);
     const double broken = shiftDifference(aperiodic.draw(fov_deg), 32);
