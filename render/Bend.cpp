@@ -41,7 +41,8 @@ void bendBladeInto(int shells, float height_m, float intensity, float stiffness,
 }
 
 std::vector<ShellOffset> bendBlade(int shells, float height_m, float intensity, float stiffness) {
-    if (shells < 1) throw std::invalid_argument("shells must be >= 1, got " + std::to_string(shells));
+    if (shells < 1)
+        throw std::invalid_argument("shells must be >= 1, got " + std::to_string(shells));
     if (!std::isfinite(height_m) || height_m < 0.0f)
         throw std::invalid_argument("blade height must be finite and >= 0, got " +
                                     std::to_string(height_m));

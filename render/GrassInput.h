@@ -1,16 +1,15 @@
 #pragma once
 /// \file GrassInput.h
 /// The plain data the renderer draws from. Everything the renderer knows of the world arrives in
-/// these structs; it never calls into sim/ or coupling/ (STYLE, module boundaries). All positions are
-/// world space, metres, z up.
+/// these structs; it never calls into sim/ or coupling/ (STYLE, module boundaries). All positions
+/// are world space, metres, z up.
 
 #include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
 
 namespace gale::render {
 
@@ -20,7 +19,7 @@ struct TerrainMesh {
     int ny = 0;
     std::vector<glm::vec3> wsPosition_m;  ///< vertex positions
     std::vector<glm::vec3> wsNormal;      ///< unit upward normals
-    std::vector<glm::vec2> uv;            ///< grass texture coordinates (repeats across the terrain)
+    std::vector<glm::vec2> uv;  ///< grass texture coordinates (repeats across the terrain)
 };
 
 /// Per-vertex wind, one entry per terrain vertex.
@@ -59,10 +58,12 @@ struct GrassWind {
     std::vector<float> groupIntensity;
 
     /// The per-vertex arrays; empty when `vertex` is null.
-    const std::vector<glm::vec3>& wsDirection() const { return vertex ? vertex->wsDirection : none().wsDirection; }
+    const std::vector<glm::vec3>& wsDirection() const {
+        return vertex ? vertex->wsDirection : none().wsDirection;
+    }
     const std::vector<uint32_t>& group() const { return vertex ? vertex->group : none().group; }
 
-private:
+  private:
     static const VertexWind& none() {
         static const VertexWind empty;
         return empty;
@@ -77,11 +78,11 @@ struct PointLight {
 };
 
 struct Lighting {
-    glm::vec3 ambient{0.15f};         ///< added after attenuation (thesis 3.3.4)
-    std::vector<PointLight> lights;   ///< any number, including none
-    float specularPower = 32.0f;      ///< Kajiya-Kay specular exponent p
-    float specularStrength = 0.3f;    ///< weight of the specular term
-    float selfShadowMin = 0.25f;      ///< Banks self-shadowing floor S_min at the ground
+    glm::vec3 ambient{0.15f};        ///< added after attenuation (thesis 3.3.4)
+    std::vector<PointLight> lights;  ///< any number, including none
+    float specularPower = 32.0f;     ///< Kajiya-Kay specular exponent p
+    float specularStrength = 0.3f;   ///< weight of the specular term
+    float selfShadowMin = 0.25f;     ///< Banks self-shadowing floor S_min at the ground
 };
 
 struct Camera {

@@ -25,20 +25,32 @@ void ShellRenderer::Impl::init() {
     const GLuint sp = shellProgram.get();
     // Uniform locations of shell.vert / shell.frag (-1 for a name the compiler dropped).
     const std::pair<GLint*, const char*> shellNames[] = {
-        {&shellLoc.clipFromWorld, "uClipFromWorld"}, {&shellLoc.eyePos, "uEyePos"},
-        {&shellLoc.shells, "uShells"}, {&shellLoc.topShell, "uTopShell"}, {&shellLoc.shellStride, "uShellStride"},
+        {&shellLoc.clipFromWorld, "uClipFromWorld"},
+        {&shellLoc.eyePos, "uEyePos"},
+        {&shellLoc.shells, "uShells"},
+        {&shellLoc.topShell, "uTopShell"},
+        {&shellLoc.shellStride, "uShellStride"},
         {&shellLoc.lodD1, "uLodD1"},
-        {&shellLoc.bend, "uBend"}, {&shellLoc.grass, "uGrass"}, {&shellLoc.groups, "uGroupTilt"},
-        {&shellLoc.groupColumns, "uGroupColumns"}, {&shellLoc.blendGroups, "uBlendGroups"},
-        {&shellLoc.maxTilt, "uMaxTilt"}, {&shellLoc.aperiodic, "uAperiodic"},
-        {&shellLoc.hasDensity, "uHasDensity"}, {&shellLoc.density, "uDensity"},
-        {&shellLoc.densityCut, "uDensityCut"}, {&shellLoc.densityMin, "uDensityMin"},
-        {&shellLoc.densitySize, "uDensitySize"}, {&shellLoc.lightCount, "uLightCount"},
-        {&shellLoc.lightPos, "uLightPos"}, {&shellLoc.lightColor, "uLightColor"},
-        {&shellLoc.lightAtten, "uLightAtten"}, {&shellLoc.ambient, "uAmbient"},
+        {&shellLoc.bend, "uBend"},
+        {&shellLoc.grass, "uGrass"},
+        {&shellLoc.groups, "uGroupTilt"},
+        {&shellLoc.groupColumns, "uGroupColumns"},
+        {&shellLoc.blendGroups, "uBlendGroups"},
+        {&shellLoc.maxTilt, "uMaxTilt"},
+        {&shellLoc.aperiodic, "uAperiodic"},
+        {&shellLoc.hasDensity, "uHasDensity"},
+        {&shellLoc.density, "uDensity"},
+        {&shellLoc.densityCut, "uDensityCut"},
+        {&shellLoc.densityMin, "uDensityMin"},
+        {&shellLoc.densitySize, "uDensitySize"},
+        {&shellLoc.lightCount, "uLightCount"},
+        {&shellLoc.lightPos, "uLightPos"},
+        {&shellLoc.lightColor, "uLightColor"},
+        {&shellLoc.lightAtten, "uLightAtten"},
+        {&shellLoc.ambient, "uAmbient"},
         {&shellLoc.specularPower, "uSpecularPower"},
-        {&shellLoc.specularStrength, "uSpecularStrength"}, {&shellLoc.shadowMin, "uShadowMin"}
-    };
+        {&shellLoc.specularStrength, "uSpecularStrength"},
+        {&shellLoc.shadowMin, "uShadowMin"}};
     for (const auto& [loc, name] : shellNames) *loc = uniform(sp, name);
     // The shader's light arrays must be exactly kMaxLights long.
     GLint arraySize = 0;
@@ -369,8 +381,7 @@ void ShellRenderer::setShellCount(int shells) {
     if (!m.haveGrass) throw std::logic_error("ShellRenderer::setShellCount before setGrass");
     if (shells < 0 || shells > kMaxShells)
         throw std::invalid_argument("ShellRenderer::setShellCount: shells must be in 0.." +
-                                    std::to_string(kMaxShells) + ", got " +
-                                    std::to_string(shells));
+                                    std::to_string(kMaxShells) + ", got " + std::to_string(shells));
     m.grass.shells = shells;
 }
 

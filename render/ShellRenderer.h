@@ -14,11 +14,11 @@
 namespace gale::render {
 
 struct FrameStats {
-    double cpu_ms = 0.0;  ///< table building and uploads on the CPU
-    double gpu_ms = 0.0;  ///< draw calls through glFinish
-    int chunks = 0;       ///< terrain chunks in the frustum (render/TerrainChunks.h)
-    int chunksCulled = 0; ///< chunks outside it, not drawn
-    long long layers = 0; ///< chunk layers drawn (sum over chunks of the shells each drew)
+    double cpu_ms = 0.0;   ///< table building and uploads on the CPU
+    double gpu_ms = 0.0;   ///< draw calls through glFinish
+    int chunks = 0;        ///< terrain chunks in the frustum (render/TerrainChunks.h)
+    int chunksCulled = 0;  ///< chunks outside it, not drawn
+    long long layers = 0;  ///< chunk layers drawn (sum over chunks of the shells each drew)
 };
 
 /// What draw() shows; the viewer's toggles. Both off draws only the sky.
@@ -28,7 +28,7 @@ struct DrawOptions {
 };
 
 class ShellRenderer {
-public:
+  public:
     /// Compiles the shaders (throws std::runtime_error naming the shader file and its log).
     /// The context must be current and stay alive while the renderer is used.
     explicit ShellRenderer(GlContext& context);
@@ -81,7 +81,7 @@ public:
     /// Sky (clear) colour, linear RGB in [0, 1].
     static constexpr float kSkyColor[3] = {0.60f, 0.75f, 0.92f};
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "render/Bend.h"
 #include "base/Numbers.h"
+#include "render/Bend.h"
 
 using gale::render::bendBlade;
 using gale::render::kGroundMargin_rad;
@@ -62,14 +62,17 @@ std::vector<BendCase> allCases() {
     std::vector<BendCase> cases;
     for (int shells : {1, 2, 9, 17, 65, 256})
         for (float intensity : {-5.0f, -1.0f, -0.3f, 0.0f, 0.5f, 1.0f, 2.5f, 5.0f})
-            for (float stiffness : {0.5f, 1.0f, 2.0f}) cases.push_back({shells, intensity, stiffness});
+            for (float stiffness : {0.5f, 1.0f, 2.0f})
+                cases.push_back({shells, intensity, stiffness});
     return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(ShellsIntensitiesStiffness, BendInvariants, ::testing::ValuesIn(allCases()),
+INSTANTIATE_TEST_SUITE_P(ShellsIntensitiesStiffness, BendInvariants,
+                         ::testing::ValuesIn(allCases()),
                          [](const ::testing::TestParamInfo<BendCase>& info) {
                              auto name = [](float v) {
-                                 std::string s = std::to_string(static_cast<int>(std::lround(v * 10)));
+                                 std::string s =
+                                     std::to_string(static_cast<int>(std::lround(v * 10)));
                                  return (v < 0 ? "m" + s.substr(1) : s);
                              };
                              return "N" + std::to_string(info.param.shells) + "_I" +

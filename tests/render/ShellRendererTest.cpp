@@ -24,7 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 struct ReferenceScene {
     TerrainMesh mesh = test::makeHillMesh();
     GrassParams grass;
@@ -65,7 +64,8 @@ struct ReferenceRig {
     ReferenceScene scene;
     ShellRenderer renderer;
 
-    ReferenceRig(int width, int height) : context(createOsMesaContext(width, height)), renderer(*context) {
+    ReferenceRig(int width, int height)
+        : context(createOsMesaContext(width, height)), renderer(*context) {
         renderer.setTerrain(scene.mesh);
         renderer.setGrass(scene.grass, scene.texture);
         renderer.setLighting(scene.lighting);
@@ -220,7 +220,8 @@ GrassWind withVertexWind(GrassWind wind, F&& change) {
 
 TEST(ShellRenderer, WrongWindArraySizesThrow) {
     const GrassWind wind = ReferenceScene().wind(0.5f, 0.5f);
-    expectDrawRefuses(withVertexWind(wind, [](VertexWind& w) { w.wsDirection.pop_back(); }), "wsDirection");
+    expectDrawRefuses(withVertexWind(wind, [](VertexWind& w) { w.wsDirection.pop_back(); }),
+                      "wsDirection");
     expectDrawRefuses(withVertexWind(wind, [](VertexWind& w) { w.group.resize(3); }), "group");
 }
 
