@@ -102,7 +102,7 @@ struct GrassParams {
     /// Lay the texture aperiodically: each cell of a jittered grid (one texture repeat wide) shows
     /// it turned, mirrored and shifted at random, so no repeat shows (docs/render.md). false: the
     /// plain repeat.
-    bool aperiodic = true;
+    bool aperiodic = false;
     /// Level of detail (render/TerrainChunks.h): shells are dropped, thinning out first, where
     /// the shells that remain are at most this many pixels apart on screen; 0 draws every shell
     /// everywhere. >= 0.

@@ -183,7 +183,7 @@ void readGrass(Context& ctx, Section s) {
     g.params.stiffness = static_cast<float>(s.number("stiffness", 1.0, above(0.0, 100.0)));
     g.params.tile_m = static_cast<float>(s.number("tile_m", 3.0, above(0.0, 1e5)));
     const std::string texture = s.string("texture", "generated");
-    g.params.aperiodic = s.boolean("aperiodic", true);
+    g.params.aperiodic = s.boolean("aperiodic", false);
     g.params.lodPixels = static_cast<float>(s.number("lod_pixels", 2.0, closed(0.0, 1000.0)));
     const std::string densityMap = s.string("density_map", "");
     if (s.given("density_map")) {
