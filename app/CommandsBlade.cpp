@@ -85,7 +85,7 @@ std::string bladeSvg(const BladeOptions& o) {
     auto Y = [&](double n) { return y0 - scale * n; };
 
     const render::ShellOffset tip = shells.back();
-    const double tiltDeg = 90.0 * o.intensity;
+    const double tiltDeg = render::tipTilt_rad(o.intensity) * 180.0 / PI;
     const double segment = h / o.shells;
 
     std::ostringstream svg;
@@ -101,7 +101,8 @@ std::string bladeSvg(const BladeOptions& o) {
         << "Blade bend: " << o.shells << " shells, I = " << num(o.intensity) << ", stiffness "
         << num(o.stiffness) << ", height " << num(h) << " m</text>\n";
     svg << "  <text x=\"" << MARGIN_LEFT << "\" y=\"42\" fill=\"#555\">"
-        << "theta_j = (pi/2) I (j/N)^stiffness; every segment keeps S = " << num(segment)
+        << "theta_j = theta_tip (j/N)^stiffness, theta_tip = (pi/2) I saturating short of the "
+           "ground; every segment keeps S = " << num(segment)
         << " m</text>\n";
     // Ground line and label.
     svg << "  <line x1=\"" << MARGIN_LEFT - 20 << "\" y1=\"" << Y(0) << "\" x2=\""
@@ -171,7 +172,8 @@ void addBladeVerb(CLI::App& app, VerbTable& verbs) {
         ->required()
         ->check(CLI::Range(1, MAX_SHELLS));
     verb->add_option("--intensity", options->intensity,
-                     "Wind intensity I (1 lays the tip flat; negative bends the other way)")
+                     "Wind intensity I (1 tilts the tip 76 degrees; the tilt saturates short of "
+                     "the ground; negative bends the other way)")
         ->required()
         ->check(CLI::Range(-4.0, 4.0));
     verb->add_option("--stiffness", options->stiffness,

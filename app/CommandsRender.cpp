@@ -148,6 +148,7 @@ int runRender(const SceneRunOptions& options) {
     render::ShellRenderer renderer(*context);
     renderer.setTerrain(built.mesh);
     renderer.setGrass(scene.grass.params, built.texture);
+    renderer.setDensityMap(built.densityMap);
     renderer.setLighting(scene.lighting);
     const std::string glDescription = context->description();
     std::unique_ptr<render::FieldOverlay> overlay;

@@ -304,6 +304,7 @@ int runView(const ViewOptions& options) {
     render::ShellRenderer renderer(*window);
     renderer.setTerrain(built.mesh);
     renderer.setGrass(scene.grass.params, built.texture);
+    renderer.setDensityMap(built.densityMap);
     renderer.setLighting(scene.lighting);
     render::FieldOverlay overlay(*window);
     render::OrbitCamera orbit(built.camera);

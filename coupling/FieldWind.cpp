@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "coupling/GroupGrid.h"
 #include "coupling/PointSourceWind.h"
 
 namespace gale::coupling {
@@ -107,6 +108,7 @@ FieldWind::FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec)
         for (size_t v = 0; v < count; ++v) mTile[v] = static_cast<uint32_t>(v);
     } else {
         mGroupCount = spec.groups;
+        mGroupColumns = spec.groups;  // levels: one row in intensity order
     }
     if (spec.grouping == Grouping::Tiles) {
         glm::vec3 lo = mesh.wsPosition_m[0], hi = lo;
@@ -115,11 +117,15 @@ FieldWind::FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec)
         const int ky = std::max(1, (spec.groups + kx - 1) / kx);
         const float sx = std::max(hi.x - lo.x, 1e-6f), sy = std::max(hi.y - lo.y, 1e-6f);
         mTile.resize(count);
+        mGroupColumns = kx;
+        if (spec.blendGroups) mTileCoord.resize(count);
         for (size_t v = 0; v < count; ++v) {
             const glm::vec3& p = mesh.wsPosition_m[v];
             const int tx = std::min(kx - 1, static_cast<int>((p.x - lo.x) / sx * kx));
             const int ty = std::min(ky - 1, static_cast<int>((p.y - lo.y) / sy * ky));
             mTile[v] = static_cast<uint32_t>(std::min(spec.groups - 1, ty * kx + tx));
+            if (spec.blendGroups)
+                mTileCoord[v] = {binCoord(p.x, lo.x, sx, kx), binCoord(p.y, lo.y, sy, ky)};
         }
     }
 }
@@ -184,6 +190,10 @@ void FieldWind::enterInterval(size_t first) {
     std::vector<glm::vec3>& direction = next->wsDirection;
     std::vector<uint32_t>& group = next->group;
     const bool levels = mSpec.grouping == Grouping::Levels;
+    const bool blend = mSpec.blendGroups && mSpec.grouping != Grouping::PerVertex;
+    next->groupColumns = mGroupColumns;
+    std::vector<glm::vec2>& coord = next->groupCoord;
+    coord.resize(blend ? count : 0);
     const double maxI = mSpec.maxIntensity;
     const double invBend = 1.0 / mSpec.bendSpeed_mps;
 
@@ -240,8 +250,10 @@ void FieldWind::enterInterval(size_t first) {
                 const double mid = 0.5 * (double(mDrive0[v]) + mDrive1[v]);
                 const int level = static_cast<int>((mid - lo) * binsPerDrive);
                 group[v] = static_cast<uint32_t>(std::clamp(level, 0, mGroupCount - 1));
+                if (blend) coord[v] = {binCoord(mid, lo, mGroupCount / binsPerDrive, mGroupCount), 0.0f};
             } else {
                 group[v] = mTile[v];
+                if (blend) coord[v] = mTileCoord[v];
             }
         }
         if (perVertex) return;  // one group per vertex: nothing to sum
@@ -274,6 +286,10 @@ void FieldWind::enterInterval(size_t first) {
             mGroupDrive0[g] = sum0[g] / members[g];
             mGroupDrive1[g] = sum1[g] / members[g];
         }
+        // An empty level or tile continues its neighbours, so a blend towards it reads no
+        // false calm.
+        fillEmptyGroups(mGroupDrive0, members);
+        fillEmptyGroups(mGroupDrive1, members);
     }
     mIntervalFirst = first;
     mIntervalT0_s = a.t_s;

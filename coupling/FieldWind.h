@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "coupling/GroupOscillators.h"
@@ -58,6 +59,10 @@ struct FieldWindSpec {
     double maxIntensity = 1.3;     ///< clamp of |I| for the static map, > 0 (over 1 over-bends)
     double frequency_hz = 0.8;     ///< oscillator natural frequency f = omega / (2 pi), > 0
     double dampingRatio = 0.25;    ///< oscillator zeta, > 0
+    /// Give every vertex its place between groups (render::VertexWind::groupCoord) so the
+    /// renderer blends neighbouring groups and no stripes show where groups change; false: each
+    /// vertex shows its group alone (the paper's). Ignored for PerVertex (exact already).
+    bool blendGroups = true;
 };
 
 /// Validates a spec; throws std::invalid_argument naming the field (wind.response ...).
@@ -115,6 +120,8 @@ private:
     int mGroupCount;
     std::vector<glm::vec3> mNormal;
     std::vector<uint32_t> mTile;  // fixed groups for Tiles / PerVertex
+    std::vector<glm::vec2> mTileCoord;  // Tiles with blending: each vertex's place in the grid
+    int mGroupColumns = 0;              // width of the group grid (render::VertexWind)
     std::deque<Step> mSteps;
     std::vector<glm::vec3> mSpare;  // a dropped step's storage
     double mDroppedBefore_s = -1e300;

@@ -8,6 +8,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "coupling/GroupGrid.h"
+
 namespace gale::coupling {
 namespace {
 
@@ -48,9 +50,14 @@ PointSourceWind::PointSourceWind(const render::TerrainMesh& mesh, const PointSou
     }
     // Animation step = distance from the source in `steps` equal rings (paper section 3).
     const float ringWidth_m = maxDistance_m > 0.0f ? maxDistance_m / spec.steps : 1.0f;
-    for (size_t v = 0; v < count; ++v)
+    vertex.groupColumns = spec.steps;
+    if (spec.blendGroups) vertex.groupCoord.resize(count);
+    for (size_t v = 0; v < count; ++v) {
         vertex.group[v] = static_cast<uint32_t>(
             std::min(spec.steps - 1, static_cast<int>(distance_m[v] / ringWidth_m)));
+        if (spec.blendGroups)
+            vertex.groupCoord[v] = {binCoord(distance_m[v], 0.0, ringWidth_m * spec.steps, spec.steps), 0.0f};
+    }
     mVertex = std::make_shared<const render::VertexWind>(std::move(vertex));
 }
 

@@ -21,6 +21,9 @@ struct PointSourceSpec {
     int steps = 16;              ///< animation steps (groups), 1..1024
     double stepDelay_s = 0.15;   ///< delay of the gust between neighbouring rings, seconds
     bool blowAway = true;        ///< true: grass bends away from the source (a gust from there)
+    /// Give every vertex its place between rings so the renderer blends neighbouring rings (no
+    /// stripes at ring edges); false: each vertex shows its ring alone (the paper's).
+    bool blendGroups = true;
 };
 
 class PointSourceWind : public WindSource {

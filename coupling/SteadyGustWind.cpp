@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "coupling/GroupGrid.h"
 #include "coupling/PointSourceWind.h"
 
 namespace gale::coupling {
@@ -57,6 +58,10 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
     const double spanBase = std::max(double(maxBase) - minBase, 1e-9);
     const int groups = spec.arrivalBands * spec.levels;
     vertex.group.resize(count);
+    // Groups row by row: a row per arrival band, a column per level (render::VertexWind).
+    vertex.groupColumns = spec.levels;
+    const bool blend = spec.response.blendGroups;
+    if (blend) vertex.groupCoord.resize(count);
     std::vector<double> sumBase(groups, 0.0), sumArrival(groups, 0.0);
     std::vector<uint32_t> members(groups, 0);
     for (size_t v = 0; v < count; ++v) {
@@ -66,6 +71,10 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
         const int level = std::min(spec.levels - 1, static_cast<int>((base[v] - minBase) / spanBase * spec.levels));
         const int g = band * spec.levels + level;
         vertex.group[v] = static_cast<uint32_t>(g);
+        if (blend)
+            vertex.groupCoord[v] = {binCoord(base[v], minBase, spanBase, spec.levels),
+                                    binCoord(mArrival_s[v] * spec.convection_mps, 0.0, spanAlong,
+                                             spec.arrivalBands)};
         sumBase[g] += base[v];
         sumArrival[g] += mArrival_s[v];
         ++members[g];
@@ -73,7 +82,13 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
     mGroupBase.assign(groups, 0.0);
     mGroupArrival_s.assign(groups, 0.0);
     for (int g = 0; g < groups; ++g) {
-        if (members[g] == 0) continue;
+        if (members[g] == 0) {
+            // No vertex here: the bin's centre, so a blend towards it continues its neighbours.
+            mGroupBase[g] = minBase + (g % spec.levels + 0.5) * spanBase / spec.levels;
+            mGroupArrival_s[g] = (g / spec.levels + 0.5) * spanAlong / spec.arrivalBands /
+                                 spec.convection_mps;
+            continue;
+        }
         mGroupBase[g] = sumBase[g] / members[g];
         mGroupArrival_s[g] = sumArrival[g] / members[g];
     }

@@ -3,28 +3,46 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
 #include "base/Numbers.h"
 
 namespace gale::render {
 
-void bendBladeInto(int shells, float height_m, float intensity, float stiffness, ShellOffset* out) {
-    // DESIGN 5.1 (corrected from Bakay et al. 2002, section 3): segment j of N, length S, tilts by
-    // theta_j = (pi/2) I (j/N)^gamma. The table is tiny (N + 1 entries per group per frame).
+double tipTilt_rad(double intensity) {
+    // The paper's tilt (Bakay et al. 2002, section 3) up to the knee; above it a tanh shoulder
+    // whose slope at the knee is 1 and whose curvature there is 0, so the bend changes smoothly
+    // with the drive and approaches, never reaches, the ground margin.
+    const double x = 0.5 * PI * intensity;
+    const double ax = std::abs(x);
+    if (ax <= kTipTiltKnee_rad) return x;
+    const double room = kMaxTipTilt_rad - kTipTiltKnee_rad;
+    const double tilt = kTipTiltKnee_rad + room * std::tanh((ax - kTipTiltKnee_rad) / room);
+    return x < 0.0 ? -tilt : tilt;
+}
+
+void bendBladeByTiltInto(int shells, float height_m, double tipTilt, float stiffness,
+                         ShellOffset* out) {
+    // Bakay et al. 2002, section 3, with the tilt growing segment by segment as their text and
+    // Figure 6 describe: segment j of N, length S, tilts by theta_j = theta_tip (j/N)^gamma.
     const double s = static_cast<double>(height_m) / shells;
-    const double halfPiI = 0.5 * PI * intensity;
     double n = 0.0, w = 0.0;
     out[0] = {0.0, 0.0};
     for (int j = 1; j <= shells; ++j) {
         const double x = static_cast<double>(j) / shells;
-        const double theta = halfPiI * (stiffness == 1.0f ? x : std::pow(x, double(stiffness)));
+        const double theta = tipTilt * (stiffness == 1.0f ? x : std::pow(x, double(stiffness)));
         n += s * std::cos(theta);
         w += s * std::sin(theta);
         out[j] = {n, w};
     }
 }
 
+void bendBladeInto(int shells, float height_m, float intensity, float stiffness, ShellOffset* out) {
+    bendBladeByTiltInto(shells, height_m, tipTilt_rad(intensity), stiffness, out);
+}
+
 std::vector<ShellOffset> bendBlade(int shells, float height_m, float intensity, float stiffness) {
-    if (shells < 1) throw std::invalid_argument("shells must be >= 1, got " + std::to_string(shells));
+    if (shells < 1)
+        throw std::invalid_argument("shells must be >= 1, got " + std::to_string(shells));
     if (!std::isfinite(height_m) || height_m < 0.0f)
         throw std::invalid_argument("blade height must be finite and >= 0, got " +
                                     std::to_string(height_m));

@@ -1,16 +1,15 @@
 #pragma once
 /// \file GrassInput.h
 /// The plain data the renderer draws from. Everything the renderer knows of the world arrives in
-/// these structs; it never calls into sim/ or coupling/ (STYLE, module boundaries). All positions are
-/// world space, metres, z up.
+/// these structs; it never calls into sim/ or coupling/ (STYLE, module boundaries). All positions
+/// are world space, metres, z up.
 
 #include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
 
 namespace gale::render {
 
@@ -20,7 +19,7 @@ struct TerrainMesh {
     int ny = 0;
     std::vector<glm::vec3> wsPosition_m;  ///< vertex positions
     std::vector<glm::vec3> wsNormal;      ///< unit upward normals
-    std::vector<glm::vec2> uv;            ///< grass texture coordinates (repeats across the terrain)
+    std::vector<glm::vec2> uv;  ///< grass texture coordinates (repeats across the terrain)
 };
 
 /// Per-vertex wind, one entry per terrain vertex.
@@ -30,6 +29,16 @@ struct VertexWind {
     std::vector<glm::vec3> wsDirection;
     /// Animation-step group in [0, GrassWind::groupIntensity.size()).
     std::vector<uint32_t> group;
+    /// Width of the group grid: group g sits at column g % groupColumns, row g / groupColumns.
+    /// 0: the renderer chooses (rows of 1024). Sources whose groups are bins of one or two
+    /// quantities (intensity levels, arrival bands x levels, plan tiles) lay them out so grid
+    /// neighbours are neighbouring bins.
+    int groupColumns = 0;
+    /// Optional, empty or one per vertex: the vertex's continuous position in the group grid, in
+    /// group units (group g's bin centre at (g % groupColumns, g / groupColumns)). With it the
+    /// renderer blends the tip tilts of the four nearest groups bilinearly, so no stripes show
+    /// where groups change; without it each vertex takes its group's tilt alone.
+    std::vector<glm::vec2> groupCoord;
 };
 
 /// The wind as the shell renderer consumes it (paper section 3, Table 1): a tangent-plane wind
@@ -44,14 +53,17 @@ struct GrassWind {
     std::shared_ptr<const VertexWind> vertex;
     /// Changes whenever `vertex` changes, so the renderer re-uploads it only then.
     uint64_t revision = 0;
-    /// Per group: intensity I this frame (unitless; |I| = 1 lays the tip flat, more over-bends).
+    /// Per group: intensity I this frame (unitless). The tip tilts by (pi/2) I up to |I| = 1/2
+    /// and saturates smoothly above, short of the ground (render/Bend.h, tipTilt_rad).
     std::vector<float> groupIntensity;
 
     /// The per-vertex arrays; empty when `vertex` is null.
-    const std::vector<glm::vec3>& wsDirection() const { return vertex ? vertex->wsDirection : none().wsDirection; }
+    const std::vector<glm::vec3>& wsDirection() const {
+        return vertex ? vertex->wsDirection : none().wsDirection;
+    }
     const std::vector<uint32_t>& group() const { return vertex ? vertex->group : none().group; }
 
-private:
+  private:
     static const VertexWind& none() {
         static const VertexWind empty;
         return empty;
@@ -66,11 +78,11 @@ struct PointLight {
 };
 
 struct Lighting {
-    glm::vec3 ambient{0.15f};         ///< added after attenuation (thesis 3.3.4)
-    std::vector<PointLight> lights;   ///< any number, including none
-    float specularPower = 32.0f;      ///< Kajiya-Kay specular exponent p
-    float specularStrength = 0.3f;    ///< weight of the specular term
-    float selfShadowMin = 0.25f;      ///< Banks self-shadowing floor S_min at the ground
+    glm::vec3 ambient{0.15f};        ///< added after attenuation (thesis 3.3.4)
+    std::vector<PointLight> lights;  ///< any number, including none
+    float specularPower = 32.0f;     ///< Kajiya-Kay specular exponent p
+    float specularStrength = 0.3f;   ///< weight of the specular term
+    float selfShadowMin = 0.25f;     ///< Banks self-shadowing floor S_min at the ground
 };
 
 struct Camera {
@@ -81,12 +93,20 @@ struct Camera {
     float far_m = 2000.0f;
 };
 
-/// Shell grass parameters (DESIGN 5.1, 6).
+/// Shell grass parameters (Bakay 2003, chapter 3; docs/render.md).
 struct GrassParams {
     float height_m = 0.5f;   ///< full blade height
     int shells = 16;         ///< N: shells above the ground (N + 1 drawn with the ground), 1..256
     float stiffness = 1.0f;  ///< gamma in theta_j = (pi/2) I (j/N)^gamma; 1 is the paper's
     float tile_m = 2.0f;     ///< metres one repeat of the grass texture spans
+    /// Lay the texture aperiodically: each cell of a jittered grid (one texture repeat wide) shows
+    /// it turned, mirrored and shifted at random, so no repeat shows (docs/render.md). false: the
+    /// plain repeat.
+    bool aperiodic = false;
+    /// Level of detail (render/TerrainChunks.h): shells are dropped, thinning out first, where
+    /// the shells that remain are at most this many pixels apart on screen; 0 draws every shell
+    /// everywhere. >= 0.
+    float lodPixels = 2.0f;
 };
 
 /// An RGBA8 image, rows top-down.

@@ -119,6 +119,7 @@ ShellFillResult measureShellFill(const ShellFillCase& c) {
     grass.height_m = kGrassHeight_m;
     grass.shells = c.layers - 1;
     grass.tile_m = kTile_m;
+    grass.lodPixels = 0.0f;  // the table measures N full layers: no level of detail
     GrassTextureSpec spec;
     spec.size = kTextureSize;
     spec.seed = 2002;
@@ -146,9 +147,11 @@ ShellFillResult measureShellFill(const ShellFillCase& c) {
         setFrameIntensities(wind, frame++);
         renderer.draw(camera, wind);
         renderer.drawFillBaseline(camera);
+        renderer.drawFillBaseline(camera, /*nearestSampling=*/true);
     }
     double full_s = 0.0;
     double baseline_s = 0.0;
+    double nearest_s = 0.0;
     double cpuSum_ms = 0.0;
     for (int f = 0; f < c.frames; ++f) {
         setFrameIntensities(wind, frame++);
@@ -158,9 +161,13 @@ ShellFillResult measureShellFill(const ShellFillCase& c) {
         start = Clock::now();
         renderer.drawFillBaseline(camera);
         baseline_s += std::chrono::duration<double>(Clock::now() - start).count();
+        start = Clock::now();
+        renderer.drawFillBaseline(camera, /*nearestSampling=*/true);
+        nearest_s += std::chrono::duration<double>(Clock::now() - start).count();
     }
     result.fps = c.frames / full_s;
     result.baselineFps = c.frames / baseline_s;
+    result.nearestFps = c.frames / nearest_s;
     result.cpu_ms = cpuSum_ms / c.frames;
 
     // One more full frame (untimed) for the coverage check and the optional image.

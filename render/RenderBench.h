@@ -28,6 +28,7 @@ struct ShellFillResult {
     long triangles = 0;        ///< per frame: base triangles x layers
     double fps = 0.0;          ///< full renderer: bend, Kajiya-Kay / Banks lighting, alpha test
     double baselineFps = 0.0;  ///< texture fetch + alpha test only, same geometry and layers
+    double nearestFps = 0.0;   ///< the same fill with nearest-texel sampling: the fill's floor
     double cpu_ms = 0.0;       ///< mean per-frame CPU part of the full renderer (tables, uploads)
     double coverage = 0.0;     ///< fraction of pixels covered by terrain/grass in the last frame
     std::string renderer;      ///< GL_RENDERER, GL_VERSION

@@ -1,123 +1,15 @@
 /// \file ShellRenderer.cpp
-/// Shell grass (Bakay 2003, chapter 3): the terrain mesh drawn N + 1 times, instanced, with the
-/// bend table per group built on the CPU once per frame (thesis Table 3.2) and the displacement,
-/// the Kajiya-Kay / Banks lighting and the alpha test in shaders/shell.vert and shell.frag.
+/// Shell grass (Bakay 2003, chapter 3): the terrain mesh drawn N + 1 times, instanced, with one
+/// tip tilt per group computed on the CPU once per frame and the bend read from a table of bends
+/// over tilts (render/BendTables.h, after thesis Table 3.2); the displacement, the Kajiya-Kay /
+/// Banks lighting and the alpha test are in shaders/shell.vert and shell.frag.
 
 #include "render/ShellRenderer.h"
 
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <glm/gtc/type_ptr.hpp>
-#include <stdexcept>
-#include <string>
-#include <vector>
-
-#include "render/Bend.h"
-#include "render/CameraMath.h"
-#include "render/GlInfo.h"
-#include "render/GlUtil.h"
+#include "render/ShellRendererImpl.h"
 
 namespace gale::render {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-bool finite3(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-// Vertex attribute locations shared with shaders/shell.vert and fill.vert.
-constexpr GLuint kPositionLoc = 0;
-constexpr GLuint kNormalLoc = 1;
-constexpr GLuint kUvLoc = 2;
-constexpr GLuint kWindDirLoc = 3;
-constexpr GLuint kGroupLoc = 4;
-
-// Texture units.
-constexpr GLint kGrassUnit = 0;
-constexpr GLint kBendUnit = 1;
-
-/// Static per-vertex data, interleaved.
-struct TerrainVertex {
-    float position[3];
-    float normal[3];
-    float uv[2];
-};
-
-/// Per-vertex wind data, re-uploaded only when GrassWind::revision changes.
-struct WindVertex {
-    float direction[3];
-    uint32_t group;
-};
-
-GLint uniform(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
-
-}  // namespace
-
-struct ShellRenderer::Impl {
-    GlContext& context;
-
-    detail::Program shellProgram;
-    detail::Program fillProgram;
-    detail::VertexArray vao;
-    detail::Buffer terrainVbo;
-    detail::Buffer windVbo;
-    detail::Buffer indexBuffer;
-    detail::Texture grassTexture;
-    detail::Texture bendTexture;
-
-    // Uniform locations of shell.vert / shell.frag.
-    struct {
-        GLint clipFromWorld, eyePos, shells, topShell, bend, grass;
-        GLint lightCount, lightPos, lightColor, lightAtten;
-        GLint ambient, specularPower, specularStrength, shadowMin;
-    } shellLoc{};
-    struct {
-        GLint clipFromWorld, shells, shellSpacing, grass;
-    } fillLoc{};
-
-    int maxTextureSize = 0;
-
-    // Terrain.
-    bool haveTerrain = false;
-    size_t vertexCount = 0;
-    GLsizei indexCount = 0;
-
-    // Grass.
-    bool haveGrass = false;
-    GrassParams grass;
-
-    // Lighting (uploaded to the shell program on setLighting).
-    Lighting lighting;
-
-    // Wind state on the GPU.
-    bool windUploaded = false;
-    bool windWasNone = false;
-    uint64_t windRevision = 0;
-    uint32_t windMaxGroup = 0;
-
-    // Bend table: (N + 1) x groups texels of (n_i, w_i), metres.
-    int bendWidth = 0;
-    int bendHeight = 0;
-    std::vector<ShellOffset> bendRow;  ///< one group's offsets, double (Bend.h)
-    std::vector<float> bendTable;      ///< all groups, narrowed to float pairs for the upload
-
-    explicit Impl(GlContext& ctx) : context(ctx) {}
-
-    void init();
-    void uploadLighting();
-    void uploadWind(const GrassWind& wind);
-    void buildBendTable(const GrassWind& wind);
-    void requireReady(const char* what) const;
-    void beginFrame();
-};
+using namespace shell_detail;
 
 void ShellRenderer::Impl::init() {
     context.makeCurrent();
@@ -131,20 +23,35 @@ void ShellRenderer::Impl::init() {
     fillProgram = detail::Program(detail::linkProgramFiles("fill.vert", "fill.frag"));
 
     const GLuint sp = shellProgram.get();
-    shellLoc.clipFromWorld = uniform(sp, "uClipFromWorld");
-    shellLoc.eyePos = uniform(sp, "uEyePos");
-    shellLoc.shells = uniform(sp, "uShells");
-    shellLoc.topShell = uniform(sp, "uTopShell");
-    shellLoc.bend = uniform(sp, "uBend");
-    shellLoc.grass = uniform(sp, "uGrass");
-    shellLoc.lightCount = uniform(sp, "uLightCount");
-    shellLoc.lightPos = uniform(sp, "uLightPos");
-    shellLoc.lightColor = uniform(sp, "uLightColor");
-    shellLoc.lightAtten = uniform(sp, "uLightAtten");
-    shellLoc.ambient = uniform(sp, "uAmbient");
-    shellLoc.specularPower = uniform(sp, "uSpecularPower");
-    shellLoc.specularStrength = uniform(sp, "uSpecularStrength");
-    shellLoc.shadowMin = uniform(sp, "uShadowMin");
+    // Uniform locations of shell.vert / shell.frag (-1 for a name the compiler dropped).
+    const std::pair<GLint*, const char*> shellNames[] = {
+        {&shellLoc.clipFromWorld, "uClipFromWorld"},
+        {&shellLoc.eyePos, "uEyePos"},
+        {&shellLoc.shells, "uShells"},
+        {&shellLoc.topShell, "uTopShell"},
+        {&shellLoc.shellStride, "uShellStride"},
+        {&shellLoc.lodD1, "uLodD1"},
+        {&shellLoc.bend, "uBend"},
+        {&shellLoc.grass, "uGrass"},
+        {&shellLoc.groups, "uGroupTilt"},
+        {&shellLoc.groupColumns, "uGroupColumns"},
+        {&shellLoc.blendGroups, "uBlendGroups"},
+        {&shellLoc.maxTilt, "uMaxTilt"},
+        {&shellLoc.aperiodic, "uAperiodic"},
+        {&shellLoc.hasDensity, "uHasDensity"},
+        {&shellLoc.density, "uDensity"},
+        {&shellLoc.densityCut, "uDensityCut"},
+        {&shellLoc.densityMin, "uDensityMin"},
+        {&shellLoc.densitySize, "uDensitySize"},
+        {&shellLoc.lightCount, "uLightCount"},
+        {&shellLoc.lightPos, "uLightPos"},
+        {&shellLoc.lightColor, "uLightColor"},
+        {&shellLoc.lightAtten, "uLightAtten"},
+        {&shellLoc.ambient, "uAmbient"},
+        {&shellLoc.specularPower, "uSpecularPower"},
+        {&shellLoc.specularStrength, "uSpecularStrength"},
+        {&shellLoc.shadowMin, "uShadowMin"}};
+    for (const auto& [loc, name] : shellNames) *loc = uniform(sp, name);
     // The shader's light arrays must be exactly kMaxLights long.
     GLint arraySize = 0;
     const GLuint index = glGetProgramResourceIndex(sp, GL_UNIFORM, "uLightPos[0]");
@@ -167,6 +74,10 @@ void ShellRenderer::Impl::init() {
     glUseProgram(sp);
     glUniform1i(shellLoc.grass, kGrassUnit);
     glUniform1i(shellLoc.bend, kBendUnit);
+    glUniform1i(shellLoc.groups, kGroupUnit);
+    glUniform1i(shellLoc.density, kDensityUnit);
+    glUniform1i(shellLoc.densityCut, kDensityCutUnit);
+    glUniform1f(shellLoc.maxTilt, static_cast<float>(kMaxTipTilt_rad));
     glUseProgram(fp);
     glUniform1i(fillLoc.grass, kGrassUnit);
     glUseProgram(0);
@@ -182,8 +93,8 @@ void ShellRenderer::Impl::init() {
     indexBuffer = detail::Buffer(name);
     glGenTextures(1, &name);
     grassTexture = detail::Texture(name);
-    glGenTextures(1, &name);
-    bendTexture = detail::Texture(name);
+    tables = std::make_unique<detail::BendTables>();
+    density = std::make_unique<detail::DensityTables>();
 
     glBindVertexArray(vao.get());
     glBindBuffer(GL_ARRAY_BUFFER, terrainVbo.get());
@@ -205,16 +116,12 @@ void ShellRenderer::Impl::init() {
     glEnableVertexAttribArray(kGroupLoc);
     glVertexAttribIPointer(kGroupLoc, 1, GL_UNSIGNED_INT, windStride,
                            reinterpret_cast<const void*>(offsetof(WindVertex, group)));
+    glEnableVertexAttribArray(kGroupCoordLoc);
+    glVertexAttribPointer(kGroupCoordLoc, 2, GL_FLOAT, GL_FALSE, windStride,
+                          reinterpret_cast<const void*>(offsetof(WindVertex, groupCoord)));
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer.get());
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-
-    // The bend table is read with texelFetch only: no filtering, no MIP levels.
-    glBindTexture(GL_TEXTURE_2D, bendTexture.get());
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-    glBindTexture(GL_TEXTURE_2D, 0);
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     detail::checkFramebufferComplete("ShellRenderer (default framebuffer)");
@@ -272,11 +179,15 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
     const std::vector<uint32_t>& group = wind.group();
     checkSize("wsDirection", direction.size());
     checkSize("group", group.size());
+    static const std::vector<glm::vec2> kNoCoord;
+    const std::vector<glm::vec2>& coord = wind.vertex ? wind.vertex->groupCoord : kNoCoord;
+    const bool blends = !none && !coord.empty();
+    if (blends) checkSize("vertex->groupCoord", coord.size());
 
     const bool needUpload =
         !windUploaded || none != windWasNone || (!none && wind.revision != windRevision);
     if (needUpload) {
-        std::vector<WindVertex> data(n, WindVertex{{0.0f, 0.0f, 0.0f}, 0u});
+        std::vector<WindVertex> data(n, WindVertex{{0.0f, 0.0f, 0.0f}, 0u, {0.0f, 0.0f}});
         uint32_t maxGroup = 0;
         if (!none) {
             for (size_t v = 0; v < n; ++v) {
@@ -285,7 +196,12 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
                     throw std::invalid_argument("GrassWind.wsDirection[" + std::to_string(v) +
                                                 "] is not finite");
                 }
-                data[v] = WindVertex{{d.x, d.y, d.z}, group[v]};
+                const glm::vec2 c = blends ? coord[v] : glm::vec2(0.0f);
+                if (!std::isfinite(c.x) || !std::isfinite(c.y)) {
+                    throw std::invalid_argument("GrassWind.vertex->groupCoord[" +
+                                                std::to_string(v) + "] is not finite");
+                }
+                data[v] = WindVertex{{d.x, d.y, d.z}, group[v], {c.x, c.y}};
                 maxGroup = std::max(maxGroup, group[v]);
             }
         }
@@ -297,71 +213,14 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
         windWasNone = none;
         windRevision = wind.revision;
         windMaxGroup = maxGroup;
+        windColumns = wind.vertex ? wind.vertex->groupColumns : 0;
+        windBlends = blends;
     }
     if (!none && windMaxGroup >= wind.groupIntensity.size()) {
         throw std::invalid_argument("GrassWind.group holds group " + std::to_string(windMaxGroup) +
                                     ", but groupIntensity has only " +
                                     std::to_string(wind.groupIntensity.size()) + " groups");
     }
-}
-
-void ShellRenderer::Impl::buildBendTable(const GrassWind& wind) {
-    const int shells = grass.shells;
-    const int width = shells + 1;
-    const int groups = std::max<int>(1, static_cast<int>(wind.groupIntensity.size()));
-    if (groups > maxTextureSize) {
-        throw std::invalid_argument("GrassWind.groupIntensity has " + std::to_string(groups) +
-                                    " groups; the bend table holds at most " +
-                                    std::to_string(maxTextureSize) + " (GL_MAX_TEXTURE_SIZE)");
-    }
-    bendTable.resize(static_cast<size_t>(width) * groups * 2u);
-    bendRow.resize(static_cast<size_t>(width));
-    for (int g = 0; g < groups; ++g) {
-        const float intensity =
-            wind.groupIntensity.empty() ? 0.0f : wind.groupIntensity[static_cast<size_t>(g)];
-        if (!std::isfinite(intensity)) {
-            throw std::invalid_argument("GrassWind.groupIntensity[" + std::to_string(g) +
-                                        "] is not finite");
-        }
-        if (shells == 0) {
-            bendRow[0] = ShellOffset{0.0, 0.0};
-        } else {
-            // DESIGN 5.1 / thesis 3.2: once per group per frame, never per vertex.
-            bendBladeInto(shells, grass.height_m, intensity, grass.stiffness, bendRow.data());
-        }
-        float* row = &bendTable[static_cast<size_t>(g) * width * 2u];
-        for (int i = 0; i < width; ++i) {
-            row[2 * i] = static_cast<float>(bendRow[i].n_m);
-            row[2 * i + 1] = static_cast<float>(bendRow[i].w_m);
-        }
-    }
-    glActiveTexture(GL_TEXTURE0 + kBendUnit);
-    glBindTexture(GL_TEXTURE_2D, bendTexture.get());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    if (width != bendWidth || groups != bendHeight) {
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, width, groups, 0, GL_RG, GL_FLOAT,
-                     bendTable.data());
-        bendWidth = width;
-        bendHeight = groups;
-    } else {
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, groups, GL_RG, GL_FLOAT, bendTable.data());
-    }
-}
-
-void ShellRenderer::Impl::beginFrame() {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, context.width(), context.height());
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
-    // Shells are seen from below on slopes and at grazing angles: no culling.
-    glDisable(GL_CULL_FACE);
-    glClearColor(kSkyColor[0], kSkyColor[1], kSkyColor[2], 1.0f);
-    glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glActiveTexture(GL_TEXTURE0 + kGrassUnit);
-    glBindTexture(GL_TEXTURE_2D, grassTexture.get());
 }
 
 ShellRenderer::ShellRenderer(GlContext& context) : mImpl(std::make_unique<Impl>(context)) {
@@ -399,19 +258,9 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
         }
         vertices[v] = TerrainVertex{{p.x, p.y, p.z}, {nn.x, nn.y, nn.z}, {uv.x, uv.y}};
     }
-    // Two triangles per quad, i fastest.
     std::vector<uint32_t> indices;
-    indices.reserve(static_cast<size_t>(mesh.nx - 1) * (mesh.ny - 1) * 6u);
-    for (int j = 0; j + 1 < mesh.ny; ++j) {
-        for (int i = 0; i + 1 < mesh.nx; ++i) {
-            const auto a = static_cast<uint32_t>(j * mesh.nx + i);
-            const auto b = a + 1u;
-            const auto c = a + static_cast<uint32_t>(mesh.nx);
-            const auto d = c + 1u;
-            indices.insert(indices.end(), {a, b, d, a, d, c});
-        }
-    }
-
+    std::vector<detail::TerrainChunk> chunks =
+        detail::buildChunks(mesh.nx, mesh.ny, mesh.wsPosition_m, indices);
     Impl& m = *mImpl;
     m.context.makeCurrent();
     glBindVertexArray(0);
@@ -427,6 +276,7 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     detail::checkGlError("ShellRenderer::setTerrain");
     m.vertexCount = n;
     m.indexCount = static_cast<GLsizei>(indices.size());
+    m.chunks = std::move(chunks);
     m.haveTerrain = true;
     m.windUploaded = false;  // the per-vertex wind arrays must match the new vertex count
 }
@@ -440,6 +290,10 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
         throw std::invalid_argument("GrassParams.shells must be in 0.." +
                                     std::to_string(kMaxShells) + ", got " +
                                     std::to_string(params.shells));
+    }
+    if (!(params.lodPixels >= 0.0f) || !std::isfinite(params.lodPixels)) {
+        throw std::invalid_argument("GrassParams.lodPixels must be >= 0, got " +
+                                    std::to_string(params.lodPixels));
     }
     if (!(params.stiffness > 0.0f) || !std::isfinite(params.stiffness)) {
         throw std::invalid_argument("GrassParams.stiffness must be > 0, got " +
@@ -479,9 +333,16 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    m.density->setCuts(texture.levels[0]);
     detail::checkGlError("ShellRenderer::setGrass");
     m.grass = params;
     m.haveGrass = true;
+}
+
+void ShellRenderer::setDensityMap(const DensityMap& map) {
+    Impl& m = *mImpl;
+    m.context.makeCurrent();
+    m.density->setMap(map, m.maxTextureSize);
 }
 
 void ShellRenderer::setLighting(const Lighting& lighting) {
@@ -515,89 +376,15 @@ void ShellRenderer::setLighting(const Lighting& lighting) {
     mImpl->uploadLighting();
 }
 
-FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind) {
-    return draw(camera, wind, DrawOptions{});
-}
-
 void ShellRenderer::setShellCount(int shells) {
     Impl& m = *mImpl;
     if (!m.haveGrass) throw std::logic_error("ShellRenderer::setShellCount before setGrass");
     if (shells < 0 || shells > kMaxShells)
         throw std::invalid_argument("ShellRenderer::setShellCount: shells must be in 0.." +
-                                    std::to_string(kMaxShells) + ", got " +
-                                    std::to_string(shells));
+                                    std::to_string(kMaxShells) + ", got " + std::to_string(shells));
     m.grass.shells = shells;
 }
 
 int ShellRenderer::shellCount() const { return mImpl->grass.shells; }
-
-FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
-                               const DrawOptions& options) {
-    Impl& m = *mImpl;
-    m.requireReady("draw");
-    const auto cpuStart = Clock::now();
-    const float aspect =
-        static_cast<float>(m.context.width()) / static_cast<float>(m.context.height());
-    const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
-    m.context.makeCurrent();
-    m.uploadWind(wind);
-    m.buildBendTable(wind);
-    FrameStats stats;
-    stats.cpu_ms = msSince(cpuStart);
-
-    const auto gpuStart = Clock::now();
-    m.beginFrame();
-    glUseProgram(m.shellProgram.get());
-    glUniformMatrix4fv(m.shellLoc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(clipFromWorldM));
-    glUniform3fv(m.shellLoc.eyePos, 1, glm::value_ptr(camera.wsPosition_m));
-    glUniform1i(m.shellLoc.shells, m.grass.shells);
-    // The viewer's toggles: without grass the top shell is the ground; without terrain the
-    // ground (shell 0) is left out.
-    const int top = options.grass ? m.grass.shells : 0;
-    const int bottom = options.terrain ? 0 : 1;
-    glUniform1i(m.shellLoc.topShell, top);
-    glBindVertexArray(m.vao.get());
-    // Instance k is shell top - k: top shell first, ground last. The thesis (3.1) draws bottom to
-    // top because its shells were blended; ours are alpha-tested and opaque with the depth test on,
-    // so the image does not depend on the order, and top first lets the early depth test discard
-    // the lower shells' fragments hidden under blades (measured +5-18 % fill rate on llvmpipe).
-    if (top >= bottom)
-        glDrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
-                                top - bottom + 1);
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glFinish();
-    stats.gpu_ms = msSince(gpuStart);
-    detail::checkGlError("ShellRenderer::draw");
-    return stats;
-}
-
-FrameStats ShellRenderer::drawFillBaseline(const Camera& camera) {
-    Impl& m = *mImpl;
-    m.requireReady("drawFillBaseline");
-    const float aspect =
-        static_cast<float>(m.context.width()) / static_cast<float>(m.context.height());
-    const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
-    m.context.makeCurrent();
-    // fill.vert reads no wind, but the VAO's wind arrays must still be backed by a full buffer.
-    if (!m.windUploaded) m.uploadWind(GrassWind{});
-    FrameStats stats;
-    const auto gpuStart = Clock::now();
-    m.beginFrame();
-    glUseProgram(m.fillProgram.get());
-    glUniformMatrix4fv(m.fillLoc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(clipFromWorldM));
-    glUniform1i(m.fillLoc.shells, m.grass.shells);
-    glUniform1f(m.fillLoc.shellSpacing,
-                m.grass.shells > 0 ? m.grass.height_m / static_cast<float>(m.grass.shells) : 0.0f);
-    glBindVertexArray(m.vao.get());
-    glDrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
-                            m.grass.shells + 1);
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glFinish();
-    stats.gpu_ms = msSince(gpuStart);
-    detail::checkGlError("ShellRenderer::drawFillBaseline");
-    return stats;
-}
 
 }  // namespace gale::render

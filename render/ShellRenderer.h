@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "render/DensityMap.h"
 #include "render/GlContext.h"
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"
@@ -13,8 +14,11 @@
 namespace gale::render {
 
 struct FrameStats {
-    double cpu_ms = 0.0;  ///< table building and uploads on the CPU
-    double gpu_ms = 0.0;  ///< draw calls through glFinish
+    double cpu_ms = 0.0;   ///< table building and uploads on the CPU
+    double gpu_ms = 0.0;   ///< draw calls through glFinish
+    int chunks = 0;        ///< terrain chunks in the frustum (render/TerrainChunks.h)
+    int chunksCulled = 0;  ///< chunks outside it, not drawn
+    long long layers = 0;  ///< chunk layers drawn (sum over chunks of the shells each drew)
 };
 
 /// What draw() shows; the viewer's toggles. Both off draws only the sky.
@@ -24,7 +28,7 @@ struct DrawOptions {
 };
 
 class ShellRenderer {
-public:
+  public:
     /// Compiles the shaders (throws std::runtime_error naming the shader file and its log).
     /// The context must be current and stay alive while the renderer is used.
     explicit ShellRenderer(GlContext& context);
@@ -41,6 +45,10 @@ public:
     /// (0 draws the ground only, the paper's one-shell row); stiffness > 0. Texture levels must be
     /// square, halving from a power of two. Throws std::invalid_argument otherwise.
     void setGrass(const GrassParams& params, const GrassTexture& texture);
+    /// Thins the grass by a density map (render/DensityMap.h); a map of width 0 removes it
+    /// (density 1 everywhere). Requires density.size() == width * height, values finite, width
+    /// and height within GL_MAX_TEXTURE_SIZE; throws std::invalid_argument naming the field.
+    void setDensityMap(const DensityMap& map);
     /// At most kMaxLights point lights (RenderLimits.h); attenuation coefficients >= 0 with
     /// k_c + k_l + k_q > 0; specularPower >= 0; selfShadowMin in [0, 1]. Throws
     /// std::invalid_argument otherwise.
@@ -65,13 +73,15 @@ public:
 
     /// Benchmark baseline: the same terrain, shell count and texture with a minimal shader
     /// (shells extruded straight along the normal, texture fetch and alpha test, no bend, no
-    /// lighting). Same preconditions as draw; ends with glFinish.
-    FrameStats drawFillBaseline(const Camera& camera);
+    /// lighting). Same preconditions as draw; ends with glFinish. nearestSampling: the texture read
+    /// with GL_NEAREST_MIPMAP_NEAREST instead of the grass texture's trilinear filtering (the
+    /// floor of a fill on a software rasteriser, where trilinear filtering dominates the cost).
+    FrameStats drawFillBaseline(const Camera& camera, bool nearestSampling = false);
 
     /// Sky (clear) colour, linear RGB in [0, 1].
     static constexpr float kSkyColor[3] = {0.60f, 0.75f, 0.92f};
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };

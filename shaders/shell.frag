@@ -1,17 +1,83 @@
 #version 450 core
 // Shell grass fragment shader (Bakay 2003, 3.1): the alpha test against this shell's height, then
 // the texture colour times the per-vertex light. Opaque: no blending, depth test on.
+//
+// Two additions (docs/render.md): a density map thins the blades (a blade stays only where its
+// height is above the cut that leaves the map's fraction of the texture's blade area), and the
+// texture is laid aperiodically (each cell of a jittered grid over the texture plane shows the
+// texture rotated by a multiple of 90 degrees, mirrored and shifted at random), so no repeat shows.
 
-uniform sampler2D uGrass;  // RGB colour, alpha = blade height fraction, blade-keeping MIP chain
+uniform sampler2D uGrass;       // RGB colour, alpha = blade height fraction, blade-keeping MIP chain
+uniform int uAperiodic;         // 1: the jittered-cell layout; 0: the plain repeat
+uniform int uHasDensity;        // 1: read uDensity
+uniform sampler2D uDensity;     // density in [0, 1] over the plan (R channel)
+uniform sampler2D uDensityCut;  // 256 x 1: texel k is the alpha cut for density k / 255
 
 in vec2 vUv;
+in vec2 vDensityUv;
+in float vFade;
 in vec3 vLight;
 flat in float vThreshold;
 
 out vec4 oColor;
 
+// A 32-bit integer hash (Jarzynski and Olano 2020, "Hash Functions for GPU Rendering": pcg2d).
+uvec2 pcg2d(uvec2 v) {
+    v = v * 1664525u + 1013904223u;
+    v.x += v.y * 1664525u;
+    v.y += v.x * 1664525u;
+    v ^= v >> 16u;
+    v.x += v.y * 1664525u;
+    v.y += v.x * 1664525u;
+    v ^= v >> 16u;
+    return v;
+}
+
+// The texture lookup of the aperiodic layout. Cells are the unit squares of the texture plane;
+// each has a feature point jittered within +-0.25 of its centre, and a fragment belongs to the
+// cell of the nearest feature point among the four cells around it (a Voronoi partition of a
+// jittered grid: irregular borders, no straight seam). The cell's random transform (one of the 8
+// symmetries of the square, then a shift) is applied to uv and, for the MIP level, to its screen
+// derivatives: the transform is piecewise rigid, so the level is the plain repeat's.
+vec4 aperiodicTexel(vec2 uv) {
+    vec2 base = floor(uv - 0.5);
+    vec2 best = base;
+    float bestD = 1e9;
+    for (int k = 0; k < 4; ++k) {
+        vec2 cell = base + vec2(k & 1, k >> 1);
+        uvec2 h = pcg2d(uvec2(ivec2(cell) + 32768));
+        vec2 point = cell + 0.5 + (vec2(h & 0xffffu) / 65535.0 - 0.5) * 0.5;
+        vec2 d = uv - point;
+        float dd = dot(d, d);
+        if (dd < bestD) {
+            bestD = dd;
+            best = cell;
+        }
+    }
+    uvec2 h = pcg2d(uvec2(ivec2(best) + 32768) ^ uvec2(0x9e3779b9u, 0x85ebca6bu));
+    uint sym = h.x & 7u;
+    vec2 shift = vec2(h >> 16u) / 65536.0;
+    // Symmetry: mirror x if bit 2, then rotate by 90 degrees times (bits 0-1).
+    mat2 m = ((sym & 4u) != 0u) ? mat2(-1.0, 0.0, 0.0, 1.0) : mat2(1.0);
+    uint r = sym & 3u;
+    mat2 rot = (r == 0u) ? mat2(1.0) : (r == 1u) ? mat2(0.0, 1.0, -1.0, 0.0)
+             : (r == 2u) ? mat2(-1.0, 0.0, 0.0, -1.0) : mat2(0.0, -1.0, 1.0, 0.0);
+    m = rot * m;
+    return textureGrad(uGrass, m * uv + shift, m * dFdx(uv), m * dFdy(uv));
+}
+
 void main() {
-    vec4 texel = texture(uGrass, vUv);
-    if (texel.a < vThreshold) discard;
+    vec4 texel = (uAperiodic != 0) ? aperiodicTexel(vUv) : texture(uGrass, vUv);
+    float threshold = vThreshold;
+    // The map's density times the level of detail's fade (render/TerrainChunks.h).
+    float density = vFade;
+    if (uHasDensity != 0) density *= clamp(texture(uDensity, vDensityUv).r, 0.0, 1.0);
+    if (density < 1.0 && threshold > 0.0) {
+        // The cut that keeps this share of blade area: blades shorter than it vanish whole, the
+        // others keep their full height.
+        float cut = texture(uDensityCut, vec2((density * 255.0 + 0.5) / 256.0, 0.5)).r;
+        threshold = max(threshold, cut);
+    }
+    if (texel.a < threshold) discard;
     oColor = vec4(texel.rgb * vLight, 1.0);
 }

@@ -13,15 +13,27 @@ layout(location = 0) in vec3 aPosition;  // vertex on the terrain
 layout(location = 1) in vec3 aNormal;    // unit terrain normal
 layout(location = 2) in vec2 aUv;        // grass texture coordinates
 layout(location = 3) in vec3 aWindDir;   // unit tangent-plane wind direction, or zero
-layout(location = 4) in uint aGroup;     // animation-step group (row of uBend)
+layout(location = 4) in uint aGroup;     // animation-step group
+layout(location = 5) in vec2 aGroupCoord; // position in the group grid (when uBlendGroups)
 
 uniform mat4 uClipFromWorld;
 uniform vec3 uEyePos;          // camera position
 uniform int uShells;           // N
 uniform int uTopShell;         // shell of instance 0: N, or 0 when the grass is hidden (viewer)
-// Bend table (thesis Table 3.2: n_i, w_i once per frame, per group, per shell): texel (i, g) holds
-// (n_i, w_i) in metres for shell i of group g (DESIGN 5.1).
+uniform int uShellStride;      // instance k draws shell uTopShell - k uShellStride (LOD)
+// Level of detail (render/TerrainChunks.h): shell i thins out between 0.7 D(i) and D(i), D(i) =
+// uLodD1 2^(trailing zero bits of i), metres from the eye; 0 = no level of detail.
+uniform float uLodD1;
+// Bends over tip tilts (render/BendTables.h): texel (i, l) holds (n_i, w_i) in metres for shell i
+// of a blade whose tip tilts by -uMaxTilt + 2 uMaxTilt l / (L - 1) (Bakay 2003, 3.2).
 uniform sampler2D uBend;
+uniform float uMaxTilt;        // radians
+// Tip tilt per group this frame (radians), groups row by row uGroupColumns wide.
+uniform sampler2D uGroupTilt;
+uniform int uGroupColumns;
+// 1: blend the four nearest groups at aGroupCoord (bilinear), so no stripes show where groups
+// change; 0: this vertex's group alone.
+uniform int uBlendGroups;
 
 uniform int uLightCount;
 uniform vec3 uLightPos[MAX_LIGHTS];
@@ -32,20 +44,49 @@ uniform float uSpecularPower;
 uniform float uSpecularStrength;
 uniform float uShadowMin;  // Banks S_min
 
+// The density map's plan rectangle (render/DensityMap.h), metres.
+uniform vec2 uDensityMin;
+uniform vec2 uDensitySize;
+
 out vec2 vUv;
+out vec2 vDensityUv;       // where the blade's root is on the density map (row 0 = north)
+out float vFade;           // share of this shell's blades the level of detail keeps, [0, 1]
 out vec3 vLight;           // light reaching the vertex, multiplies the texture colour
 flat out float vThreshold; // alpha test: keep texels with alpha >= vThreshold
 
-vec3 shellPosition(int i) {
-    vec2 nw = texelFetch(uBend, ivec2(i, int(aGroup)), 0).rg;
+float groupTilt() {
+    if (uBlendGroups != 0) {
+        vec2 size = vec2(textureSize(uGroupTilt, 0));
+        return texture(uGroupTilt, (aGroupCoord + 0.5) / size).r;
+    }
+    int g = int(aGroup);
+    return texelFetch(uGroupTilt, ivec2(g % uGroupColumns, g / uGroupColumns), 0).r;
+}
+
+// The bend of shell i at tilt row `row` (fractional), linear between the two nearest rows.
+vec3 shellPosition(int i, float row) {
+    int last = textureSize(uBend, 0).y - 1;
+    int r0 = min(int(row), last);
+    vec2 a = texelFetch(uBend, ivec2(i, r0), 0).rg;
+    vec2 b = texelFetch(uBend, ivec2(i, min(r0 + 1, last)), 0).rg;
+    vec2 nw = mix(a, b, row - float(r0));
     return aPosition + nw.x * aNormal + nw.y * aWindDir;
 }
 
 void main() {
-    int i = uTopShell - gl_InstanceID;
-    vec3 pos = shellPosition(i);
+    int i = uTopShell - gl_InstanceID * uShellStride;
+    float last = float(textureSize(uBend, 0).y - 1);
+    float row = clamp((groupTilt() / uMaxTilt * 0.5 + 0.5) * last, 0.0, last);
+    vec3 pos = shellPosition(i, row);
     gl_Position = uClipFromWorld * vec4(pos, 1.0);
     vUv = aUv;
+    vec2 plan = (aPosition.xy - uDensityMin) / uDensitySize;
+    vDensityUv = vec2(plan.x, 1.0 - plan.y);
+    vFade = 1.0;
+    if (uLodD1 > 0.0 && i > 0) {
+        float drop = uLodD1 * float(1 << findLSB(i));
+        vFade = 1.0 - smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
+    }
 
     // Thesis 3.1: shell i keeps texels with alpha >= i/N; the ground keeps every texel. Half an
     // 8-bit step of slack so a blade of alpha 255 i/N passes its shell despite rounding; never
@@ -55,7 +96,7 @@ void main() {
 
     // Strand tangent (thesis 3.3.1): from this vertex on shell i-1 to shell i; the ground uses the
     // terrain normal.
-    vec3 T = (i == 0) ? aNormal : normalize(pos - shellPosition(i - 1));
+    vec3 T = (i == 0) ? aNormal : normalize(pos - shellPosition(i - 1, row));
     vec3 V = normalize(uEyePos - pos);
 
     vec3 lit = vec3(0.0);

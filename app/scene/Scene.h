@@ -43,6 +43,7 @@ struct TerrainSection {
 struct GrassSection {
     render::GrassParams params;
     std::string texturePath;  ///< empty: generate from `generated`
+    std::string densityMapPath;  ///< grass.density_map, resolved; empty: density 1 everywhere
     render::GrassTextureSpec generated;
 };
 

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include <glm/common.hpp>
+
 #include "app/io/Errors.h"
 #include "app/scene/Dem.h"
 #include "app/scene/Heightmap.h"
@@ -297,6 +299,18 @@ BuiltScene buildScene(const Scene& scene, const BuildOptions& options) {
         }
     } else {
         built.texture = loadTexture(scene);
+    }
+    if (!scene.grass.densityMapPath.empty()) {
+        // The map covers the render mesh's plan, its top row the north edge.
+        glm::vec2 lo(built.mesh.wsPosition_m.front()), hi = lo;
+        for (const glm::vec3& p : built.mesh.wsPosition_m)
+            lo = glm::min(lo, glm::vec2(p)), hi = glm::max(hi, glm::vec2(p));
+        try {
+            QuietStderr quiet;  // libpng would print the error a second time
+            built.densityMap = render::loadDensityMap(scene.grass.densityMapPath, lo, hi - lo);
+        } catch (const std::exception& e) {
+            failAt(scene, "grass.density_map", e.what());
+        }
     }
 
     built.camera =

@@ -11,6 +11,7 @@
 
 #include "app/scene/Scene.h"
 #include "coupling/WindSource.h"
+#include "render/DensityMap.h"
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"
 #include "sim/Heightfield.h"
@@ -29,6 +30,7 @@ struct BuiltScene {
     Georeference georef;           ///< the DEM's coordinate system and local offset; empty otherwise
     render::TerrainMesh mesh;
     render::GrassTexture texture;
+    render::DensityMap densityMap;   ///< grass.density_map over the mesh's plan; width 0: none
     std::unique_ptr<coupling::WindSource> wind;
     render::Camera camera;           ///< the scene's camera with defaults resolved
     glm::vec3 wsWindSource_m{0.0f};  ///< point source actually used

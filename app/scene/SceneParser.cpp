@@ -183,6 +183,14 @@ void readGrass(Context& ctx, Section s) {
     g.params.stiffness = static_cast<float>(s.number("stiffness", 1.0, above(0.0, 100.0)));
     g.params.tile_m = static_cast<float>(s.number("tile_m", 3.0, above(0.0, 1e5)));
     const std::string texture = s.string("texture", "generated");
+    g.params.aperiodic = s.boolean("aperiodic", false);
+    g.params.lodPixels = static_cast<float>(s.number("lod_pixels", 2.0, closed(0.0, 1000.0)));
+    const std::string densityMap = s.string("density_map", "");
+    if (s.given("density_map")) {
+        if (densityMap.empty()) s.failKey("density_map", "expected an image path (got \"\")");
+        g.densityMapPath = resolveAgainst(ctx.folder, densityMap);
+        requireInputFile(s, "density_map", g.densityMapPath, densityMap);
+    }
 
     Section gen = s.table("generated");
     render::GrassTextureSpec& spec = g.generated;
@@ -304,6 +312,7 @@ void readWind(Context& ctx, Section s) {
     p.steps = static_cast<int>(s.integer("steps", 16, 1, 1024));
     p.stepDelay_s = s.number("step_delay_s", 0.15, closed(0.0, 3600.0));
     p.blowAway = s.boolean("blow_away", true);
+    p.blendGroups = s.boolean("blend_groups", true);
 
     // The ambient wind (first guess of the solve, DESIGN 4.1): read whatever the kind, since
     // `gale solve` uses it for any scene.
@@ -339,6 +348,7 @@ void readWind(Context& ctx, Section s) {
         s.failKey(s.given("grouping") ? "grouping" : "response", e.what());
     }
     r.groups = static_cast<int>(s.integer("groups", 64, 1, 4096));
+    r.blendGroups = p.blendGroups;
     r.bendSpeed_mps = s.number("bend_speed_mps", r.bendSpeed_mps, above(0.0, 1e4));
     r.maxIntensity = s.number("max_intensity", r.maxIntensity, above(0.0, MAX_INTENSITY));
     r.frequency_hz = s.number("frequency_hz", r.frequency_hz, above(0.0, 1e3));

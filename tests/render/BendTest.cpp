@@ -3,11 +3,15 @@
 
 #include <cmath>
 
-#include "render/Bend.h"
 #include "base/Numbers.h"
+#include "render/Bend.h"
 
 using gale::render::bendBlade;
+using gale::render::kGroundMargin_rad;
+using gale::render::kMaxTipTilt_rad;
+using gale::render::kTipTiltKnee_rad;
 using gale::render::ShellOffset;
+using gale::render::tipTilt_rad;
 
 namespace {
 
@@ -25,7 +29,7 @@ struct BendCase {
 
 class BendInvariants : public ::testing::TestWithParam<BendCase> {};
 
-TEST_P(BendInvariants, EverySegmentKeepsLengthAndTipTiltsByHalfPiTimesIntensity) {
+TEST_P(BendInvariants, EverySegmentKeepsLengthAndTheTipTiltsAsThePaperUpToHalfFlat) {
     const BendCase c = GetParam();
     const float height_m = 0.6f;
     const std::vector<ShellOffset> s = bendBlade(c.shells, height_m, c.intensity, c.stiffness);
@@ -40,25 +44,35 @@ TEST_P(BendInvariants, EverySegmentKeepsLengthAndTipTiltsByHalfPiTimesIntensity)
     }
     const double dn = s[c.shells].n_m - s[c.shells - 1].n_m;
     const double dw = s[c.shells].w_m - s[c.shells - 1].w_m;
-    // The last segment's tilt from the normal, unwrapped by the expected value's turns.
-    const double expected = 0.5 * PI * c.intensity;
-    double tilt = std::atan2(dw, dn);
-    tilt += 2.0 * PI * std::round((expected - tilt) / (2.0 * PI));
-    EXPECT_NEAR(tilt, expected, TIP_TILT_TOL_RAD);
+    const double tilt = std::atan2(dw, dn);  // the last segment's tilt from the normal
+    const double paper = 0.5 * PI * c.intensity;
+    if (std::abs(c.intensity) <= 0.5f) {
+        // Up to half-flat the tip tilts exactly as the paper's (pi/2) I.
+        EXPECT_NEAR(tilt, paper, TIP_TILT_TOL_RAD);
+    } else {
+        // Beyond, the tilt keeps the sign of I, tilts further than the knee and stays short of
+        // the ground margin (never past pi/2 - margin; tanh rounds to 1 in double for large I).
+        EXPECT_GT(std::abs(tilt), gale::render::kTipTiltKnee_rad);
+        EXPECT_LE(std::abs(tilt), gale::render::kMaxTipTilt_rad + TIP_TILT_TOL_RAD);
+        EXPECT_EQ(tilt > 0.0, c.intensity > 0.0f);
+    }
 }
 
 std::vector<BendCase> allCases() {
     std::vector<BendCase> cases;
     for (int shells : {1, 2, 9, 17, 65, 256})
         for (float intensity : {-5.0f, -1.0f, -0.3f, 0.0f, 0.5f, 1.0f, 2.5f, 5.0f})
-            for (float stiffness : {0.5f, 1.0f, 2.0f}) cases.push_back({shells, intensity, stiffness});
+            for (float stiffness : {0.5f, 1.0f, 2.0f})
+                cases.push_back({shells, intensity, stiffness});
     return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(ShellsIntensitiesStiffness, BendInvariants, ::testing::ValuesIn(allCases()),
+INSTANTIATE_TEST_SUITE_P(ShellsIntensitiesStiffness, BendInvariants,
+                         ::testing::ValuesIn(allCases()),
                          [](const ::testing::TestParamInfo<BendCase>& info) {
                              auto name = [](float v) {
-                                 std::string s = std::to_string(static_cast<int>(std::lround(v * 10)));
+                                 std::string s =
+                                     std::to_string(static_cast<int>(std::lround(v * 10)));
                                  return (v < 0 ? "m" + s.substr(1) : s);
                              };
                              return "N" + std::to_string(info.param.shells) + "_I" +
@@ -89,6 +103,47 @@ TEST(Bend, NegativeIntensityMirrorsTheBlade) {
     for (int i = 0; i <= 9; ++i) {
         EXPECT_NEAR(pos[i].n_m, neg[i].n_m, 1e-12);
         EXPECT_NEAR(pos[i].w_m, -neg[i].w_m, 1e-12);
+    }
+}
+
+TEST(Bend, TipTiltSaturatesSmoothlyAndMonotonically) {
+    // Slope of the tilt against (pi/2) I on both sides of the knee: 1 (C1), by central differences
+    // of step h; the curvature there is 0, so one-sided differences agree to O(h^2).
+    constexpr double kStep = 1e-5;
+    constexpr double kSlopeTol = 1e-6;  // O(h^2) with h = 1e-5 rad, plus rounding of 1e-11 / h
+    const double kneeI = kTipTiltKnee_rad / (0.5 * PI);
+    auto slope = [&](double i) {
+        const double h = kStep / (0.5 * PI);
+        return (tipTilt_rad(i + h) - tipTilt_rad(i - h)) / (2.0 * kStep);
+    };
+    EXPECT_NEAR(slope(kneeI - 2 * kStep), 1.0, kSlopeTol);
+    EXPECT_NEAR(slope(kneeI + 2 * kStep), 1.0, kSlopeTol);
+    // Monotone, odd and bounded from rest to far past any drive an oscillator reaches.
+    double previous = 0.0;
+    for (double i = 0.0; i < 50.0; i += 0.01) {
+        const double t = tipTilt_rad(i);
+        EXPECT_GE(t, previous) << "I = " << i;
+        EXPECT_LE(t, kMaxTipTilt_rad) << "I = " << i;
+        EXPECT_EQ(tipTilt_rad(-i), -t);
+        previous = t;
+    }
+    // And it reaches the bound: within 1e-9 rad by I = 50 (tanh saturates exponentially).
+    EXPECT_NEAR(tipTilt_rad(50.0), kMaxTipTilt_rad, 1e-9);
+}
+
+TEST(Bend, ExtremeIntensitiesGiveFiniteBladesInsideTheGroundMarginCone) {
+    // Every shell point keeps n >= tan(margin) |w|: the blade never reaches the tangent plane.
+    constexpr double kConeTol_m = 1e-12;  // double sums of at most 256 terms of <= 1 m
+    for (float intensity : {-3.4e38f, -1e6f, -2.45f, 1.9f, 2.45f, 1e6f, 3.4e38f}) {
+        for (float stiffness : {0.3f, 1.0f, 3.0f}) {
+            const auto s = bendBlade(64, 1.0f, intensity, stiffness);
+            for (int i = 1; i <= 64; ++i) {
+                ASSERT_TRUE(std::isfinite(s[i].n_m) && std::isfinite(s[i].w_m));
+                EXPECT_GT(s[i].n_m, 0.0);
+                EXPECT_GE(s[i].n_m + kConeTol_m, std::tan(kGroundMargin_rad) * std::abs(s[i].w_m))
+                    << "I = " << intensity << ", stiffness " << stiffness << ", shell " << i;
+            }
+        }
     }
 }
 

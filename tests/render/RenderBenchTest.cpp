@@ -25,6 +25,7 @@ TEST(RenderBench, SmallCaseFillsTheScreenAndCountsPaperPolygons) {
     EXPECT_DOUBLE_EQ(r.coverage, 1.0);
     EXPECT_GT(r.fps, 0.0);
     EXPECT_GT(r.baselineFps, 0.0);
+    EXPECT_GT(r.nearestFps, 0.0);
     EXPECT_NE(r.renderer.find("4.5"), std::string::npos);
 }
 

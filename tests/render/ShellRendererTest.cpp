@@ -24,7 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 struct ReferenceScene {
     TerrainMesh mesh = test::makeHillMesh();
     GrassParams grass;
@@ -37,6 +36,7 @@ struct ReferenceScene {
         grass.shells = 9;
         grass.stiffness = 1.0f;
         grass.tile_m = 1.5f;
+        grass.lodPixels = 0.0f;  // every shell everywhere: the reference pins the shading
         GrassTextureSpec spec;
         spec.size = 128;
         spec.seed = 2003;
@@ -64,7 +64,8 @@ struct ReferenceRig {
     ReferenceScene scene;
     ShellRenderer renderer;
 
-    ReferenceRig(int width, int height) : context(createOsMesaContext(width, height)), renderer(*context) {
+    ReferenceRig(int width, int height)
+        : context(createOsMesaContext(width, height)), renderer(*context) {
         renderer.setTerrain(scene.mesh);
         renderer.setGrass(scene.grass, scene.texture);
         renderer.setLighting(scene.lighting);
@@ -95,6 +96,19 @@ TEST(ShellRenderer, BendingMovesPixels) {
     const Image windy = renderReference(scene.wind(1.0f, 1.0f));
     const test::ImageDiff diff = test::compareImages(calm, windy, kChannelNoise);
     EXPECT_GT(diff.differingFraction, kMinMovedFraction);
+}
+
+TEST(ShellRenderer, TheNearestSampledBaselineLeavesTheGrassFilteringAlone) {
+    // The baseline's nearest sampling is a sampler bound for its draw only: frames drawn after it
+    // are those drawn before, and its own frame differs (nearest texels, no bend, no light).
+    ReferenceRig rig(160, 120);
+    const GrassWind wind = rig.scene.wind(0.35f, 0.9f);
+    const Image before = rig.frame(wind);
+    rig.renderer.drawFillBaseline(rig.scene.camera, /*nearestSampling=*/true);
+    Image nearest;
+    rig.context->readPixels(nearest);
+    EXPECT_NE(nearest.rgba, before.rgba);
+    EXPECT_EQ(rig.frame(wind).rgba, before.rgba);
 }
 
 TEST(ShellRenderer, EmptyGroupIntensityMeansNoWind) {
@@ -206,7 +220,8 @@ GrassWind withVertexWind(GrassWind wind, F&& change) {
 
 TEST(ShellRenderer, WrongWindArraySizesThrow) {
     const GrassWind wind = ReferenceScene().wind(0.5f, 0.5f);
-    expectDrawRefuses(withVertexWind(wind, [](VertexWind& w) { w.wsDirection.pop_back(); }), "wsDirection");
+    expectDrawRefuses(withVertexWind(wind, [](VertexWind& w) { w.wsDirection.pop_back(); }),
+                      "wsDirection");
     expectDrawRefuses(withVertexWind(wind, [](VertexWind& w) { w.group.resize(3); }), "group");
 }
 

@@ -1,0 +1,128 @@
+#include "render/BendTables.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "render/Bend.h"
+
+namespace gale::render::detail {
+Texture newTableTexture(GLint filter) {
+    GLuint name = 0;
+    glGenTextures(1, &name);
+    Texture texture(name);
+    glBindTexture(GL_TEXTURE_2D, name);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return texture;
+}
+
+BendTables::BendTables()
+    // The bend table is read with texelFetch and interpolated in the shader (full float weights);
+    // the group table is sampled with bilinear filtering where vertices blend groups.
+    : mBend(newTableTexture(GL_NEAREST)), mGroups(newTableTexture(GL_LINEAR)) {}
+
+void BendTables::setBlade(int shells, float height_m, float stiffness) {
+    if (shells == mShells && height_m == mHeight_m && stiffness == mStiffness) return;
+    const int width = shells + 1;
+    std::vector<float> table(static_cast<size_t>(width) * kTiltLevels * 2u, 0.0f);
+    std::vector<ShellOffset> row(static_cast<size_t>(width));
+    for (int l = 0; l < kTiltLevels && shells > 0; ++l) {
+        const double tilt = kMaxTipTilt_rad * (2.0 * l / (kTiltLevels - 1) - 1.0);
+        bendBladeByTiltInto(shells, height_m, tilt, stiffness, row.data());
+        float* out = &table[static_cast<size_t>(l) * width * 2u];
+        for (int i = 0; i < width; ++i) {
+            out[2 * i] = static_cast<float>(row[i].n_m);
+            out[2 * i + 1] = static_cast<float>(row[i].w_m);
+        }
+    }
+    glBindTexture(GL_TEXTURE_2D, mBend.get());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, width, kTiltLevels, 0, GL_RG, GL_FLOAT, table.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+    mShells = shells, mHeight_m = height_m, mStiffness = stiffness;
+}
+
+void BendTables::setGroups(const GrassWind& wind, int columns, int maxTextureSize) {
+    const int groups = std::max<int>(1, static_cast<int>(wind.groupIntensity.size()));
+    columns = std::clamp(columns, 1, groups);
+    const int rows = (groups + columns - 1) / columns;
+    if (columns > maxTextureSize || rows > maxTextureSize) {
+        throw std::invalid_argument("GrassWind.groupIntensity has " + std::to_string(groups) +
+                                    " groups in a grid " + std::to_string(columns) +
+                                    " wide; the group table holds at most " +
+                                    std::to_string(maxTextureSize) + " on a side");
+    }
+    mTilts.resize(static_cast<size_t>(columns) * rows);
+    for (int g = 0; g < groups; ++g) {
+        const float intensity =
+            wind.groupIntensity.empty() ? 0.0f : wind.groupIntensity[static_cast<size_t>(g)];
+        if (!std::isfinite(intensity)) {
+            throw std::invalid_argument("GrassWind.groupIntensity[" + std::to_string(g) +
+                                        "] is not finite");
+        }
+        mTilts[static_cast<size_t>(g)] = static_cast<float>(tipTilt_rad(intensity));
+    }
+    // The last row's unused texels repeat the last group, so a blend at the grid's edge reads it.
+    std::fill(mTilts.begin() + groups, mTilts.end(), mTilts[static_cast<size_t>(groups) - 1]);
+    glBindTexture(GL_TEXTURE_2D, mGroups.get());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    if (columns != mColumns || rows != mRows) {
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, columns, rows, 0, GL_RED, GL_FLOAT, mTilts.data());
+        mColumns = columns, mRows = rows;
+    } else {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, columns, rows, GL_RED, GL_FLOAT, mTilts.data());
+    }
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+DensityTables::DensityTables()
+    : mMap(newTableTexture(GL_LINEAR)), mCuts(newTableTexture(GL_LINEAR)) {}
+
+void DensityTables::setCuts(const Image& level0) {
+    const std::vector<float> cuts = densityCuts(level0);
+    glBindTexture(GL_TEXTURE_2D, mCuts.get());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, kDensityCuts, 1, 0, GL_RED, GL_FLOAT, cuts.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void DensityTables::setMap(const DensityMap& map, int maxTextureSize) {
+    if (map.width == 0) {
+        mActive = false;
+        return;
+    }
+    const size_t texels = static_cast<size_t>(std::max(map.width, 0)) * std::max(map.height, 0);
+    if (map.width < 1 || map.height < 1 || map.width > maxTextureSize ||
+        map.height > maxTextureSize || map.density.size() != texels) {
+        throw std::invalid_argument("DensityMap is " + std::to_string(map.width) + " x " +
+                                    std::to_string(map.height) + " with " +
+                                    std::to_string(map.density.size()) +
+                                    " values; expected width * height values, each side 1.." +
+                                    std::to_string(maxTextureSize));
+    }
+    for (size_t t = 0; t < texels; ++t)
+        if (!std::isfinite(map.density[t]))
+            throw std::invalid_argument("DensityMap.density[" + std::to_string(t) +
+                                        "] is not finite");
+    const bool finite = std::isfinite(map.wsSize_m.x) && std::isfinite(map.wsSize_m.y) &&
+                        std::isfinite(map.wsMin_m.x) && std::isfinite(map.wsMin_m.y);
+    if (!finite || !(map.wsSize_m.x > 0.0f && map.wsSize_m.y > 0.0f))
+        throw std::invalid_argument("DensityMap.wsSize_m must be finite and > 0, wsMin_m finite");
+    glBindTexture(GL_TEXTURE_2D, mMap.get());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, map.width, map.height, 0, GL_RED, GL_FLOAT,
+                 map.density.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+    checkGlError("ShellRenderer::setDensityMap");
+    mActive = true;
+    mMin_m = map.wsMin_m;
+    mSize_m = map.wsSize_m;
+}
+
+}  // namespace gale::render::detail

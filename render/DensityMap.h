@@ -1,0 +1,43 @@
+#pragma once
+/// \file DensityMap.h
+/// Grass density over the terrain's plan (after the density maps of Boulanger, Pattanaik and
+/// Bouatouch 2006): paths, bare patches and thinning meadows from an image. The renderer keeps a
+/// blade where its height (the grass texture's alpha) is above a cut chosen so that the kept blades
+/// cover the map's fraction of the texture's blade area: blades vanish whole, tallest last, and
+/// the blades that stay keep their full height and bend. docs/render.md.
+
+#include <glm/vec2.hpp>
+#include <string>
+#include <vector>
+
+#include "render/GrassInput.h"
+
+namespace gale::render {
+
+/// Density in [0, 1] per texel (1: the grass texture's own density; 0: bare ground), over the
+/// plan rectangle [wsMin_m, wsMin_m + wsSize_m] (world metres, x east, y north). Row 0 is the
+/// north edge (an image's top row), column 0 the west edge.
+struct DensityMap {
+    int width = 0;  ///< 0: no map (density 1 everywhere)
+    int height = 0;
+    std::vector<float> density;  ///< width * height, row-major from the north edge
+    glm::vec2 wsMin_m{0.0f};
+    glm::vec2 wsSize_m{1.0f};
+};
+
+/// Reads a density map from any image OpenImageIO reads (8/16-bit or float; the first channel,
+/// a grey image's grey: 0 = bare, full scale = full density) to cover the plan rectangle given.
+/// Throws std::runtime_error naming the path and the reason if the image cannot be read;
+/// std::invalid_argument if wsSize_m is not positive and finite.
+DensityMap loadDensityMap(const std::string& path, glm::vec2 wsMin_m, glm::vec2 wsSize_m);
+
+/// Entries of the density cut table: entry k is the cut for density k / (kDensityCuts - 1).
+constexpr int kDensityCuts = 256;
+
+/// The cut table of a grass texture's level 0 (alpha = blade height, 0 = ground): entry k is the
+/// alpha (in [0, 1], or 2 for none) such that the blade texels with alpha >= cut are a fraction
+/// k / 255 of all blade texels, rounded up to whole 8-bit heights; entry 0 (density 0) keeps none;
+/// entry 255 keeps every blade (cut 0). A texture without blades gives cuts of 0.
+std::vector<float> densityCuts(const Image& level0);
+
+}  // namespace gale::render

@@ -1,0 +1,164 @@
+/// \file ShellRendererDraw.cpp
+/// The shell renderer's frames: culling and the level of detail per terrain chunk
+/// (render/TerrainChunks.h), the instanced shell draws, and the benchmark's fill baseline.
+
+#include "render/ShellRendererImpl.h"
+
+namespace gale::render {
+using namespace shell_detail;
+
+void ShellRenderer::Impl::beginFrame() {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, context.width(), context.height());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    // Shells are seen from below on slopes and at grazing angles: no culling.
+    glDisable(GL_CULL_FACE);
+    glClearColor(kSkyColor[0], kSkyColor[1], kSkyColor[2], 1.0f);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glActiveTexture(GL_TEXTURE0 + kGrassUnit);
+    glBindTexture(GL_TEXTURE_2D, grassTexture.get());
+}
+
+FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind) {
+    return draw(camera, wind, DrawOptions{});
+}
+
+FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
+                               const DrawOptions& options) {
+    Impl& m = *mImpl;
+    m.requireReady("draw");
+    const auto cpuStart = Clock::now();
+    const float aspect =
+        static_cast<float>(m.context.width()) / static_cast<float>(m.context.height());
+    const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
+    m.context.makeCurrent();
+    m.uploadWind(wind);
+    const int groupCount = static_cast<int>(wind.groupIntensity.size());
+    const int columns = m.windColumns > 0 ? m.windColumns
+                        : m.windBlends    ? groupCount
+                                          : detail::kDefaultGroupColumns;
+    m.tables->setBlade(m.grass.shells, m.grass.height_m, m.grass.stiffness);
+    m.tables->setGroups(wind, columns, m.maxTextureSize);
+    FrameStats stats;
+    stats.cpu_ms = msSince(cpuStart);
+
+    const auto gpuStart = Clock::now();
+    m.beginFrame();
+    glUseProgram(m.shellProgram.get());
+    glUniformMatrix4fv(m.shellLoc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(clipFromWorldM));
+    glUniform3fv(m.shellLoc.eyePos, 1, glm::value_ptr(camera.wsPosition_m));
+    glUniform1i(m.shellLoc.shells, m.grass.shells);
+    glUniform1i(m.shellLoc.groupColumns, m.tables->columns());
+    glUniform1i(m.shellLoc.blendGroups, m.windBlends && groupCount > 0 ? 1 : 0);
+    glActiveTexture(GL_TEXTURE0 + kBendUnit);
+    glBindTexture(GL_TEXTURE_2D, m.tables->bendTexture());
+    glActiveTexture(GL_TEXTURE0 + kGroupUnit);
+    glBindTexture(GL_TEXTURE_2D, m.tables->groupTexture());
+    glUniform1i(m.shellLoc.aperiodic, m.grass.aperiodic ? 1 : 0);
+    glUniform1i(m.shellLoc.hasDensity, m.density->active() ? 1 : 0);
+    glUniform2fv(m.shellLoc.densityMin, 1, glm::value_ptr(m.density->wsMin_m()));
+    glUniform2fv(m.shellLoc.densitySize, 1, glm::value_ptr(m.density->wsSize_m()));
+    glActiveTexture(GL_TEXTURE0 + kDensityUnit);
+    glBindTexture(GL_TEXTURE_2D, m.density->mapTexture());
+    glActiveTexture(GL_TEXTURE0 + kDensityCutUnit);
+    glBindTexture(GL_TEXTURE_2D, m.density->cutTexture());
+    // The viewer's toggles: without grass the top shell is the ground; without terrain the
+    // ground (shell 0) is left out.
+    const int shells = options.grass ? m.grass.shells : 0;
+    const int bottom = options.terrain ? 0 : 1;
+    // Level of detail (render/TerrainChunks.h): D1 = 2 S f / P, f the focal length in pixels.
+    const float focal_px = static_cast<float>(m.context.height()) /
+                           (2.0f * std::tan(0.5f * glm::radians(camera.fovY_deg)));
+    const float d1_m =
+        m.grass.lodPixels > 0.0f && shells > 0
+            ? 2.0f * (m.grass.height_m / static_cast<float>(shells)) * focal_px / m.grass.lodPixels
+            : 0.0f;
+    glUniform1f(m.shellLoc.lodD1, d1_m);
+    // Visible chunks, nearest first (the early depth test then discards more of the far ones),
+    // their boxes grown by the grass height: a bent blade reaches that far from its root.
+    const glm::vec3 reach(m.grass.height_m);
+    std::vector<std::pair<float, const detail::TerrainChunk*>> visible;
+    for (const detail::TerrainChunk& chunk : m.chunks) {
+        if (!detail::boxMayBeVisible(clipFromWorldM, chunk.wsMin_m - reach,
+                                     chunk.wsMax_m + reach)) {
+            ++stats.chunksCulled;
+            continue;
+        }
+        visible.emplace_back(
+            detail::distanceToBox(camera.wsPosition_m, chunk.wsMin_m, chunk.wsMax_m), &chunk);
+    }
+    std::sort(visible.begin(), visible.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    glBindVertexArray(m.vao.get());
+    for (const auto& [distance_m, chunk] : visible) {
+        const detail::ShellRange range = detail::shellRange(shells, d1_m, distance_m);
+        // Instance k is shell top - k stride: top shell first, ground last. The thesis (3.1)
+        // draws bottom to top because its shells were blended; ours are alpha-tested and opaque
+        // with the depth test on, so the image does not depend on the order, and top first lets
+        // the early depth test discard the lower shells' fragments hidden under blades (measured
+        // +5-18 % fill rate on llvmpipe).
+        if (range.top < bottom) continue;
+        const int count = (range.top - bottom) / range.stride + 1;
+        glUniform1i(m.shellLoc.topShell, range.top);
+        glUniform1i(m.shellLoc.shellStride, range.stride);
+        glDrawElementsInstanced(
+            GL_TRIANGLES, static_cast<GLsizei>(chunk->indexCount), GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(size_t(chunk->firstIndex) * sizeof(uint32_t)), count);
+        ++stats.chunks;
+        stats.layers += count;
+    }
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glFinish();
+    stats.gpu_ms = msSince(gpuStart);
+    detail::checkGlError("ShellRenderer::draw");
+    return stats;
+}
+
+FrameStats ShellRenderer::drawFillBaseline(const Camera& camera, bool nearestSampling) {
+    Impl& m = *mImpl;
+    m.requireReady("drawFillBaseline");
+    const float aspect =
+        static_cast<float>(m.context.width()) / static_cast<float>(m.context.height());
+    const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
+    m.context.makeCurrent();
+    // fill.vert reads no wind, but the VAO's wind arrays must still be backed by a full buffer.
+    if (!m.windUploaded) m.uploadWind(GrassWind{});
+    FrameStats stats;
+    const auto gpuStart = Clock::now();
+    m.beginFrame();
+    glUseProgram(m.fillProgram.get());
+    glUniformMatrix4fv(m.fillLoc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(clipFromWorldM));
+    glUniform1i(m.fillLoc.shells, m.grass.shells);
+    glUniform1f(m.fillLoc.shellSpacing,
+                m.grass.shells > 0 ? m.grass.height_m / static_cast<float>(m.grass.shells) : 0.0f);
+    // A sampler object overrides the texture's own filtering while it is bound to the unit.
+    GLuint sampler = 0;
+    if (nearestSampling) {
+        glGenSamplers(1, &sampler);
+        glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+        glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        glBindSampler(kGrassUnit, sampler);
+    }
+    glBindVertexArray(m.vao.get());
+    glDrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
+                            m.grass.shells + 1);
+    glBindVertexArray(0);
+    if (nearestSampling) {
+        glBindSampler(kGrassUnit, 0);
+        glDeleteSamplers(1, &sampler);
+    }
+    glUseProgram(0);
+    glFinish();
+    stats.gpu_ms = msSince(gpuStart);
+    detail::checkGlError("ShellRenderer::drawFillBaseline");
+    return stats;
+}
+
+}  // namespace gale::render

@@ -1,0 +1,130 @@
+#pragma once
+/// \file ShellRendererImpl.h
+/// The shell renderer's GL state, shared by ShellRenderer.cpp (setup, uploads) and
+/// ShellRendererDraw.cpp (frames). Internal to render/.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <glm/gtc/type_ptr.hpp>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "render/Bend.h"
+#include "render/BendTables.h"
+#include "render/CameraMath.h"
+#include "render/GlInfo.h"
+#include "render/GlUtil.h"
+#include "render/ShellRenderer.h"
+#include "render/TerrainChunks.h"
+
+namespace gale::render {
+namespace shell_detail {
+
+using Clock = std::chrono::steady_clock;
+
+inline double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+inline bool finite3(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Vertex attribute locations shared with shaders/shell.vert and fill.vert.
+constexpr GLuint kPositionLoc = 0;
+constexpr GLuint kNormalLoc = 1;
+constexpr GLuint kUvLoc = 2;
+constexpr GLuint kWindDirLoc = 3;
+constexpr GLuint kGroupLoc = 4;
+constexpr GLuint kGroupCoordLoc = 5;
+
+// Texture units.
+constexpr GLint kGrassUnit = 0;
+constexpr GLint kBendUnit = 1;
+constexpr GLint kGroupUnit = 2;
+constexpr GLint kDensityUnit = 3;
+constexpr GLint kDensityCutUnit = 4;
+
+/// Static per-vertex data, interleaved.
+struct TerrainVertex {
+    float position[3];
+    float normal[3];
+    float uv[2];
+};
+
+/// Per-vertex wind data, re-uploaded only when GrassWind::revision changes.
+struct WindVertex {
+    float direction[3];
+    uint32_t group;
+    float groupCoord[2];  ///< position in the group grid (VertexWind::groupCoord), or unused
+};
+
+inline GLint uniform(GLuint program, const char* name) {
+    return glGetUniformLocation(program, name);
+}
+
+}  // namespace shell_detail
+
+struct ShellRenderer::Impl {
+    GlContext& context;
+
+    detail::Program shellProgram;
+    detail::Program fillProgram;
+    detail::VertexArray vao;
+    detail::Buffer terrainVbo;
+    detail::Buffer windVbo;
+    detail::Buffer indexBuffer;
+    detail::Texture grassTexture;
+    std::unique_ptr<detail::BendTables> tables;
+    std::unique_ptr<detail::DensityTables> density;
+
+    // Uniform locations of shell.vert / shell.frag.
+    struct {
+        GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns,
+            blendGroups, maxTilt, shellStride, lodD1, aperiodic, hasDensity, density, densityCut,
+            densityMin, densitySize;
+        GLint lightCount, lightPos, lightColor, lightAtten;
+        GLint ambient, specularPower, specularStrength, shadowMin;
+    } shellLoc{};
+    struct {
+        GLint clipFromWorld, shells, shellSpacing, grass;
+    } fillLoc{};
+
+    int maxTextureSize = 0;
+
+    // Terrain.
+    bool haveTerrain = false;
+    size_t vertexCount = 0;
+    GLsizei indexCount = 0;
+    std::vector<detail::TerrainChunk> chunks;
+
+    // Grass.
+    bool haveGrass = false;
+    GrassParams grass;
+
+    // Lighting (uploaded to the shell program on setLighting).
+    Lighting lighting;
+
+    // Wind state on the GPU.
+    bool windUploaded = false;
+    bool windWasNone = false;
+    uint64_t windRevision = 0;
+    uint32_t windMaxGroup = 0;
+    int windColumns = 0;      ///< VertexWind::groupColumns of the uploaded wind
+    bool windBlends = false;  ///< the uploaded wind carries groupCoord
+
+    explicit Impl(GlContext& ctx) : context(ctx) {}
+
+    void init();
+    void uploadLighting();
+    void uploadWind(const GrassWind& wind);
+    void requireReady(const char* what) const;
+    void beginFrame();
+};
+
+}  // namespace gale::render
