@@ -15,7 +15,7 @@
 
 namespace gale::app {
 
-/// `gale solve`: the scene's steady wind (DESIGN 4.1) to a .vdb file and a JSON report.
+/// `gale solve`: the scene's steady wind (docs/design.md 4.1) to a .vdb file and a JSON report.
 struct SolveVerbOptions {
     std::string scenePath;
     std::string vdbPath;     ///< -o; empty: <output.folder>/<prefix>_wind.vdb

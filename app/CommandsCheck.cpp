@@ -105,7 +105,7 @@ int runCheck(const SceneRunOptions& options) {
     const sim::UnsteadySettings& us = scene.unsteady.settings;
     if (unsteady) {
         const sim::AmbientWind& a = scene.wind.ambient;
-        line("wind", "unsteady field (DESIGN 4.2): steady mass-consistent start and mean flow, " + formatG(a.speed_mps, 3) +
+        line("wind", "unsteady field (docs/design.md 4.2): steady mass-consistent start and mean flow, " + formatG(a.speed_mps, 3) +
                          " m/s at " + formatG(a.referenceHeight_m, 3) + " m " + directionText(a.direction_deg) + ", " +
                          sim::windProfileName(a.profile) + " profile");
         line("", "domain " + built.domainSummary);
@@ -140,7 +140,7 @@ int runCheck(const SceneRunOptions& options) {
     } else if (solved) {
         const sim::AmbientWind& a = scene.wind.ambient;
         const coupling::FieldWindSpec& r = scene.wind.response;
-        line("wind", "solved steady field (mass-consistent, DESIGN 4.1): " + formatG(a.speed_mps, 3) +
+        line("wind", "solved steady field (mass-consistent, docs/design.md 4.1): " + formatG(a.speed_mps, 3) +
                          " m/s at " + formatG(a.referenceHeight_m, 3) + " m " +
                          directionText(a.direction_deg) + ", " + sim::windProfileName(a.profile) +
                          " profile" +

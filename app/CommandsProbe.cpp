@@ -28,11 +28,12 @@
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
 #include "sim/VdbIO.h"
+#include "base/Numbers.h"
 
 namespace gale::app {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 /// Below this horizontal speed (m/s) the from-direction is undefined and left empty.
 constexpr double CALM_MPS = 1e-9;
 /// Longest probe file read, bytes: a probe table is a list of masts, not a point cloud.

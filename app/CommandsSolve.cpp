@@ -339,7 +339,7 @@ int runUnsteadySolve(const SolveRequest& req) {
 
     nlohmann::json j;
     j["scene"] = req.sceneName;
-    j["model"] = "unsteady incompressible wind (DESIGN 4.2): operator splitting on the MAC grid (Stam 1999), " +
+    j["model"] = "unsteady incompressible wind (docs/design.md 4.2): operator splitting on the MAC grid (Stam 1999), " +
                  std::string(sim::advectionSchemeName(u.settings.advection)) +
                  " advection, projection on cut cells with warm-started MGPCG (McAdams, Sifakis, Teran 2010); "
                  "initial state and mean flow: the steady mass-consistent field (Sherman 1978)";

@@ -1,5 +1,5 @@
 /// \file CommandsView.cpp
-/// `gale view SCENE`: the scene in a GLFW window (context through OSMesa, DESIGN 7), with a mouse
+/// `gale view SCENE`: the scene in a GLFW window (context through OSMesa, docs/design.md 7), with a mouse
 /// camera, play / pause / step / speed, toggles for grass, terrain and field overlays, and a
 /// heads-up line. The wind runs on a worker thread and hands the renderer snapshots, so the window
 /// stays responsive while a step computes; when the wind falls behind, the heads-up line says so.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file FieldOverlayBuilder.h
-/// Turns a wind field into the plain overlay structs of render/FieldOverlay.h (DESIGN 6, views of
+/// Turns a wind field into the plain overlay structs of render/FieldOverlay.h (docs/design.md 6, views of
 /// the field): arrows on a grid over the terrain, a terrain-following slice coloured by speed,
 /// streamlines traced from the upstream edge, and vortex cores where the Q-criterion passes a
 /// threshold. Works from any sim::WindField, whichever solver made it; for the point-source

@@ -1,6 +1,6 @@
 #pragma once
 /// \file FieldSampling.h
-/// Reads a solved sim::WindField where the grass lives (DESIGN 5, step 1).
+/// Reads a solved sim::WindField where the grass lives (docs/design.md 5, step 1).
 
 #include <cstdint>
 #include <vector>

@@ -204,7 +204,7 @@ void FieldWind::enterInterval(size_t first) {
         for (size_t v = begin; v != end; ++v) {
             const glm::vec3 wa = finiteOrZero(a.wsVelocity_mps[v]);
             const glm::vec3 wb = finiteOrZero(b.wsVelocity_mps[v]);
-            // One direction for the interval: the tangent part of the mean wind (DESIGN 5, step
+            // One direction for the interval: the tangent part of the mean wind (docs/design.md 5, step
             // 2); a wind that reverses within one step has no mean direction and gets none.
             const glm::vec3 dir = tangentWindDirection(wa + wb, mNormal[v]);
             direction[v] = dir;

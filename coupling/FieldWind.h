@@ -1,6 +1,6 @@
 #pragma once
 /// \file FieldWind.h
-/// Grass wind from a solved field (DESIGN 5): for each grass vertex, the velocity at grass height
+/// Grass wind from a solved field (docs/design.md 5): for each grass vertex, the velocity at grass height
 /// projected onto the tangent plane gives the wind direction; a blade response turns the tangent
 /// speed into an intensity; vertices are gathered into K animation-step groups so the bend is
 /// still evaluated once per group per shell (Bakay et al. 2002, Table 1). docs/coupling.md explains

@@ -139,7 +139,7 @@ void SteadyGustWind::update(double t_s, render::GrassWind& wind) {
         ++wind.revision;
     }
     const int groups = groupCount();
-    // DESIGN 4.2's kinematic gust: the steady intensity scaled by the curve, delayed by arrival.
+    // docs/design.md 4.2's kinematic gust: the steady intensity scaled by the curve, delayed by arrival.
     auto drive = [this](int g, double t) { return mGroupBase[g] * mCurve(t - mGroupArrival_s[g]); };
     wind.groupIntensity.resize(groups);
     if (mSpec.response.response == BladeResponse::Oscillator) {

@@ -1,6 +1,6 @@
 #pragma once
 /// \file SteadyGustWind.h
-/// Gusts over a steady solved field, the cheap kinematic mode of DESIGN 4.2: the mass-consistent
+/// Gusts over a steady solved field, the cheap kinematic mode of docs/design.md 4.2: the mass-consistent
 /// solution is linear in the ambient wind, so an ambient speed scaled by g(t) gives the field
 /// scaled by g(t) at every instant. We let that scaling travel downwind as a front at the
 /// convection speed c, so a vertex at distance s downwind of the terrain's upwind edge feels

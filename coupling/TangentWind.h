@@ -1,7 +1,7 @@
 #pragma once
 /// \file TangentWind.h
 /// The paper's projection of a wind onto a vertex's tangent plane (Bakay et al. 2002, section 3;
-/// DESIGN 5, step 2). Inline: it runs for every grass vertex at every field step.
+/// docs/design.md 5, step 2). Inline: it runs for every grass vertex at every field step.
 
 #include <cmath>
 

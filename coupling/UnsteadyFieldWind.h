@@ -1,6 +1,6 @@
 #pragma once
 /// \file UnsteadyFieldWind.h
-/// Grass wind from the unsteady solver (DESIGN 4.2 -> 5): owns the air domain and the
+/// Grass wind from the unsteady solver (docs/design.md 4.2 -> 5): owns the air domain and the
 /// sim::UnsteadyWindSolver, advances it as update(t) asks, samples the field at grass height after
 /// every solver step (coupling::sampleAtGrass) and hands the samples to a coupling::FieldWind,
 /// which interpolates frames between steps and groups the vertices. Steps older than the frame

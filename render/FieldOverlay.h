@@ -1,6 +1,6 @@
 #pragma once
 /// \file FieldOverlay.h
-/// Views of the wind itself (DESIGN 6, "views of the field"), drawn over a rendered frame:
+/// Views of the wind itself (docs/design.md 6, "views of the field"), drawn over a rendered frame:
 /// speed-coloured arrows, a slice coloured by speed, streamlines coloured by speed, vortex-core
 /// markers, and a legend bar with numeric labels. The renderer knows nothing of the field: it draws
 /// the plain structs below, which coupling/FieldOverlayBuilder fills from a wind field (or from

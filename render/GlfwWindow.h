@@ -2,7 +2,7 @@
 /// \file GlfwWindow.h
 /// A GlContext in a GLFW window. The context is made through OSMesa
 /// (GLFW_CONTEXT_CREATION_API = GLFW_OSMESA_CONTEXT_API), so the window and headless runs draw with
-/// the same GL implementation and give the same pixels (DESIGN 7); GLFW copies each finished frame
+/// the same GL implementation and give the same pixels (docs/design.md 7); GLFW copies each finished frame
 /// to the X window. GLFW 3.3 still needs an X display for that.
 
 #include <memory>

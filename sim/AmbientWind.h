@@ -1,6 +1,6 @@
 #pragma once
 /// \file AmbientWind.h
-/// The first guess of the steady solve (DESIGN 4.1): a horizontal ambient wind with a vertical
+/// The first guess of the steady solve (docs/design.md 4.1): a horizontal ambient wind with a vertical
 /// profile, applied relative to the ground below each point.
 
 #include <array>

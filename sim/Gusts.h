@@ -1,6 +1,6 @@
 #pragma once
 /// \file Gusts.h
-/// Gust events of the unsteady wind (DESIGN 4.2): a gust adds a horizontal velocity
+/// Gust events of the unsteady wind (docs/design.md 4.2): a gust adds a horizontal velocity
 ///   G(t) = peak_mps * e((t - start_s) / duration_s) * (cos d, sin d, 0)
 /// to the air that enters the domain (UnsteadyWindSolver's far field), scaled with height like the
 /// mean flow (|u_mean(z)| / U_ref, capped at 1, so a log-law inflow gusts less near the ground).

@@ -1,6 +1,6 @@
 #pragma once
 /// \file Heightfield.h
-/// The terrain as a heightfield h(x, y) in world metres, z up (DESIGN 3), and the procedural and
+/// The terrain as a heightfield h(x, y) in world metres, z up (docs/design.md 3), and the procedural and
 /// verification terrains a scene can name. Pure C++: no OpenVDB here, so every module may use it.
 
 #include <array>

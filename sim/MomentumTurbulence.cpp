@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "sim/Format.h"
+#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
@@ -122,7 +123,7 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
     if (!s.balanced) return;
     const AmbientWind& A = *s.balanced;
     const double uStar = surface::frictionVelocity_mps(A.speed_mps, A.referenceHeight_m, z0, d);
-    const double dir = A.direction_deg * M_PI / 180.0, e[2] = {std::cos(dir), std::sin(dir)};
+    const double dir = A.direction_deg * gale::PI / 180.0, e[2] = {std::cos(dir), std::sin(dir)};
     for (int c = 0; c < 2; ++c) {
         const int n0 = nx + (c == 0), n1 = ny + (c == 1);
         const std::vector<int>& low = c == 0 ? mLowX : mLowY;

@@ -13,6 +13,7 @@
 #include "sim/Format.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
+#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
@@ -98,7 +99,7 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
     // No convergence before the inflow has crossed the box once at the ambient speed: a small
     // disturbance (a low hill) changes the field little per step from the start, so the residual
     // alone would stop before the wake has formed. A calm wind (speed 0) has nothing to carry.
-    const double dirRad = ambient.direction_deg * M_PI / 180.0;
+    const double dirRad = ambient.direction_deg * gale::PI / 180.0;
     const double crossing_m = std::abs(std::cos(dirRad)) * domain.nx() * h + std::abs(std::sin(dirRad)) * domain.ny() * h;
     rep.minIterations = ambient.speed_mps > 0.0 ? int(std::ceil(crossing_m / (ambient.speed_mps * rep.dt_s))) : 1;
     std::vector<double> prevU, prevV, prevW;

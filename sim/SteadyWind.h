@@ -1,6 +1,6 @@
 #pragma once
 /// \file SteadyWind.h
-/// The steady mass-consistent wind (DESIGN 4.1, after Sherman 1978): the divergence-free field u
+/// The steady mass-consistent wind (docs/design.md 4.1, after Sherman 1978): the divergence-free field u
 /// closest to the first guess u0 (an AmbientWind) in the weighted norm
 ///   integral of a_h^2 [(u-u0)^2 + (v-v0)^2] + a_v^2 (w-w0)^2,
 /// which is u = u0 + A grad(lambda), A = diag(1/(2 a_h^2), 1/(2 a_h^2), 1/(2 a_v^2)), with
@@ -68,7 +68,7 @@ struct SteadyWindResult {
 class SteadyWindSolver {
 public:
     /// Supported r = (a_h / a_v)^2: outside it the point smoother's V-cycle degrades (the
-    /// operator's anisotropy; DESIGN 7), so we refuse rather than crawl.
+    /// operator's anisotropy; docs/design.md 7), so we refuse rather than crawl.
     static constexpr double MIN_VERTICAL_RATIO = 0.1;
     static constexpr double MAX_VERTICAL_RATIO = 10.0;
     static constexpr int EXTRAPOLATION_LAYERS = 2;

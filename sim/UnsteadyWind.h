@@ -1,6 +1,6 @@
 #pragma once
 /// \file UnsteadyWind.h
-/// The unsteady wind (DESIGN 4.2): incompressible, inviscid or viscous flow on the AirDomain's MAC
+/// The unsteady wind (docs/design.md 4.2): incompressible, inviscid or viscous flow on the AirDomain's MAC
 /// grid, started from the steady mass-consistent field, which stays the mean flow that enters
 /// through the open boundaries. docs/unsteady.md has the method, the choices and the measurements.
 ///

@@ -1,6 +1,6 @@
 #pragma once
 /// \file Viscosity.h
-/// Implicit viscosity of the unsteady wind (DESIGN 4.2): one backward-Euler step of
+/// Implicit viscosity of the unsteady wind (docs/design.md 4.2): one backward-Euler step of
 /// du/dt = nu Laplacian(u) per velocity component,
 ///   (I - nu dt L) u^{n+1} = u^n,
 /// with L the 7-point Laplacian over the component's faces (spacing h). Faces outside the mask

@@ -1,6 +1,6 @@
 #pragma once
 /// \file Vortices.h
-/// Whirlwinds of the unsteady wind (DESIGN 4.2): vertical-axis vortices with a finite core, seeded
+/// Whirlwinds of the unsteady wind (docs/design.md 4.2): vertical-axis vortices with a finite core, seeded
 /// into the flow, carried by it, optionally kept alive by forcing during their lifetime; and
 /// vorticity confinement against numerical dissipation. Compiled always, run only when a scene
 /// has whirlwinds or asks for confinement (UnsteadyWindSolver skips the code path otherwise).

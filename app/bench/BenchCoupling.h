@@ -1,7 +1,7 @@
 #pragma once
 /// \file BenchCoupling.h
 /// `gale bench coupling`: what the field-to-grass coupling costs and how much the paper's
-/// animation-step economy gives up (DESIGN 5, step 4):
+/// animation-step economy gives up (docs/design.md 5, step 4):
 ///  - the error of the grouped bend against the exact per-vertex bend (tip displacement, in blade
 ///    lengths) and the per-frame cost, as the group count K goes 1, 4, 16, 64, 256: a table,
 ///    CSV and an SVG plot (error against per-frame cost);

@@ -132,8 +132,8 @@ std::string describeDomain(const sim::AirDomain& d) {
     return buf;
 }
 
-/// wind.kind = "solved": the steady mass-consistent field (DESIGN 4.1) sampled at grass height,
-/// then either held (steady) or swept by travelling gusts (DESIGN 4.2, kinematic mode).
+/// wind.kind = "solved": the steady mass-consistent field (docs/design.md 4.1) sampled at grass height,
+/// then either held (steady) or swept by travelling gusts (docs/design.md 4.2, kinematic mode).
 void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
     const auto start = Clock::now();
     std::optional<sim::AirDomain> domain;
@@ -188,7 +188,7 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
 }
 
 /// wind.kind = "unsteady": the steady field as initial state and mean flow, stepped in time by
-/// sim::UnsteadyWindSolver inside a coupling::UnsteadyFieldWind as the frames ask (DESIGN 4.2).
+/// sim::UnsteadyWindSolver inside a coupling::UnsteadyFieldWind as the frames ask (docs/design.md 4.2).
 void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
     const auto start = Clock::now();
     auto domain = std::make_unique<sim::AirDomain>(

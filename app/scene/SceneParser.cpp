@@ -314,7 +314,7 @@ void readWind(Context& ctx, Section s) {
     p.blowAway = s.boolean("blow_away", true);
     p.blendGroups = s.boolean("blend_groups", true);
 
-    // The ambient wind (first guess of the solve, DESIGN 4.1): read whatever the kind, since
+    // The ambient wind (first guess of the solve, docs/design.md 4.1): read whatever the kind, since
     // `gale solve` uses it for any scene.
     sim::AmbientWind& a = w.ambient;
     a.speed_mps = s.number("speed_mps", a.speed_mps, closed(0.0, 1000.0));

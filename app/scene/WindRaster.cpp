@@ -14,13 +14,14 @@
 
 #include "app/io/AtomicFile.h"
 #include "sim/AmbientWind.h"
+#include "base/Numbers.h"
 
 namespace gale::app {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double PI = 3.14159265358979323846;
+using gale::PI;
 
 GDALDataset* memoryRaster(int nx, int ny, int bands, const double gt[6], const Georeference& g) {
     ensureGdalRegistered();

@@ -1,4 +1,4 @@
-// Field-driven grass (DESIGN 5) on analytic per-vertex winds: uniform wind, a gust front, a
+// Field-driven grass (docs/design.md 5) on analytic per-vertex winds: uniform wind, a gust front, a
 // whirlwind, degenerate inputs, the oscillator response, and grouped against exact bends.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The length-preserving bend (DESIGN 5.1): segment lengths, tip tilt, straight blade at rest.
+// The length-preserving bend (docs/design.md 5.1): segment lengths, tip tilt, straight blade at rest.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The headless OSMesa context (DESIGN 7).
+// The headless OSMesa context (docs/design.md 7).
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <gtest/gtest.h>

@@ -118,7 +118,7 @@ inline ImageDiff compareImages(const Image& a, const Image& b, int channelTolera
     return result;
 }
 
-// llvmpipe is deterministic for one Mesa build (DESIGN 7); a few levels of slack per channel
+// llvmpipe is deterministic for one Mesa build (docs/design.md 7); a few levels of slack per channel
 // absorb differences between CPU instruction sets (AVX2 / AVX-512 code paths) and Mesa updates.
 constexpr int kReferenceChannelTolerance = 8;
 // A handful of pixels on blade edges may flip between blade and ground under such differences.

@@ -35,7 +35,7 @@ WindField emptyField(std::shared_ptr<const Heightfield> terrain = nullptr) {
                      std::vector<uint8_t>(size_t(NX) * NY * NZ, 1));
 }
 
-// World position of a face of each kind (DESIGN: x-face i of row (j, k) at wsMin + (i, j+1/2, k+1/2) h).
+// World position of a face of each kind (sim/WindField.h: x-face i of row (j, k) at wsMin + (i, j+1/2, k+1/2) h).
 std::array<double, 3> facePosition(int axis, int i, int j, int k) {
     std::array<double, 3> p{WS_MIN[0] + (i + 0.5) * H, WS_MIN[1] + (j + 0.5) * H, WS_MIN[2] + (k + 0.5) * H};
     p[axis] -= 0.5 * H;
