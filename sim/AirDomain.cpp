@@ -116,8 +116,8 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
     const double nzD = std::ceil((top - zMin) / h - 1e-9);
     const double estimate = estimateSolveMemory_bytes(1, 1, 1, spec.momentumModel) * nxD * nyD * nzD;
     if (nxD * nyD * nzD > 2.0e9 || estimate > spec.memoryLimit_bytes)
-        throw ParameterError("solver.memory_limit_mb", num(std::round(spec.memoryLimit_bytes / MIB)),
-                             "is below the estimated " + num(std::round(estimate / MIB)) + " MiB for " +
+        throw ParameterError("solver.memory_limit_mb", formatG(spec.memoryLimit_bytes / MIB, 4),
+                             "is below the estimated memory of " + formatG(estimate / MIB, 4) + " MiB for " +
                                  num(nxD) + " x " + num(nyD) + " x " + num(nzD) +
                                  " cells: raise solver.voxel_size_m, lower solver.top_m or raise "
                                  "the limit");

@@ -323,10 +323,10 @@ TEST(AirDomain, ActivatesAirOnlyAboveTheTerrain) {
 
 TEST(AirDomain, BadInputThrowsNamingTheParameter) {
     const Heightfield hf = flat(20.0, 1.0);
-    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{0.0, {}, 1e9}); }, "voxelSize_m");
-    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{-1.0, {}, 1e9}); }, "voxelSize_m");
-    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{std::nan(""), {}, 1e9}); }, "voxelSize_m");
-    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{100.0, {}, 1e9}); }, "voxelSize_m");
+    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{0.0, {}, 1e9}); }, "solver.voxel_size_m");
+    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{-1.0, {}, 1e9}); }, "solver.voxel_size_m");
+    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{std::nan(""), {}, 1e9}); }, "solver.voxel_size_m");
+    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{100.0, {}, 1e9}); }, "solver.voxel_size_m");
     expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{1.0, /*top_m=*/-1.0, 1e9}); }, "top_m");
     expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{1.0, /*top_m=*/0.0, 1e9}); }, "no air");
     expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{0.01, /*top_m=*/50.0, 1e9}); }, "solver.memory_limit_mb");
