@@ -1,13 +1,25 @@
 #pragma once
 /// \file SceneKeys.h
-/// Readers of scene keys that live outside SceneParser.cpp: the DEM terrain keys and the
-/// meteorological wind direction. Only SceneParser.cpp includes it.
+/// Readers of scene keys that live outside SceneParser.cpp: the DEM terrain keys, the
+/// meteorological wind direction and the whole [wind] section. Only the parser's files include it.
 
+#include <array>
 #include <string>
+
+#include <glm/vec3.hpp>
 
 #include "app/scene/SceneSection.h"
 
 namespace gale::app::detail {
+
+/// |I| up to 4 turns the blade tip through a full circle ((pi/2) * 4 = 2 pi): beyond that the bend
+/// means nothing.
+inline constexpr double MAX_INTENSITY = 4.0;
+
+/// A scene's [x, y, z] as a render-side vector.
+inline glm::vec3 toVec3(const std::array<double, 3>& a) {
+    return glm::vec3(static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]));
+}
 
 /// [terrain] keys of kind = "dem": `dem` (the raster, as written; the parser resolves it) and
 /// `crop_m` ([min x, min y, max x, max y] in the DEM's coordinates, metres). Fills t.crop;
@@ -24,5 +36,9 @@ void readFromDeg(Section& s, sim::AmbientWind& a);
 /// given without `kind` drive `gale solve` and `gale probe` but not the frames, whose default
 /// point-source wind ignores them; one note says so and how to see them (kind = "solved").
 void noteAmbientWithoutKind(Context& ctx, Section& s);
+
+/// The [wind] section (kind, point source, ambient wind, blade response, gusts and whirlwinds), in
+/// SceneWind.cpp.
+void readWind(Context& ctx, Section s);
 
 }  // namespace gale::app::detail
