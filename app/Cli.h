@@ -4,7 +4,6 @@
 /// help, footer) into one VerbTable; main parses the command line and runs the verb it names.
 
 #include <CLI/CLI.hpp>
-
 #include <functional>
 #include <string>
 #include <utility>

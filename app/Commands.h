@@ -45,8 +45,8 @@ std::vector<RunPath> sceneInputs(const Scene& scene);
 /// `gale view SCENE`: the scene in a window (docs/cli.md).
 struct ViewOptions {
     std::string scenePath;
-    std::optional<int> frames;   ///< render this many frames at exact times, then exit (tests)
-    std::optional<int> width;    ///< window size; default output.width / output.height
+    std::optional<int> frames;  ///< render this many frames at exact times, then exit (tests)
+    std::optional<int> width;   ///< window size; default output.width / output.height
     std::optional<int> height;
     std::string screenshotPath;  ///< save the last frame here (without the heads-up line)
     /// Key presses to replay, one per frame from the first ('>' right arrow, ' ' space, '.' none,

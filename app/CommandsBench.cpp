@@ -67,7 +67,8 @@ void addAccuracy(CLI::App& bench, VerbTable& verbs) {
         "past a sphere): CSV, SVG plot and convergence order");
     verb->add_option("--out", o->outputFolder, "Folder for accuracy.csv and accuracy.svg")
         ->capture_default_str();
-    verb->add_flag("--quick", o->quick, "4, 8, 16 cells per radius at one tolerance (a CI smoke run)");
+    verb->add_flag("--quick", o->quick,
+                   "4, 8, 16 cells per radius at one tolerance (a CI smoke run)");
     verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
     verb->footer(EXIT_CODES_FOOTER);
     verbs.add(verb, [o] { return runBench([o] { return runBenchAccuracy(*o); }); });
@@ -78,8 +79,9 @@ void addSolve(CLI::App& bench, VerbTable& verbs) {
     auto sizes = std::make_shared<std::vector<std::string>>();
     auto noOpenVdb = std::make_shared<bool>(false);
     CLI::App* verb = bench.add_subcommand(
-        "solve", "Our MGPCG against OpenVDB's PCG on the same elliptic problem, with memory and "
-                 "the bandwidth floor");
+        "solve",
+        "Our MGPCG against OpenVDB's PCG on the same elliptic problem, with memory and "
+        "the bandwidth floor");
     verb->add_option("--size", *sizes,
                      "Box NXxNYxNZ (repeatable; default 64x64x32 128x128x64 256x256x64)");
     verb->add_flag("--quick", o->quick, "Only the first size (a CI smoke run)");
@@ -100,8 +102,9 @@ void addSolve(CLI::App& bench, VerbTable& verbs) {
 void addCoupling(CLI::App& bench, VerbTable& verbs) {
     auto o = std::make_shared<BenchCouplingOptions>();
     CLI::App* verb = bench.add_subcommand(
-        "coupling", "Grouped against exact bends as the group count grows, and the coupling's "
-                    "cost per field step and per frame at 100k and 1M vertices");
+        "coupling",
+        "Grouped against exact bends as the group count grows, and the coupling's "
+        "cost per field step and per frame at 100k and 1M vertices");
     verb->add_option("--out", o->outputFolder, "Folder for coupling.csv and coupling.svg")
         ->capture_default_str();
     verb->add_flag("--quick", o->quick, "10k and 100k vertices (a CI smoke run)");
@@ -113,8 +116,9 @@ void addCoupling(CLI::App& bench, VerbTable& verbs) {
 void addRough(CLI::App& bench, VerbTable& verbs) {
     auto o = std::make_shared<BenchRoughOptions>();
     CLI::App* verb = bench.add_subcommand(
-        "rough", "Steady-solve iterations on a fractal and a sharp-feature terrain at 20, 10 and 5 m "
-                 "cells (target: <= 20 at every resolution)");
+        "rough",
+        "Steady-solve iterations on a fractal and a sharp-feature terrain at 20, 10 and 5 m "
+        "cells (target: <= 20 at every resolution)");
     verb->add_flag("--quick", o->quick, "A 320 m square instead of 1280 m (a CI smoke run)");
     verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
     verb->footer(EXIT_CODES_FOOTER);
@@ -124,10 +128,11 @@ void addRough(CLI::App& bench, VerbTable& verbs) {
 void addStability(CLI::App& bench, VerbTable& verbs) {
     auto o = std::make_shared<BenchStabilityOptions>();
     CLI::App* verb = bench.add_subcommand(
-        "stability", "The unsteady wind's stability suite: CFL 5/20/50 over a ridge, 0 and 100 m/s, "
-                     "cliff, spike, sub-cell vortex, nu dt/h^2 = 1000, gusts (energy budgets, "
-                     "deviation from the steady start); the translating Lamb-Oseen vortex's orders "
-                     "and Burgers' vortex against their exact solutions");
+        "stability",
+        "The unsteady wind's stability suite: CFL 5/20/50 over a ridge, 0 and 100 m/s, "
+        "cliff, spike, sub-cell vortex, nu dt/h^2 = 1000, gusts (energy budgets, "
+        "deviation from the steady start); the translating Lamb-Oseen vortex's orders "
+        "and Burgers' vortex against their exact solutions");
     verb->add_flag("--quick", o->quick, "Only the fast subset (what sim_tests runs)");
     verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
     verb->footer(EXIT_CODES_FOOTER);
@@ -137,9 +142,10 @@ void addStability(CLI::App& bench, VerbTable& verbs) {
 void addUnsteady(CLI::App& bench, VerbTable& verbs) {
     auto o = std::make_shared<BenchUnsteadyOptions>();
     CLI::App* verb = bench.add_subcommand(
-        "unsteady", "Error against run time of the unsteady solver on the exact viscous "
-                    "Lamb-Oseen vortex (CSV, SVG, orders) per advection scheme, and the time per "
-                    "step and its parts");
+        "unsteady",
+        "Error against run time of the unsteady solver on the exact viscous "
+        "Lamb-Oseen vortex (CSV, SVG, orders) per advection scheme, and the time per "
+        "step and its parts");
     verb->add_option("--out", o->outputFolder,
                      "Folder for unsteady_accuracy.csv and unsteady_accuracy.svg")
         ->capture_default_str();

@@ -1,20 +1,20 @@
 /// \file CommandsBlade.cpp
 /// `gale blade`: the length-preserving bend (render/Bend.h) as numbers and as a drawing.
 
-#include <memory>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <sstream>
 #include <string>
 
-#include "app/io/AtomicFile.h"
 #include "app/Cli.h"
 #include "app/Commands.h"
+#include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/scene/SceneParser.h"
-#include "render/Bend.h"
 #include "base/Numbers.h"
+#include "render/Bend.h"
 
 namespace gale::app {
 namespace {
@@ -102,8 +102,8 @@ std::string bladeSvg(const BladeOptions& o) {
         << num(o.stiffness) << ", height " << num(h) << " m</text>\n";
     svg << "  <text x=\"" << MARGIN_LEFT << "\" y=\"42\" fill=\"#555\">"
         << "theta_j = theta_tip (j/N)^stiffness, theta_tip = (pi/2) I saturating short of the "
-           "ground; every segment keeps S = " << num(segment)
-        << " m</text>\n";
+           "ground; every segment keeps S = "
+        << num(segment) << " m</text>\n";
     // Ground line and label.
     svg << "  <line x1=\"" << MARGIN_LEFT - 20 << "\" y1=\"" << Y(0) << "\" x2=\""
         << SVG_WIDTH - MARGIN_RIGHT + 10 << "\" y2=\"" << Y(0)

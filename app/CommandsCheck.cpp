@@ -1,27 +1,25 @@
 /// \file CommandsCheck.cpp
 /// `gale check`: validate a scene and say what a run would build and what it leaves out.
 
-#include <memory>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <sstream>
 
 #include "app/Cli.h"
 #include "app/Commands.h"
-#include "app/io/Errors.h"
 #include "app/io/AtomicFile.h"
+#include "app/io/Errors.h"
 #include "app/io/OutputFolder.h"
 #include "app/io/OutputLock.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
+#include "base/Numbers.h"
 #include "coupling/PointSourceWind.h"
 #include "render/GrassTexture.h"
-#include "base/Numbers.h"
 
 namespace gale::app {
 namespace {
-
-
 
 std::string vec3(const glm::vec3& v) {
     return "(" + formatG(v.x, 3) + ", " + formatG(v.y, 3) + ", " + formatG(v.z, 3) + ")";
@@ -32,8 +30,9 @@ std::string vec3(const glm::vec3& v) {
 std::string directionText(double direction_deg) {
     sim::AmbientWind a;
     a.direction_deg = direction_deg;
-    return "from " + formatG(a.from_deg(), 3) + " deg = towards " + formatG(a.towardsBearing_deg(), 3) +
-           " deg, counter-clockwise from +x " + formatG(direction_deg, 3) + " deg";
+    return "from " + formatG(a.from_deg(), 3) + " deg = towards " +
+           formatG(a.towardsBearing_deg(), 3) + " deg, counter-clockwise from +x " +
+           formatG(direction_deg, 3) + " deg";
 }
 
 void line(const char* label, const std::string& text) {
@@ -65,14 +64,16 @@ int runCheck(const SceneRunOptions& options) {
         t << sim::terrainKindName(scene.terrain.spec.kind);
     if (scene.terrain.spec.kind == sim::TerrainKind::Heightmap && !scene.terrain.dem)
         t << " from " << scene.terrain.imagePath;
-    t << ", " << field.nx << " x " << field.ny << " samples at " << formatG(field.spacing_m, 3) << " m ("
-      << formatG(field.sizeX_m(), 3) << " x " << formatG(field.sizeY_m(), 3) << " m), heights "
-      << formatFixed(field.minHeight_m()) << " .. " << formatFixed(field.maxHeight_m()) << " m";
+    t << ", " << field.nx << " x " << field.ny << " samples at " << formatG(field.spacing_m, 3)
+      << " m (" << formatG(field.sizeX_m(), 3) << " x " << formatG(field.sizeY_m(), 3)
+      << " m), heights " << formatFixed(field.minHeight_m()) << " .. "
+      << formatFixed(field.maxHeight_m()) << " m";
     line("terrain", t.str());
     if (geo.georeferenced()) {
         line("", "coordinate system " + geo.crsName + "; covers x " + formatFixed(geo.demX_m(0.0)) +
                      " .. " + formatFixed(geo.demX_m(field.sizeX_m())) + ", y " +
-                     formatFixed(geo.demY_m(0.0)) + " .. " + formatFixed(geo.demY_m(field.sizeY_m())) +
+                     formatFixed(geo.demY_m(0.0)) + " .. " +
+                     formatFixed(geo.demY_m(field.sizeY_m())) +
                      " (pixel centres); inside gale local (0, 0) = (" + formatFixed(geo.originX_m) +
                      ", " + formatFixed(geo.originY_m) + ")");
     }
@@ -84,8 +85,9 @@ int runCheck(const SceneRunOptions& options) {
                      std::to_string(scene.terrain.meshStride) +
                      (scene.terrain.meshStride == 1 ? "st" : "th") + " sample)");
 
-    line("grass", formatG(grass.params.height_m, 3) + " m tall, " + std::to_string(grass.params.shells) +
-                      " shells (" + std::to_string(grass.params.shells + 1) +
+    line("grass", formatG(grass.params.height_m, 3) + " m tall, " +
+                      std::to_string(grass.params.shells) + " shells (" +
+                      std::to_string(grass.params.shells + 1) +
                       " layers with the ground), stiffness " + formatG(grass.params.stiffness, 3) +
                       ", texture repeats every " + formatG(grass.params.tile_m, 3) + " m");
 
@@ -105,46 +107,71 @@ int runCheck(const SceneRunOptions& options) {
     const sim::UnsteadySettings& us = scene.unsteady.settings;
     if (unsteady) {
         const sim::AmbientWind& a = scene.wind.ambient;
-        line("wind", "unsteady field (docs/design.md 4.2): steady mass-consistent start and mean flow, " + formatG(a.speed_mps, 3) +
-                         " m/s at " + formatG(a.referenceHeight_m, 3) + " m " + directionText(a.direction_deg) + ", " +
-                         sim::windProfileName(a.profile) + " profile");
+        line("wind",
+             "unsteady field (docs/design.md 4.2): steady mass-consistent start and mean flow, " +
+                 formatG(a.speed_mps, 3) + " m/s at " + formatG(a.referenceHeight_m, 3) + " m " +
+                 directionText(a.direction_deg) + ", " + sim::windProfileName(a.profile) +
+                 " profile");
         line("", "domain " + built.domainSummary);
-        line("", std::string("time stepping: ") + sim::advectionSchemeName(us.advection) + " advection, " +
-                     (us.dt_s > 0 ? "fixed dt " + formatG(us.dt_s, 3) + " s" : "adaptive CFL " + formatG(us.cfl, 3) + " (dt <= " + formatG(us.maxDt_s, 3) + " s)") +
-                     ", projection to " + formatG(us.projection.relativeTolerance, 3) + " (warm MGPCG), " +
-                     (us.openTop ? "open top" : "free-slip lid on top"));
-        line("", "gale solve plans " + formatG(plannedSequenceFiles(scene.unsteady), 12) + " .vdb files (limit " +
-                     std::to_string(scene.unsteady.maxFiles) + ", unsteady.max_files) and at least " +
+        line("", std::string("time stepping: ") + sim::advectionSchemeName(us.advection) +
+                     " advection, " +
+                     (us.dt_s > 0 ? "fixed dt " + formatG(us.dt_s, 3) + " s"
+                                  : "adaptive CFL " + formatG(us.cfl, 3) +
+                                        " (dt <= " + formatG(us.maxDt_s, 3) + " s)") +
+                     ", projection to " + formatG(us.projection.relativeTolerance, 3) +
+                     " (warm MGPCG), " + (us.openTop ? "open top" : "free-slip lid on top"));
+        line("", "gale solve plans " + formatG(plannedSequenceFiles(scene.unsteady), 12) +
+                     " .vdb files (limit " + std::to_string(scene.unsteady.maxFiles) +
+                     ", unsteady.max_files) and at least " +
                      formatG(plannedUnsteadySteps(scene), 12) + " time steps (limit " +
                      std::to_string(scene.unsteady.maxSteps) + ", unsteady.max_steps)");
-        line("", "forces: " + std::string(us.viscosity_m2ps > 0 ? "implicit viscosity " + formatG(us.viscosity_m2ps, 3) + " m^2/s" : "no viscosity") +
-                     (us.vorticityConfinement > 0 ? ", vorticity confinement " + formatG(us.vorticityConfinement, 3) : ", no vorticity confinement"));
+        line("",
+             "forces: " +
+                 std::string(us.viscosity_m2ps > 0
+                                 ? "implicit viscosity " + formatG(us.viscosity_m2ps, 3) + " m^2/s"
+                                 : "no viscosity") +
+                 (us.vorticityConfinement > 0
+                      ? ", vorticity confinement " + formatG(us.vorticityConfinement, 3)
+                      : ", no vorticity confinement"));
         for (size_t i = 0; i < us.gusts.size(); ++i) {
             const sim::GustEvent& g = us.gusts[i];
-            line("", "gust " + std::to_string(i) + ": " + sim::gustEnvelopeName(g.envelope) + " envelope, " + formatG(g.peak_mps, 3) +
-                         " m/s towards " + formatG(g.direction_deg, 3) + " deg, from t = " + formatG(g.start_s, 3) + " s for " + formatG(g.duration_s, 3) +
-                         " s, " +
-                         (g.entry == sim::GustEntry::Inflow ? std::string("entering through the inflow boundary")
-                                                            : "as a moving forcing region of " + formatG(g.regionRadius_m, 3) + " m radius"));
+            line("", "gust " + std::to_string(i) + ": " + sim::gustEnvelopeName(g.envelope) +
+                         " envelope, " + formatG(g.peak_mps, 3) + " m/s towards " +
+                         formatG(g.direction_deg, 3) + " deg, from t = " + formatG(g.start_s, 3) +
+                         " s for " + formatG(g.duration_s, 3) + " s, " +
+                         (g.entry == sim::GustEntry::Inflow
+                              ? std::string("entering through the inflow boundary")
+                              : "as a moving forcing region of " + formatG(g.regionRadius_m, 3) +
+                                    " m radius"));
         }
         for (size_t i = 0; i < us.whirlwinds.size(); ++i) {
             const sim::Whirlwind& v = us.whirlwinds[i];
-            line("", "whirlwind " + std::to_string(i) + ": " + sim::vortexProfileName(v.profile) + " at (" + formatG(v.wsPosition_m[0], 3) +
-                         ", " + formatG(v.wsPosition_m[1], 3) + ") m, core " + formatG(v.coreRadius_m, 3) + " m, circulation " +
-                         formatG(v.circulation(), 3) + " m^2/s" + (v.updraft_mps > 0 ? ", updraft " + formatG(v.updraft_mps, 3) + " m/s" : "") +
-                         (v.forced ? ", forced" + (v.lifetime_s < 1e29 ? " for " + formatG(v.lifetime_s, 3) + " s" : std::string()) : ", free"));
+            line("",
+                 "whirlwind " + std::to_string(i) + ": " + sim::vortexProfileName(v.profile) +
+                     " at (" + formatG(v.wsPosition_m[0], 3) + ", " +
+                     formatG(v.wsPosition_m[1], 3) + ") m, core " + formatG(v.coreRadius_m, 3) +
+                     " m, circulation " + formatG(v.circulation(), 3) + " m^2/s" +
+                     (v.updraft_mps > 0 ? ", updraft " + formatG(v.updraft_mps, 3) + " m/s" : "") +
+                     (v.forced ? ", forced" + (v.lifetime_s < 1e29
+                                                   ? " for " + formatG(v.lifetime_s, 3) + " s"
+                                                   : std::string())
+                               : ", free"));
         }
-        line("", std::string("blade response ") + coupling::bladeResponseName(scene.wind.response.response) + ", " +
-                     coupling::groupingName(scene.wind.response.grouping) + " groups (" + std::to_string(scene.wind.response.groups) +
+        line("", std::string("blade response ") +
+                     coupling::bladeResponseName(scene.wind.response.response) + ", " +
+                     coupling::groupingName(scene.wind.response.grouping) + " groups (" +
+                     std::to_string(scene.wind.response.groups) +
                      "), the field sampled after every step");
     } else if (solved) {
         const sim::AmbientWind& a = scene.wind.ambient;
         const coupling::FieldWindSpec& r = scene.wind.response;
-        line("wind", "solved steady field (mass-consistent, docs/design.md 4.1): " + formatG(a.speed_mps, 3) +
-                         " m/s at " + formatG(a.referenceHeight_m, 3) + " m " +
-                         directionText(a.direction_deg) + ", " + sim::windProfileName(a.profile) +
-                         " profile" +
-                         (a.profile == sim::WindProfile::LogLaw ? " (z0 " + formatG(a.roughness_m, 3) + " m)" : ""));
+        line("wind", "solved steady field (mass-consistent, docs/design.md 4.1): " +
+                         formatG(a.speed_mps, 3) + " m/s at " + formatG(a.referenceHeight_m, 3) +
+                         " m " + directionText(a.direction_deg) + ", " +
+                         sim::windProfileName(a.profile) + " profile" +
+                         (a.profile == sim::WindProfile::LogLaw
+                              ? " (z0 " + formatG(a.roughness_m, 3) + " m)"
+                              : ""));
         line("", "domain " + built.domainSummary);
         line("", std::string("blade response ") + coupling::bladeResponseName(r.response) +
                      ", bend speed " + formatG(r.bendSpeed_mps, 3) + " m/s" +
@@ -176,8 +203,8 @@ int runCheck(const SceneRunOptions& options) {
     const render::Camera& c = built.camera;
     line("camera", vec3(c.wsPosition_m) + " m -> " + vec3(c.wsTarget_m) + " m" +
                        (scene.autoCameraPosition ? " (default 3/4 view)" : "") + ", fov " +
-                       formatG(c.fovY_deg, 3) + " deg, near " + formatG(c.near_m, 3) + " m, far " + formatG(c.far_m, 3) +
-                       " m");
+                       formatG(c.fovY_deg, 3) + " deg, near " + formatG(c.near_m, 3) + " m, far " +
+                       formatG(c.far_m, 3) + " m");
 
     const coupling::OverlaySpec& ov = scene.overlay;
     if (ov.any()) {
@@ -186,26 +213,35 @@ int runCheck(const SceneRunOptions& options) {
             if (on) views += (views.empty() ? "" : ", ") + what;
         };
         add(ov.arrows, "arrows every " +
-                           (ov.arrowSpacing_m > 0 ? formatG(ov.arrowSpacing_m, 3) + " m" : std::string("1/16 of the terrain")) +
-                           " at " + (ov.arrowHeight_m >= 0 ? formatG(ov.arrowHeight_m, 3) + " m" : std::string("1.25 x grass height")));
+                           (ov.arrowSpacing_m > 0 ? formatG(ov.arrowSpacing_m, 3) + " m"
+                                                  : std::string("1/16 of the terrain")) +
+                           " at " +
+                           (ov.arrowHeight_m >= 0 ? formatG(ov.arrowHeight_m, 3) + " m"
+                                                  : std::string("1.25 x grass height")));
         add(ov.slice, "terrain-following slice " + formatG(ov.sliceHeight_m, 3) + " m up");
-        add(ov.streamlines, std::to_string(ov.streamlineCount) + " streamlines from the upstream edge");
+        add(ov.streamlines,
+            std::to_string(ov.streamlineCount) + " streamlines from the upstream edge");
         add(ov.vortexCores, "vortex cores (Q > " +
-                                (ov.vortexQ_per_s2 > 0 ? formatG(ov.vortexQ_per_s2, 3) + " 1/s^2" : std::string("auto")) + ")");
+                                (ov.vortexQ_per_s2 > 0 ? formatG(ov.vortexQ_per_s2, 3) + " 1/s^2"
+                                                       : std::string("auto")) +
+                                ")");
         line("overlay", views + "; colour map viridis up to " +
-                            (ov.speedMax_mps > 0 ? formatG(ov.speedMax_mps, 3) + " m/s" : std::string("the largest speed")) +
+                            (ov.speedMax_mps > 0 ? formatG(ov.speedMax_mps, 3) + " m/s"
+                                                 : std::string("the largest speed")) +
                             (ov.legend ? ", with legend" : ", no legend"));
         if (!solved && (ov.slice || ov.streamlines || ov.vortexCores))
-            line("", "note: the point source has no velocity field: only arrows (direction x "
-                     "intensity) are drawn");
+            line("",
+                 "note: the point source has no velocity field: only arrows (direction x "
+                 "intensity) are drawn");
     } else {
-        line("overlay", "none (an [overlay] section draws arrows, a slice, streamlines, vortex cores)");
+        line("overlay",
+             "none (an [overlay] section draws arrows, a slice, streamlines, vortex cores)");
     }
 
     const double endTime_s = out.startTime_s + (out.frames - 1) / out.fps;
     line("output", std::to_string(out.frames) + " frames of " + std::to_string(out.width) + " x " +
-                       std::to_string(out.height) + " at " + formatG(out.fps, 3) +
-                       " fps (t = " + formatG(out.startTime_s, 3) + " .. " + formatG(endTime_s, 4) + " s)");
+                       std::to_string(out.height) + " at " + formatG(out.fps, 3) + " fps (t = " +
+                       formatG(out.startTime_s, 3) + " .. " + formatG(endTime_s, 4) + " s)");
     auto named = [&](int k) {  // output.format picks the extension
         return std::filesystem::path(framePath(out.folder, out.prefix, k))
             .replace_extension("." + out.format)
@@ -230,25 +266,30 @@ int runCheck(const SceneRunOptions& options) {
                      "); the next render or solve into this folder removes them");
     const std::string lockPath = OutputLock::pathFor(out.folder);
     if (std::filesystem::exists(lockPath))
-        line("", "note: " + lockPath + " exists: another gale run writes here now (or was "
-                 "killed; the next run takes a dead run's lock over)");
+        line("", "note: " + lockPath +
+                     " exists: another gale run writes here now (or was "
+                     "killed; the next run takes a dead run's lock over)");
 
     if (unsteady) {
-        std::string leftOut = us.whirlwinds.empty() && us.vorticityConfinement == 0.0 ? "no vortex code (no whirlwinds, no confinement)" : "";
+        std::string leftOut = us.whirlwinds.empty() && us.vorticityConfinement == 0.0
+                                  ? "no vortex code (no whirlwinds, no confinement)"
+                                  : "";
         auto add = [&](bool leave, const std::string& what) {
             if (leave) leftOut += (leftOut.empty() ? "" : "; ") + what;
         };
         add(us.gusts.empty(), "no gusts");
         add(us.viscosity_m2ps == 0.0, "no viscosity step");
         add(us.advection == sim::AdvectionScheme::SemiLagrangian, "no MacCormack/BFECC correction");
-        line("left out", leftOut.empty() ? "nothing: every part of the unsteady solver runs" : leftOut);
+        line("left out",
+             leftOut.empty() ? "nothing: every part of the unsteady solver runs" : leftOut);
     } else if (solved) {
         line("left out", "no unsteady solver: a steady field" +
                              std::string(scene.wind.gusts ? " with kinematic travelling gusts"
                                                           : ", held still") +
                              "; no vortex code");
     } else {
-        line("left out", "no wind solver: point-source wind (Bakay et al. 2002), no velocity field");
+        line("left out",
+             "no wind solver: point-source wind (Bakay et al. 2002), no velocity field");
     }
     line("", "no window: headless (OSMesa)");
     if (l.lights.empty()) line("", "no lights: ambient only");

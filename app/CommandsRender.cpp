@@ -3,32 +3,32 @@
 /// shells -> PNG frames, with a run report.
 
 #include <cerrno>
-#include <memory>
-#include <optional>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <system_error>
 #include <vector>
 
-#include "app/io/AtomicFile.h"
 #include "app/Cli.h"
 #include "app/Commands.h"
+#include "app/Version.h"
+#include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/io/ImageCheck.h"
 #include "app/io/Interrupt.h"
 #include "app/io/OutputFolder.h"
 #include "app/io/OutputLock.h"
 #include "app/io/Progress.h"
+#include "app/io/Timing.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
-#include "app/Version.h"
-#include "app/io/Timing.h"
 #include "coupling/FieldOverlayBuilder.h"
-#include "render/GlContext.h"
 #include "render/Animation.h"
 #include "render/FieldOverlay.h"
+#include "render/GlContext.h"
 #include "render/ImageIO.h"
 #include "render/ShellRenderer.h"
 
@@ -60,7 +60,8 @@ void checkRoomForFrames(const OutputSection& out, const std::string& where, doub
     const fs::space_info space = fs::space(out.folder, ec);
     if (ec) return;
     const double rest = frameBytes * FRAME_SIZE_MARGIN * (out.frames - 1);
-    const double previews = (out.gif || out.contactSheet) ? frameBytes * out.frames * PREVIEW_FRACTION : 0.0;
+    const double previews =
+        (out.gif || out.contactSheet) ? frameBytes * out.frames * PREVIEW_FRACTION : 0.0;
     const double need = rest + previews;
     if (need > static_cast<double>(space.available))
         throw InputError(where + ": '" + out.folder + "' has " +
@@ -93,9 +94,7 @@ std::vector<RunPath> sceneInputs(const Scene& scene) {
             {scene.grass.texturePath, scene.where("grass.texture") + " (the grass texture)"}};
 }
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 int runRender(const SceneRunOptions& options) {
     const auto runStart = Clock::now();
@@ -120,7 +119,8 @@ int runRender(const SceneRunOptions& options) {
     {
         std::vector<RunPath> outputs;
         for (int k = 0; k < out.frames; ++k)
-            outputs.push_back({framePathAs(out.folder, out.prefix, k, out.format), folderWhere + " (a frame)"});
+            outputs.push_back(
+                {framePathAs(out.folder, out.prefix, k, out.format), folderWhere + " (a frame)"});
         outputs.push_back({reportPath, folderWhere + " (the report)"});
         outputs.push_back({animation.sheetPath, folderWhere + " (the contact sheet)"});
         outputs.push_back({animation.gifPath, folderWhere + " (the GIF)"});
@@ -197,9 +197,9 @@ int runRender(const SceneRunOptions& options) {
             built.wind->update(t_s, wind);
             const render::FrameStats stats = renderer.draw(built.camera, wind);
             if (overlay) {
-                const render::FieldOverlayData data =
-                    coupling::buildOverlay(*built.wind, wind, built.mesh, overlayScale.frame(scene.overlay),
-                                           scene.grass.params.height_m);
+                const render::FieldOverlayData data = coupling::buildOverlay(
+                    *built.wind, wind, built.mesh, overlayScale.frame(scene.overlay),
+                    scene.grass.params.height_m);
                 overlayScale.seen(data);
                 overlay->draw(built.camera, data);
             }

@@ -4,29 +4,30 @@
 /// reports (docs/unsteady.md). runSolveVerb builds a SolveRequest from the scene; runSolve does
 /// the work.
 
-#include <memory>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <unistd.h>
 
 #include "app/Cli.h"
 #include "app/Commands.h"
-#include "app/scene/SceneParser.h"
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/io/Interrupt.h"
-#include "app/io/OutputLock.h"
 #include "app/io/OutputFolder.h"
+#include "app/io/OutputLock.h"
 #include "app/io/Progress.h"
 #include "app/io/Timing.h"
-#include "base/Numbers.h"
 #include "app/scene/SceneBuilder.h"
+#include "app/scene/SceneParser.h"
 #include "app/scene/WindRaster.h"
+#include "base/Numbers.h"
 #include "sim/AirDomain.h"
 #include "sim/AmbientWind.h"
 #include "sim/Heightfield.h"
@@ -36,7 +37,6 @@
 #include "sim/VdbIO.h"
 
 namespace gale::app {
-
 
 /// wind.kind = "unsteady": the time stepping after the steady solve (docs/unsteady.md).
 struct UnsteadySolveRequest {
@@ -52,7 +52,7 @@ struct SolveRequest {
     sim::MassConsistentWeights weights;
     sim::SolverSettings solver;
     sim::SteadyModel model = sim::SteadyModel::MassConsistent;  ///< [solver] model
-    sim::MomentumSettings momentum;                              ///< model = momentum
+    sim::MomentumSettings momentum;                             ///< model = momentum
     std::string vdbPath;     ///< the field (grids "velocity" and "speed"); empty: not written
     std::string reportPath;  ///< the JSON report; empty: not written
     std::string sceneName;   ///< recorded in the report and the .vdb metadata
@@ -73,15 +73,16 @@ std::string houdiniPath(const std::string& vdbPath, double fps, double t_s) {
 }
 
 /// Builds the domain, solves, writes the .vdb and the JSON report (each atomically), prints a
-/// summary to stdout and progress to stderr. Returns EXIT_OK when the solve converged, EXIT_UNMET when it did not
-/// (both files are still written, and the report says so). Throws std::invalid_argument naming
-/// the parameter on bad input (voxel size, top, memory limit, NaN heights, wind, weights), and
-/// std::runtime_error when a file cannot be written.
+/// summary to stdout and progress to stderr. Returns EXIT_OK when the solve converged, EXIT_UNMET
+/// when it did not (both files are still written, and the report says so). Throws
+/// std::invalid_argument naming the parameter on bad input (voxel size, top, memory limit, NaN
+/// heights, wind, weights), and std::runtime_error when a file cannot be written.
 int runSolve(const SolveRequest& request);
 
 /// The unsteady run of an unsteady scene (runSolve calls it when request.unsteady is set): the
 /// steady solve, then steps to duration_s writing the sequence; returns 0 when every solve
-/// converged and the field stayed finite, EXIT_UNMET otherwise (files still written, the report says so).
+/// converged and the field stayed finite, EXIT_UNMET otherwise (files still written, the report
+/// says so).
 int runUnsteadySolve(const SolveRequest& request);
 
 /// "<stem>_0003.vdb" for path "<stem>.vdb" and frame 3.
@@ -174,7 +175,8 @@ nlohmann::json momentumJson(const sim::MomentumReport& m, const sim::MomentumSet
             {"finite", m.finite},
             {"iterations", m.iterations},
             {"momentum_residual", m.momentumResidual},
-            {"residual_definition", "open-fraction weighted RMS over faces of |u(n+1) - u(n)| / dt * h / U^2"},
+            {"residual_definition",
+             "open-fraction weighted RMS over faces of |u(n+1) - u(n)| / dt * h / U^2"},
             {"tolerance", s.residualTolerance},
             {"max_div_u_h_over_U", m.maxDivergenceScaled},
             {"pseudo_dt_s", m.dt_s},
@@ -200,15 +202,16 @@ int runSolve(const SolveRequest& req) {
     const sim::AirDomain domain(req.terrain, req.domain);
     const double domainSeconds = secondsSince(t0);
     interrupt.exitAtOnce("while solving: nothing written");
-    std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MiB; solving...\n", domain.nx(),
-                 domain.ny(), domain.nz(), domain.activeCellCount(),
+    std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MiB; solving...\n",
+                 domain.nx(), domain.ny(), domain.nz(), domain.activeCellCount(),
                  domain.memoryEstimate_bytes() / MIB);
     sim::SteadyWindResult res;
     std::optional<sim::MomentumReport> momentum;
-    std::optional<sim::SteadyWindSolver> solver;  // the mass-consistent model's, kept for its memory figure
+    std::optional<sim::SteadyWindSolver>
+        solver;  // the mass-consistent model's, kept for its memory figure
     if (req.model == sim::SteadyModel::Momentum) {
-        sim::SteadyModelResult m =
-            sim::solveSteadyModel(domain, req.ambient, req.model, req.weights, req.solver, req.momentum);
+        sim::SteadyModelResult m = sim::solveSteadyModel(domain, req.ambient, req.model,
+                                                         req.weights, req.solver, req.momentum);
         res.field = std::move(m.field), res.report = m.report, momentum = std::move(m.momentum);
     } else {
         solver.emplace(domain, req.weights);
@@ -219,9 +222,11 @@ int runSolve(const SolveRequest& req) {
 
     nlohmann::json j;
     j["scene"] = req.sceneName;
-    j["model"] = momentum ? "steady momentum model (sim/MomentumWind.h): RANS, mixing length (Blackadar 1962), log-law "
+    j["model"] = momentum ? "steady momentum model (sim/MomentumWind.h): RANS, mixing length "
+                            "(Blackadar 1962), log-law "
                             "wall stress, pseudo-time stepping from the mass-consistent field"
-                          : "steady mass-consistent wind (Sherman 1978), cut cells (Batty, Bertails, Bridson 2007), MGPCG "
+                          : "steady mass-consistent wind (Sherman 1978), cut cells (Batty, "
+                            "Bertails, Bridson 2007), MGPCG "
                             "(McAdams, Sifakis, Teran 2010)";
     if (momentum) j["momentum"] = momentumJson(*momentum, req.momentum);
     const auto o = domain.wsMin_m();
@@ -264,29 +269,36 @@ int runSolve(const SolveRequest& req) {
     if (!req.vdbPath.empty()) {
         sim::VdbMetadata meta;
         meta.strings = {{"scene", req.sceneName}, {"converged", rep.converged ? "yes" : "no"}};
-        meta.numbers = {{"iterations", double(rep.iterations)}, {"relative_residual", rep.relativeResidual},
+        meta.numbers = {{"iterations", double(rep.iterations)},
+                        {"relative_residual", rep.relativeResidual},
                         {"max_div_u_h_over_U", rep.maxDivergenceScaled}};
         writeStagedVdb(staged, res.field, req.vdbPath, meta);
         if (req.houdiniFps > 0.0) {
             const std::string path = houdiniPath(req.vdbPath, req.houdiniFps, 0.0);
             sim::writeHoudiniVdb(path, res.field, req.terrain);
-            j["outputs"]["houdini"] = {{"paths", nlohmann::json::array({path})},
-                                       {"grids", {"vel (vec3s, m/s, y-up)", "surface (level set of the terrain, y-up)"}},
-                                       {"axes", "houdini (x, y, z) = gale (x, z, -y)"}};
+            j["outputs"]["houdini"] = {
+                {"paths", nlohmann::json::array({path})},
+                {"grids", {"vel (vec3s, m/s, y-up)", "surface (level set of the terrain, y-up)"}},
+                {"axes", "houdini (x, y, z) = gale (x, z, -y)"}};
         }
-        j["outputs"]["vdb"] = {{"path", req.vdbPath},
-                               {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)",
-                                          "velocity_faces (vec3s, m/s, staggered: the MAC face velocities)"}},
-                               {"placement", "cell-centred averages of the MAC face velocities; voxel (i,j,k) "
-                                             "centre at ws_min_m + (i+0.5, j+0.5, k+0.5) * voxel_size_m"},
-                               {"grid_class", "GRID_UNKNOWN"},
-                               {"vector_type", "VEC_CONTRAVARIANT_RELATIVE"}};
+        j["outputs"]["vdb"] = {
+            {"path", req.vdbPath},
+            {"grids",
+             {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)",
+              "velocity_faces (vec3s, m/s, staggered: the MAC face velocities)"}},
+            {"placement",
+             "cell-centred averages of the MAC face velocities; voxel (i,j,k) "
+             "centre at ws_min_m + (i+0.5, j+0.5, k+0.5) * voxel_size_m"},
+            {"grid_class", "GRID_UNKNOWN"},
+            {"vector_type", "VEC_CONTRAVARIANT_RELATIVE"}};
     }
     for (const double height_m : req.gridHeights_m) {
         char suffix[64];
         std::snprintf(suffix, sizeof suffix, "_%gm", height_m);
-        const std::string stem = std::filesystem::path(req.vdbPath).replace_extension("").string() + suffix;
-        const std::vector<std::string> paths = writeWindRasters(res.field, req.terrain, req.georef, height_m, stem);
+        const std::string stem =
+            std::filesystem::path(req.vdbPath).replace_extension("").string() + suffix;
+        const std::vector<std::string> paths =
+            writeWindRasters(res.field, req.terrain, req.georef, height_m, stem);
         j["outputs"]["rasters"].push_back(
             {{"height_agl_m", height_m},
              {"paths", paths},
@@ -298,17 +310,21 @@ int runSolve(const SolveRequest& req) {
     j["total_s"] = secondsSince(t0);
     if (!req.reportPath.empty()) writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
     staged.commit();
-    std::printf("solve: %s in %d iterations, relative residual %.2e, max|div u| h/U %.2e, %.2f s (%d x %d x %d cells, "
-                "%zu air)\n",
-                rep.converged ? "converged" : "DID NOT CONVERGE", rep.iterations, rep.relativeResidual,
-                rep.maxDivergenceScaled, j["total_s"].get<double>(), domain.nx(), domain.ny(), domain.nz(),
-                domain.activeCellCount());
+    std::printf(
+        "solve: %s in %d iterations, relative residual %.2e, max|div u| h/U %.2e, %.2f s (%d x %d "
+        "x %d cells, "
+        "%zu air)\n",
+        rep.converged ? "converged" : "DID NOT CONVERGE", rep.iterations, rep.relativeResidual,
+        rep.maxDivergenceScaled, j["total_s"].get<double>(), domain.nx(), domain.ny(), domain.nz(),
+        domain.activeCellCount());
     if (!rep.converged) std::printf("solve: %s\n", rep.message.c_str());
     if (interruptSignal()) {
         std::fflush(stdout);
-        std::fprintf(stderr, "gale: interrupted (%s) while writing; the solve had finished and %s%s%s are "
-                     "complete\n", interruptSignalName(), req.vdbPath.c_str(), req.reportPath.empty() ? "" : " and ",
-                     req.reportPath.c_str());
+        std::fprintf(stderr,
+                     "gale: interrupted (%s) while writing; the solve had finished and %s%s%s are "
+                     "complete\n",
+                     interruptSignalName(), req.vdbPath.c_str(),
+                     req.reportPath.empty() ? "" : " and ", req.reportPath.c_str());
         return interruptExitCode();
     }
     return rep.converged ? EXIT_OK : EXIT_UNMET;
@@ -328,10 +344,13 @@ int runUnsteadySolve(const SolveRequest& req) {
     req.ambient.validate();
     u.settings.validate();
     InterruptScope interrupt("while building the air domain: nothing written");
-    std::fprintf(stderr, "solve: building the air domain (voxel %.3g m)...\n", req.domain.voxelSize_m);
+    std::fprintf(stderr, "solve: building the air domain (voxel %.3g m)...\n",
+                 req.domain.voxelSize_m);
     const sim::AirDomain domain(req.terrain, req.domain);
-    std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air; steady solve (initial state and mean flow)...\n",
-                 domain.nx(), domain.ny(), domain.nz(), domain.activeCellCount());
+    std::fprintf(
+        stderr,
+        "solve: %d x %d x %d cells, %zu air; steady solve (initial state and mean flow)...\n",
+        domain.nx(), domain.ny(), domain.nz(), domain.activeCellCount());
     sim::SteadyWindSolver steadySolver(domain, req.weights);
     interrupt.exitAtOnce("during the steady solve: nothing written");
     const sim::SteadyWindResult steady = steadySolver.solve(req.ambient, req.solver);
@@ -339,10 +358,13 @@ int runUnsteadySolve(const SolveRequest& req) {
 
     nlohmann::json j;
     j["scene"] = req.sceneName;
-    j["model"] = "unsteady incompressible wind (docs/design.md 4.2): operator splitting on the MAC grid (Stam 1999), " +
-                 std::string(sim::advectionSchemeName(u.settings.advection)) +
-                 " advection, projection on cut cells with warm-started MGPCG (McAdams, Sifakis, Teran 2010); "
-                 "initial state and mean flow: the steady mass-consistent field (Sherman 1978)";
+    j["model"] =
+        "unsteady incompressible wind (docs/design.md 4.2): operator splitting on the MAC grid "
+        "(Stam 1999), " +
+        std::string(sim::advectionSchemeName(u.settings.advection)) +
+        " advection, projection on cut cells with warm-started MGPCG (McAdams, Sifakis, Teran "
+        "2010); "
+        "initial state and mean flow: the steady mass-consistent field (Sherman 1978)";
     j["domain"] = {{"cells", {domain.nx(), domain.ny(), domain.nz()}},
                    {"voxel_size_m", domain.voxelSize_m()},
                    {"air_cells", domain.activeCellCount()}};
@@ -379,20 +401,22 @@ int runUnsteadySolve(const SolveRequest& req) {
             meta.strings = {{"scene", req.sceneName}};
             meta.numbers = {{"time_s", solver.time_s()}};
             const double bytes = writeStagedVdb(staged, solver.field(), path, meta);
-            if (n == 0) checkRoomForSequence(folderOf(req.vdbPath), req.outputWhere, bytes, outputs);
+            if (n == 0)
+                checkRoomForSequence(folderOf(req.vdbPath), req.outputWhere, bytes, outputs);
             if (req.houdiniFps > 0.0) {
                 const std::string hpath = houdiniPath(req.vdbPath, req.houdiniFps, solver.time_s());
                 sim::writeHoudiniVdb(hpath, solver.field(), req.terrain);
                 houdiniPaths.push_back(hpath);
             }
         }
-        frames.push_back({{"frame", n}, {"t_s", solver.time_s()}, {"path", req.vdbPath.empty() ? "" : path}});
+        frames.push_back(
+            {{"frame", n}, {"t_s", solver.time_s()}, {"path", req.vdbPath.empty() ? "" : path}});
     };
     writeFrame(0);
     double maxCfl = 0, maxDiv = 0, solveSeconds = 0;
     int maxIt = 0, stepCount = 0;
-    // One updating line with ETA on a terminal, one line per output in logs (app/io/Progress.h); the
-    // run's CFL and divergence are in the summary line and the report.
+    // One updating line with ETA on a terminal, one line per output in logs (app/io/Progress.h);
+    // the run's CFL and divergence are in the summary line and the report.
     Progress progress("output", outputs);
     for (int n = 1; n <= outputs && finite && !interruptSignal(); ++n) {
         const auto outputStart = Clock::now();
@@ -436,9 +460,10 @@ int runUnsteadySolve(const SolveRequest& req) {
                     {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
                     {"placement", "cell-centred averages of the MAC face velocities"}};
     if (!houdiniPaths.empty())
-        j["outputs"]["houdini"] = {{"paths", houdiniPaths},
-                                   {"grids", {"vel (vec3s, m/s, y-up)", "surface (level set of the terrain, y-up)"}},
-                                   {"axes", "houdini (x, y, z) = gale (x, z, -y)"}};
+        j["outputs"]["houdini"] = {
+            {"paths", houdiniPaths},
+            {"grids", {"vel (vec3s, m/s, y-up)", "surface (level set of the terrain, y-up)"}},
+            {"axes", "houdini (x, y, z) = gale (x, z, -y)"}};
     j["summary"] = {{"steps", stepCount},
                     {"simulated_s", solver.time_s()},
                     {"max_cfl", maxCfl},
@@ -451,20 +476,24 @@ int runUnsteadySolve(const SolveRequest& req) {
     if (!req.reportPath.empty()) writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
     staged.commit();
     if (interruptSignal()) {
-        std::printf("solve: interrupted (%s) at t = %.3g s after %d steps: wrote %zu complete .vdb files "
-                    "(the last %s) and the report %s\n",
-                    interruptSignalName(), solver.time_s(), stepCount, frames.size(),
-                    frames.back()["path"].get<std::string>().c_str(), req.reportPath.c_str());
+        std::printf(
+            "solve: interrupted (%s) at t = %.3g s after %d steps: wrote %zu complete .vdb files "
+            "(the last %s) and the report %s\n",
+            interruptSignalName(), solver.time_s(), stepCount, frames.size(),
+            frames.back()["path"].get<std::string>().c_str(), req.reportPath.c_str());
         return interruptExitCode();
     }
-    std::printf("solve: unsteady, %d steps to t = %.2f s (%zu .vdb files), max CFL %.2f, max projection iterations %d, "
-                "max|div u| h/U %.2e, %s, %.2f s (%.3f s per step)\n",
-                stepCount, solver.time_s(), frames.size(), maxCfl, maxIt, maxDiv,
-                !finite ? "NON-FINITE FIELD" : ok ? "all solves converged" : "SOME SOLVES DID NOT CONVERGE",
-                j["total_s"].get<double>(), stepCount ? solveSeconds / stepCount : 0.0);
+    std::printf(
+        "solve: unsteady, %d steps to t = %.2f s (%zu .vdb files), max CFL %.2f, max projection "
+        "iterations %d, "
+        "max|div u| h/U %.2e, %s, %.2f s (%.3f s per step)\n",
+        stepCount, solver.time_s(), frames.size(), maxCfl, maxIt, maxDiv,
+        !finite ? "NON-FINITE FIELD"
+        : ok    ? "all solves converged"
+                : "SOME SOLVES DID NOT CONVERGE",
+        j["total_s"].get<double>(), stepCount ? solveSeconds / stepCount : 0.0);
     return ok ? EXIT_OK : EXIT_UNMET;
 }
-
 
 namespace fs = std::filesystem;
 
@@ -483,7 +512,8 @@ int runSolveVerb(const SolveVerbOptions& options) {
     request.gridHeights_m = options.gridHeights_m;
     if (options.houdini) request.houdiniFps = scene.output.fps;
     if (!options.gridHeights_m.empty() && scene.wind.kind == WindKind::Unsteady)
-        throw InputError("--grid-height-m: rasters are written for steady scenes only (this scene is unsteady)");
+        throw InputError(
+            "--grid-height-m: rasters are written for steady scenes only (this scene is unsteady)");
     request.ambient = scene.wind.ambient;
     request.domain = scene.solver.domain;
     request.weights = scene.solver.weights;
@@ -494,12 +524,14 @@ int runSolveVerb(const SolveVerbOptions& options) {
     if (scene.wind.kind == WindKind::Unsteady)
         request.unsteady = UnsteadySolveRequest{scene.unsteady.settings, scene.unsteady.duration_s,
                                                 scene.unsteady.outputEvery_s};
-    request.vdbPath = options.vdbPath.empty()
-                          ? (fs::path(scene.output.folder) / (scene.output.prefix + "_wind.vdb")).string()
-                          : options.vdbPath;
+    request.vdbPath =
+        options.vdbPath.empty()
+            ? (fs::path(scene.output.folder) / (scene.output.prefix + "_wind.vdb")).string()
+            : options.vdbPath;
     if (fs::path(request.vdbPath).extension() != ".vdb")
-        throw InputError("-o: the field is written as OpenVDB; the file name must end in .vdb (got '" +
-                         request.vdbPath + "')");
+        throw InputError(
+            "-o: the field is written as OpenVDB; the file name must end in .vdb (got '" +
+            request.vdbPath + "')");
     request.reportPath = options.reportPath.empty()
                              ? fs::path(request.vdbPath).replace_extension(".json").string()
                              : options.reportPath;
@@ -508,29 +540,38 @@ int runSolveVerb(const SolveVerbOptions& options) {
     const std::string vdbWhere = options.vdbPath.empty() ? scene.where("output.folder") : "-o";
     const std::string reportWhere = options.reportPath.empty() ? vdbWhere : "--report";
     request.outputWhere = vdbWhere;
-    for (const auto& [path, where] : {std::pair{request.vdbPath, vdbWhere}, std::pair{request.reportPath, reportWhere}}) {
+    for (const auto& [path, where] :
+         {std::pair{request.vdbPath, vdbWhere}, std::pair{request.reportPath, reportWhere}}) {
         std::error_code ec;
         if (fs::is_directory(path, ec))
-            throw InputError(where + ": '" + path + "' is a folder; give the name of the file to write");
+            throw InputError(where + ": '" + path +
+                             "' is a folder; give the name of the file to write");
     }
     {
         std::vector<RunPath> outputs{{request.reportPath, reportWhere + " (the report)"}};
         if (request.unsteady) {
-            const int files = int(std::ceil(request.unsteady->duration_s / request.unsteady->outputEvery_s - 1e-9)) + 1;
+            const int files =
+                int(std::ceil(request.unsteady->duration_s / request.unsteady->outputEvery_s -
+                              1e-9)) +
+                1;
             for (int n = 0; n < files && n < MAX_ALIAS_CHECKED_FILES; ++n)
-                outputs.push_back({sequencePath(request.vdbPath, n), vdbWhere + " (a .vdb of the sequence)"});
+                outputs.push_back(
+                    {sequencePath(request.vdbPath, n), vdbWhere + " (a .vdb of the sequence)"});
         } else {
             outputs.push_back({request.vdbPath, vdbWhere + " (the .vdb field)"});
         }
         refuseAliases(sceneInputs(scene), outputs);
     }
     for (const std::string& path : {request.vdbPath, request.reportPath}) {
-        const fs::path folder = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+        const fs::path folder =
+            fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
         std::error_code ec;
         if (fs::exists(folder, ec) && !fs::is_directory(folder, ec))
-            throw InputError("'" + folder.string() + "' is a file, not a folder (for " + path + ")");
+            throw InputError("'" + folder.string() + "' is a file, not a folder (for " + path +
+                             ")");
         const bool isReport = path == request.reportPath && !options.reportPath.empty();
-        checkOutputFolder(folder.string(), isReport ? "--report" : vdbWhere, scene.output.prefix, 0);
+        checkOutputFolder(folder.string(), isReport ? "--report" : vdbWhere, scene.output.prefix,
+                          0);
     }
     try {
         // The domain and solve validate their inputs (voxel size, memory limit, wind) before
@@ -544,8 +585,9 @@ int runSolveVerb(const SolveVerbOptions& options) {
 void addSolveVerb(CLI::App& app, VerbTable& verbs) {
     auto options = std::make_shared<SolveVerbOptions>();
     CLI::App* verb = app.add_subcommand(
-        "solve", "Solve a scene's wind over its terrain (steady; unsteady scenes as a .vdb "
-                 "sequence); write the field as .vdb and a JSON report");
+        "solve",
+        "Solve a scene's wind over its terrain (steady; unsteady scenes as a .vdb "
+        "sequence); write the field as .vdb and a JSON report");
     verb->add_option("scene", options->scenePath, "Scene file")->required();
     verb->add_option("-o,--output", options->vdbPath,
                      "The .vdb file (default: <output.folder>/<prefix>_wind.vdb)")

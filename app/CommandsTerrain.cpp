@@ -3,11 +3,11 @@
 /// read back.
 
 #include <cerrno>
-#include <memory>
-#include <vector>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <system_error>
+#include <vector>
 
 #include "app/Cli.h"
 #include "app/Commands.h"

@@ -1,11 +1,10 @@
 /// \file CommandsView.cpp
-/// `gale view SCENE`: the scene in a GLFW window (context through OSMesa, docs/design.md 7), with a mouse
-/// camera, play / pause / step / speed, toggles for grass, terrain and field overlays, and a
+/// `gale view SCENE`: the scene in a GLFW window (context through OSMesa, docs/design.md 7), with a
+/// mouse camera, play / pause / step / speed, toggles for grass, terrain and field overlays, and a
 /// heads-up line. The wind runs on a worker thread and hands the renderer snapshots, so the window
 /// stays responsive while a step computes; when the wind falls behind, the heads-up line says so.
 
 #define GLFW_INCLUDE_NONE
-#include <memory>
 #include <GLFW/glfw3.h>  // key codes only: the window itself is render::GlfwWindow
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -25,9 +25,9 @@
 #include "app/Cli.h"
 #include "app/Commands.h"
 #include "app/io/Errors.h"
+#include "app/io/Timing.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
-#include "app/io/Timing.h"
 #include "coupling/FieldOverlayBuilder.h"
 #include "render/FieldOverlay.h"
 #include "render/GlfwWindow.h"
@@ -39,7 +39,6 @@
 namespace gale::app {
 namespace {
 
-
 /// Interactive frames are paced to at most this rate, so drawing leaves CPU to the wind worker
 /// (llvmpipe and the solver share the same cores).
 constexpr double MAX_INTERACTIVE_FPS = 60.0;
@@ -47,7 +46,6 @@ constexpr double MAX_INTERACTIVE_FPS = 60.0;
 /// frame's request and lags the clock by more than this many output frame intervals.
 constexpr double BEHIND_FRAMES = 1.5;
 constexpr double MIN_SPEED = 1.0 / 16.0, MAX_SPEED = 16.0;
-
 
 /// Overlay modes the O key cycles through.
 enum class OverlayMode { Scene, None, Arrows, Slice, Streamlines, All, Count };
@@ -186,8 +184,8 @@ class WindWorker {
             try {
                 const auto start = Clock::now();
                 mSource.update(t_s, wind);
-                render::FieldOverlayData data =
-                    coupling::buildOverlay(mSource, wind, mMesh, overlayScale.frame(overlay), mGrassHeight_m);
+                render::FieldOverlayData data = coupling::buildOverlay(
+                    mSource, wind, mMesh, overlayScale.frame(overlay), mGrassHeight_m);
                 overlayScale.seen(data);
                 const double step_ms = msSince(start);
                 std::lock_guard<std::mutex> lock(mMutex);
@@ -514,8 +512,7 @@ void addViewVerb(CLI::App& app, VerbTable& verbs) {
                      "'.' none): for tests and demos");
     verb->add_option("--width", options->width, "Window width in pixels (default output.width)")
         ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
-    verb->add_option("--height", options->height,
-                     "Window height in pixels (default output.height)")
+    verb->add_option("--height", options->height, "Window height in pixels (default output.height)")
         ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
     verb->footer(std::string("\nKeys: space play/pause, right arrow step, +/- speed, R reset "
                              "camera, G grass, T terrain, O overlays, [ ] shells, S screenshot, "

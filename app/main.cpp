@@ -3,9 +3,9 @@
 /// its own Commands*.cpp (app/Cli.h); this is the only place that catches exceptions: bad input
 /// exits 2, runtime failures exit 1, each with one line on stderr.
 
-#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -54,7 +54,8 @@ std::string verbList(const CLI::App& app) {
 }
 
 bool isVerb(const CLI::App& app, const std::string& name) {
-    const auto verbs = app.get_subcommands([&](const CLI::App* v) { return v->get_name() == name; });
+    const auto verbs =
+        app.get_subcommands([&](const CLI::App* v) { return v->get_name() == name; });
     return !verbs.empty();
 }
 

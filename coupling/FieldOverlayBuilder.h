@@ -1,9 +1,9 @@
 #pragma once
 /// \file FieldOverlayBuilder.h
-/// Turns a wind field into the plain overlay structs of render/FieldOverlay.h (docs/design.md 6, views of
-/// the field): arrows on a grid over the terrain, a terrain-following slice coloured by speed,
-/// streamlines traced from the upstream edge, and vortex cores where the Q-criterion passes a
-/// threshold. Works from any sim::WindField, whichever solver made it; for the point-source
+/// Turns a wind field into the plain overlay structs of render/FieldOverlay.h (docs/design.md 6,
+/// views of the field): arrows on a grid over the terrain, a terrain-following slice coloured by
+/// speed, streamlines traced from the upstream edge, and vortex cores where the Q-criterion passes
+/// a threshold. Works from any sim::WindField, whichever solver made it; for the point-source
 /// heuristic, which has no velocity field, from the grass wind itself (direction x intensity).
 
 #include <algorithm>
@@ -47,14 +47,16 @@ struct OverlaySpec {
 /// with (the scene's, plus the largest top so far as its floor); seen(data) records the top the
 /// frame used. A fixed speed_max_mps passes through unchanged.
 class OverlayScaleKeeper {
-public:
+  public:
     OverlaySpec frame(OverlaySpec spec) const {
         spec.speedMaxFloor_mps = mTop;
         return spec;
     }
-    void seen(const render::FieldOverlayData& data) { mTop = std::max(mTop, double(data.speedMax)); }
+    void seen(const render::FieldOverlayData& data) {
+        mTop = std::max(mTop, double(data.speedMax));
+    }
 
-private:
+  private:
     double mTop = 0.0;
 };
 

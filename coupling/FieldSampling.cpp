@@ -1,11 +1,11 @@
 #include "coupling/FieldSampling.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 namespace gale::coupling {
 namespace {
@@ -23,7 +23,8 @@ void forEachPoint(size_t count, F&& f) {
 
 }  // namespace
 
-GrassSampler::GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_m, const NearGround& nearGround) {
+GrassSampler::GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_m,
+                           const NearGround& nearGround) {
     if (!std::isfinite(sampleHeight_m) || sampleHeight_m < 0.0)
         throw std::invalid_argument("wind.sample_height_m must be finite and >= 0, got " +
                                     std::to_string(sampleHeight_m));
@@ -42,7 +43,8 @@ void GrassSampler::sample(const sim::WindField& field, std::vector<glm::vec3>& o
     forEachPoint(mVertex.size(), [&](size_t v) {
         if (plan) {
             const glm::vec3& p = mVertex[v];
-            mRead[v] = planNearGroundRead(field, glm::dvec3(p.x, p.y, double(p.z) + mHeight_m), mNearGround);
+            mRead[v] = planNearGroundRead(field, glm::dvec3(p.x, p.y, double(p.z) + mHeight_m),
+                                          mNearGround);
         }
         const NearGroundRead& r = mRead[v];
         const auto u = field.velocityComponentsAt_mps({r.wsUV_m.x, r.wsUV_m.y, r.wsUV_m.z},

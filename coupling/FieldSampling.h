@@ -3,9 +3,8 @@
 /// Reads a solved sim::WindField where the grass lives (docs/design.md 5, step 1).
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "coupling/NearGround.h"
 #include "render/GrassInput.h"
@@ -25,10 +24,12 @@ namespace gale::coupling {
 /// (60 bytes per vertex); a field step is then one interpolation and one 3 x 3 product per vertex.
 /// Multithreaded; O(vertices). One sampler serves one caller at a time.
 class GrassSampler {
-public:
-    /// Copies the vertex positions. Throws std::invalid_argument unless sampleHeight_m is finite and
+  public:
+    /// Copies the vertex positions. Throws std::invalid_argument unless sampleHeight_m is finite
+    /// and
     /// >= 0 (wind.sample_height_m), or when nearGround's parameters are out of range (validate).
-    GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_m, const NearGround& nearGround = {});
+    GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_m,
+                 const NearGround& nearGround = {});
 
     /// World velocity, m/s, at every sample point into `out` (resized to the vertex count; its
     /// storage is reused).
@@ -42,7 +43,7 @@ public:
     size_t vertexCount() const { return mVertex.size(); }
     const NearGround& nearGround() const { return mNearGround; }
 
-private:
+  private:
     std::vector<glm::vec3> mVertex;  // world metres
     double mHeight_m;
     NearGround mNearGround;

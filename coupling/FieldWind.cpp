@@ -1,15 +1,15 @@
 #include "coupling/FieldWind.h"
 
-#include <algorithm>
-#include <atomic>
-#include <cmath>
-#include <sstream>
-#include <stdexcept>
-
-#include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <sstream>
+#include <stdexcept>
 
 #include "coupling/GroupGrid.h"
 #include "coupling/PointSourceWind.h"
@@ -148,8 +148,10 @@ void FieldWind::dropStepsBefore(double t_s) {
         mSpare = std::move(mSteps.front().wsVelocity_mps);
         mSteps.pop_front();
         if (mHaveInterval) {
-            if (mIntervalFirst == 0) mHaveInterval = false;
-            else --mIntervalFirst;
+            if (mIntervalFirst == 0)
+                mHaveInterval = false;
+            else
+                --mIntervalFirst;
         }
     }
 }
@@ -174,9 +176,10 @@ std::shared_ptr<render::VertexWind> FieldWind::freeVertexBuffer() {
     }
     // All held elsewhere (a viewer's snapshots): the pool lets go of those, its holders free them
     // when done, and the pool gets a fresh buffer. So the pool never outgrows what is in use.
-    mVertexPool.erase(std::remove_if(mVertexPool.begin(), mVertexPool.end(),
-                                     [&](const auto& b) { return b != mVertex && b.use_count() > 1; }),
-                      mVertexPool.end());
+    mVertexPool.erase(
+        std::remove_if(mVertexPool.begin(), mVertexPool.end(),
+                       [&](const auto& b) { return b != mVertex && b.use_count() > 1; }),
+        mVertexPool.end());
     mVertexPool.push_back(newVertexBuffer(mNormal.size()));
     return mVertexPool.back();
 }
@@ -204,13 +207,15 @@ void FieldWind::enterInterval(size_t first) {
         for (size_t v = begin; v != end; ++v) {
             const glm::vec3 wa = finiteOrZero(a.wsVelocity_mps[v]);
             const glm::vec3 wb = finiteOrZero(b.wsVelocity_mps[v]);
-            // One direction for the interval: the tangent part of the mean wind (docs/design.md 5, step
-            // 2); a wind that reverses within one step has no mean direction and gets none.
+            // One direction for the interval: the tangent part of the mean wind (docs/design.md 5,
+            // step 2); a wind that reverses within one step has no mean direction and gets none.
             const glm::vec3 dir = tangentWindDirection(wa + wb, mNormal[v]);
             direction[v] = dir;
             // Static response along that direction: signed tangent speed over the bend speed.
-            const float d0 = static_cast<float>(std::clamp(glm::dot(wa, dir) * invBend, -maxI, maxI));
-            const float d1 = static_cast<float>(std::clamp(glm::dot(wb, dir) * invBend, -maxI, maxI));
+            const float d0 =
+                static_cast<float>(std::clamp(glm::dot(wa, dir) * invBend, -maxI, maxI));
+            const float d1 =
+                static_cast<float>(std::clamp(glm::dot(wb, dir) * invBend, -maxI, maxI));
             mDrive0[v] = d0, mDrive1[v] = d1;
             const float mid = 0.5f * (d0 + d1);
             acc.first = std::min(acc.first, mid), acc.second = std::max(acc.second, mid);
@@ -250,7 +255,8 @@ void FieldWind::enterInterval(size_t first) {
                 const double mid = 0.5 * (double(mDrive0[v]) + mDrive1[v]);
                 const int level = static_cast<int>((mid - lo) * binsPerDrive);
                 group[v] = static_cast<uint32_t>(std::clamp(level, 0, mGroupCount - 1));
-                if (blend) coord[v] = {binCoord(mid, lo, mGroupCount / binsPerDrive, mGroupCount), 0.0f};
+                if (blend)
+                    coord[v] = {binCoord(mid, lo, mGroupCount / binsPerDrive, mGroupCount), 0.0f};
             } else {
                 group[v] = mTile[v];
                 if (blend) coord[v] = mTileCoord[v];
@@ -274,7 +280,8 @@ void FieldWind::enterInterval(size_t first) {
     mGroupDrive0.assign(mGroupCount, 0.0);
     mGroupDrive1.assign(mGroupCount, 0.0);
     if (perVertex) {
-        for (size_t v = 0; v < count; ++v) mGroupDrive0[v] = mDrive0[v], mGroupDrive1[v] = mDrive1[v];
+        for (size_t v = 0; v < count; ++v)
+            mGroupDrive0[v] = mDrive0[v], mGroupDrive1[v] = mDrive1[v];
     } else {
         std::vector<double> sum0(mGroupCount, 0.0), sum1(mGroupCount, 0.0);
         std::vector<uint32_t> members(mGroupCount, 0);
@@ -360,8 +367,8 @@ std::vector<float> FieldWind::shownIntensity(const render::GrassWind& wind) {
 
 std::string FieldWind::describe() const {
     std::ostringstream out;
-    out << "solved-field wind: " << bladeResponseName(mSpec.response) << " blade response (bend speed "
-        << mSpec.bendSpeed_mps << " m/s";
+    out << "solved-field wind: " << bladeResponseName(mSpec.response)
+        << " blade response (bend speed " << mSpec.bendSpeed_mps << " m/s";
     if (mSpec.response == BladeResponse::Oscillator)
         out << ", " << mSpec.frequency_hz << " Hz, damping ratio " << mSpec.dampingRatio;
     out << "), " << mGroupCount << " groups by " << groupingName(mSpec.grouping);

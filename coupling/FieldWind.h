@@ -1,10 +1,10 @@
 #pragma once
 /// \file FieldWind.h
-/// Grass wind from a solved field (docs/design.md 5): for each grass vertex, the velocity at grass height
-/// projected onto the tangent plane gives the wind direction; a blade response turns the tangent
-/// speed into an intensity; vertices are gathered into K animation-step groups so the bend is
-/// still evaluated once per group per shell (Bakay et al. 2002, Table 1). docs/coupling.md explains
-/// the choices and their costs.
+/// Grass wind from a solved field (docs/design.md 5): for each grass vertex, the velocity at grass
+/// height projected onto the tangent plane gives the wind direction; a blade response turns the
+/// tangent speed into an intensity; vertices are gathered into K animation-step groups so the bend
+/// is still evaluated once per group per shell (Bakay et al. 2002, Table 1). docs/coupling.md
+/// explains the choices and their costs.
 ///
 /// The field arrives as steps: velocities already sampled at every grass vertex at time t_k
 /// (coupling/FieldSampling.h samples a sim field). Frames between steps interpolate in time.
@@ -13,12 +13,11 @@
 
 #include <cstdint>
 #include <deque>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
 
 #include "coupling/GroupOscillators.h"
 #include "coupling/WindSource.h"
@@ -54,11 +53,11 @@ enum class Grouping {
 struct FieldWindSpec {
     BladeResponse response = BladeResponse::Static;
     Grouping grouping = Grouping::Levels;
-    int groups = 64;               ///< K (ignored for PerVertex), 1..4096
-    double bendSpeed_mps = 8.0;    ///< tangent speed that bends the tip flat (I = 1), > 0
-    double maxIntensity = 1.3;     ///< clamp of |I| for the static map, > 0 (over 1 over-bends)
-    double frequency_hz = 0.8;     ///< oscillator natural frequency f = omega / (2 pi), > 0
-    double dampingRatio = 0.25;    ///< oscillator zeta, > 0
+    int groups = 64;             ///< K (ignored for PerVertex), 1..4096
+    double bendSpeed_mps = 8.0;  ///< tangent speed that bends the tip flat (I = 1), > 0
+    double maxIntensity = 1.3;   ///< clamp of |I| for the static map, > 0 (over 1 over-bends)
+    double frequency_hz = 0.8;   ///< oscillator natural frequency f = omega / (2 pi), > 0
+    double dampingRatio = 0.25;  ///< oscillator zeta, > 0
     /// Give every vertex its place between groups (render::VertexWind::groupCoord) so the
     /// renderer blends neighbouring groups and no stripes show where groups change; false: each
     /// vertex shows its group alone (the paper's). Ignored for PerVertex (exact already).
@@ -74,7 +73,7 @@ BladeResponse bladeResponseFromName(const std::string& name);
 Grouping groupingFromName(const std::string& name);
 
 class FieldWind : public WindSource {
-public:
+  public:
     /// The mesh gives positions (for tiles) and normals (for the tangent planes); it must outlive
     /// nothing: FieldWind copies what it needs.
     FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec);
@@ -106,20 +105,21 @@ public:
     /// Per-vertex intensity the renderer shows for `wind` (groupIntensity[group[v]]).
     static std::vector<float> shownIntensity(const render::GrassWind& wind);
 
-private:
+  private:
     std::shared_ptr<const sim::WindField> mField;
     struct Step {
         double t_s;
         std::vector<glm::vec3> wsVelocity_mps;
     };
-    void enterInterval(size_t first);  // O(vertices): directions, drives, groups for steps first, first+1
+    void enterInterval(
+        size_t first);  // O(vertices): directions, drives, groups for steps first, first+1
     double groupDrive(int g, double t_s) const;
     void advanceOscillators(double t_s);
 
     FieldWindSpec mSpec;
     int mGroupCount;
     std::vector<glm::vec3> mNormal;
-    std::vector<uint32_t> mTile;  // fixed groups for Tiles / PerVertex
+    std::vector<uint32_t> mTile;        // fixed groups for Tiles / PerVertex
     std::vector<glm::vec2> mTileCoord;  // Tiles with blending: each vertex's place in the grid
     int mGroupColumns = 0;              // width of the group grid (render::VertexWind)
     std::deque<Step> mSteps;
@@ -137,7 +137,7 @@ private:
     std::vector<std::shared_ptr<render::VertexWind>> mVertexPool;
     static std::shared_ptr<render::VertexWind> newVertexBuffer(size_t count);
     std::shared_ptr<render::VertexWind> freeVertexBuffer();
-    std::vector<float> mDrive0, mDrive1;   // per-vertex static intensity at both ends
+    std::vector<float> mDrive0, mDrive1;             // per-vertex static intensity at both ends
     std::vector<double> mGroupDrive0, mGroupDrive1;  // per-group mean drive at both ends
 
     GroupOscillators mOscillators;

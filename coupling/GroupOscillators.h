@@ -8,12 +8,13 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
+
 #include "base/Numbers.h"
 
 namespace gale::coupling {
 
 class GroupOscillators {
-public:
+  public:
     /// Oscillator sub-steps per natural period: the trapezoidal rule's phase error is about
     /// (omega h)^2 / 12 per step, under 0.2 % at 40 steps per period.
     static constexpr double STEPS_PER_PERIOD = 40.0;
@@ -69,7 +70,7 @@ public:
         mTime_s = t_s;
     }
 
-private:
+  private:
     double mFrequency_hz, mZeta;
     bool mStarted = false;
     double mTime_s = 0.0;

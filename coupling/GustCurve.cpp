@@ -26,8 +26,8 @@ GustCurve::GustCurve(double period_s, std::vector<GustKey> keys)
         if (!std::isfinite(key.t_s) || !std::isfinite(key.intensity))
             badKey(k, "time and intensity must be finite");
         if (key.t_s < 0.0 || key.t_s >= period_s)
-            badKey(k, "time " + std::to_string(key.t_s) + " s is outside [0, period_s = " +
-                          std::to_string(period_s) + ")");
+            badKey(k, "time " + std::to_string(key.t_s) +
+                          " s is outside [0, period_s = " + std::to_string(period_s) + ")");
         if (k > 0 && key.t_s <= mKeys[k - 1].t_s)
             badKey(k, "times must increase strictly (previous key is at " +
                           std::to_string(mKeys[k - 1].t_s) + " s)");
@@ -64,10 +64,9 @@ GustCurve GustCurve::attackDecay(double period_s, double base, double peak, doub
         throw std::invalid_argument("gust decay_s must be finite and > 0, got " +
                                     std::to_string(decay_s));
     if (!(attack_s + decay_s < period_s))
-        throw std::invalid_argument("gust attack_s + decay_s (" +
-                                    std::to_string(attack_s + decay_s) +
-                                    " s) must be shorter than period_s (" +
-                                    std::to_string(period_s) + " s)");
+        throw std::invalid_argument(
+            "gust attack_s + decay_s (" + std::to_string(attack_s + decay_s) +
+            " s) must be shorter than period_s (" + std::to_string(period_s) + " s)");
     return GustCurve(period_s, {{0.0, base}, {attack_s, peak}, {attack_s + decay_s, base}});
 }
 
@@ -82,7 +81,8 @@ double GustCurve::operator()(double t_s) const {
         if (t >= mKeys[i].t_s && t < mKeys[i + 1].t_s) k = i;
     double t0 = mKeys[k].t_s;
     if (t < t0) t0 -= mPeriod_s;
-    const double t1 = (k + 1 < n) ? mKeys[k + 1].t_s : mKeys[0].t_s + (t0 < mKeys[k].t_s ? 0.0 : mPeriod_s);
+    const double t1 =
+        (k + 1 < n) ? mKeys[k + 1].t_s : mKeys[0].t_s + (t0 < mKeys[k].t_s ? 0.0 : mPeriod_s);
     const double h = t1 - t0;
     const double s = (t - t0) / h;
     const double y0 = mKeys[k].intensity, y1 = mKeys[(k + 1) % n].intensity;

@@ -15,7 +15,7 @@ struct GustKey {
 };
 
 class GustCurve {
-public:
+  public:
     /// Keys must be finite with strictly increasing t in [0, period_s); period_s > 0. The curve
     /// wraps: after the last key it runs to the first key at t + period. Throws
     /// std::invalid_argument naming the offending key.
@@ -31,7 +31,7 @@ public:
     double period_s() const { return mPeriod_s; }
     const std::vector<GustKey>& keys() const { return mKeys; }
 
-private:
+  private:
     double mPeriod_s;
     std::vector<GustKey> mKeys;
     std::vector<double> mSlope;  // Hermite tangents at the keys, intensity per second

@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
-#include <stdexcept>
-
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+#include <sstream>
+#include <stdexcept>
 
 #include "coupling/GroupGrid.h"
 
@@ -28,8 +27,7 @@ PointSourceWind::PointSourceWind(const render::TerrainMesh& mesh, const PointSou
     if (!std::isfinite(spec.stepDelay_s) || spec.stepDelay_s < 0.0)
         throw std::invalid_argument("wind.step_delay_s must be finite and >= 0, got " +
                                     std::to_string(spec.stepDelay_s));
-    if (!finite(spec.wsSource_m))
-        throw std::invalid_argument("wind.source_m must be finite");
+    if (!finite(spec.wsSource_m)) throw std::invalid_argument("wind.source_m must be finite");
     const size_t count = mesh.wsPosition_m.size();
     if (mesh.wsNormal.size() != count)
         throw std::invalid_argument("terrain mesh has " + std::to_string(count) +
@@ -44,7 +42,8 @@ PointSourceWind::PointSourceWind(const render::TerrainMesh& mesh, const PointSou
         // W points from the vertex to the source (paper); a gust blowing from the source pushes
         // the grass the other way.
         const glm::vec3 toSource = spec.wsSource_m - mesh.wsPosition_m[v];
-        vertex.wsDirection[v] = tangentWindDirection(spec.blowAway ? -toSource : toSource, mesh.wsNormal[v]);
+        vertex.wsDirection[v] =
+            tangentWindDirection(spec.blowAway ? -toSource : toSource, mesh.wsNormal[v]);
         distance_m[v] = glm::length(toSource);
         maxDistance_m = std::max(maxDistance_m, distance_m[v]);
     }
@@ -56,7 +55,8 @@ PointSourceWind::PointSourceWind(const render::TerrainMesh& mesh, const PointSou
         vertex.group[v] = static_cast<uint32_t>(
             std::min(spec.steps - 1, static_cast<int>(distance_m[v] / ringWidth_m)));
         if (spec.blendGroups)
-            vertex.groupCoord[v] = {binCoord(distance_m[v], 0.0, ringWidth_m * spec.steps, spec.steps), 0.0f};
+            vertex.groupCoord[v] = {
+                binCoord(distance_m[v], 0.0, ringWidth_m * spec.steps, spec.steps), 0.0f};
     }
     mVertex = std::make_shared<const render::VertexWind>(std::move(vertex));
 }

@@ -6,13 +6,13 @@
 /// `steps` rings; ring k feels the gust curve delayed by k * stepDelay_s, so waves travel outwards.
 /// This is the baseline the solved field replaces.
 
+#include <glm/vec3.hpp>
+#include <memory>
+
 #include "coupling/GustCurve.h"
 #include "coupling/TangentWind.h"
 #include "coupling/WindSource.h"
 #include "render/GrassInput.h"
-
-#include <glm/vec3.hpp>
-#include <memory>
 
 namespace gale::coupling {
 
@@ -27,7 +27,7 @@ struct PointSourceSpec {
 };
 
 class PointSourceWind : public WindSource {
-public:
+  public:
     PointSourceWind(const render::TerrainMesh& mesh, const PointSourceSpec& spec, GustCurve curve);
     int groupCount() const override { return mSpec.steps; }
     void update(double t_s, render::GrassWind& wind) override;
@@ -38,7 +38,7 @@ public:
     /// Time delay of group g relative to group 0, seconds.
     double groupDelay_s(int g) const { return g * mSpec.stepDelay_s; }
 
-private:
+  private:
     PointSourceSpec mSpec;
     GustCurve mCurve;
     std::shared_ptr<const render::VertexWind> mVertex;  // directions and rings, fixed

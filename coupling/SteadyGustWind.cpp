@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <sstream>
 #include <stdexcept>
-
-#include <glm/geometric.hpp>
 
 #include "coupling/GroupGrid.h"
 #include "coupling/PointSourceWind.h"
@@ -23,7 +22,8 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
         throw std::invalid_argument("wind.arrival_bands must be in 1..1024, got " +
                                     std::to_string(spec.arrivalBands));
     if (spec.levels < 1 || spec.levels > 256)
-        throw std::invalid_argument("wind.levels must be in 1..256, got " + std::to_string(spec.levels));
+        throw std::invalid_argument("wind.levels must be in 1..256, got " +
+                                    std::to_string(spec.levels));
     if (!std::isfinite(spec.convection_mps) || spec.convection_mps <= 0.0)
         throw std::invalid_argument("gust convection speed must be finite and > 0, got " +
                                     std::to_string(spec.convection_mps));
@@ -46,8 +46,9 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
         const bool finite = std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z);
         const glm::vec3 wind = finite ? w : glm::vec3(0.0f);
         vertex.wsDirection[v] = tangentWindDirection(wind, mesh.wsNormal[v]);
-        base[v] = static_cast<float>(std::clamp(glm::dot(wind, vertex.wsDirection[v]) / response.bendSpeed_mps,
-                                                -response.maxIntensity, response.maxIntensity));
+        base[v] = static_cast<float>(
+            std::clamp(glm::dot(wind, vertex.wsDirection[v]) / response.bendSpeed_mps,
+                       -response.maxIntensity, response.maxIntensity));
         const float s = glm::dot(glm::vec2(mesh.wsPosition_m[v]), along);
         mArrival_s[v] = s;
         minAlong = std::min(minAlong, s), maxAlong = std::max(maxAlong, s);
@@ -66,15 +67,17 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
     std::vector<uint32_t> members(groups, 0);
     for (size_t v = 0; v < count; ++v) {
         mArrival_s[v] = static_cast<float>((mArrival_s[v] - minAlong) / spec.convection_mps);
-        const int band = std::min(spec.arrivalBands - 1,
-                                  static_cast<int>((mArrival_s[v] * spec.convection_mps) / spanAlong * spec.arrivalBands));
-        const int level = std::min(spec.levels - 1, static_cast<int>((base[v] - minBase) / spanBase * spec.levels));
+        const int band =
+            std::min(spec.arrivalBands - 1, static_cast<int>((mArrival_s[v] * spec.convection_mps) /
+                                                             spanAlong * spec.arrivalBands));
+        const int level = std::min(spec.levels - 1,
+                                   static_cast<int>((base[v] - minBase) / spanBase * spec.levels));
         const int g = band * spec.levels + level;
         vertex.group[v] = static_cast<uint32_t>(g);
         if (blend)
-            vertex.groupCoord[v] = {binCoord(base[v], minBase, spanBase, spec.levels),
-                                    binCoord(mArrival_s[v] * spec.convection_mps, 0.0, spanAlong,
-                                             spec.arrivalBands)};
+            vertex.groupCoord[v] = {
+                binCoord(base[v], minBase, spanBase, spec.levels),
+                binCoord(mArrival_s[v] * spec.convection_mps, 0.0, spanAlong, spec.arrivalBands)};
         sumBase[g] += base[v];
         sumArrival[g] += mArrival_s[v];
         ++members[g];
@@ -85,8 +88,8 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
         if (members[g] == 0) {
             // No vertex here: the bin's centre, so a blend towards it continues its neighbours.
             mGroupBase[g] = minBase + (g % spec.levels + 0.5) * spanBase / spec.levels;
-            mGroupArrival_s[g] = (g / spec.levels + 0.5) * spanAlong / spec.arrivalBands /
-                                 spec.convection_mps;
+            mGroupArrival_s[g] =
+                (g / spec.levels + 0.5) * spanAlong / spec.arrivalBands / spec.convection_mps;
             continue;
         }
         mGroupBase[g] = sumBase[g] / members[g];
@@ -114,8 +117,8 @@ const sim::WindField* SteadyGustWind::currentField() const {
     const auto lo = out.wsMin_m();
     // One face kind: `columns` x `rows` columns of faces, the first at plan offset (ox, oy) cells,
     // each column `layers` faces deep; the factor depends on the column's plan position alone.
-    auto scale = [&](const std::vector<double>& steady, std::vector<double>& gust, int columns, int rows,
-                     int layers, double ox, double oy) {
+    auto scale = [&](const std::vector<double>& steady, std::vector<double>& gust, int columns,
+                     int rows, int layers, double ox, double oy) {
         std::vector<double> factor(size_t(columns) * rows);
         for (int j = 0; j < rows; ++j)
             for (int i = 0; i < columns; ++i)
@@ -123,7 +126,8 @@ const sim::WindField* SteadyGustWind::currentField() const {
                     mCurve(mLastUpdate_s - arrivalAt_s(lo[0] + (i + ox) * h, lo[1] + (j + oy) * h));
         const size_t plane = factor.size();
         for (int k = 0; k < layers; ++k)
-            for (size_t c = 0; c < plane; ++c) gust[k * plane + c] = steady[k * plane + c] * factor[c];
+            for (size_t c = 0; c < plane; ++c)
+                gust[k * plane + c] = steady[k * plane + c] * factor[c];
     };
     scale(mField->u_mps(), out.u_mps(), nx + 1, ny, nz, 0.0, 0.5);
     scale(mField->v_mps(), out.v_mps(), nx, ny + 1, nz, 0.5, 0.0);
@@ -139,13 +143,16 @@ void SteadyGustWind::update(double t_s, render::GrassWind& wind) {
         ++wind.revision;
     }
     const int groups = groupCount();
-    // docs/design.md 4.2's kinematic gust: the steady intensity scaled by the curve, delayed by arrival.
+    // docs/design.md 4.2's kinematic gust: the steady intensity scaled by the curve, delayed by
+    // arrival.
     auto drive = [this](int g, double t) { return mGroupBase[g] * mCurve(t - mGroupArrival_s[g]); };
     wind.groupIntensity.resize(groups);
     if (mSpec.response.response == BladeResponse::Oscillator) {
-        if (!mOscillators) mOscillators.emplace(mSpec.response.frequency_hz, mSpec.response.dampingRatio);
+        if (!mOscillators)
+            mOscillators.emplace(mSpec.response.frequency_hz, mSpec.response.dampingRatio);
         mOscillators->advance(t_s, groups, drive);
-        for (int g = 0; g < groups; ++g) wind.groupIntensity[g] = static_cast<float>(mOscillators->bend()[g]);
+        for (int g = 0; g < groups; ++g)
+            wind.groupIntensity[g] = static_cast<float>(mOscillators->bend()[g]);
     } else {
         for (int g = 0; g < groups; ++g) wind.groupIntensity[g] = static_cast<float>(drive(g, t_s));
     }
@@ -153,11 +160,11 @@ void SteadyGustWind::update(double t_s, render::GrassWind& wind) {
 
 std::string SteadyGustWind::describe() const {
     std::ostringstream out;
-    out << "solved steady field with travelling gusts: " << mSpec.arrivalBands << " arrival bands x "
-        << mSpec.levels << " intensity levels = " << groupCount() << " groups, front at "
-        << mSpec.convection_mps << " m/s, " << bladeResponseName(mSpec.response.response)
-        << " blade response (bend speed " << mSpec.response.bendSpeed_mps << " m/s), gust period "
-        << mCurve.period_s() << " s";
+    out << "solved steady field with travelling gusts: " << mSpec.arrivalBands
+        << " arrival bands x " << mSpec.levels << " intensity levels = " << groupCount()
+        << " groups, front at " << mSpec.convection_mps << " m/s, "
+        << bladeResponseName(mSpec.response.response) << " blade response (bend speed "
+        << mSpec.response.bendSpeed_mps << " m/s), gust period " << mCurve.period_s() << " s";
     return out.str();
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 /// \file SteadyGustWind.h
-/// Gusts over a steady solved field, the cheap kinematic mode of docs/design.md 4.2: the mass-consistent
-/// solution is linear in the ambient wind, so an ambient speed scaled by g(t) gives the field
-/// scaled by g(t) at every instant. We let that scaling travel downwind as a front at the
+/// Gusts over a steady solved field, the cheap kinematic mode of docs/design.md 4.2: the
+/// mass-consistent solution is linear in the ambient wind, so an ambient speed scaled by g(t) gives
+/// the field scaled by g(t) at every instant. We let that scaling travel downwind as a front at the
 /// convection speed c, so a vertex at distance s downwind of the terrain's upwind edge feels
 /// g(t - s / c): the paper's animation steps, with arrival times from the flow instead of the
 /// distance from a point. The instantaneous field is then not exactly divergence-free where the
@@ -12,12 +12,11 @@
 /// intensity is its mean steady intensity times g(t - its mean arrival time), or that drive
 /// through a damped oscillator per group. Per frame: O(K). Once: O(vertices).
 
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
 #include <vector>
-
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
 
 #include "coupling/FieldWind.h"
 #include "coupling/GroupOscillators.h"
@@ -36,7 +35,7 @@ struct SteadyGustSpec {
 };
 
 class SteadyGustWind : public WindSource {
-public:
+  public:
     /// wsVelocity_mps: the steady field at grass height above each vertex (FieldSampling), for the
     /// ambient wind the curve scales (g = 1 is that field). Throws std::invalid_argument naming
     /// the field on a bad spec or a size mismatch.
@@ -60,7 +59,7 @@ public:
     /// Arrival delay of the front at plan position (x, y), seconds (negative upwind of the mesh).
     double arrivalAt_s(double wsX_m, double wsY_m) const;
 
-private:
+  private:
     std::shared_ptr<const sim::WindField> mField;
     glm::vec2 mAlong{1.0f, 0.0f};  // unit plan direction the front travels
     double mMinAlong_m = 0.0;      // the mesh's most upwind position along it

@@ -4,7 +4,6 @@
 /// docs/design.md 5, step 2). Inline: it runs for every grass vertex at every field step.
 
 #include <cmath>
-
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 

@@ -18,9 +18,11 @@ std::vector<int> strided(int n, int stride) {
 }  // namespace
 
 render::TerrainMesh buildTerrainMesh(const sim::Heightfield& field, float tile_m, int stride) {
-    if (stride < 1) throw std::invalid_argument("mesh stride must be >= 1, got " + std::to_string(stride));
+    if (stride < 1)
+        throw std::invalid_argument("mesh stride must be >= 1, got " + std::to_string(stride));
     if (!std::isfinite(tile_m) || tile_m <= 0.0f)
-        throw std::invalid_argument("grass.tile_m must be finite and > 0, got " + std::to_string(tile_m));
+        throw std::invalid_argument("grass.tile_m must be finite and > 0, got " +
+                                    std::to_string(tile_m));
     if (field.nx < 2 || field.ny < 2) throw std::invalid_argument("heightfield smaller than 2x2");
     const std::vector<int> is = strided(field.nx, stride), js = strided(field.ny, stride);
     render::TerrainMesh mesh;

@@ -5,14 +5,17 @@
 #include <chrono>
 #include <cstdio>
 
-
 namespace gale::coupling {
 
-UnsteadyFieldWind::UnsteadyFieldWind(const render::TerrainMesh& mesh, std::unique_ptr<sim::AirDomain> domain,
-                                     const sim::WindField& steady, const sim::UnsteadySettings& settings,
-                                     double referenceSpeed_mps, const FieldWindSpec& response, double sampleHeight_m)
+UnsteadyFieldWind::UnsteadyFieldWind(const render::TerrainMesh& mesh,
+                                     std::unique_ptr<sim::AirDomain> domain,
+                                     const sim::WindField& steady,
+                                     const sim::UnsteadySettings& settings,
+                                     double referenceSpeed_mps, const FieldWindSpec& response,
+                                     double sampleHeight_m)
     : mDomain(std::move(domain)), mWind(mesh, response), mSampler(mesh, sampleHeight_m) {
-    mSolver = std::make_unique<sim::UnsteadyWindSolver>(*mDomain, steady, settings, referenceSpeed_mps);
+    mSolver =
+        std::make_unique<sim::UnsteadyWindSolver>(*mDomain, steady, settings, referenceSpeed_mps);
     mWind.addFieldStep(0.0, mSampler.sample(mSolver->field()));
 }
 
@@ -31,12 +34,15 @@ void UnsteadyFieldWind::advanceTo(double t_s) {
         mStats.simulated_s = r.t_s;
         mStats.maxCfl = std::max(mStats.maxCfl, r.cfl);
         mStats.maxDivergenceScaled = std::max(mStats.maxDivergenceScaled, r.maxDivergenceScaled);
-        mStats.maxProjectionIterations = std::max(mStats.maxProjectionIterations, r.projection.iterations);
+        mStats.maxProjectionIterations =
+            std::max(mStats.maxProjectionIterations, r.projection.iterations);
         mStats.allConverged = mStats.allConverged && r.projection.converged;
         if (!r.finite) {
             // A non-finite field would freeze the grass with garbage; stop stepping and say so.
             mStats.allFinite = false;
-            std::fprintf(stderr, "unsteady wind: non-finite velocity at t = %.3f s; the field stops here\n", r.t_s);
+            std::fprintf(stderr,
+                         "unsteady wind: non-finite velocity at t = %.3f s; the field stops here\n",
+                         r.t_s);
             break;
         }
     }
@@ -56,22 +62,24 @@ void UnsteadyFieldWind::update(double t_s, render::GrassWind& wind) {
 std::string UnsteadyFieldWind::stepReport() const {
     if (mLastUpdate.steps == 0) return "no solver step this frame";
     char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "%d step%s, <= %d projection its%s, CFL <= %.2f, div %.1e, %.0f ms solve + %.0f ms "
-                  "sampling",
-                  mLastUpdate.steps, mLastUpdate.steps == 1 ? "" : "s",
-                  mStats.maxProjectionIterations, mStats.allConverged ? "" : " (NOT converged)",
-                  mStats.maxCfl, mStats.maxDivergenceScaled, mLastUpdate.solve_s * 1e3,
-                  mLastUpdate.sampling_s * 1e3);
+    std::snprintf(
+        buf, sizeof buf,
+        "%d step%s, <= %d projection its%s, CFL <= %.2f, div %.1e, %.0f ms solve + %.0f ms "
+        "sampling",
+        mLastUpdate.steps, mLastUpdate.steps == 1 ? "" : "s", mStats.maxProjectionIterations,
+        mStats.allConverged ? "" : " (NOT converged)", mStats.maxCfl, mStats.maxDivergenceScaled,
+        mLastUpdate.solve_s * 1e3, mLastUpdate.sampling_s * 1e3);
     return buf;
 }
 
 std::string UnsteadyFieldWind::describe() const {
     const sim::UnsteadySettings& s = mSolver->settings();
     char buf[256];
-    std::snprintf(buf, sizeof buf, "unsteady field (%s advection, %s, %zu gusts, %zu whirlwinds); grass: %s",
+    std::snprintf(buf, sizeof buf,
+                  "unsteady field (%s advection, %s, %zu gusts, %zu whirlwinds); grass: %s",
                   sim::advectionSchemeName(s.advection),
-                  s.dt_s > 0 ? ("dt " + std::to_string(s.dt_s) + " s").c_str() : ("CFL " + std::to_string(s.cfl)).c_str(),
+                  s.dt_s > 0 ? ("dt " + std::to_string(s.dt_s) + " s").c_str()
+                             : ("CFL " + std::to_string(s.cfl)).c_str(),
                   s.gusts.size(), s.whirlwinds.size(), mWind.describe().c_str());
     return buf;
 }

@@ -38,13 +38,14 @@ struct UnsteadyRunStats {
 };
 
 class UnsteadyFieldWind : public WindSource {
-public:
+  public:
     /// Takes the domain and the steady field (the initial state and mean flow). sampleHeight_m:
     /// height above the ground where the grass reads the field. Throws std::invalid_argument on
     /// bad settings (naming the key) or a bad response spec.
     UnsteadyFieldWind(const render::TerrainMesh& mesh, std::unique_ptr<sim::AirDomain> domain,
-                      const sim::WindField& steady, const sim::UnsteadySettings& settings, double referenceSpeed_mps,
-                      const FieldWindSpec& response, double sampleHeight_m);
+                      const sim::WindField& steady, const sim::UnsteadySettings& settings,
+                      double referenceSpeed_mps, const FieldWindSpec& response,
+                      double sampleHeight_m);
 
     int groupCount() const override { return mWind.groupCount(); }
     void update(double t_s, render::GrassWind& wind) override;
@@ -57,7 +58,7 @@ public:
     const sim::UnsteadyWindSolver& solver() const { return *mSolver; }
     const UnsteadyRunStats& stats() const { return mStats; }
 
-private:
+  private:
     void advanceTo(double t_s);
 
     std::unique_ptr<sim::AirDomain> mDomain;

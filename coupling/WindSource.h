@@ -15,7 +15,7 @@ class WindField;  // sim/WindField.h (no OpenVDB there either)
 namespace gale::coupling {
 
 class WindSource {
-public:
+  public:
     virtual ~WindSource() = default;
     /// Number of animation-step groups this source produces (>= 1).
     virtual int groupCount() const = 0;

@@ -3,9 +3,8 @@
 
 #include "render/Animation.h"
 
-#include <unistd.h>
-
 #include <OpenImageIO/imageio.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,9 +24,8 @@ constexpr int SHEET_GAP = 4;
 
 fs::path hiddenTemp(const std::string& path) {
     const fs::path target(path);
-    return target.parent_path() /
-           ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) +
-            target.extension().string());
+    return target.parent_path() / ("." + target.stem().string() + ".tmp" +
+                                   std::to_string(::getpid()) + target.extension().string());
 }
 
 }  // namespace
@@ -43,9 +41,11 @@ Image downscale(const Image& src, int width, int height) {
     out.rgba.resize(static_cast<size_t>(width) * height * 4);
     const double sx = double(src.width) / width, sy = double(src.height) / height;
     for (int y = 0; y < height; ++y) {
-        const int y0 = static_cast<int>(y * sy), y1 = std::max(y0 + 1, static_cast<int>((y + 1) * sy));
+        const int y0 = static_cast<int>(y * sy),
+                  y1 = std::max(y0 + 1, static_cast<int>((y + 1) * sy));
         for (int x = 0; x < width; ++x) {
-            const int x0 = static_cast<int>(x * sx), x1 = std::max(x0 + 1, static_cast<int>((x + 1) * sx));
+            const int x0 = static_cast<int>(x * sx),
+                      x1 = std::max(x0 + 1, static_cast<int>((x + 1) * sx));
             unsigned sum[4] = {0, 0, 0, 0};
             for (int yy = y0; yy < y1; ++yy)
                 for (int xx = x0; xx < x1; ++xx)
@@ -73,10 +73,13 @@ struct AnimationWriter::Impl {
 
     void openGif(const Image& first) {
         gifWidth = std::min(first.width, options.gifMaxWidth);
-        gifHeight = std::max(1, static_cast<int>(std::lround(double(first.height) * gifWidth / first.width)));
+        gifHeight = std::max(
+            1, static_cast<int>(std::lround(double(first.height) * gifWidth / first.width)));
         gifTemp = hiddenTemp(options.gifPath);
         gif = OIIO::ImageOutput::create(gifTemp.string());
-        if (!gif) throw std::runtime_error("cannot write '" + options.gifPath + "': no GIF writer in OpenImageIO");
+        if (!gif)
+            throw std::runtime_error("cannot write '" + options.gifPath +
+                                     "': no GIF writer in OpenImageIO");
         OIIO::ImageSpec spec(gifWidth, gifHeight, 4, OIIO::TypeDesc::UINT8);
         spec.alpha_channel = 3;
         const int fps100 = static_cast<int>(std::lround(options.fps * 100.0));
@@ -90,17 +93,20 @@ struct AnimationWriter::Impl {
 
     void appendGif(const Image& frame, bool first) {
         Image small = (frame.width == gifWidth && frame.height == gifHeight)
-                          ? frame : downscale(frame, gifWidth, gifHeight);
+                          ? frame
+                          : downscale(frame, gifWidth, gifHeight);
         // GIF has no partial transparency: every pixel of a frame is opaque.
         for (size_t p = 3; p < small.rgba.size(); p += 4) small.rgba[p] = 255;
         if (!first) {
             OIIO::ImageSpec spec(gifWidth, gifHeight, 4, OIIO::TypeDesc::UINT8);
             spec.alpha_channel = 3;
             if (!gif->open(gifTemp.string(), spec, OIIO::ImageOutput::AppendSubimage))
-                throw std::runtime_error("cannot add a frame to '" + options.gifPath + "': " + gif->geterror());
+                throw std::runtime_error("cannot add a frame to '" + options.gifPath +
+                                         "': " + gif->geterror());
         }
         if (!gif->write_image(OIIO::TypeDesc::UINT8, small.rgba.data()))
-            throw std::runtime_error("cannot write a frame of '" + options.gifPath + "': " + gif->geterror());
+            throw std::runtime_error("cannot write a frame of '" + options.gifPath +
+                                     "': " + gif->geterror());
     }
 };
 
@@ -108,7 +114,8 @@ std::vector<int> AnimationWriter::sheetIndices(int totalFrames, int sheetFrames)
     std::vector<int> out;
     const int n = std::min(totalFrames, std::max(1, sheetFrames));
     for (int j = 0; j < n; ++j)
-        out.push_back(n == 1 ? 0 : static_cast<int>(std::lround(double(j) * (totalFrames - 1) / (n - 1))));
+        out.push_back(
+            n == 1 ? 0 : static_cast<int>(std::lround(double(j) * (totalFrames - 1) / (n - 1))));
     return out;
 }
 
@@ -140,7 +147,8 @@ void AnimationWriter::addFrame(const Image& frame, int index) {
     }
     if (std::find(m.sheetIndices.begin(), m.sheetIndices.end(), index) != m.sheetIndices.end()) {
         const int w = std::min(frame.width, m.options.sheetThumbWidth);
-        const int h = std::max(1, static_cast<int>(std::lround(double(frame.height) * w / frame.width)));
+        const int h =
+            std::max(1, static_cast<int>(std::lround(double(frame.height) * w / frame.width)));
         m.thumbs.push_back(downscale(frame, w, h));
     }
 }
@@ -149,16 +157,19 @@ void AnimationWriter::finish() {
     Impl& m = *mImpl;
     if (m.gifOpen) {
         if (!m.gif->close())
-            throw std::runtime_error("cannot finish '" + m.options.gifPath + "': " + m.gif->geterror());
+            throw std::runtime_error("cannot finish '" + m.options.gifPath +
+                                     "': " + m.gif->geterror());
         std::error_code ec;
         fs::rename(m.gifTemp, m.options.gifPath, ec);
         if (ec) {
             fs::remove(m.gifTemp, ec);
-            throw std::runtime_error("cannot move the GIF into place at '" + m.options.gifPath + "'");
+            throw std::runtime_error("cannot move the GIF into place at '" + m.options.gifPath +
+                                     "'");
         }
     }
     if (!m.options.sheetPath.empty() && !m.thumbs.empty()) {
-        const int cols = std::max(1, std::min(m.options.sheetColumns, static_cast<int>(m.thumbs.size())));
+        const int cols =
+            std::max(1, std::min(m.options.sheetColumns, static_cast<int>(m.thumbs.size())));
         const int rows = (static_cast<int>(m.thumbs.size()) + cols - 1) / cols;
         const int tw = m.thumbs[0].width, th = m.thumbs[0].height;
         Image sheet;
@@ -171,9 +182,9 @@ void AnimationWriter::finish() {
             const int ox = SHEET_GAP + static_cast<int>(k % cols) * (tw + SHEET_GAP);
             const int oy = SHEET_GAP + static_cast<int>(k / cols) * (th + SHEET_GAP);
             for (int y = 0; y < std::min(th, t.height); ++y)
-                std::copy_n(t.rgba.data() + static_cast<size_t>(y) * t.width * 4,
-                            std::min(tw, t.width) * 4,
-                            sheet.rgba.data() + (static_cast<size_t>(oy + y) * sheet.width + ox) * 4);
+                std::copy_n(
+                    t.rgba.data() + static_cast<size_t>(y) * t.width * 4, std::min(tw, t.width) * 4,
+                    sheet.rgba.data() + (static_cast<size_t>(oy + y) * sheet.width + ox) * 4);
         }
         writeImageAtomic(sheet, m.options.sheetPath);
     }

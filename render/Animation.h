@@ -14,20 +14,20 @@
 namespace gale::render {
 
 struct AnimationOptions {
-    std::string sheetPath;   ///< contact sheet (.png ...); empty: none
-    std::string gifPath;     ///< animated GIF (.gif); empty: none
-    double fps = 24.0;       ///< GIF playback rate, frames per second (> 0)
-    int sheetColumns = 6;    ///< thumbnails per row
-    int sheetFrames = 24;    ///< at most this many frames on the sheet, evenly spaced
+    std::string sheetPath;      ///< contact sheet (.png ...); empty: none
+    std::string gifPath;        ///< animated GIF (.gif); empty: none
+    double fps = 24.0;          ///< GIF playback rate, frames per second (> 0)
+    int sheetColumns = 6;       ///< thumbnails per row
+    int sheetFrames = 24;       ///< at most this many frames on the sheet, evenly spaced
     int sheetThumbWidth = 240;  ///< thumbnail width in pixels (height keeps the aspect ratio)
-    int gifMaxWidth = 480;   ///< GIF frames wider than this are scaled down
+    int gifMaxWidth = 480;      ///< GIF frames wider than this are scaled down
 };
 
 /// Area-averaging downscale of an RGBA8 image to width x height (<= the source size).
 Image downscale(const Image& src, int width, int height);
 
 class AnimationWriter {
-public:
+  public:
     /// totalFrames is the number of frames the run will add (>= 1). Throws std::runtime_error if
     /// the GIF cannot be started (names the path).
     AnimationWriter(const AnimationOptions& options, int totalFrames);
@@ -45,7 +45,7 @@ public:
     /// last included).
     static std::vector<int> sheetIndices(int totalFrames, int sheetFrames);
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };

@@ -11,11 +11,11 @@
 #include <glm/mat4x4.hpp>
 #include <stdexcept>
 
+#include "base/Numbers.h"
 #include "render/BitmapFont.h"
 #include "render/CameraMath.h"
 #include "render/ColorMap.h"
 #include "render/GlUtil.h"
-#include "base/Numbers.h"
 
 namespace gale::render {
 namespace {

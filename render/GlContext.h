@@ -1,8 +1,8 @@
 #pragma once
 /// \file GlContext.h
 /// A current OpenGL 4.5 core context with a framebuffer of a fixed size, behind a small interface
-/// (after Filament's platform classes) so headless OSMesa, a GLFW window and later EGL can serve the
-/// same renderer.
+/// (after Filament's platform classes) so headless OSMesa, a GLFW window and later EGL can serve
+/// the same renderer.
 
 #include <memory>
 #include <string>
@@ -12,7 +12,7 @@
 namespace gale::render {
 
 class GlContext {
-public:
+  public:
     virtual ~GlContext() = default;
     /// Makes this context current on the calling thread.
     virtual void makeCurrent() = 0;

@@ -4,8 +4,8 @@
 #include "render/GlfwWindow.h"
 
 #define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
 #include <GL/gl.h>
+#include <GLFW/glfw3.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -109,10 +109,9 @@ std::unique_ptr<GlfwWindow> GlfwWindow::open(int width, int height, const std::s
     glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
     GLFWwindow* w = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (w == nullptr)
-        throw std::runtime_error("cannot open a " + std::to_string(width) + "x" +
-                                 std::to_string(height) +
-                                 " window with an OpenGL 4.5 core context through OSMesa: " +
-                                 lastGlfwError());
+        throw std::runtime_error(
+            "cannot open a " + std::to_string(width) + "x" + std::to_string(height) +
+            " window with an OpenGL 4.5 core context through OSMesa: " + lastGlfwError());
     std::unique_ptr<GlfwWindow> window(new GlfwWindow(w, width, height));
     glfwSetWindowUserPointer(w, window.get());
     glfwSetKeyCallback(w, &Callbacks::key);

@@ -2,8 +2,8 @@
 /// \file GlfwWindow.h
 /// A GlContext in a GLFW window. The context is made through OSMesa
 /// (GLFW_CONTEXT_CREATION_API = GLFW_OSMESA_CONTEXT_API), so the window and headless runs draw with
-/// the same GL implementation and give the same pixels (docs/design.md 7); GLFW copies each finished frame
-/// to the X window. GLFW 3.3 still needs an X display for that.
+/// the same GL implementation and give the same pixels (docs/design.md 7); GLFW copies each
+/// finished frame to the X window. GLFW 3.3 still needs an X display for that.
 
 #include <memory>
 #include <stdexcept>
@@ -17,7 +17,7 @@ namespace gale::render {
 /// Thrown when no window can be opened because there is no display; the message says to use
 /// `gale render` instead.
 class NoDisplayError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
@@ -25,15 +25,15 @@ public:
 struct InputEvent {
     enum class Kind { Key, MouseDrag, Scroll, Close };
     Kind kind = Kind::Key;
-    int key = 0;        ///< GLFW key code (Kind::Key, on press and repeat)
-    int mods = 0;       ///< GLFW modifier bits
-    int button = 0;     ///< mouse button held while dragging (0 left, 1 right, 2 middle)
-    double dx = 0.0;    ///< drag delta x in pixels, or scroll x offset
-    double dy = 0.0;    ///< drag delta y in pixels, or scroll y offset
+    int key = 0;      ///< GLFW key code (Kind::Key, on press and repeat)
+    int mods = 0;     ///< GLFW modifier bits
+    int button = 0;   ///< mouse button held while dragging (0 left, 1 right, 2 middle)
+    double dx = 0.0;  ///< drag delta x in pixels, or scroll x offset
+    double dy = 0.0;  ///< drag delta y in pixels, or scroll y offset
 };
 
 class GlfwWindow : public GlContext {
-public:
+  public:
     /// Opens a width x height window (not resizable) with a 4.5 core context made through OSMesa.
     /// Throws NoDisplayError without a display, std::runtime_error for any other failure.
     static std::unique_ptr<GlfwWindow> open(int width, int height, const std::string& title);
@@ -53,7 +53,7 @@ public:
     bool closeRequested() const;
     void setTitle(const std::string& title);
 
-private:
+  private:
     GlfwWindow(void* window, int width, int height);
     struct Callbacks;
     void* mWindow;  // GLFWwindow*, kept out of this header so GLFW stays private to render/

@@ -4,24 +4,23 @@
 /// height (0 = bare ground), and its custom MIP chain that keeps blade cross-sections (thesis 3.4).
 
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "render/GrassInput.h"
 
 namespace gale::render {
 
 struct GrassTextureSpec {
-    int size = 512;              ///< texels per side (power of two, 16..4096)
+    int size = 512;  ///< texels per side (power of two, 16..4096)
     uint32_t seed = 1;
-    float density = 0.35f;       ///< fraction of texels covered by blade cross-sections, (0, 1]
-    float minHeight = 0.35f;     ///< shortest blade, fraction of the grass height, (0, 1]
+    float density = 0.35f;    ///< fraction of texels covered by blade cross-sections, (0, 1]
+    float minHeight = 0.35f;  ///< shortest blade, fraction of the grass height, (0, 1]
     glm::vec3 groundColor{0.22f, 0.16f, 0.08f};
     glm::vec3 baseColor{0.20f, 0.45f, 0.10f};  ///< blade colour near the root
     glm::vec3 tipColor{0.55f, 0.75f, 0.25f};   ///< blade colour at full height
-    float colorVariation = 0.15f;  ///< random per-blade colour jitter, fraction
+    float colorVariation = 0.15f;              ///< random per-blade colour jitter, fraction
 };
 
 /// Level 0 plus the custom MIP levels, each an RGBA8 image with rows top-down.

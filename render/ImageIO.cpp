@@ -96,7 +96,8 @@ void writeImageAtomic(const Image& image, const std::string& path) {
         std::vector<float> pixels(static_cast<size_t>(image.width) * image.height * channels);
         for (size_t t = 0, n = pixels.size() / channels; t < n; ++t) {
             for (int c = 0; c < 3; ++c) pixels[t * channels + c] = decode[image.rgba[t * 4 + c]];
-            if (channels == 4) pixels[t * 4 + 3] = static_cast<float>(image.rgba[t * 4 + 3]) / 255.0f;
+            if (channels == 4)
+                pixels[t * 4 + 3] = static_cast<float>(image.rgba[t * 4 + 3]) / 255.0f;
         }
         ok = out->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
     } else if (channels == 4) {

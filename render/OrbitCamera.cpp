@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+
 #include "base/Numbers.h"
 
 namespace gale::render {

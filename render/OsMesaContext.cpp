@@ -1,6 +1,7 @@
 /// \file OsMesaContext.cpp
 /// The headless GlContext: an OSMesa 4.5 core context rendering into a client-memory RGBA8 buffer
-/// (docs/design.md 7: pass OSMESA_DEPTH_BITS, rows come bottom-up, the buffer is filled on glFinish).
+/// (docs/design.md 7: pass OSMESA_DEPTH_BITS, rows come bottom-up, the buffer is filled on
+/// glFinish).
 
 #include <GL/osmesa.h>
 

@@ -2,7 +2,6 @@
 /// Open fractions of cut cells over a heightfield, and the OpenVDB air mask.
 
 #include "sim/AirDomain.h"
-#include "sim/Format.h"
 
 #include <openvdb/openvdb.h>
 #include <tbb/parallel_for.h>
@@ -13,11 +12,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
+#include "sim/Format.h"
 #include "sim/MomentumWind.h"
 #include "sim/PoissonSolver.h"
 #include "sim/VdbIO.h"
-#include "base/Numbers.h"
-#include "base/ParameterError.h"
 
 namespace gale::sim {
 
@@ -69,34 +69,38 @@ double AirDomain::estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentu
     // velocity update's face flags 3 B, the OpenVDB mask ~0.5 B and the three output grids written
     // by writeVdb (~16 B per air voxel for velocity and speed, ~13 B per box voxel for the
     // staggered faces). Checked against peak RSS in docs/solver.md.
-    return cells * (12.0 + 1.0 + 12.0 + PoissonSolver::estimatedBytesPerCell() + 24.0 + 16.0 + 3.0 + 0.5 + 16.0 + 13.0 +
-                    (momentum ? MOMENTUM_EXTRA_BYTES_PER_CELL : 0.0));
+    return cells * (12.0 + 1.0 + 12.0 + PoissonSolver::estimatedBytesPerCell() + 24.0 + 16.0 + 3.0 +
+                    0.5 + 16.0 + 13.0 + (momentum ? MOMENTUM_EXTRA_BYTES_PER_CELL : 0.0));
 }
 
 AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
     using detail::num;
     // --- validate everything before allocating anything ------------------------------------
     if (hf.nx < 2 || hf.ny < 2)
-        throw std::invalid_argument("terrain must have at least 2x2 samples, got " + std::to_string(hf.nx) + "x" +
-                                    std::to_string(hf.ny));
+        throw std::invalid_argument("terrain must have at least 2x2 samples, got " +
+                                    std::to_string(hf.nx) + "x" + std::to_string(hf.ny));
     if (hf.height_m.size() != size_t(hf.nx) * hf.ny)
-        throw std::invalid_argument("terrain.height_m must have nx*ny = " + std::to_string(size_t(hf.nx) * hf.ny) +
-                                    " entries, got " + std::to_string(hf.height_m.size()));
+        throw std::invalid_argument(
+            "terrain.height_m must have nx*ny = " + std::to_string(size_t(hf.nx) * hf.ny) +
+            " entries, got " + std::to_string(hf.height_m.size()));
     if (!(hf.spacing_m > 0.0) || !std::isfinite(hf.spacing_m))
-        throw std::invalid_argument("terrain.spacing_m must be > 0 and finite, got " + num(hf.spacing_m));
+        throw std::invalid_argument("terrain.spacing_m must be > 0 and finite, got " +
+                                    num(hf.spacing_m));
     if (!std::isfinite(hf.originX_m) || !std::isfinite(hf.originY_m))
         throw std::invalid_argument("terrain origin must be finite");
     for (size_t n = 0; n < hf.height_m.size(); ++n)
         if (!std::isfinite(hf.height_m[n]))
-            throw std::invalid_argument("terrain.height_m is not finite (" + num(hf.height_m[n]) + ") at sample (" +
-                                        std::to_string(n % hf.nx) + ", " + std::to_string(n / hf.nx) + ")");
+            throw std::invalid_argument("terrain.height_m is not finite (" + num(hf.height_m[n]) +
+                                        ") at sample (" + std::to_string(n % hf.nx) + ", " +
+                                        std::to_string(n / hf.nx) + ")");
     const double h = spec.voxelSize_m;
     if (!(h > 0.0) || !std::isfinite(h))
         throw ParameterError("solver.voxel_size_m", num(h), "must be > 0 and finite");
     if (!(spec.memoryLimit_bytes > 0.0))
         throw ParameterError("solver.memory_limit_mb", num(spec.memoryLimit_bytes / MIB),
                              "must be > 0");
-    const double nxD = std::floor(hf.sizeX_m() / h + 1e-9), nyD = std::floor(hf.sizeY_m() / h + 1e-9);
+    const double nxD = std::floor(hf.sizeX_m() / h + 1e-9),
+                 nyD = std::floor(hf.sizeY_m() / h + 1e-9);
     if (nxD < 1 || nyD < 1)
         throw ParameterError("solver.voxel_size_m", num(h),
                              "must not exceed the terrain (" + num(hf.sizeX_m()) + " x " +
@@ -114,11 +118,12 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
         top = maxH + std::max(AUTO_TOP_RELIEF_FACTOR * (maxH - minH), AUTO_TOP_MIN_CELLS * h);
     }
     const double nzD = std::ceil((top - zMin) / h - 1e-9);
-    const double estimate = estimateSolveMemory_bytes(1, 1, 1, spec.momentumModel) * nxD * nyD * nzD;
+    const double estimate =
+        estimateSolveMemory_bytes(1, 1, 1, spec.momentumModel) * nxD * nyD * nzD;
     if (nxD * nyD * nzD > 2.0e9 || estimate > spec.memoryLimit_bytes)
         throw ParameterError("solver.memory_limit_mb", formatG(spec.memoryLimit_bytes / MIB, 4),
-                             "is below the estimated memory of " + formatG(estimate / MIB, 4) + " MiB for " +
-                                 num(nxD) + " x " + num(nyD) + " x " + num(nzD) +
+                             "is below the estimated memory of " + formatG(estimate / MIB, 4) +
+                                 " MiB for " + num(nxD) + " x " + num(nyD) + " x " + num(nzD) +
                                  " cells: raise solver.voxel_size_m, lower solver.top_m or raise "
                                  "the limit");
 
@@ -142,7 +147,8 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
         if (z0 >= lineMax) return 1.f;
         if (z1 <= lineMin) return 0.f;
         double s = 0.0;
-        for (int b = 0; b < S; ++b) s += detail::meanClampedLinear(z1 - line[b], z1 - line[b + 1], h);
+        for (int b = 0; b < S; ++b)
+            s += detail::meanClampedLinear(z1 - line[b], z1 - line[b + 1], h);
         return detail::cleanFraction(s / (S * h), spec.cutCells);
     };
     tbb::parallel_for(tbb::blocked_range<int>(0, ny), [&](const tbb::blocked_range<int>& rj) {
@@ -166,12 +172,20 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                     }
                     for (int k = 0; k < nz; ++k) store(k, verticalFace(line.data(), k, lMin, lMax));
                 };
-                doLine(true, 0, [&](int k, float f) { mOpenX[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = f; });
+                doLine(true, 0, [&](int k, float f) {
+                    mOpenX[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = f;
+                });
                 if (i == nx - 1)
-                    doLine(true, S, [&](int k, float f) { mOpenX[size_t(nx) + size_t(nx + 1) * (j + size_t(ny) * k)] = f; });
-                doLine(false, 0, [&](int k, float f) { mOpenY[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = f; });
+                    doLine(true, S, [&](int k, float f) {
+                        mOpenX[size_t(nx) + size_t(nx + 1) * (j + size_t(ny) * k)] = f;
+                    });
+                doLine(false, 0, [&](int k, float f) {
+                    mOpenY[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = f;
+                });
                 if (j == ny - 1)
-                    doLine(false, S, [&](int k, float f) { mOpenY[size_t(i) + size_t(nx) * (ny + size_t(ny + 1) * k)] = f; });
+                    doLine(false, S, [&](int k, float f) {
+                        mOpenY[size_t(i) + size_t(nx) * (ny + size_t(ny + 1) * k)] = f;
+                    });
                 // Horizontal faces: area where h < z_face, S rows at the sub-row midpoints.
                 for (int k = 0; k <= nz; ++k) {
                     const double zf = zAt(k);
@@ -184,7 +198,8 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                         double s = 0.0;
                         for (int b = 0; b < S; ++b) {
                             for (int a = 0; a <= S; ++a) mid[a] = 0.5 * (Hat(a, b) + Hat(a, b + 1));
-                            for (int a = 0; a < S; ++a) s += detail::fractionBelow(mid[a], mid[a + 1], zf);
+                            for (int a = 0; a < S; ++a)
+                                s += detail::fractionBelow(mid[a], mid[a + 1], zf);
                         }
                         f = detail::cleanFraction(s / (S * S), spec.cutCells);
                     }
@@ -203,9 +218,9 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
             }
     mActiveCount = active;
     if (active == 0)
-        throw ParameterError("solver.top_m", num(top),
-                             "leaves no air cells: raise it above the terrain (max " + num(maxH) +
-                                 " m)");
+        throw ParameterError(
+            "solver.top_m", num(top),
+            "leaves no air cells: raise it above the terrain (max " + num(maxH) + " m)");
     auto air = [&](int i, int j, int k) { return mAir[cellIndex(i, j, k)] != 0; };
     for (int k = 0; k < nz; ++k)
         for (int j = 0; j < ny; ++j) {
@@ -243,11 +258,13 @@ AirDomain::~AirDomain() = default;
 AirDomain::AirDomain(AirDomain&&) noexcept = default;
 AirDomain& AirDomain::operator=(AirDomain&&) noexcept = default;
 
-size_t AirDomain::vdbMemory_bytes() const { return mVdb && mVdb->mask ? size_t(mVdb->mask->memUsage()) : 0; }
+size_t AirDomain::vdbMemory_bytes() const {
+    return mVdb && mVdb->mask ? size_t(mVdb->mask->memUsage()) : 0;
+}
 
 size_t AirDomain::memory_bytes() const {
-    return (mOpenX.size() + mOpenY.size() + mOpenZ.size()) * sizeof(float) + mAir.size() + vdbMemory_bytes() +
-           mTerrain->height_m.size() * sizeof(float);
+    return (mOpenX.size() + mOpenY.size() + mOpenZ.size()) * sizeof(float) + mAir.size() +
+           vdbMemory_bytes() + mTerrain->height_m.size() * sizeof(float);
 }
 
 openvdb::BoolGrid::ConstPtr airMaskGrid(const AirDomain& domain) { return domain.vdb().mask; }

@@ -38,8 +38,8 @@
 namespace gale::sim {
 
 struct DomainSpec {
-    double voxelSize_m = 2.0;      ///< cell edge (cubic cells), metres, > 0
-    std::optional<double> top_m;   ///< world z of the open top boundary; unset: automatic
+    double voxelSize_m = 2.0;          ///< cell edge (cubic cells), metres, > 0
+    std::optional<double> top_m;       ///< world z of the open top boundary; unset: automatic
     double memoryLimit_bytes = 4.0e9;  ///< refuse domains whose estimate exceeds this, > 0
     /// true: cut cells (open fractions in [0, 1]); false: stair-steps, every fraction rounded to
     /// 0 or 1 at 1/2 (for comparisons: first-order boundary, docs/solver.md).
@@ -49,7 +49,7 @@ struct DomainSpec {
 };
 
 class AirDomain {
-public:
+  public:
     /// Automatic top: this many terrain reliefs above the highest point...
     static constexpr double AUTO_TOP_RELIEF_FACTOR = 3.0;
     /// ...but at least this many cells (flat terrain has no relief).
@@ -91,11 +91,17 @@ public:
     static double estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentum = false);
 
     /// Open fraction of the x-face between cells (i-1, j, k) and (i, j, k), i in [0, nx].
-    float openFractionX(int i, int j, int k) const { return mOpenX[size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k)]; }
+    float openFractionX(int i, int j, int k) const {
+        return mOpenX[size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k)];
+    }
     /// Open fraction of the y-face between cells (i, j-1, k) and (i, j, k), j in [0, ny].
-    float openFractionY(int i, int j, int k) const { return mOpenY[size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k)]; }
+    float openFractionY(int i, int j, int k) const {
+        return mOpenY[size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k)];
+    }
     /// Open fraction of the z-face between cells (i, j, k-1) and (i, j, k), k in [0, nz].
-    float openFractionZ(int i, int j, int k) const { return mOpenZ[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)]; }
+    float openFractionZ(int i, int j, int k) const {
+        return mOpenZ[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)];
+    }
     /// Face arrays in PoissonSystem's layout (PoissonSystem::faceXIndex etc.).
     const std::vector<float>& openFractionsX() const { return mOpenX; }
     const std::vector<float>& openFractionsY() const { return mOpenY; }
@@ -105,11 +111,13 @@ public:
     /// open fraction x face velocity, outward positive, of face arrays U, V, W in this layout
     /// (WindField's). Times h^2 it is the cell's volume outflow; zero for a discretely
     /// divergence-free field. Inline: the solvers evaluate it per cell per step.
-    double openOutflux(const std::vector<double>& U, const std::vector<double>& V, const std::vector<double>& W,
-                       int i, int j, int k) const {
+    double openOutflux(const std::vector<double>& U, const std::vector<double>& V,
+                       const std::vector<double>& W, int i, int j, int k) const {
         const size_t xm = size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k), xp = xm + 1;
-        const size_t ym = size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k), yp = ym + size_t(mNx);
-        const size_t zm = size_t(i) + size_t(mNx) * (j + size_t(mNy) * k), zp = zm + size_t(mNx) * mNy;
+        const size_t ym = size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k),
+                     yp = ym + size_t(mNx);
+        const size_t zm = size_t(i) + size_t(mNx) * (j + size_t(mNy) * k),
+                     zp = zm + size_t(mNx) * mNy;
         return mOpenX[xp] * U[xp] - mOpenX[xm] * U[xm] + mOpenY[yp] * V[yp] - mOpenY[ym] * V[ym] +
                mOpenZ[zp] * W[zp] - mOpenZ[zm] * W[zm];
     }
@@ -117,7 +125,9 @@ public:
     /// True if cell (i, j, k) holds air (an unknown of the solve).
     bool isAir(int i, int j, int k) const { return mAir[cellIndex(i, j, k)] != 0; }
     const std::vector<uint8_t>& airFlags() const { return mAir; }
-    size_t cellIndex(int i, int j, int k) const { return size_t(i) + size_t(mNx) * (j + size_t(mNy) * k); }
+    size_t cellIndex(int i, int j, int k) const {
+        return size_t(i) + size_t(mNx) * (j + size_t(mNy) * k);
+    }
 
     const Heightfield& terrain() const { return *mTerrain; }
     std::shared_ptr<const Heightfield> terrainShared() const { return mTerrain; }
@@ -125,7 +135,7 @@ public:
     struct Vdb;  ///< the OpenVDB mask (defined in AirDomain.cpp; see VdbIO.h)
     const Vdb& vdb() const { return *mVdb; }
 
-private:
+  private:
     int mNx = 0, mNy = 0, mNz = 0;
     double mVoxelSize_m = 0;
     std::array<double, 3> mWsMin_m{};

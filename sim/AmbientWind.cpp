@@ -1,16 +1,17 @@
 /// \file AmbientWind.cpp
 #include "sim/AmbientWind.h"
-#include "sim/Format.h"
 
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+
 #include "base/Numbers.h"
+#include "sim/Format.h"
 
 namespace gale::sim {
 namespace {
-using gale::PI;
 using detail::num;
+using gale::PI;
 
 /// An angle in degrees brought into [0, 360).
 double wrap360(double deg) {
@@ -20,7 +21,9 @@ double wrap360(double deg) {
 }
 }  // namespace
 
-double AmbientWind::towardsFromMeteorological_deg(double from_deg) { return wrap360(270.0 - from_deg); }
+double AmbientWind::towardsFromMeteorological_deg(double from_deg) {
+    return wrap360(270.0 - from_deg);
+}
 
 double AmbientWind::from_deg() const { return wrap360(270.0 - direction_deg); }
 
@@ -33,14 +36,17 @@ const char* windProfileName(WindProfile profile) {
 WindProfile windProfileFromName(const std::string& name) {
     if (name == "uniform") return WindProfile::Uniform;
     if (name == "log") return WindProfile::LogLaw;
-    throw std::invalid_argument("unknown wind profile '" + name + "' (expected one of: uniform, log)");
+    throw std::invalid_argument("unknown wind profile '" + name +
+                                "' (expected one of: uniform, log)");
 }
 
 void AmbientWind::validate() const {
     if (!(speed_mps >= 0.0) || !std::isfinite(speed_mps))
-        throw std::invalid_argument("AmbientWind.speed_mps must be >= 0 and finite, got " + num(speed_mps));
+        throw std::invalid_argument("AmbientWind.speed_mps must be >= 0 and finite, got " +
+                                    num(speed_mps));
     if (!std::isfinite(direction_deg))
-        throw std::invalid_argument("AmbientWind.direction_deg must be finite, got " + num(direction_deg));
+        throw std::invalid_argument("AmbientWind.direction_deg must be finite, got " +
+                                    num(direction_deg));
     if (!(referenceHeight_m > 0.0) || !std::isfinite(referenceHeight_m))
         throw std::invalid_argument("AmbientWind.referenceHeight_m must be > 0 and finite, got " +
                                     num(referenceHeight_m));
@@ -48,17 +54,18 @@ void AmbientWind::validate() const {
         // z_ref / z0 at least this: ln(3) = 1.1 keeps u(z) within a factor ln(z / z0) / 1.1.
         constexpr double MIN_REFERENCE_OVER_ROUGHNESS = 3.0;
         if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
-            throw std::invalid_argument("AmbientWind.roughness_m must be > 0 and finite, got " + num(roughness_m));
+            throw std::invalid_argument("AmbientWind.roughness_m must be > 0 and finite, got " +
+                                        num(roughness_m));
         // u(z) = U ln(z / z0) / ln(z_ref / z0): as z_ref nears z0 the denominator goes to 0 and
         // the field to infinity (z_ref = 1.0000001 z0 gave 9e9 m/s) or, rounded, to nothing. The
         // neutral log law describes the surface layer well above the roughness elements, so the
         // reference height must be at least a few z0.
         if (!(referenceHeight_m >= MIN_REFERENCE_OVER_ROUGHNESS * roughness_m))
-            throw std::invalid_argument("AmbientWind.referenceHeight_m (" + num(referenceHeight_m) +
-                                        " m) must be at least " + num(MIN_REFERENCE_OVER_ROUGHNESS) +
-                                        " x roughness_m (" + num(roughness_m) + " m), i.e. >= " +
-                                        num(MIN_REFERENCE_OVER_ROUGHNESS * roughness_m) +
-                                        " m, for the log law to hold");
+            throw std::invalid_argument(
+                "AmbientWind.referenceHeight_m (" + num(referenceHeight_m) +
+                " m) must be at least " + num(MIN_REFERENCE_OVER_ROUGHNESS) + " x roughness_m (" +
+                num(roughness_m) + " m), i.e. >= " +
+                num(MIN_REFERENCE_OVER_ROUGHNESS * roughness_m) + " m, for the log law to hold");
     }
 }
 

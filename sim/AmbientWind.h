@@ -1,7 +1,7 @@
 #pragma once
 /// \file AmbientWind.h
-/// The first guess of the steady solve (docs/design.md 4.1): a horizontal ambient wind with a vertical
-/// profile, applied relative to the ground below each point.
+/// The first guess of the steady solve (docs/design.md 4.1): a horizontal ambient wind with a
+/// vertical profile, applied relative to the ground below each point.
 
 #include <array>
 #include <string>
@@ -10,7 +10,8 @@ namespace gale::sim {
 
 enum class WindProfile {
     Uniform,  ///< speed_mps at every height above the ground
-    LogLaw,   ///< u(z) = speed_mps * ln(z / z0) / ln(z_ref / z0) for z > z0, 0 below (neutral log law)
+    LogLaw,   ///< u(z) = speed_mps * ln(z / z0) / ln(z_ref / z0) for z > z0, 0 below (neutral log
+              ///< law)
 };
 
 /// Name as written in scene files ("uniform", "log"), and back; fromName throws

@@ -1,11 +1,12 @@
 /// \file Gusts.cpp
 #include "sim/Gusts.h"
-#include "sim/Format.h"
 
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+
 #include "base/Numbers.h"
+#include "sim/Format.h"
 
 namespace gale::sim {
 namespace {
@@ -22,10 +23,14 @@ using detail::num;
 
 const char* gustEnvelopeName(GustEnvelope e) {
     switch (e) {
-        case GustEnvelope::Spline: return "spline";
-        case GustEnvelope::IecEog: return "iec_eog";
-        case GustEnvelope::OneMinusCosine: return "one_minus_cosine";
-        case GustEnvelope::Step: return "step";
+        case GustEnvelope::Spline:
+            return "spline";
+        case GustEnvelope::IecEog:
+            return "iec_eog";
+        case GustEnvelope::OneMinusCosine:
+            return "one_minus_cosine";
+        case GustEnvelope::Step:
+            return "step";
     }
     return "?";
 }
@@ -35,7 +40,8 @@ GustEnvelope gustEnvelopeFromName(const std::string& name) {
     if (name == "iec_eog") return GustEnvelope::IecEog;
     if (name == "one_minus_cosine") return GustEnvelope::OneMinusCosine;
     if (name == "step") return GustEnvelope::Step;
-    throw std::invalid_argument("envelope must be one of spline, iec_eog, one_minus_cosine, step (got \"" + name + "\")");
+    throw std::invalid_argument(
+        "envelope must be one of spline, iec_eog, one_minus_cosine, step (got \"" + name + "\")");
 }
 
 const char* gustEntryName(GustEntry e) { return e == GustEntry::Region ? "region" : "inflow"; }
@@ -47,19 +53,24 @@ GustEntry gustEntryFromName(const std::string& name) {
 }
 
 void GustEvent::validate() const {
-    if (!std::isfinite(start_s)) throw std::invalid_argument("gust.start_s must be finite, got " + num(start_s));
-    if (!std::isfinite(direction_deg)) throw std::invalid_argument("gust.direction_deg must be finite");
+    if (!std::isfinite(start_s))
+        throw std::invalid_argument("gust.start_s must be finite, got " + num(start_s));
+    if (!std::isfinite(direction_deg))
+        throw std::invalid_argument("gust.direction_deg must be finite");
     if (!std::isfinite(peak_mps) || std::abs(peak_mps) > 1000.0)
         throw std::invalid_argument("gust.peak_mps must be in [-1000, 1000], got " + num(peak_mps));
     if (!(duration_s > 0.0) || !std::isfinite(duration_s))
         throw std::invalid_argument("gust.duration_s must be > 0, got " + num(duration_s));
     if (entry == GustEntry::Region && (!(regionRadius_m > 0.0) || !std::isfinite(regionRadius_m)))
         throw std::invalid_argument("gust.region_radius_m must be > 0, got " + num(regionRadius_m));
-    if (entry == GustEntry::Region && (!(regionSpeed_mps >= 0.0) || !std::isfinite(regionSpeed_mps)))
-        throw std::invalid_argument("gust.region_speed_mps must be >= 0, got " + num(regionSpeed_mps));
-    if (envelope == GustEnvelope::Spline && attack_s >= 0.0 && !(attack_s > 0.0 && attack_s < duration_s))
-        throw std::invalid_argument("gust.attack_s must be in (0, duration_s = " + num(duration_s) + "), got " +
-                                    num(attack_s));
+    if (entry == GustEntry::Region &&
+        (!(regionSpeed_mps >= 0.0) || !std::isfinite(regionSpeed_mps)))
+        throw std::invalid_argument("gust.region_speed_mps must be >= 0, got " +
+                                    num(regionSpeed_mps));
+    if (envelope == GustEnvelope::Spline && attack_s >= 0.0 &&
+        !(attack_s > 0.0 && attack_s < duration_s))
+        throw std::invalid_argument("gust.attack_s must be in (0, duration_s = " + num(duration_s) +
+                                    "), got " + num(attack_s));
 }
 
 double GustEvent::envelopeAt(double t_s) const {
@@ -72,8 +83,10 @@ double GustEvent::envelopeAt(double t_s) const {
         }
         case GustEnvelope::IecEog:
             return -0.37 * std::sin(3.0 * PI * s) * (1.0 - std::cos(2.0 * PI * s)) / IEC_EOG_PEAK;
-        case GustEnvelope::OneMinusCosine: return 0.5 * (1.0 - std::cos(2.0 * PI * s));
-        case GustEnvelope::Step: return s < 1.0 ? 1.0 : 0.0;
+        case GustEnvelope::OneMinusCosine:
+            return 0.5 * (1.0 - std::cos(2.0 * PI * s));
+        case GustEnvelope::Step:
+            return s < 1.0 ? 1.0 : 0.0;
     }
     return 0.0;
 }

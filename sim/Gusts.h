@@ -49,12 +49,13 @@ struct GustEvent {
     double peak_mps = 3.0;       ///< peak added speed, m/s (may be negative: a lull)
     double duration_s = 4.0;     ///< length of the envelope, seconds, > 0
     GustEnvelope envelope = GustEnvelope::Spline;
-    double attack_s = -1.0;      ///< Spline only: rise time, in (0, duration_s); < 0: 0.15 duration
+    double attack_s = -1.0;  ///< Spline only: rise time, in (0, duration_s); < 0: 0.15 duration
     GustEntry entry = GustEntry::Inflow;
     std::array<double, 2> regionStart_m{0.0, 0.0};  ///< Region: centre at start_s, world metres
-    bool regionStartGiven = false;   ///< false: the solver puts it on the upwind side of the domain
-    double regionRadius_m = 10.0;    ///< Region: radius of the disc, metres, > 0
-    double regionSpeed_mps = 0.0;    ///< Region: speed of the disc, m/s; 0: the mean wind's reference speed
+    bool regionStartGiven = false;  ///< false: the solver puts it on the upwind side of the domain
+    double regionRadius_m = 10.0;   ///< Region: radius of the disc, metres, > 0
+    double regionSpeed_mps =
+        0.0;  ///< Region: speed of the disc, m/s; 0: the mean wind's reference speed
 
     /// Relaxation time of the region forcing, seconds.
     static constexpr double REGION_RELAXATION_S = 0.5;

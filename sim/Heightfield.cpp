@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+
 #include "base/Numbers.h"
 
 namespace gale::sim {
@@ -17,10 +18,14 @@ struct KindName {
     const char* name;
 };
 constexpr KindName KIND_NAMES[] = {
-    {TerrainKind::Flat, "flat"},         {TerrainKind::GaussianHill, "gaussian_hill"},
-    {TerrainKind::Ridge, "ridge"},       {TerrainKind::Valley, "valley"},
-    {TerrainKind::Crater, "crater"},     {TerrainKind::Fractal, "fractal"},
-    {TerrainKind::Hemisphere, "hemisphere"}, {TerrainKind::Heightmap, "heightmap"},
+    {TerrainKind::Flat, "flat"},
+    {TerrainKind::GaussianHill, "gaussian_hill"},
+    {TerrainKind::Ridge, "ridge"},
+    {TerrainKind::Valley, "valley"},
+    {TerrainKind::Crater, "crater"},
+    {TerrainKind::Fractal, "fractal"},
+    {TerrainKind::Hemisphere, "hemisphere"},
+    {TerrainKind::Heightmap, "heightmap"},
 };
 
 void requirePositive(double value, const char* field) {
@@ -72,7 +77,8 @@ double valueNoise(uint32_t seed, int o, double x, double y) {
     auto fade = [](double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); };
     const double tx = fade(x - fx), ty = fade(y - fy);
     const double v00 = latticeValue(seed, o, ix, iy), v10 = latticeValue(seed, o, ix + 1, iy);
-    const double v01 = latticeValue(seed, o, ix, iy + 1), v11 = latticeValue(seed, o, ix + 1, iy + 1);
+    const double v01 = latticeValue(seed, o, ix, iy + 1),
+                 v11 = latticeValue(seed, o, ix + 1, iy + 1);
     return (v00 * (1 - tx) + v10 * tx) * (1 - ty) + (v01 * (1 - tx) + v11 * tx) * ty;
 }
 
@@ -140,7 +146,8 @@ TerrainKind terrainKindFromName(const std::string& name) {
 double Heightfield::sample(double wsX_m, double wsY_m) const {
     const double fx = std::clamp((wsX_m - originX_m) / spacing_m, 0.0, double(nx - 1));
     const double fy = std::clamp((wsY_m - originY_m) / spacing_m, 0.0, double(ny - 1));
-    const int i = std::min(static_cast<int>(fx), nx - 2), j = std::min(static_cast<int>(fy), ny - 2);
+    const int i = std::min(static_cast<int>(fx), nx - 2),
+              j = std::min(static_cast<int>(fy), ny - 2);
     const double tx = fx - i, ty = fy - j;
     return (at(i, j) * (1 - tx) + at(i + 1, j) * tx) * (1 - ty) +
            (at(i, j + 1) * (1 - tx) + at(i + 1, j + 1) * tx) * ty;
@@ -192,8 +199,8 @@ Heightfield makeTerrain(const TerrainSpec& spec) {
     f.height_m.resize(static_cast<size_t>(f.nx) * f.ny);
     for (int j = 0; j < f.ny; ++j)
         for (int i = 0; i < f.nx; ++i)
-            f.height_m[static_cast<size_t>(j) * f.nx + i] = static_cast<float>(
-                proceduralHeight(spec, i * spec.spacing_m, j * spec.spacing_m));
+            f.height_m[static_cast<size_t>(j) * f.nx + i] =
+                static_cast<float>(proceduralHeight(spec, i * spec.spacing_m, j * spec.spacing_m));
     return f;
 }
 

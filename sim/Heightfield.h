@@ -1,7 +1,8 @@
 #pragma once
 /// \file Heightfield.h
-/// The terrain as a heightfield h(x, y) in world metres, z up (docs/design.md 3), and the procedural and
-/// verification terrains a scene can name. Pure C++: no OpenVDB here, so every module may use it.
+/// The terrain as a heightfield h(x, y) in world metres, z up (docs/design.md 3), and the
+/// procedural and verification terrains a scene can name. Pure C++: no OpenVDB here, so every
+/// module may use it.
 
 #include <array>
 #include <cstdint>
@@ -13,11 +14,11 @@ namespace gale::sim {
 /// Heights on a regular grid. Sample (i, j) sits at world position
 /// (originX_m + i * spacing_m, originY_m + j * spacing_m, height_m[j * nx + i]).
 struct Heightfield {
-    int nx = 0;                 ///< samples along x (>= 2)
-    int ny = 0;                 ///< samples along y (>= 2)
-    double spacing_m = 1.0;     ///< distance between neighbouring samples, metres
-    double originX_m = 0.0;     ///< world x of sample (0, 0), metres
-    double originY_m = 0.0;     ///< world y of sample (0, 0), metres
+    int nx = 0;                   ///< samples along x (>= 2)
+    int ny = 0;                   ///< samples along y (>= 2)
+    double spacing_m = 1.0;       ///< distance between neighbouring samples, metres
+    double originX_m = 0.0;       ///< world x of sample (0, 0), metres
+    double originY_m = 0.0;       ///< world y of sample (0, 0), metres
     std::vector<float> height_m;  ///< nx * ny heights, metres, i fastest
 
     float at(int i, int j) const { return height_m[static_cast<size_t>(j) * nx + i]; }
@@ -31,7 +32,16 @@ struct Heightfield {
     double maxHeight_m() const;
 };
 
-enum class TerrainKind { Flat, GaussianHill, Ridge, Valley, Crater, Fractal, Hemisphere, Heightmap };
+enum class TerrainKind {
+    Flat,
+    GaussianHill,
+    Ridge,
+    Valley,
+    Crater,
+    Fractal,
+    Hemisphere,
+    Heightmap
+};
 
 /// Name as written in scene files ("gaussian_hill"), and back; fromName throws
 /// std::invalid_argument listing the valid names.
@@ -43,24 +53,24 @@ struct TerrainSpec {
     TerrainKind kind = TerrainKind::GaussianHill;
     double sizeX_m = 200.0, sizeY_m = 200.0;  ///< extent of the terrain
     double spacing_m = 2.0;                   ///< heightfield sample spacing
-    double height_m = 20.0;    ///< hill/ridge height, valley/crater depth, fractal amplitude
-    double radius_m = 50.0;    ///< hill sigma, ridge/valley half-width, crater/hemisphere radius
+    double height_m = 20.0;  ///< hill/ridge height, valley/crater depth, fractal amplitude
+    double radius_m = 50.0;  ///< hill sigma, ridge/valley half-width, crater/hemisphere radius
     double centerX_m = 100.0, centerY_m = 100.0;  ///< feature centre
-    double axis_deg = 0.0;     ///< ridge/valley axis, degrees counter-clockwise from +x
-    uint32_t seed = 1;         ///< fractal seed
-    int octaves = 5;           ///< fractal octaves
-    double roughness = 0.5;    ///< fractal amplitude ratio between octaves
+    double axis_deg = 0.0;        ///< ridge/valley axis, degrees counter-clockwise from +x
+    uint32_t seed = 1;            ///< fractal seed
+    int octaves = 5;              ///< fractal octaves
+    double roughness = 0.5;       ///< fractal amplitude ratio between octaves
     double featureSize_m = 80.0;  ///< fractal largest wavelength
 };
 
-/// Builds the heightfield of a procedural kind (not Heightmap, which the scene loads from an image).
-/// Throws std::invalid_argument naming the parameter when a size or spacing is not positive and
-/// finite, or when the grid would exceed 16384 samples per side.
+/// Builds the heightfield of a procedural kind (not Heightmap, which the scene loads from an
+/// image). Throws std::invalid_argument naming the parameter when a size or spacing is not positive
+/// and finite, or when the grid would exceed 16384 samples per side.
 Heightfield makeTerrain(const TerrainSpec& spec);
 
 /// Heightfield from samples already in memory (e.g. a decoded heightmap image), validated:
-/// throws std::invalid_argument if a height is NaN/Inf, the grid is smaller than 2x2, or the spacing
-/// is not positive.
+/// throws std::invalid_argument if a height is NaN/Inf, the grid is smaller than 2x2, or the
+/// spacing is not positive.
 Heightfield makeHeightfield(int nx, int ny, double spacing_m, std::vector<float> height_m);
 
 }  // namespace gale::sim

@@ -10,8 +10,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sim/Format.h"
 #include "base/Numbers.h"
+#include "sim/Format.h"
 
 namespace gale::sim {
 namespace {
@@ -41,23 +41,27 @@ void solveTridiagonal(int n, const double* sub, const double* diag, double* sup,
 /// Per-thread scratch of one column.
 struct ColumnScratch {
     std::vector<double> sub, diag, sup, rhs;
-    explicit ColumnScratch(int n) : sub(size_t(n)), diag(size_t(n)), sup(size_t(n)), rhs(size_t(n)) {}
+    explicit ColumnScratch(int n)
+        : sub(size_t(n)), diag(size_t(n)), sup(size_t(n)), rhs(size_t(n)) {}
 };
 
 }  // namespace
 
 void SurfaceLayerSettings::validate() const {
     if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
-        throw std::invalid_argument("solver.roughness_m must be > 0 and finite, got " + num(roughness_m));
+        throw std::invalid_argument("solver.roughness_m must be > 0 and finite, got " +
+                                    num(roughness_m));
     if (!(displacementHeight_m >= 0.0) || !std::isfinite(displacementHeight_m))
         throw std::invalid_argument("solver.displacement_height_m must be >= 0 and finite, got " +
                                     num(displacementHeight_m));
     if (!(mixingLengthMax_m > 0.0) || !std::isfinite(mixingLengthMax_m))
-        throw std::invalid_argument("solver.mixing_length_max_m must be > 0 and finite, got " + num(mixingLengthMax_m));
+        throw std::invalid_argument("solver.mixing_length_max_m must be > 0 and finite, got " +
+                                    num(mixingLengthMax_m));
     if (balanced) {
         balanced->validate();
         if (!(balanced->referenceHeight_m > displacementHeight_m + roughness_m))
-            throw std::invalid_argument("wind.reference_height_m (" + num(balanced->referenceHeight_m) +
+            throw std::invalid_argument("wind.reference_height_m (" +
+                                        num(balanced->referenceHeight_m) +
                                         " m) must be above displacement height + roughness (" +
                                         num(displacementHeight_m + roughness_m) + " m)");
     }
@@ -84,13 +88,15 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
     for (int j = 0; j <= ny; ++j)
         for (int i = 0; i <= nx; ++i) {
             const double x = o[0] + i * h, y = o[1] + j * h;
-            if (i < nx && j < ny) mGroundCell[size_t(i) + size_t(nx) * j] = T.sample(x + 0.5 * h, y + 0.5 * h);
+            if (i < nx && j < ny)
+                mGroundCell[size_t(i) + size_t(nx) * j] = T.sample(x + 0.5 * h, y + 0.5 * h);
             if (j < ny) mGroundX[size_t(i) + size_t(nx + 1) * j] = T.sample(x, y + 0.5 * h);
             if (i < nx) mGroundY[size_t(i) + size_t(nx) * j] = T.sample(x + 0.5 * h, y);
         }
 
     // Lowest unknown face of each column (the masks are monotone in k over a heightfield).
-    auto lowest = [nz](const std::vector<uint8_t>& ok, int n0, int n1, int n2, std::vector<int>& low) {
+    auto lowest = [nz](const std::vector<uint8_t>& ok, int n0, int n1, int n2,
+                       std::vector<int>& low) {
         low.assign(size_t(n0) * n1, -1);
         for (int j = 0; j < n1; ++j)
             for (int i = 0; i < n0; ++i)
@@ -137,22 +143,28 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
                 const int kl = low[col];
                 if (kl < 0) continue;
                 // The two cell columns beside the face column (clamped at the box sides).
-                const int ia = c == 0 ? std::max(i - 1, 0) : i, ib = c == 0 ? std::min(i, nx - 1) : i;
-                const int ja = c == 1 ? std::max(j - 1, 0) : j, jb = c == 1 ? std::min(j, ny - 1) : j;
+                const int ia = c == 0 ? std::max(i - 1, 0) : i,
+                          ib = c == 0 ? std::min(i, nx - 1) : i;
+                const int ja = c == 1 ? std::max(j - 1, 0) : j,
+                          jb = c == 1 ? std::min(j, ny - 1) : j;
                 auto l2Edge = [&](int k) {
                     return 0.5 * (double(mL2Z[size_t(ia) + size_t(nx) * (ja + size_t(ny) * k)]) +
                                   double(mL2Z[size_t(ib) + size_t(nx) * (jb + size_t(ny) * k)]));
                 };
                 const double g = ground[col];
-                const double wallH = std::clamp(o[2] + (kl + 1) * h - g, MIN_WALL_HEIGHT_CELLS * h, MAX_WALL_HEIGHT_CELLS * h);
-                auto profileHeight = [&](int k) { return k == kl ? 0.5 * wallH : o[2] + (k + 0.5) * h - g; };
+                const double wallH = std::clamp(o[2] + (kl + 1) * h - g, MIN_WALL_HEIGHT_CELLS * h,
+                                                MAX_WALL_HEIGHT_CELLS * h);
+                auto profileHeight = [&](int k) {
+                    return k == kl ? 0.5 * wallH : o[2] + (k + 0.5) * h - g;
+                };
                 auto U0 = [&](double z) { return surface::logLawSpeed_mps(uStar, z, z0, d); };
                 // tau[k - kl]: stress through the bottom of face k; tau[nz - kl]: the top's.
                 const double zp = profileHeight(kl), u0p = U0(zp);
                 const double cw = surface::KAPPA / surface::logFactor(zp, z0, d);
                 tau[0] = cw * cw * u0p * u0p;
                 for (int k = kl + 1; k <= nz; ++k) {
-                    const double zLo = profileHeight(k - 1), zHi = k < nz ? profileHeight(k) : zLo + h;
+                    const double zLo = profileHeight(k - 1),
+                                 zHi = k < nz ? profileHeight(k) : zLo + h;
                     const double grad = (U0(zHi) - U0(zLo)) / h;
                     tau[size_t(k - kl)] = l2Edge(k) * grad * grad;
                 }
@@ -169,13 +181,18 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
     }
 }
 
-void TurbulentStress::computeEddyViscosity(const std::vector<double>& U, const std::vector<double>& V,
+void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
+                                           const std::vector<double>& V,
                                            const std::vector<double>& W) {
     const AirDomain& D = mDomain;
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
     const double h = D.voxelSize_m();
-    auto xi = [&](int i, int j, int k) { return size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k); };
-    auto yi = [&](int i, int j, int k) { return size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k); };
+    auto xi = [&](int i, int j, int k) {
+        return size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k);
+    };
+    auto yi = [&](int i, int j, int k) {
+        return size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k);
+    };
     auto zi = [&](int i, int j, int k) { return size_t(i) + size_t(nx) * (j + size_t(ny) * k); };
     mStrainH.assign(size_t(nx) * ny * nz, 0.0);
     mNuZ.assign(size_t(nx) * ny * (nz + 1), 0.0);
@@ -190,13 +207,18 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U, const s
                 const double dwdz = (W[zi(i, j, k + 1)] - W[zi(i, j, k)]) / h;
                 const int jm = std::max(j - 1, 0), jp = std::min(j + 1, ny - 1);
                 const int im = std::max(i - 1, 0), ip = std::min(i + 1, nx - 1);
-                const double dudy = jp > jm ? 0.5 * (U[xi(i, jp, k)] + U[xi(i + 1, jp, k)] - U[xi(i, jm, k)] - U[xi(i + 1, jm, k)]) /
+                const double dudy = jp > jm ? 0.5 *
+                                                  (U[xi(i, jp, k)] + U[xi(i + 1, jp, k)] -
+                                                   U[xi(i, jm, k)] - U[xi(i + 1, jm, k)]) /
                                                   ((jp - jm) * h)
                                             : 0.0;
-                const double dvdx = ip > im ? 0.5 * (V[yi(ip, j, k)] + V[yi(ip, j + 1, k)] - V[yi(im, j, k)] - V[yi(im, j + 1, k)]) /
+                const double dvdx = ip > im ? 0.5 *
+                                                  (V[yi(ip, j, k)] + V[yi(ip, j + 1, k)] -
+                                                   V[yi(im, j, k)] - V[yi(im, j + 1, k)]) /
                                                   ((ip - im) * h)
                                             : 0.0;
-                mStrainH[zi(i, j, k)] = 2.0 * (dudx * dudx + dvdy * dvdy + dwdz * dwdz) + (dudy + dvdx) * (dudy + dvdx);
+                mStrainH[zi(i, j, k)] =
+                    2.0 * (dudx * dudx + dvdy * dvdy + dwdz * dwdz) + (dudy + dvdx) * (dudy + dvdx);
             }
     });
     // nu_t = nu + l^2 |S| on z-faces between two air cells; the vertical shears S_xz, S_yz as
@@ -205,12 +227,20 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U, const s
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 if (!D.isAir(i, j, k - 1)) continue;
-                const double dudz = 0.5 * (U[xi(i, j, k)] - U[xi(i, j, k - 1)] + U[xi(i + 1, j, k)] - U[xi(i + 1, j, k - 1)]) / h;
-                const double dvdz = 0.5 * (V[yi(i, j, k)] - V[yi(i, j, k - 1)] + V[yi(i, j + 1, k)] - V[yi(i, j + 1, k - 1)]) / h;
+                const double dudz = 0.5 *
+                                    (U[xi(i, j, k)] - U[xi(i, j, k - 1)] + U[xi(i + 1, j, k)] -
+                                     U[xi(i + 1, j, k - 1)]) /
+                                    h;
+                const double dvdz = 0.5 *
+                                    (V[yi(i, j, k)] - V[yi(i, j, k - 1)] + V[yi(i, j + 1, k)] -
+                                     V[yi(i, j + 1, k - 1)]) /
+                                    h;
                 const int im = std::max(i - 1, 0), ip = std::min(i + 1, nx - 1);
                 const int jm = std::max(j - 1, 0), jp = std::min(j + 1, ny - 1);
-                const double dwdx = ip > im ? (W[zi(ip, j, k)] - W[zi(im, j, k)]) / ((ip - im) * h) : 0.0;
-                const double dwdy = jp > jm ? (W[zi(i, jp, k)] - W[zi(i, jm, k)]) / ((jp - jm) * h) : 0.0;
+                const double dwdx =
+                    ip > im ? (W[zi(ip, j, k)] - W[zi(im, j, k)]) / ((ip - im) * h) : 0.0;
+                const double dwdy =
+                    jp > jm ? (W[zi(i, jp, k)] - W[zi(i, jm, k)]) / ((jp - jm) * h) : 0.0;
                 const double s2 = (dudz + dwdx) * (dudz + dwdx) + (dvdz + dwdy) * (dvdz + dwdy) +
                                   0.5 * (mStrainH[zi(i, j, k - 1)] + mStrainH[zi(i, j, k)]);
                 mNuZ[zi(i, j, k)] = mNuMol + double(mL2Z[zi(i, j, k)]) * std::sqrt(s2);
@@ -236,9 +266,11 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U, const s
 
 TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::vector<double>& V,
                                         std::vector<double>& W) {
-    if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("TurbulentStress::apply: dt_s must be > 0, got " + num(dt));
+    if (!(dt > 0.0) || !std::isfinite(dt))
+        throw std::invalid_argument("TurbulentStress::apply: dt_s must be > 0, got " + num(dt));
     if (U.size() != mOkX.size() || V.size() != mOkY.size() || W.size() != mOkZ.size())
-        throw std::invalid_argument("TurbulentStress::apply: velocity arrays do not match the domain");
+        throw std::invalid_argument(
+            "TurbulentStress::apply: velocity arrays do not match the domain");
     const AirDomain& D = mDomain;
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
     const double h = D.voxelSize_m(), h2 = h * h;
@@ -248,7 +280,9 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
     computeEddyViscosity(U, V, W);
     for (double nu : mNuZ) rep.maxEddyViscosity_m2ps = std::max(rep.maxEddyViscosity_m2ps, nu);
 
-    auto nuZ = [&](int i, int j, int k) { return mNuZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)]; };
+    auto nuZ = [&](int i, int j, int k) {
+        return mNuZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)];
+    };
     auto nuCell = [&](int i, int j, int k) { return 0.5 * (nuZ(i, j, k) + nuZ(i, j, k + 1)); };
 
     // Horizontal speed of each wall face at the start of the step: its own component and the
@@ -257,16 +291,26 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
     tbb::parallel_for(0, ny + 1, [&](int j) {
         for (int i = 0; i <= nx; ++i) {
             if (j < ny && mLowX[size_t(i) + size_t(nx + 1) * j] >= 0) {
-                const int k = mLowX[size_t(i) + size_t(nx + 1) * j], ia = std::max(i - 1, 0), ib = std::min(i, nx - 1);
-                auto vAt = [&](int ii, int jj) { return V[size_t(ii) + size_t(nx) * (jj + size_t(ny + 1) * k)]; };
-                const double other = 0.25 * (vAt(ia, j) + vAt(ia, j + 1) + vAt(ib, j) + vAt(ib, j + 1));
-                speedX[size_t(i) + size_t(nx + 1) * j] = std::hypot(U[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)], other);
+                const int k = mLowX[size_t(i) + size_t(nx + 1) * j], ia = std::max(i - 1, 0),
+                          ib = std::min(i, nx - 1);
+                auto vAt = [&](int ii, int jj) {
+                    return V[size_t(ii) + size_t(nx) * (jj + size_t(ny + 1) * k)];
+                };
+                const double other =
+                    0.25 * (vAt(ia, j) + vAt(ia, j + 1) + vAt(ib, j) + vAt(ib, j + 1));
+                speedX[size_t(i) + size_t(nx + 1) * j] =
+                    std::hypot(U[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)], other);
             }
             if (i < nx && mLowY[size_t(i) + size_t(nx) * j] >= 0) {
-                const int k = mLowY[size_t(i) + size_t(nx) * j], ja = std::max(j - 1, 0), jb = std::min(j, ny - 1);
-                auto uAt = [&](int ii, int jj) { return U[size_t(ii) + size_t(nx + 1) * (jj + size_t(ny) * k)]; };
-                const double other = 0.25 * (uAt(i, ja) + uAt(i + 1, ja) + uAt(i, jb) + uAt(i + 1, jb));
-                speedY[size_t(i) + size_t(nx) * j] = std::hypot(V[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)], other);
+                const int k = mLowY[size_t(i) + size_t(nx) * j], ja = std::max(j - 1, 0),
+                          jb = std::min(j, ny - 1);
+                auto uAt = [&](int ii, int jj) {
+                    return U[size_t(ii) + size_t(nx + 1) * (jj + size_t(ny) * k)];
+                };
+                const double other =
+                    0.25 * (uAt(i, ja) + uAt(i + 1, ja) + uAt(i, jb) + uAt(i + 1, jb));
+                speedY[size_t(i) + size_t(nx) * j] =
+                    std::hypot(V[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)], other);
             }
         }
     });
@@ -279,7 +323,9 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
         const std::vector<uint8_t>& ok = *masks[c];
         mOld = q;
         const int n0 = nx + (c == 0), n1 = ny + (c == 1), n2 = nz + (c == 2);
-        auto idx = [&](int i, int j, int k) { return size_t(i) + size_t(n0) * (j + size_t(n1) * k); };
+        auto idx = [&](int i, int j, int k) {
+            return size_t(i) + size_t(n0) * (j + size_t(n1) * k);
+        };
         const std::vector<int>& low = c == 0 ? mLowX : c == 1 ? mLowY : mLowZ;
         // nu_t at the face itself (horizontal exchanges) and on the edge below face k (vertical).
         auto cellsBeside = [&](int i, int j, int& ia, int& ja, int& ib, int& jb) {
@@ -294,7 +340,8 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                     if (!ok[idx(i, j, k)]) continue;
                     int ia, ja, ib, jb;
                     cellsBeside(i, j, ia, ja, ib, jb);
-                    mNuFace[idx(i, j, k)] = c == 2 ? nuZ(i, j, k) : 0.5 * (nuCell(ia, ja, k) + nuCell(ib, jb, k));
+                    mNuFace[idx(i, j, k)] =
+                        c == 2 ? nuZ(i, j, k) : 0.5 * (nuCell(ia, ja, k) + nuCell(ib, jb, k));
                 }
         });
         auto nuFace = [&](int i, int j, int k) { return mNuFace[idx(i, j, k)]; };
@@ -317,7 +364,8 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                     double wallH = h, wallC = 0.0;
                     if (c < 2) {
                         const double g = (c == 0 ? mGroundX : mGroundY)[col];
-                        wallH = std::clamp(o[2] + (kl + 1) * h - g, MIN_WALL_HEIGHT_CELLS * h, MAX_WALL_HEIGHT_CELLS * h);
+                        wallH = std::clamp(o[2] + (kl + 1) * h - g, MIN_WALL_HEIGHT_CELLS * h,
+                                           MAX_WALL_HEIGHT_CELLS * h);
                         const double speed = (c == 0 ? speedX : speedY)[col];
                         const double cw = surface::KAPPA / surface::logFactor(0.5 * wallH, z0, d);
                         wallC = cw * cw * speed;  // tau_w = wallC * u, m/s
@@ -364,8 +412,10 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                 }
         });
     }
-    for (double f : frictionX) rep.maxFrictionVelocity_mps = std::max(rep.maxFrictionVelocity_mps, f);
-    for (double f : frictionY) rep.maxFrictionVelocity_mps = std::max(rep.maxFrictionVelocity_mps, f);
+    for (double f : frictionX)
+        rep.maxFrictionVelocity_mps = std::max(rep.maxFrictionVelocity_mps, f);
+    for (double f : frictionY)
+        rep.maxFrictionVelocity_mps = std::max(rep.maxFrictionVelocity_mps, f);
     return rep;
 }
 

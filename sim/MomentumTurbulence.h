@@ -50,9 +50,10 @@
 namespace gale::sim {
 
 struct SurfaceLayerSettings {
-    bool enabled = false;                ///< false: no eddy viscosity, no wall stress
-    double roughness_m = 0.03;           ///< aerodynamic roughness length z0, metres, > 0
-    double displacementHeight_m = 0.0;   ///< displacement height d (about 2/3 of tall grass), m, >= 0
+    bool enabled = false;       ///< false: no eddy viscosity, no wall stress
+    double roughness_m = 0.03;  ///< aerodynamic roughness length z0, metres, > 0
+    double displacementHeight_m =
+        0.0;  ///< displacement height d (about 2/3 of tall grass), m, >= 0
     double mixingLengthMax_m = surface::BLACKADAR_MAX_MIXING_LENGTH_M;  ///< l_max, metres, > 0
     /// The ambient wind whose log profile (with roughness_m and displacementHeight_m; the wind's
     /// own profile and roughness are not used) is held in equilibrium by the top stress and the
@@ -65,43 +66,46 @@ struct SurfaceLayerSettings {
 
 /// What one stress step did.
 struct TurbulenceReport {
-    double maxEddyViscosity_m2ps = 0;    ///< largest nu_t over the air, m^2/s
-    double maxFrictionVelocity_mps = 0;  ///< largest wall-function u* over wall faces >= h/2 high, m/s
+    double maxEddyViscosity_m2ps = 0;  ///< largest nu_t over the air, m^2/s
+    double maxFrictionVelocity_mps =
+        0;  ///< largest wall-function u* over wall faces >= h/2 high, m/s
 };
 
 /// The stress step on one domain. Geometry (ground heights, wall faces, mixing lengths, the
 /// balance force) is computed once in the constructor. Keeps a reference to the domain, which
 /// must outlive it, and copies of the masks.
 class TurbulentStress {
-public:
+  public:
     /// masks: the faces of u, v, w that are unknowns (between air cells or on the box), as the
     /// unsteady solver's projection uses them. molecularViscosity_m2ps (>= 0) is added to nu_t.
     /// Throws std::invalid_argument on bad settings or mask sizes.
-    TurbulentStress(const AirDomain& domain, const SurfaceLayerSettings& settings, double molecularViscosity_m2ps,
-                    const std::vector<uint8_t>& okX, const std::vector<uint8_t>& okY,
-                    const std::vector<uint8_t>& okZ);
+    TurbulentStress(const AirDomain& domain, const SurfaceLayerSettings& settings,
+                    double molecularViscosity_m2ps, const std::vector<uint8_t>& okX,
+                    const std::vector<uint8_t>& okY, const std::vector<uint8_t>& okZ);
 
     /// One step of dt_s (> 0) seconds on the face velocities (m/s, WindField layout), in place.
     /// Faces outside the masks are not changed.
-    TurbulenceReport apply(double dt_s, std::vector<double>& u, std::vector<double>& v, std::vector<double>& w);
+    TurbulenceReport apply(double dt_s, std::vector<double>& u, std::vector<double>& v,
+                           std::vector<double>& w);
 
     /// nu_t (m^2/s) on the z-faces of the last apply() (WindField's w layout), 0 before.
     const std::vector<double>& eddyViscosityZ_m2ps() const { return mNuZ; }
     /// Bytes per cell of the box this object holds and uses while applying (memory estimates).
     static constexpr double BYTES_PER_CELL = 8.0 * 6 + 4.0 + 3.0;
 
-private:
-    void computeEddyViscosity(const std::vector<double>& u, const std::vector<double>& v, const std::vector<double>& w);
+  private:
+    void computeEddyViscosity(const std::vector<double>& u, const std::vector<double>& v,
+                              const std::vector<double>& w);
 
     const AirDomain& mDomain;
     SurfaceLayerSettings mSettings;
     double mNuMol = 0.0;
-    std::vector<uint8_t> mOkX, mOkY, mOkZ;  // copies: the owner may move
+    std::vector<uint8_t> mOkX, mOkY, mOkZ;                // copies: the owner may move
     std::vector<double> mGroundCell, mGroundX, mGroundY;  // terrain height under cells / faces, m
-    std::vector<int> mLowX, mLowY, mLowZ;                 // lowest unknown face per column, -1: none
-    std::vector<float> mL2Z;                              // l^2 on z-faces, m^2
-    std::vector<double> mForceX, mForceY;                 // balance force on x- and y-faces, m/s^2
-    std::vector<double> mTopX, mTopY;                     // top stress per column, m^2/s^2
+    std::vector<int> mLowX, mLowY, mLowZ;  // lowest unknown face per column, -1: none
+    std::vector<float> mL2Z;               // l^2 on z-faces, m^2
+    std::vector<double> mForceX, mForceY;  // balance force on x- and y-faces, m/s^2
+    std::vector<double> mTopX, mTopY;      // top stress per column, m^2/s^2
     std::vector<double> mNuZ, mStrainH, mOld, mNuFace;
 };
 

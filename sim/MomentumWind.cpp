@@ -10,17 +10,19 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "base/Numbers.h"
 #include "sim/Format.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
-#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
 
 using detail::num;
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 struct Change {
     double sumSq = 0, max = 0, weight = 0;
@@ -29,7 +31,8 @@ struct Change {
 /// Open-fraction weighted sum of squares, sum of weights and maximum of theta |a - b| over the
 /// faces (the change of momentum in each face's open volume; a sliver of a cut face carries
 /// almost none); NaN propagates into max.
-Change changeOver(const std::vector<double>& a, const std::vector<double>& b, const std::vector<float>& open) {
+Change changeOver(const std::vector<double>& a, const std::vector<double>& b,
+                  const std::vector<float>& open) {
     return tbb::parallel_reduce(
         tbb::blocked_range<size_t>(0, a.size(), 1 << 14), Change{},
         [&](const tbb::blocked_range<size_t>& r, Change c) {
@@ -51,29 +54,37 @@ Change changeOver(const std::vector<double>& a, const std::vector<double>& b, co
 }  // namespace
 
 void MomentumSettings::validate() const {
-    if (!(cfl > 0.0) || !std::isfinite(cfl)) throw std::invalid_argument("solver.cfl must be > 0 and finite, got " + num(cfl));
+    if (!(cfl > 0.0) || !std::isfinite(cfl))
+        throw std::invalid_argument("solver.cfl must be > 0 and finite, got " + num(cfl));
     if (maxIterations < 1)
-        throw std::invalid_argument("solver.max_iterations must be >= 1, got " + std::to_string(maxIterations));
+        throw std::invalid_argument("solver.max_iterations must be >= 1, got " +
+                                    std::to_string(maxIterations));
     if (!(residualTolerance > 0.0) || !std::isfinite(residualTolerance))
-        throw std::invalid_argument("solver.momentum_tolerance must be > 0, got " + num(residualTolerance));
+        throw std::invalid_argument("solver.momentum_tolerance must be > 0, got " +
+                                    num(residualTolerance));
     if (!(displacementHeight_m >= 0.0) || !std::isfinite(displacementHeight_m))
-        throw std::invalid_argument("solver.displacement_height_m must be >= 0 and finite, got " + num(displacementHeight_m));
+        throw std::invalid_argument("solver.displacement_height_m must be >= 0 and finite, got " +
+                                    num(displacementHeight_m));
     if (!(mixingLengthMax_m > 0.0) || !std::isfinite(mixingLengthMax_m))
-        throw std::invalid_argument("solver.mixing_length_max_m must be > 0 and finite, got " + num(mixingLengthMax_m));
+        throw std::invalid_argument("solver.mixing_length_max_m must be > 0 and finite, got " +
+                                    num(mixingLengthMax_m));
 }
 
-MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind& ambient, const MomentumSettings& settings) {
+MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind& ambient,
+                                     const MomentumSettings& settings) {
     settings.validate();
     ambient.validate();
     if (ambient.profile != WindProfile::LogLaw)
-        throw std::invalid_argument("wind.profile must be \"log\" for solver.model = \"momentum\" (its inflow and wall "
-                                    "stress need the roughness), got \"" +
-                                    std::string(windProfileName(ambient.profile)) + "\"");
+        throw std::invalid_argument(
+            "wind.profile must be \"log\" for solver.model = \"momentum\" (its inflow and wall "
+            "stress need the roughness), got \"" +
+            std::string(windProfileName(ambient.profile)) + "\"");
     const auto t0 = Clock::now();
     MomentumWindResult res;
     MomentumReport& rep = res.report;
 
-    SteadyWindResult start = solveSteadyWind(domain, ambient, MassConsistentWeights{}, settings.start);
+    SteadyWindResult start =
+        solveSteadyWind(domain, ambient, MassConsistentWeights{}, settings.start);
     rep.start = start.report;
     const double uRef = ambient.speed_mps > 0.0 ? ambient.speed_mps : 1.0;
     double uMax = ambient.speed_mps;
@@ -100,11 +111,14 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
     // disturbance (a low hill) changes the field little per step from the start, so the residual
     // alone would stop before the wake has formed. A calm wind (speed 0) has nothing to carry.
     const double dirRad = ambient.direction_deg * gale::PI / 180.0;
-    const double crossing_m = std::abs(std::cos(dirRad)) * domain.nx() * h + std::abs(std::sin(dirRad)) * domain.ny() * h;
-    rep.minIterations = ambient.speed_mps > 0.0 ? int(std::ceil(crossing_m / (ambient.speed_mps * rep.dt_s))) : 1;
+    const double crossing_m =
+        std::abs(std::cos(dirRad)) * domain.nx() * h + std::abs(std::sin(dirRad)) * domain.ny() * h;
+    rep.minIterations =
+        ambient.speed_mps > 0.0 ? int(std::ceil(crossing_m / (ambient.speed_mps * rep.dt_s))) : 1;
     std::vector<double> prevU, prevV, prevW;
     for (int it = 1; it <= settings.maxIterations; ++it) {
-        prevU = solver.field().u_mps(), prevV = solver.field().v_mps(), prevW = solver.field().w_mps();
+        prevU = solver.field().u_mps(), prevV = solver.field().v_mps(),
+        prevW = solver.field().w_mps();
         const StepReport sr = solver.step(rep.dt_s);
         const WindField& F = solver.field();
         Change c = changeOver(F.u_mps(), prevU, domain.openFractionsX());
@@ -131,10 +145,12 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
             rep.message = "the field became non-finite at iteration " + std::to_string(it);
             break;
         }
-        if (m.momentumResidual <= settings.residualTolerance && m.projectionConverged && it >= rep.minIterations) {
+        if (m.momentumResidual <= settings.residualTolerance && m.projectionConverged &&
+            it >= rep.minIterations) {
             rep.converged = true;
-            rep.message = "momentum residual " + num(m.momentumResidual) + " <= " + num(settings.residualTolerance) +
-                          " after " + std::to_string(it) + " iterations";
+            rep.message = "momentum residual " + num(m.momentumResidual) +
+                          " <= " + num(settings.residualTolerance) + " after " +
+                          std::to_string(it) + " iterations";
             break;
         }
     }
@@ -147,7 +163,8 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
         rep.maxDivergenceScaled = solver.maxDivergenceScaled();
         if (!rep.finalProjection.converged) {
             rep.converged = false;
-            rep.message += "; the final projection did not converge: " + rep.finalProjection.message;
+            rep.message +=
+                "; the final projection did not converge: " + rep.finalProjection.message;
         }
     }
     res.field = solver.field();

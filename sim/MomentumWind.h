@@ -16,13 +16,13 @@
 /// open (p = 0) with the ambient profile's shear stress, the ground has the wall function.
 ///
 /// Convergence. Each iteration records the momentum residual, the RMS over open faces, weighted
-/// by their open fractions, of (u^{n+1} - u^n) / dt scaled by h / U^2 (U = the ambient speed; the steady momentum
-/// equations' imbalance in units of the advective acceleration U^2 / h), its maximum, and the
-/// largest divergence after the projection, max |div u| h / U. Converged: the RMS residual at or
-/// below residualTolerance with a converged projection, and at least as many steps as the
-/// ambient wind needs to cross the box once (MomentumReport::minIterations; a low hill's small
-/// disturbance changes the field little per step from the start). Otherwise the report says why, and the
-/// field is the last iterate.
+/// by their open fractions, of (u^{n+1} - u^n) / dt scaled by h / U^2 (U = the ambient speed; the
+/// steady momentum equations' imbalance in units of the advective acceleration U^2 / h), its
+/// maximum, and the largest divergence after the projection, max |div u| h / U. Converged: the RMS
+/// residual at or below residualTolerance with a converged projection, and at least as many steps
+/// as the ambient wind needs to cross the box once (MomentumReport::minIterations; a low hill's
+/// small disturbance changes the field little per step from the start). Otherwise the report says
+/// why, and the field is the last iterate.
 ///
 /// @code
 ///   gale::sim::AirDomain domain(terrain, {/*voxelSize_m=*/5.0});
@@ -66,7 +66,7 @@ struct MomentumSettings {
 /// One pseudo-time step of the history.
 struct MomentumIteration {
     int iteration = 0;
-    double momentumResidual = 0;     ///< open-fraction weighted RMS over faces of |du| / dt * h / U^2
+    double momentumResidual = 0;  ///< open-fraction weighted RMS over faces of |du| / dt * h / U^2
     double maxMomentumResidual = 0;  ///< max over faces of theta |du| / dt * h / U^2
     double maxDivergenceScaled = 0;  ///< max over air cells |div u| h / U after the projection
     int projectionIterations = 0;
@@ -76,18 +76,18 @@ struct MomentumIteration {
 
 struct [[nodiscard]] MomentumReport {
     bool converged = false;
-    bool finite = true;           ///< no NaN/Inf in the field
+    bool finite = true;  ///< no NaN/Inf in the field
     int iterations = 0;
-    int minIterations = 0;        ///< steps for the ambient wind to cross the box once
-    double momentumResidual = 0;  ///< of the last iteration (RMS)
-    double maxDivergenceScaled = 0;  ///< max |div u| h / U after the final projection
-    SolveReport finalProjection;  ///< the final projection's solve
-    double dt_s = 0;              ///< the pseudo-time step
-    double maxEddyViscosity_m2ps = 0;     ///< of the last iteration
-    double maxFrictionVelocity_mps = 0;   ///< of the last iteration
-    double seconds = 0;           ///< wall time including the start solve
-    std::string message;          ///< why it stopped, in words
-    SolveReport start;            ///< the mass-consistent start solve
+    int minIterations = 0;               ///< steps for the ambient wind to cross the box once
+    double momentumResidual = 0;         ///< of the last iteration (RMS)
+    double maxDivergenceScaled = 0;      ///< max |div u| h / U after the final projection
+    SolveReport finalProjection;         ///< the final projection's solve
+    double dt_s = 0;                     ///< the pseudo-time step
+    double maxEddyViscosity_m2ps = 0;    ///< of the last iteration
+    double maxFrictionVelocity_mps = 0;  ///< of the last iteration
+    double seconds = 0;                  ///< wall time including the start solve
+    std::string message;                 ///< why it stopped, in words
+    SolveReport start;                   ///< the mass-consistent start solve
     std::vector<MomentumIteration> history;
 };
 
@@ -99,7 +99,8 @@ struct MomentumWindResult {
 /// Extra bytes per cell of the box a momentum solve holds beyond the mass-consistent solve
 /// (AirDomain's memory estimate adds it when DomainSpec::momentumModel is set): the unsteady
 /// solver's mean field, step copies and masks, the previous iterate, the stress step's arrays.
-inline constexpr double MOMENTUM_EXTRA_BYTES_PER_CELL = 24.0 * 5 + 3.0 + TurbulentStress::BYTES_PER_CELL;
+inline constexpr double MOMENTUM_EXTRA_BYTES_PER_CELL =
+    24.0 * 5 + 3.0 + TurbulentStress::BYTES_PER_CELL;
 
 /// Solves the momentum model for an ambient wind with a log profile (its roughness_m is z0).
 /// Build the domain with DomainSpec::momentumModel set, so that its memory check (made before
@@ -107,7 +108,8 @@ inline constexpr double MOMENTUM_EXTRA_BYTES_PER_CELL = 24.0 * 5 + 3.0 + Turbule
 /// Throws std::invalid_argument naming the field for a bad wind or settings, or a wind whose
 /// profile is not the log law (the model's inflow and wall stress need the roughness).
 /// Non-convergence is in the report, never thrown.
-[[nodiscard]] MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind& ambient,
+[[nodiscard]] MomentumWindResult solveMomentumWind(const AirDomain& domain,
+                                                   const AmbientWind& ambient,
                                                    const MomentumSettings& settings);
 
 }  // namespace gale::sim

@@ -1,9 +1,6 @@
 /// \file SteadyWind.cpp
 /// Assembly of Sherman's (1978) mass-consistent problem on cut cells, and the velocity update.
 #include "sim/SteadyWind.h"
-#include "sim/Format.h"
-
-#include "sim/FaceExtrapolation.h"
 
 #include <tbb/parallel_for.h>
 
@@ -13,6 +10,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sim/FaceExtrapolation.h"
+#include "sim/Format.h"
+
 namespace gale::sim {
 namespace {
 
@@ -20,18 +20,21 @@ using detail::num;
 
 double checkedRatio(const MassConsistentWeights& w) {
     if (!(w.alphaH > 0.0) || !std::isfinite(w.alphaH))
-        throw std::invalid_argument("MassConsistentWeights.alphaH must be > 0 and finite, got " + num(w.alphaH));
+        throw std::invalid_argument("MassConsistentWeights.alphaH must be > 0 and finite, got " +
+                                    num(w.alphaH));
     if (!(w.alphaV > 0.0) || !std::isfinite(w.alphaV))
-        throw std::invalid_argument("MassConsistentWeights.alphaV must be > 0 and finite, got " + num(w.alphaV));
+        throw std::invalid_argument("MassConsistentWeights.alphaV must be > 0 and finite, got " +
+                                    num(w.alphaV));
     const double r = (w.alphaH / w.alphaV) * (w.alphaH / w.alphaV);
     constexpr double ROUNDING = 1e-9;  // (sqrt(10))^2 must pass as 10
-    if (r < SteadyWindSolver::MIN_VERTICAL_RATIO * (1 - ROUNDING) || r > SteadyWindSolver::MAX_VERTICAL_RATIO * (1 + ROUNDING))
-        throw std::invalid_argument("MassConsistentWeights: (alphaH/alphaV)^2 = " + num(r) + " is outside the supported [" +
+    if (r < SteadyWindSolver::MIN_VERTICAL_RATIO * (1 - ROUNDING) ||
+        r > SteadyWindSolver::MAX_VERTICAL_RATIO * (1 + ROUNDING))
+        throw std::invalid_argument("MassConsistentWeights: (alphaH/alphaV)^2 = " + num(r) +
+                                    " is outside the supported [" +
                                     num(SteadyWindSolver::MIN_VERTICAL_RATIO) + ", " +
                                     num(SteadyWindSolver::MAX_VERTICAL_RATIO) + "]");
     return r;
 }
-
 
 }  // namespace
 
@@ -49,7 +52,10 @@ PoissonSystem SteadyWindSolver::makeSystem(const AirDomain& d, double r) {
 }
 
 SteadyWindSolver::SteadyWindSolver(const AirDomain& domain, const MassConsistentWeights& weights)
-    : mDomain(domain), mRatio(checkedRatio(weights)), mSystem(makeSystem(domain, mRatio)), mPoisson(mSystem) {}
+    : mDomain(domain),
+      mRatio(checkedRatio(weights)),
+      mSystem(makeSystem(domain, mRatio)),
+      mPoisson(mSystem) {}
 
 void SteadyWindSolver::setWarmStart(std::vector<double> potential) {
     if (!potential.empty() && potential.size() != mSystem.cellCount())
@@ -104,7 +110,8 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
 
     // --- right-hand side: h * outward open flux of u0, plus Dirichlet data on the open sides.
     // Boundary weights carry the factor 2 of a face half a cell from the centre.
-    const std::vector<float>&thX = D.openFractionsX(), &thY = D.openFractionsY(), &thZ = D.openFractionsZ();
+    const std::vector<float>&thX = D.openFractionsX(), &thY = D.openFractionsY(),
+          &thZ = D.openFractionsZ();
     auto g = [&](double x, double y, double z) { return boundary ? boundary(x, y, z) : 0.0; };
     std::vector<double> rhs(S.cellCount(), 0.0);
     tbb::parallel_for(0, nz, [&](int k) {
@@ -116,7 +123,8 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
                 const size_t zp = S.faceZIndex(i, j, k + 1);
                 double b = h * D.openOutflux(U, V, W, i, j, k);
                 if (boundary) {
-                    const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h, zc = o[2] + (k + 0.5) * h;
+                    const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h,
+                                 zc = o[2] + (k + 0.5) * h;
                     if (i == 0) b += 2.0 * thX[xm] * g(o[0], yc, zc);
                     if (i == nx - 1) b += 2.0 * thX[xp] * g(o[0] + nx * h, yc, zc);
                     if (j == 0) b += 2.0 * thY[ym] * g(xc, o[1], zc);
@@ -126,7 +134,8 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
                 rhs[S.cellIndex(i, j, k)] = b;
             }
     });
-    const double tAssemble = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double tAssemble =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     // --- solve -----------------------------------------------------------------------------
     res.report = mPoisson.solve(rhs, mPotential, settings);
@@ -192,12 +201,15 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
                 maxDiv = std::max(maxDiv, std::abs(D.openOutflux(U, V, W, i, j, k)));
             }
     res.report.maxDivergenceScaled = maxDiv / Uref;
-    res.assemblySeconds = tAssemble + std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    res.assemblySeconds =
+        tAssemble + std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     return res;
 }
 
-SteadyWindResult solveSteadyWind(const AirDomain& domain, const AmbientWind& ambient, const MassConsistentWeights& weights,
-                                 const SolverSettings& settings, const BoundaryPotential& boundary) {
+SteadyWindResult solveSteadyWind(const AirDomain& domain, const AmbientWind& ambient,
+                                 const MassConsistentWeights& weights,
+                                 const SolverSettings& settings,
+                                 const BoundaryPotential& boundary) {
     SteadyWindSolver solver(domain, weights);
     return solver.solve(ambient, settings, boundary);
 }
@@ -209,11 +221,13 @@ const char* steadyModelName(SteadyModel model) {
 SteadyModel steadyModelFromName(const std::string& name) {
     if (name == "mass_consistent") return SteadyModel::MassConsistent;
     if (name == "momentum") return SteadyModel::Momentum;
-    throw std::invalid_argument("unknown steady model '" + name + "' (expected one of: mass_consistent, momentum)");
+    throw std::invalid_argument("unknown steady model '" + name +
+                                "' (expected one of: mass_consistent, momentum)");
 }
 
-SteadyModelResult solveSteadyModel(const AirDomain& domain, const AmbientWind& ambient, SteadyModel model,
-                                   const MassConsistentWeights& weights, const SolverSettings& settings,
+SteadyModelResult solveSteadyModel(const AirDomain& domain, const AmbientWind& ambient,
+                                   SteadyModel model, const MassConsistentWeights& weights,
+                                   const SolverSettings& settings,
                                    const MomentumSettings& momentum) {
     SteadyModelResult out;
     if (model == SteadyModel::MassConsistent) {
@@ -230,7 +244,8 @@ SteadyModelResult solveSteadyModel(const AirDomain& domain, const AmbientWind& a
     s.converged = r.report.converged && r.report.finite;
     s.iterations = r.report.iterations;
     s.relativeResidual = r.report.momentumResidual;
-    s.initialRelativeResidual = r.report.history.empty() ? 0.0 : r.report.history.front().momentumResidual;
+    s.initialRelativeResidual =
+        r.report.history.empty() ? 0.0 : r.report.history.front().momentumResidual;
     s.solveSeconds = r.report.seconds;
     s.setupSeconds = r.report.start.setupSeconds;
     s.levels = r.report.finalProjection.levels;

@@ -1,7 +1,7 @@
 #pragma once
 /// \file SteadyWind.h
-/// The steady mass-consistent wind (docs/design.md 4.1, after Sherman 1978): the divergence-free field u
-/// closest to the first guess u0 (an AmbientWind) in the weighted norm
+/// The steady mass-consistent wind (docs/design.md 4.1, after Sherman 1978): the divergence-free
+/// field u closest to the first guess u0 (an AmbientWind) in the weighted norm
 ///   integral of a_h^2 [(u-u0)^2 + (v-v0)^2] + a_v^2 (w-w0)^2,
 /// which is u = u0 + A grad(lambda), A = diag(1/(2 a_h^2), 1/(2 a_h^2), 1/(2 a_v^2)), with
 ///   div(A grad lambda) = -div u0,  lambda = 0 on the open sides and top,  no flux through terrain.
@@ -22,11 +22,11 @@
 /// around them, repeated EXTRAPOLATION_LAYERS times; any face still without a value gets 0.
 ///
 /// @code
-///   gale::sim::AirDomain domain(terrain, {/*voxelSize_m=*/2.0, /*top_m=*/{}, /*memoryLimit_bytes=*/2e9});
-///   gale::sim::SteadyWindSolver solver(domain, {/*alphaH=*/1.0, /*alphaV=*/1.0});
-///   gale::sim::SteadyWindResult res = solver.solve(ambient, gale::sim::SolverSettings{});
-///   if (!res.report.converged) std::cerr << res.report.message << "\n";
-///   auto u = res.field.velocityAt_mps(x, y, z);
+///   gale::sim::AirDomain domain(terrain, {/*voxelSize_m=*/2.0, /*top_m=*/{},
+///   /*memoryLimit_bytes=*/2e9}); gale::sim::SteadyWindSolver solver(domain, {/*alphaH=*/1.0,
+///   /*alphaV=*/1.0}); gale::sim::SteadyWindResult res = solver.solve(ambient,
+///   gale::sim::SolverSettings{}); if (!res.report.converged) std::cerr << res.report.message <<
+///   "\n"; auto u = res.field.velocityAt_mps(x, y, z);
 /// @endcode
 
 #include <functional>
@@ -66,7 +66,7 @@ struct SteadyWindResult {
 /// times (other winds, tolerances), each warm-started from the previous potential. Keeps a
 /// reference to the domain: the domain must outlive the solver.
 class SteadyWindSolver {
-public:
+  public:
     /// Supported r = (a_h / a_v)^2: outside it the point smoother's V-cycle degrades (the
     /// operator's anisotropy; docs/design.md 7), so we refuse rather than crawl.
     static constexpr double MIN_VERTICAL_RATIO = 0.1;
@@ -95,7 +95,7 @@ public:
     /// bottom (under the terrain). The unsteady projection uses verticalRatio = 1.
     static PoissonSystem makeSystem(const AirDomain& domain, double verticalRatio);
 
-private:
+  private:
     const AirDomain& mDomain;
     double mRatio = 1.0;
     PoissonSystem mSystem;
@@ -105,7 +105,8 @@ private:
 
 /// One-shot convenience: builds a SteadyWindSolver and solves once from a zero potential.
 [[nodiscard]] SteadyWindResult solveSteadyWind(const AirDomain& domain, const AmbientWind& ambient,
-                                               const MassConsistentWeights& weights, const SolverSettings& settings,
+                                               const MassConsistentWeights& weights,
+                                               const SolverSettings& settings,
                                                const BoundaryPotential& boundary = {});
 
 /// The steady model a scene chooses ([solver] model).
@@ -130,8 +131,10 @@ struct SteadyModelResult {
 /// Solves the chosen steady model: the mass-consistent field with `weights` and `settings`, or
 /// the momentum model started from the mass-consistent field solved with `settings`
 /// (momentum.start is overwritten by them). Throws std::invalid_argument as the model does.
-[[nodiscard]] SteadyModelResult solveSteadyModel(const AirDomain& domain, const AmbientWind& ambient, SteadyModel model,
-                                                 const MassConsistentWeights& weights, const SolverSettings& settings,
+[[nodiscard]] SteadyModelResult solveSteadyModel(const AirDomain& domain,
+                                                 const AmbientWind& ambient, SteadyModel model,
+                                                 const MassConsistentWeights& weights,
+                                                 const SolverSettings& settings,
                                                  const MomentumSettings& momentum = {});
 
 }  // namespace gale::sim

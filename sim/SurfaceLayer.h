@@ -71,12 +71,13 @@ inline constexpr double BLACKADAR_MAX_MIXING_LENGTH_M = 0.00027 * 15.0 / 1.0e-4;
 /// Blackadar's mixing length (m) on a face at edgeHeight_m above ground between two samples
 /// spacing_m apart (at edgeHeight_m -+ spacing_m / 2), with kappa z replaced by the length that
 /// makes a sampled log profile carry exactly u*^2 through that face:
-///   l_d = kappa h / [ln((z_e + h/2 - d) / z0) - ln((z_e - h/2 - d) / z0)]   (-> kappa (z_e - d) as h -> 0),
+///   l_d = kappa h / [ln((z_e + h/2 - d) / z0) - ln((z_e - h/2 - d) / z0)]   (-> kappa (z_e - d) as
+///   h -> 0),
 /// since the log law's difference quotient is (u* / kappa) times that bracket over h. Without it
 /// the first face above a wall cell carries (ln 3)^2 = 1.21 u*^2 and the profile drifts. Lengths
 /// clamp as logFactor does; 0 at or below the displacement plane.
-inline double discreteMixingLength_m(double edgeHeight_m, double spacing_m, double lMax_m, double z0_m,
-                                     double d_m = 0.0) {
+inline double discreteMixingLength_m(double edgeHeight_m, double spacing_m, double lMax_m,
+                                     double z0_m, double d_m = 0.0) {
     if (edgeHeight_m - d_m <= 0.0) return 0.0;
     const double dLog = logFactor(edgeHeight_m + 0.5 * spacing_m, z0_m, d_m) -
                         logFactor(edgeHeight_m - 0.5 * spacing_m, z0_m, d_m);

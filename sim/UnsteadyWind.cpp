@@ -1,7 +1,6 @@
 /// \file UnsteadyWind.cpp
 /// Operator-split incompressible steps on the MAC grid (Stam 1999; projection as SteadyWind.cpp).
 #include "sim/UnsteadyWind.h"
-#include "sim/Format.h"
 
 #include <tbb/parallel_for.h>
 
@@ -11,16 +10,19 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/Numbers.h"
 #include "sim/FaceExtrapolation.h"
+#include "sim/Format.h"
 #include "sim/SteadyWind.h"
 #include "sim/Viscosity.h"
-#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 using detail::num;
 
@@ -30,7 +32,6 @@ constexpr int EXTRAPOLATION_LAYERS = SteadyWindSolver::EXTRAPOLATION_LAYERS;
 constexpr double MIN_FORCING_STEPS = 1.0;
 /// Forcing and circulation are measured on a ring of this many core radii (at least 2 cells).
 constexpr double FORCING_RING_CORES = 2.0;
-
 
 /// The steady solve's operator with A = I; the top closed by a lid unless it is open.
 PoissonSystem projectionSystem(const AirDomain& domain, bool openTop) {
@@ -42,16 +43,19 @@ PoissonSystem projectionSystem(const AirDomain& domain, bool openTop) {
 }  // namespace
 
 void UnsteadySettings::validate() const {
-    if (!(dt_s >= 0.0) || !std::isfinite(dt_s)) throw std::invalid_argument("unsteady.dt_s must be >= 0, got " + num(dt_s));
+    if (!(dt_s >= 0.0) || !std::isfinite(dt_s))
+        throw std::invalid_argument("unsteady.dt_s must be >= 0, got " + num(dt_s));
     if (dt_s == 0.0 && (!(cfl > 0.0) || !std::isfinite(cfl)))
         throw std::invalid_argument("unsteady.cfl must be > 0, got " + num(cfl));
     if (!(maxDt_s > 0.0) || !std::isfinite(maxDt_s))
         throw std::invalid_argument("unsteady.max_dt_s must be > 0, got " + num(maxDt_s));
     if (!(viscosity_m2ps >= 0.0) || !std::isfinite(viscosity_m2ps))
-        throw std::invalid_argument("unsteady.viscosity_m2ps must be >= 0, got " + num(viscosity_m2ps));
+        throw std::invalid_argument("unsteady.viscosity_m2ps must be >= 0, got " +
+                                    num(viscosity_m2ps));
     if (surfaceLayer.enabled) surfaceLayer.validate();
     if (!(vorticityConfinement >= 0.0) || !std::isfinite(vorticityConfinement))
-        throw std::invalid_argument("unsteady.vorticity_confinement must be >= 0, got " + num(vorticityConfinement));
+        throw std::invalid_argument("unsteady.vorticity_confinement must be >= 0, got " +
+                                    num(vorticityConfinement));
     for (size_t i = 0; i < gusts.size(); ++i) try {
             gusts[i].validate();
         } catch (const std::invalid_argument& e) {
@@ -64,8 +68,8 @@ void UnsteadySettings::validate() const {
         }
 }
 
-UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField& mean, const UnsteadySettings& settings,
-                                       double referenceSpeed_mps)
+UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField& mean,
+                                       const UnsteadySettings& settings, double referenceSpeed_mps)
     : mDomain(domain),
       mSettings(settings),
       mRefSpeed_mps(referenceSpeed_mps > 0.0 ? referenceSpeed_mps : 1.0),
@@ -75,7 +79,8 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
     mSettings.validate();
     if (mean.nx() != domain.nx() || mean.ny() != domain.ny() || mean.nz() != domain.nz())
         throw std::invalid_argument("UnsteadyWindSolver: the mean field does not match the domain");
-    mGrid = MacGrid{domain.nx(), domain.ny(), domain.nz(), domain.voxelSize_m(), domain.wsMin_m(), &domain.terrain()};
+    mGrid = MacGrid{domain.nx(),          domain.ny(),      domain.nz(),
+                    domain.voxelSize_m(), domain.wsMin_m(), &domain.terrain()};
     mMeanU = mean.u_mps(), mMeanV = mean.v_mps(), mMeanW = mean.w_mps();
     for (const auto* a : {&mMeanU, &mMeanV, &mMeanW})
         for (double x : *a) mMeanMax_mps = std::max(mMeanMax_mps, std::abs(x));
@@ -88,25 +93,28 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
     for (int k = 0; k < nz; ++k)
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i <= nx; ++i)
-                mOkX[mSystem.faceXIndex(i, j, k)] = (i > 0 && i < nx) ? (air(i - 1, j, k) && air(i, j, k))
-                                                    : i == 0         ? air(0, j, k)
-                                                                     : air(nx - 1, j, k);
+                mOkX[mSystem.faceXIndex(i, j, k)] = (i > 0 && i < nx)
+                                                        ? (air(i - 1, j, k) && air(i, j, k))
+                                                    : i == 0 ? air(0, j, k)
+                                                             : air(nx - 1, j, k);
     for (int k = 0; k < nz; ++k)
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i < nx; ++i)
-                mOkY[mSystem.faceYIndex(i, j, k)] = (j > 0 && j < ny) ? (air(i, j - 1, k) && air(i, j, k))
-                                                    : j == 0         ? air(i, 0, k)
-                                                                     : air(i, ny - 1, k);
+                mOkY[mSystem.faceYIndex(i, j, k)] = (j > 0 && j < ny)
+                                                        ? (air(i, j - 1, k) && air(i, j, k))
+                                                    : j == 0 ? air(i, 0, k)
+                                                             : air(i, ny - 1, k);
     for (int k = 0; k <= nz; ++k)
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i)
-                mOkZ[mSystem.faceZIndex(i, j, k)] = (k > 0 && k < nz) ? (air(i, j, k - 1) && air(i, j, k))
-                                                    : k == nz        ? (mSettings.openTop ? air(i, j, nz - 1) : uint8_t(0))
-                                                                     : 0;
+                mOkZ[mSystem.faceZIndex(i, j, k)] =
+                    (k > 0 && k < nz) ? (air(i, j, k - 1) && air(i, j, k))
+                    : k == nz         ? (mSettings.openTop ? air(i, j, nz - 1) : uint8_t(0))
+                                      : 0;
     mSeeded.assign(mSettings.whirlwinds.size(), 0);
     if (mSettings.surfaceLayer.enabled)
-        mStress = std::make_unique<TurbulentStress>(domain, mSettings.surfaceLayer, mSettings.viscosity_m2ps, mOkX,
-                                                    mOkY, mOkZ);
+        mStress = std::make_unique<TurbulentStress>(domain, mSettings.surfaceLayer,
+                                                    mSettings.viscosity_m2ps, mOkX, mOkY, mOkZ);
     if (!mSettings.openTop) {
         // The steady field's small flux through the top becomes the lid's first projection.
         closeLid();
@@ -116,13 +124,15 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
 }
 
 Vec3d UnsteadyWindSolver::farField_mps(const Vec3d& ws, double t) const {
-    Vec3d m{sampleAt(mGrid, Placement::FaceX, mMeanU, ws), sampleAt(mGrid, Placement::FaceY, mMeanV, ws),
+    Vec3d m{sampleAt(mGrid, Placement::FaceX, mMeanU, ws),
+            sampleAt(mGrid, Placement::FaceY, mMeanV, ws),
             sampleAt(mGrid, Placement::FaceZ, mMeanW, ws)};
     if (mSettings.gusts.empty()) return m;
     // The gust scales with height like the mean flow (capped at 1): calm air near the ground
     // gusts less.
     const double s = std::sqrt(m[0] * m[0] + m[1] * m[1]);
-    const double factor = mRefSpeed_mps > 0.0 && mMeanMax_mps > 0.0 ? std::min(1.0, s / mRefSpeed_mps) : 1.0;
+    const double factor =
+        mRefSpeed_mps > 0.0 && mMeanMax_mps > 0.0 ? std::min(1.0, s / mRefSpeed_mps) : 1.0;
     for (const GustEvent& g : mSettings.gusts) {
         if (g.entry != GustEntry::Inflow) continue;  // region gusts are forcing, not far field
         const auto a = g.velocityAt_mps(t);
@@ -157,9 +167,11 @@ double UnsteadyWindSolver::kineticEnergy_m5ps2() const {
     const double h3 = mGrid.voxelSize_m * mGrid.voxelSize_m * mGrid.voxelSize_m;
     double e = 0.0;
     const std::vector<double>* a[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
-    const std::vector<float>* th[3] = {&mDomain.openFractionsX(), &mDomain.openFractionsY(), &mDomain.openFractionsZ()};
+    const std::vector<float>* th[3] = {&mDomain.openFractionsX(), &mDomain.openFractionsY(),
+                                       &mDomain.openFractionsZ()};
     for (int c = 0; c < 3; ++c)
-        for (size_t f = 0; f < a[c]->size(); ++f) e += double((*th[c])[f]) * (*a[c])[f] * (*a[c])[f];
+        for (size_t f = 0; f < a[c]->size(); ++f)
+            e += double((*th[c])[f]) * (*a[c])[f] * (*a[c])[f];
     return 0.5 * e * h3;
 }
 
@@ -177,9 +189,12 @@ double UnsteadyWindSolver::maxDivergenceScaled() const {
 }
 
 void UnsteadyWindSolver::extrapolateClosedFaces() {
-    detail::extrapolateFaces(mField.u_mps(), mOkX, mGrid.nx + 1, mGrid.ny, mGrid.nz, EXTRAPOLATION_LAYERS);
-    detail::extrapolateFaces(mField.v_mps(), mOkY, mGrid.nx, mGrid.ny + 1, mGrid.nz, EXTRAPOLATION_LAYERS);
-    detail::extrapolateFaces(mField.w_mps(), mOkZ, mGrid.nx, mGrid.ny, mGrid.nz + 1, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(mField.u_mps(), mOkX, mGrid.nx + 1, mGrid.ny, mGrid.nz,
+                             EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(mField.v_mps(), mOkY, mGrid.nx, mGrid.ny + 1, mGrid.nz,
+                             EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(mField.w_mps(), mOkZ, mGrid.nx, mGrid.ny, mGrid.nz + 1,
+                             EXTRAPOLATION_LAYERS);
 }
 
 SolveReport UnsteadyWindSolver::project() { return project(mSettings.projection); }
@@ -207,13 +222,19 @@ SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {
             for (int i = 0; i <= nx; ++i) {
                 const size_t f = S.faceXIndex(i, j, k);
                 if (!mOkX[f]) continue;
-                U[f] += (i == 0 ? 2.0 * P(0, j, k) : i == nx ? -2.0 * P(nx - 1, j, k) : P(i, j, k) - P(i - 1, j, k)) / h;
+                U[f] += (i == 0    ? 2.0 * P(0, j, k)
+                         : i == nx ? -2.0 * P(nx - 1, j, k)
+                                   : P(i, j, k) - P(i - 1, j, k)) /
+                        h;
             }
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 const size_t f = S.faceYIndex(i, j, k);
                 if (!mOkY[f]) continue;
-                V[f] += (j == 0 ? 2.0 * P(i, 0, k) : j == ny ? -2.0 * P(i, ny - 1, k) : P(i, j, k) - P(i, j - 1, k)) / h;
+                V[f] += (j == 0    ? 2.0 * P(i, 0, k)
+                         : j == ny ? -2.0 * P(i, ny - 1, k)
+                                   : P(i, j, k) - P(i, j - 1, k)) /
+                        h;
             }
     });
     tbb::parallel_for(0, nz + 1, [&](int k) {
@@ -235,8 +256,10 @@ std::array<double, 2> UnsteadyWindSolver::regionCentre_m(const GustEvent& g, dou
     if (!g.regionStartGiven) {
         // On the upwind side: from the box centre back along the direction to the box edge.
         const auto o = mGrid.wsMin_m;
-        const double hx = 0.5 * mGrid.nx * mGrid.voxelSize_m, hy = 0.5 * mGrid.ny * mGrid.voxelSize_m;
-        const double sx = std::abs(dx) > 1e-12 ? hx / std::abs(dx) : 1e300, sy = std::abs(dy) > 1e-12 ? hy / std::abs(dy) : 1e300;
+        const double hx = 0.5 * mGrid.nx * mGrid.voxelSize_m,
+                     hy = 0.5 * mGrid.ny * mGrid.voxelSize_m;
+        const double sx = std::abs(dx) > 1e-12 ? hx / std::abs(dx) : 1e300,
+                     sy = std::abs(dy) > 1e-12 ? hy / std::abs(dy) : 1e300;
         const double back = std::min(sx, sy);
         c = {o[0] + hx - back * dx, o[1] + hy - back * dy};
     }
@@ -270,8 +293,11 @@ void UnsteadyWindSolver::applyRegionGusts(double t, double dt) {
                         const double x = std::clamp((r - 0.5 * R) / (0.5 * R), 0.0, 1.0);
                         const double w = 1.0 - x * x * (3.0 - 2.0 * x);
                         // The gust scales with height like the mean flow, as at the inflow.
-                        const Vec3d m{sampleAt(mGrid, Placement::FaceX, mMeanU, ws), sampleAt(mGrid, Placement::FaceY, mMeanV, ws), 0.0};
-                        const double f = mMeanMax_mps > 0.0 ? std::min(1.0, std::hypot(m[0], m[1]) / mRefSpeed_mps) : 1.0;
+                        const Vec3d m{sampleAt(mGrid, Placement::FaceX, mMeanU, ws),
+                                      sampleAt(mGrid, Placement::FaceY, mMeanV, ws), 0.0};
+                        const double f = mMeanMax_mps > 0.0
+                                             ? std::min(1.0, std::hypot(m[0], m[1]) / mRefSpeed_mps)
+                                             : 1.0;
                         const double target = (*means[comp])[idx] + f * G[comp];
                         a[idx] += beta * w * (target - a[idx]);
                     }
@@ -293,8 +319,8 @@ void UnsteadyWindSolver::seedDue(double t0, double t1) {
         const Whirlwind& ww = mSettings.whirlwinds[n];
         if (mSeeded[n] || ww.start_s >= t1) continue;
         (void)t0;
-        addWhirlwind(mGrid, ww, mAxes[n], 1.0, ground, mDomain.wsTop_m(), mField.u_mps(), mField.v_mps(), mField.w_mps(),
-                     {&mOkX, &mOkY, &mOkZ});
+        addWhirlwind(mGrid, ww, mAxes[n], 1.0, ground, mDomain.wsTop_m(), mField.u_mps(),
+                     mField.v_mps(), mField.w_mps(), {&mOkX, &mOkY, &mOkZ});
         mSeeded[n] = 1;
     }
 }
@@ -313,17 +339,20 @@ void UnsteadyWindSolver::applyForcing(double t0, double dt) {
         if (target == 0.0) continue;
         const double now = circulationAround(mGrid, velocity(), mAxes[n], R, z);
         const double deficit = std::clamp((target - now) / target, 0.0, 1.0);
-        const double vPeak = std::abs(ww.circulation()) * peakSpeedFactor(ww.profile) / (2 * PI * ww.coreRadius_m);
-        const double tau = std::max(ww.coreRadius_m / std::max(vPeak, 1e-9), MIN_FORCING_STEPS * dt);
+        const double vPeak =
+            std::abs(ww.circulation()) * peakSpeedFactor(ww.profile) / (2 * PI * ww.coreRadius_m);
+        const double tau =
+            std::max(ww.coreRadius_m / std::max(vPeak, 1e-9), MIN_FORCING_STEPS * dt);
         const double scale = deficit * (1.0 - std::exp(-dt / tau));
         if (scale > 0.0)
-            addWhirlwind(mGrid, ww, mAxes[n], scale, ground, mDomain.wsTop_m(), mField.u_mps(), mField.v_mps(),
-                         mField.w_mps(), {&mOkX, &mOkY, &mOkZ});
+            addWhirlwind(mGrid, ww, mAxes[n], scale, ground, mDomain.wsTop_m(), mField.u_mps(),
+                         mField.v_mps(), mField.w_mps(), {&mOkX, &mOkY, &mOkZ});
     }
 }
 
 StepReport UnsteadyWindSolver::step(double dt) {
-    if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("UnsteadyWindSolver::step: dt_s must be > 0, got " + num(dt));
+    if (!(dt > 0.0) || !std::isfinite(dt))
+        throw std::invalid_argument("UnsteadyWindSolver::step: dt_s must be > 0, got " + num(dt));
     const auto tStart = Clock::now();
     StepReport rep;
     const double t0 = mTime_s, t1 = mTime_s + dt;
@@ -364,7 +393,8 @@ StepReport UnsteadyWindSolver::step(double dt) {
         const std::vector<uint8_t>* masks[3] = {&mOkX, &mOkY, &mOkZ};
         for (int c = 0; c < 3; ++c) {
             const OutsideValue outside = [&, c](const Vec3d& p) { return farField_mps(p, t1)[c]; };
-            advect(mGrid, Placement(c), *src[c], vel, far, outside, dt, mSettings.advection, *dst[c], masks[c]);
+            advect(mGrid, Placement(c), *src[c], vel, far, outside, dt, mSettings.advection,
+                   *dst[c], masks[c]);
         }
     }
     rep.advection_s = since(t);
@@ -372,9 +402,11 @@ StepReport UnsteadyWindSolver::step(double dt) {
     if (!mSettings.openTop) closeLid();
     // 3. forces (the energy they add is measured only when they run).
     t = Clock::now();
-    const bool regionGust = std::any_of(mSettings.gusts.begin(), mSettings.gusts.end(), [&](const GustEvent& g) {
-        return g.entry == GustEntry::Region && t1 >= g.start_s && t0 <= g.start_s + g.duration_s;
-    });
+    const bool regionGust =
+        std::any_of(mSettings.gusts.begin(), mSettings.gusts.end(), [&](const GustEvent& g) {
+            return g.entry == GustEntry::Region && t1 >= g.start_s &&
+                   t0 <= g.start_s + g.duration_s;
+        });
     const bool forcing = std::any_of(mSettings.whirlwinds.begin(), mSettings.whirlwinds.end(),
                                      [](const Whirlwind& w) { return w.forced; }) ||
                          mSettings.vorticityConfinement > 0.0 || regionGust;
@@ -382,8 +414,8 @@ StepReport UnsteadyWindSolver::step(double dt) {
     if (regionGust) applyRegionGusts(t1, dt);
     if (!mSettings.whirlwinds.empty()) applyForcing(t0, dt);
     if (mSettings.vorticityConfinement > 0.0)
-        addVorticityConfinement(mGrid, mDomain.airFlags(), mSettings.vorticityConfinement, dt, mField.u_mps(),
-                                mField.v_mps(), mField.w_mps());
+        addVorticityConfinement(mGrid, mDomain.airFlags(), mSettings.vorticityConfinement, dt,
+                                mField.u_mps(), mField.v_mps(), mField.w_mps());
     if (forcing) rep.forcingEnergy_m5ps2 = kineticEnergy_m5ps2() - keBeforeForces;
     rep.forcing_s += since(t);
 
@@ -395,8 +427,9 @@ StepReport UnsteadyWindSolver::step(double dt) {
         rep.viscosity_s = since(t);
     } else if (mSettings.viscosity_m2ps > 0.0) {
         t = Clock::now();
-        const ViscosityReport vr = diffuseImplicit(mGrid, mSettings.viscosity_m2ps, dt, {&mOkX, &mOkY, &mOkZ},
-                                                   mField.u_mps(), mField.v_mps(), mField.w_mps());
+        const ViscosityReport vr =
+            diffuseImplicit(mGrid, mSettings.viscosity_m2ps, dt, {&mOkX, &mOkY, &mOkZ},
+                            mField.u_mps(), mField.v_mps(), mField.w_mps());
         rep.viscosityIterations = vr.iterations;
         rep.viscosity_s = since(t);
     }

@@ -1,8 +1,9 @@
 #pragma once
 /// \file UnsteadyWind.h
-/// The unsteady wind (docs/design.md 4.2): incompressible, inviscid or viscous flow on the AirDomain's MAC
-/// grid, started from the steady mass-consistent field, which stays the mean flow that enters
-/// through the open boundaries. docs/unsteady.md has the method, the choices and the measurements.
+/// The unsteady wind (docs/design.md 4.2): incompressible, inviscid or viscous flow on the
+/// AirDomain's MAC grid, started from the steady mass-consistent field, which stays the mean flow
+/// that enters through the open boundaries. docs/unsteady.md has the method, the choices and the
+/// measurements.
 ///
 /// One step of length dt (operator splitting, Stam 1999 "Stable fluids"; Bridson 2015):
 ///  1. seed whirlwinds whose start time falls in the step (sim/Vortices.h), and carry each
@@ -13,8 +14,8 @@
 ///     at the end of the step (sim/Gusts.h). That makes every side an inflow where the air comes
 ///     in and zero-gradient where it goes out;
 ///  3. forces: region gusts (GustEntry::Region: a moving disc relaxing the flow towards the mean
-///     plus the gust), whirlwind forcing during a forced whirlwind's lifetime (relaxes its circulation
-///     at 2 r_c back to the seeded one; injects, never removes), vorticity confinement
+///     plus the gust), whirlwind forcing during a forced whirlwind's lifetime (relaxes its
+///     circulation at 2 r_c back to the seeded one; injects, never removes), vorticity confinement
 ///     (Fedkiw, Stam, Jensen 2001);
 ///  4. optional implicit viscosity (sim/Viscosity.h: backward Euler, unconditionally stable), or,
 ///     with UnsteadySettings::surfaceLayer enabled, the mixing-length eddy viscosity and the
@@ -22,9 +23,9 @@
 ///     ground, whirlwinds lose speed at the surface);
 ///  5. projection: the steady solve's operator with A = I (SteadyWindSolver::makeSystem(domain,
 ///     1)) on cut cells, fluxes theta_f u_f through open fractions theta_f, Dirichlet (p = 0) on
-///     the sides, a free-slip lid on top (UnsteadySettings::openTop), no flux through the terrain; MGPCG warm-started from the previous
-///     step's potential. u <- u + grad(psi), closed faces refilled by extrapolation as in the
-///     steady solve.
+///     the sides, a free-slip lid on top (UnsteadySettings::openTop), no flux through the terrain;
+///     MGPCG warm-started from the previous step's potential. u <- u + grad(psi), closed faces
+///     refilled by extrapolation as in the steady solve.
 /// The steady field is a fixed point of steps 2-5 up to the advection's truncation error.
 ///
 /// Time step: UnsteadySettings::dt_s if > 0, else adaptive, dt = cfl h / max|u| (the field's
@@ -57,10 +58,10 @@ namespace gale::sim {
 
 struct UnsteadySettings {
     AdvectionScheme advection = AdvectionScheme::SemiLagrangian;
-    double dt_s = 0.0;             ///< fixed step, seconds; 0: adaptive from cfl
-    double cfl = 2.0;              ///< adaptive: max|u| dt / h, > 0
-    double maxDt_s = 1.0;          ///< adaptive: longest step, seconds (used in calm air), > 0
-    double viscosity_m2ps = 0.0;   ///< kinematic viscosity nu, m^2/s, >= 0 (0: no diffusion step)
+    double dt_s = 0.0;            ///< fixed step, seconds; 0: adaptive from cfl
+    double cfl = 2.0;             ///< adaptive: max|u| dt / h, > 0
+    double maxDt_s = 1.0;         ///< adaptive: longest step, seconds (used in calm air), > 0
+    double viscosity_m2ps = 0.0;  ///< kinematic viscosity nu, m^2/s, >= 0 (0: no diffusion step)
     double vorticityConfinement = 0.0;  ///< epsilon of Fedkiw et al. 2001, >= 0 (0: off)
     /// Projection solve: defaults a little looser than the steady solve (every step is warm).
     SolverSettings projection{/*relativeTolerance=*/1e-5, /*maxIterations=*/60};
@@ -81,30 +82,33 @@ struct UnsteadySettings {
 
 /// What one step did. Non-convergence of the projection is reported, never thrown.
 struct [[nodiscard]] StepReport {
-    double t_s = 0;        ///< time at the end of the step, seconds
-    double dt_s = 0;       ///< step length, seconds
-    double cfl = 0;        ///< max|u| dt / h reached (field before the step and far field)
-    double maxSpeed_mps = 0;            ///< max cell-centred speed over air cells after the step
-    double kineticEnergy_m5ps2 = 0;     ///< 1/2 sum_f theta_f u_f^2 h^3 after the step (per unit density)
-    double maxDivergenceScaled = 0;     ///< max over air cells |sum_f theta_f u_f . n| / U after the projection
-    bool finite = true;                 ///< no NaN/Inf in any velocity after the step
-    SolveReport projection;             ///< the elliptic solve of step 5
-    int viscosityIterations = 0;        ///< CG iterations of the viscous step (0: none)
-    TurbulenceReport turbulence;        ///< the surface-layer stress step (zeros when off)
+    double t_s = 0;           ///< time at the end of the step, seconds
+    double dt_s = 0;          ///< step length, seconds
+    double cfl = 0;           ///< max|u| dt / h reached (field before the step and far field)
+    double maxSpeed_mps = 0;  ///< max cell-centred speed over air cells after the step
+    double kineticEnergy_m5ps2 =
+        0;  ///< 1/2 sum_f theta_f u_f^2 h^3 after the step (per unit density)
+    double maxDivergenceScaled =
+        0;               ///< max over air cells |sum_f theta_f u_f . n| / U after the projection
+    bool finite = true;  ///< no NaN/Inf in any velocity after the step
+    SolveReport projection;       ///< the elliptic solve of step 5
+    int viscosityIterations = 0;  ///< CG iterations of the viscous step (0: none)
+    TurbulenceReport turbulence;  ///< the surface-layer stress step (zeros when off)
     /// Kinetic energy the forces of step 3 changed (whirlwind forcing, confinement), m^5/s^2;
     /// 0 when no force runs. Seeding is not forcing: it happens before the step's advection.
     double forcingEnergy_m5ps2 = 0;
-    double advection_s = 0, forcing_s = 0, viscosity_s = 0, projection_s = 0, total_s = 0;  ///< wall times
+    double advection_s = 0, forcing_s = 0, viscosity_s = 0, projection_s = 0,
+           total_s = 0;  ///< wall times
 };
 
 class UnsteadyWindSolver {
-public:
+  public:
     /// domain must outlive the solver. meanFlow: the steady field on this domain (its arrays give
     /// the initial state and the far field). referenceSpeed_mps: U of the divergence scaling
     /// (the ambient speed; 0 means 1 m/s). Throws std::invalid_argument on bad settings or a field
     /// that does not match the domain.
-    UnsteadyWindSolver(const AirDomain& domain, const WindField& meanFlow, const UnsteadySettings& settings,
-                       double referenceSpeed_mps);
+    UnsteadyWindSolver(const AirDomain& domain, const WindField& meanFlow,
+                       const UnsteadySettings& settings, double referenceSpeed_mps);
 
     /// The next step length the settings ask for (fixed, or adaptive from cfl), seconds.
     double nextDt_s() const;
@@ -118,7 +122,9 @@ public:
     const MacGrid& grid() const { return mGrid; }
     const UnsteadySettings& settings() const { return mSettings; }
     /// True when the vortex code path runs (whirlwinds or vorticity confinement).
-    bool usesVortexCode() const { return !mSettings.whirlwinds.empty() || mSettings.vorticityConfinement > 0.0; }
+    bool usesVortexCode() const {
+        return !mSettings.whirlwinds.empty() || mSettings.vorticityConfinement > 0.0;
+    }
     /// Current axis (x, y) of each whirlwind's marker, carried by the flow, world metres.
     const std::vector<std::array<double, 2>>& whirlwindAxes_m() const { return mAxes; }
     /// Far-field velocity at a world position and time: mean flow (clamped to the box) plus gusts.
@@ -134,19 +140,18 @@ public:
     /// The same with other criteria (the steady momentum model's final, tighter projection).
     SolveReport project(const SolverSettings& settings);
 
-private:
+  private:
     void seedDue(double t0, double t1);
     void applyForcing(double t0, double dt);
     void extrapolateClosedFaces();
     void closeLid();
     void applyRegionGusts(double t, double dt);
 
-public:
+  public:
     /// Centre of a region gust's forcing disc at time t_s, world metres (GustEntry::Region).
     std::array<double, 2> regionCentre_m(const GustEvent& g, double t_s) const;
 
-private:
-
+  private:
     const AirDomain& mDomain;
     MacGrid mGrid;
     UnsteadySettings mSettings;
@@ -155,10 +160,11 @@ private:
     double mMeanMax_mps = 0.0, mGustMax_mps = 0.0;
     WindField mField;
     std::vector<double> mMeanU, mMeanV, mMeanW;
-    std::vector<uint8_t> mOkX, mOkY, mOkZ;  // faces the projection updates (between air cells or on the box)
+    std::vector<uint8_t> mOkX, mOkY,
+        mOkZ;  // faces the projection updates (between air cells or on the box)
     PoissonSystem mSystem;
     PoissonSolver mPoisson;
-    std::vector<double> mPsi;  // projection potential (m^2/s), warm start
+    std::vector<double> mPsi;                  // projection potential (m^2/s), warm start
     std::unique_ptr<TurbulentStress> mStress;  // surface-layer stresses, when enabled
     std::vector<std::array<double, 2>> mAxes;
     std::vector<uint8_t> mSeeded;

@@ -8,8 +8,8 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 namespace gale::sim {
@@ -17,14 +17,16 @@ namespace gale::sim {
 namespace detail {
 openvdb::math::Transform::Ptr cellCentredTransform(double h, const std::array<double, 3>& wsMin) {
     auto xform = openvdb::math::Transform::createLinearTransform(h);
-    xform->postTranslate(openvdb::Vec3d(wsMin[0] + 0.5 * h, wsMin[1] + 0.5 * h, wsMin[2] + 0.5 * h));
+    xform->postTranslate(
+        openvdb::Vec3d(wsMin[0] + 0.5 * h, wsMin[1] + 0.5 * h, wsMin[2] + 0.5 * h));
     return xform;
 }
 }  // namespace detail
 
 namespace {
 // An empty world-space velocity grid (m/s) on the field's cells.
-openvdb::Vec3SGrid::Ptr emptyVelocityGrid(const WindField& f, const char* name, openvdb::GridClass gridClass) {
+openvdb::Vec3SGrid::Ptr emptyVelocityGrid(const WindField& f, const char* name,
+                                          openvdb::GridClass gridClass) {
     openvdb::initialize();
     auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
     grid->setName(name);
@@ -40,14 +42,16 @@ void forEachAirCell(const WindField& field, F&& f) {
     for (int j = 0; j < field.ny(); ++j)
         for (int i = 0; i < field.nx(); ++i)
             for (int k = 0; k < field.nz(); ++k)
-                if (field.isAir(i, j, k)) f(openvdb::Coord(i, j, k), field.cellVelocity_mps(i, j, k));
+                if (field.isAir(i, j, k))
+                    f(openvdb::Coord(i, j, k), field.cellVelocity_mps(i, j, k));
 }
 
 /// Writes `grids` to `path` through a temporary file in the same folder, renamed when complete.
 void writeGridsAtomic(const std::string& path, const openvdb::GridCPtrVec& grids) {
     namespace fs = std::filesystem;
     const fs::path target(path);
-    const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()));
+    const fs::path tmp =
+        target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()));
     // openvdb::io::File::write never looks at its stream after writing, so a full disk gave a
     // truncated file and no error: write the same archive to a stream we check.
     struct CheckedArchive : openvdb::io::File {
@@ -149,22 +153,27 @@ double readFaceVelocities(const std::string& path, WindField& field) {
     const double fileH = grid->transform().voxelSize()[0];
     const double tol = 1e-6 * h;
     if (std::abs(fileH - h) > tol || std::abs(centre[0] - (o[0] + 0.5 * h)) > tol ||
-        std::abs(centre[1] - (o[1] + 0.5 * h)) > tol || std::abs(centre[2] - (o[2] + 0.5 * h)) > tol)
+        std::abs(centre[1] - (o[1] + 0.5 * h)) > tol ||
+        std::abs(centre[2] - (o[2] + 0.5 * h)) > tol)
         throw std::runtime_error(path + ": solved on another grid (voxel " + std::to_string(fileH) +
                                  " m, first cell centre at " + std::to_string(centre[0]) + ", " +
                                  std::to_string(centre[1]) + ", " + std::to_string(centre[2]) +
                                  ") than the scene's (voxel " + std::to_string(h) + " m, " +
-                                 std::to_string(o[0] + 0.5 * h) + ", " + std::to_string(o[1] + 0.5 * h) +
-                                 ", " + std::to_string(o[2] + 0.5 * h) + ")");
+                                 std::to_string(o[0] + 0.5 * h) + ", " +
+                                 std::to_string(o[1] + 0.5 * h) + ", " +
+                                 std::to_string(o[2] + 0.5 * h) + ")");
     auto acc = grid->getConstAccessor();
     const int nx = field.nx(), ny = field.ny(), nz = field.nz();
     for (int k = 0; k <= nz; ++k)
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i <= nx; ++i) {
                 const openvdb::Vec3s v = acc.getValue(openvdb::Coord(i, j, k));
-                if (j < ny && k < nz) field.u_mps()[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = v.x();
-                if (i < nx && k < nz) field.v_mps()[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = v.y();
-                if (i < nx && j < ny) field.w_mps()[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = v.z();
+                if (j < ny && k < nz)
+                    field.u_mps()[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = v.x();
+                if (i < nx && k < nz)
+                    field.v_mps()[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = v.y();
+                if (i < nx && j < ny)
+                    field.w_mps()[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = v.z();
             }
     const auto time = grid->getMetadata<openvdb::DoubleMetadata>("time_s");
     return time ? time->value() : std::nan("");
@@ -205,8 +214,10 @@ void writeHoudiniVdb(const std::string& path, const WindField& f, const Heightfi
         }
     // Below the band the ground is inside: negative background there, as a level set needs.
     openvdb::tools::signedFloodFill(sdf->tree());
-    for (openvdb::GridBase* g : {static_cast<openvdb::GridBase*>(vel.get()), static_cast<openvdb::GridBase*>(sdf.get())})
-        g->insertMeta("axes", openvdb::StringMetadata("y-up: (x, y, z) here = gale (x, z, -y); metres"));
+    for (openvdb::GridBase* g :
+         {static_cast<openvdb::GridBase*>(vel.get()), static_cast<openvdb::GridBase*>(sdf.get())})
+        g->insertMeta("axes",
+                      openvdb::StringMetadata("y-up: (x, y, z) here = gale (x, z, -y); metres"));
     writeGridsAtomic(path, {vel, sdf});
 }
 
@@ -215,16 +226,20 @@ void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata) c
     auto vel = velocityGrid(*this);
     auto speed = speedGrid(*this);
     auto faces = staggeredVelocityGrid(*this);
-    for (openvdb::GridBase* g : {static_cast<openvdb::GridBase*>(vel.get()), static_cast<openvdb::GridBase*>(speed.get()),
-                                 static_cast<openvdb::GridBase*>(faces.get())}) {
+    for (openvdb::GridBase* g :
+         {static_cast<openvdb::GridBase*>(vel.get()), static_cast<openvdb::GridBase*>(speed.get()),
+          static_cast<openvdb::GridBase*>(faces.get())}) {
         g->insertMeta("units", openvdb::StringMetadata("m/s"));
-        g->insertMeta("cell_placement",
-                      openvdb::StringMetadata(
-                          g == faces.get()
-                              ? "MAC face velocities, staggered: voxel (i,j,k) holds u, v, w on the low x, y, z faces "
-                                "of the cell whose centre is at world wsMin + (i+0.5, j+0.5, k+0.5) * voxel_size"
-                              : "cell-centred average of MAC face velocities; voxel (i,j,k) centre at "
-                                "world wsMin + (i+0.5, j+0.5, k+0.5) * voxel_size"));
+        g->insertMeta(
+            "cell_placement",
+            openvdb::StringMetadata(
+                g == faces.get()
+                    ? "MAC face velocities, staggered: voxel (i,j,k) holds u, v, w on the low x, "
+                      "y, z faces "
+                      "of the cell whose centre is at world wsMin + (i+0.5, j+0.5, k+0.5) * "
+                      "voxel_size"
+                    : "cell-centred average of MAC face velocities; voxel (i,j,k) centre at "
+                      "world wsMin + (i+0.5, j+0.5, k+0.5) * voxel_size"));
         g->insertMeta("voxel_size_m", openvdb::DoubleMetadata(mH));
         for (const auto& [k, v] : metadata.strings) g->insertMeta(k, openvdb::StringMetadata(v));
         for (const auto& [k, v] : metadata.numbers) g->insertMeta(k, openvdb::DoubleMetadata(v));

@@ -18,7 +18,8 @@ namespace gale::sim {
 namespace detail {
 /// Linear transform of a cell-centred grid of cubic cells of edge voxelSize_m whose cell
 /// (0, 0, 0) has its minimum corner at wsMin_m.
-openvdb::math::Transform::Ptr cellCentredTransform(double voxelSize_m, const std::array<double, 3>& wsMin_m);
+openvdb::math::Transform::Ptr cellCentredTransform(double voxelSize_m,
+                                                   const std::array<double, 3>& wsMin_m);
 }  // namespace detail
 
 /// The air mask: active voxels are the air cells of the domain (value true), never rock.

@@ -27,9 +27,12 @@ struct Operator {
     std::array<int, 3> n;
     const std::vector<uint8_t>* mask;
     double a;  // nu dt / h^2
-    size_t idx(int i, int j, int k) const { return size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k); }
+    size_t idx(int i, int j, int k) const {
+        return size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k);
+    }
     // out = (I + a K) x on masked samples (0 elsewhere); diag receives 1 + a * neighbours.
-    void apply(const std::vector<double>& x, std::vector<double>& out, std::vector<double>* diag) const {
+    void apply(const std::vector<double>& x, std::vector<double>& out,
+               std::vector<double>* diag) const {
         tbb::parallel_for(0, n[2], [&](int k) {
             for (int j = 0; j < n[1]; ++j)
                 for (int i = 0; i < n[0]; ++i) {
@@ -42,12 +45,14 @@ struct Operator {
                     double s = 0.0;
                     int cnt = 0;
                     auto nb = [&](int ii, int jj, int kk) {
-                        if (ii < 0 || jj < 0 || kk < 0 || ii >= n[0] || jj >= n[1] || kk >= n[2]) return;
+                        if (ii < 0 || jj < 0 || kk < 0 || ii >= n[0] || jj >= n[1] || kk >= n[2])
+                            return;
                         const size_t q = idx(ii, jj, kk);
                         if (!(*mask)[q]) return;
                         s += x[q], ++cnt;
                     };
-                    nb(i - 1, j, k), nb(i + 1, j, k), nb(i, j - 1, k), nb(i, j + 1, k), nb(i, j, k - 1), nb(i, j, k + 1);
+                    nb(i - 1, j, k), nb(i + 1, j, k), nb(i, j - 1, k), nb(i, j + 1, k),
+                        nb(i, j, k - 1), nb(i, j, k + 1);
                     out[c] = x[c] + a * (cnt * x[c] - s);
                     if (diag) (*diag)[c] = 1.0 + a * cnt;
                 }
@@ -57,10 +62,12 @@ struct Operator {
 
 }  // namespace
 
-ViscosityReport diffuseImplicit(const MacGrid& g, double nu, double dt, const std::array<const std::vector<uint8_t>*, 3>& masks,
-                                std::vector<double>& u, std::vector<double>& v, std::vector<double>& w, double tol,
-                                int maxIterations) {
-    if (!(nu >= 0.0) || !(dt >= 0.0)) throw std::invalid_argument("diffuseImplicit: nu and dt must be >= 0");
+ViscosityReport diffuseImplicit(const MacGrid& g, double nu, double dt,
+                                const std::array<const std::vector<uint8_t>*, 3>& masks,
+                                std::vector<double>& u, std::vector<double>& v,
+                                std::vector<double>& w, double tol, int maxIterations) {
+    if (!(nu >= 0.0) || !(dt >= 0.0))
+        throw std::invalid_argument("diffuseImplicit: nu and dt must be >= 0");
     ViscosityReport rep;
     const double a = nu * dt / (g.voxelSize_m * g.voxelSize_m);
     if (a == 0.0) return rep;
@@ -68,9 +75,11 @@ ViscosityReport diffuseImplicit(const MacGrid& g, double nu, double dt, const st
     for (int c = 0; c < 3; ++c) {
         const Placement p = Placement(c);
         std::vector<double>& x = *comps[c];
-        if (!masks[c] || masks[c]->size() != x.size()) throw std::invalid_argument("diffuseImplicit: bad mask");
+        if (!masks[c] || masks[c]->size() != x.size())
+            throw std::invalid_argument("diffuseImplicit: bad mask");
         const Operator op{g.dims(p), masks[c], a};
-        std::vector<double> b(x.size()), r(x.size()), z(x.size()), q(x.size()), Ap(x.size()), diag(x.size());
+        std::vector<double> b(x.size()), r(x.size()), z(x.size()), q(x.size()), Ap(x.size()),
+            diag(x.size());
         for (size_t i = 0; i < x.size(); ++i) b[i] = (*masks[c])[i] ? x[i] : 0.0;
         op.apply(x, Ap, &diag);
         for (size_t i = 0; i < x.size(); ++i) r[i] = (*masks[c])[i] ? b[i] - Ap[i] : 0.0;

@@ -28,8 +28,9 @@ struct ViscosityReport {
 /// Diffuses u, v, w in place. masks[c] marks the faces of component c that take part (must not
 /// be null). nu_m2ps >= 0, dt_s >= 0; nothing happens when nu dt is 0.
 ViscosityReport diffuseImplicit(const MacGrid& g, double nu_m2ps, double dt_s,
-                                const std::array<const std::vector<uint8_t>*, 3>& masks, std::vector<double>& u,
-                                std::vector<double>& v, std::vector<double>& w, double relativeTolerance = 1e-8,
+                                const std::array<const std::vector<uint8_t>*, 3>& masks,
+                                std::vector<double>& u, std::vector<double>& v,
+                                std::vector<double>& w, double relativeTolerance = 1e-8,
                                 int maxIterations = 400);
 
 }  // namespace gale::sim

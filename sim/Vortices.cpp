@@ -1,7 +1,6 @@
 /// \file Vortices.cpp
 /// Rankine, Lamb-Oseen and Burgers whirlwinds; vorticity confinement (Fedkiw, Stam, Jensen 2001).
 #include "sim/Vortices.h"
-#include "sim/Format.h"
 
 #include <tbb/parallel_for.h>
 
@@ -9,27 +8,33 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+
 #include "base/Numbers.h"
+#include "sim/Format.h"
 
 namespace gale::sim {
 namespace {
 using gale::PI;
-/// max over x of (1 - exp(-x^2)) / x, at x = 1.12091: the Lamb-Oseen peak in units of Gamma/(2 pi r_c).
+/// max over x of (1 - exp(-x^2)) / x, at x = 1.12091: the Lamb-Oseen peak in units of Gamma/(2 pi
+/// r_c).
 constexpr double LAMB_OSEEN_PEAK = 0.638161;
 /// Smoothstep window from full to zero between the seeded radius and this multiple of it.
 constexpr double WINDOW_END_FACTOR = 1.5;
 /// Below this radius the axis itself: v = 0 (the profile's limit for every core).
 constexpr double AXIS_EPS_M = 1e-12;
 
-using detail::smoothstep;
 using detail::num;
+using detail::smoothstep;
 }  // namespace
 
 const char* vortexProfileName(VortexProfile p) {
     switch (p) {
-        case VortexProfile::Rankine: return "rankine";
-        case VortexProfile::LambOseen: return "lamb_oseen";
-        case VortexProfile::Burgers: return "burgers";
+        case VortexProfile::Rankine:
+            return "rankine";
+        case VortexProfile::LambOseen:
+            return "lamb_oseen";
+        case VortexProfile::Burgers:
+            return "burgers";
     }
     return "?";
 }
@@ -38,41 +43,54 @@ VortexProfile vortexProfileFromName(const std::string& n) {
     if (n == "rankine") return VortexProfile::Rankine;
     if (n == "lamb_oseen") return VortexProfile::LambOseen;
     if (n == "burgers") return VortexProfile::Burgers;
-    throw std::invalid_argument("profile must be one of rankine, lamb_oseen, burgers (got \"" + n + "\")");
+    throw std::invalid_argument("profile must be one of rankine, lamb_oseen, burgers (got \"" + n +
+                                "\")");
 }
 
-double peakSpeedFactor(VortexProfile p) { return p == VortexProfile::Rankine ? 1.0 : LAMB_OSEEN_PEAK; }
+double peakSpeedFactor(VortexProfile p) {
+    return p == VortexProfile::Rankine ? 1.0 : LAMB_OSEEN_PEAK;
+}
 
 void Whirlwind::validate() const {
     if (!std::isfinite(wsPosition_m[0]) || !std::isfinite(wsPosition_m[1]))
         throw std::invalid_argument("whirlwind.position_m must be finite");
     if (!(coreRadius_m > 0.0) || !std::isfinite(coreRadius_m))
-        throw std::invalid_argument("whirlwind.core_radius_m must be > 0, got " + num(coreRadius_m));
-    if (!std::isfinite(circulation_m2ps) || !std::isfinite(peakSpeed_mps) || std::abs(peakSpeed_mps) > 1000.0)
-        throw std::invalid_argument("whirlwind.circulation_m2ps / peak_speed_mps must be finite (|peak| <= 1000)");
+        throw std::invalid_argument("whirlwind.core_radius_m must be > 0, got " +
+                                    num(coreRadius_m));
+    if (!std::isfinite(circulation_m2ps) || !std::isfinite(peakSpeed_mps) ||
+        std::abs(peakSpeed_mps) > 1000.0)
+        throw std::invalid_argument(
+            "whirlwind.circulation_m2ps / peak_speed_mps must be finite (|peak| <= 1000)");
     if (!(updraft_mps >= 0.0) || updraft_mps > 1000.0)
-        throw std::invalid_argument("whirlwind.updraft_mps must be in [0, 1000], got " + num(updraft_mps));
-    if (!(lifetime_s > 0.0)) throw std::invalid_argument("whirlwind.lifetime_s must be > 0, got " + num(lifetime_s));
+        throw std::invalid_argument("whirlwind.updraft_mps must be in [0, 1000], got " +
+                                    num(updraft_mps));
+    if (!(lifetime_s > 0.0))
+        throw std::invalid_argument("whirlwind.lifetime_s must be > 0, got " + num(lifetime_s));
     if (!std::isfinite(start_s)) throw std::invalid_argument("whirlwind.start_s must be finite");
     if (!(height_m >= 0.0) || !std::isfinite(height_m))
         throw std::invalid_argument("whirlwind.height_m must be >= 0, got " + num(height_m));
     if (!(outerRadiusFactor >= 1.0) || !std::isfinite(outerRadiusFactor))
-        throw std::invalid_argument("whirlwind.outer_radius_factor must be >= 1, got " + num(outerRadiusFactor));
+        throw std::invalid_argument("whirlwind.outer_radius_factor must be >= 1, got " +
+                                    num(outerRadiusFactor));
 }
 
 double Whirlwind::circulation() const {
-    if (peakSpeed_mps != 0.0) return peakSpeed_mps * 2.0 * PI * coreRadius_m / peakSpeedFactor(profile);
+    if (peakSpeed_mps != 0.0)
+        return peakSpeed_mps * 2.0 * PI * coreRadius_m / peakSpeedFactor(profile);
     return circulation_m2ps;
 }
 
 double Whirlwind::tangentialSpeed_mps(double r) const {
     const double G = circulation(), rc = coreRadius_m;
     if (r < AXIS_EPS_M) return 0.0;
-    if (profile == VortexProfile::Rankine) return r <= rc ? G * r / (2 * PI * rc * rc) : G / (2 * PI * r);
+    if (profile == VortexProfile::Rankine)
+        return r <= rc ? G * r / (2 * PI * rc * rc) : G / (2 * PI * r);
     return G / (2 * PI * r) * -std::expm1(-r * r / (rc * rc));
 }
 
-double Whirlwind::circulationWithin_m2ps(double r) const { return 2 * PI * r * tangentialSpeed_mps(r); }
+double Whirlwind::circulationWithin_m2ps(double r) const {
+    return 2 * PI * r * tangentialSpeed_mps(r);
+}
 
 Whirlwind withMinimumCore(const Whirlwind& given, double voxelSize_m) {
     const double minCore_m = MIN_SMOOTHED_CORE_CELLS * voxelSize_m;
@@ -85,17 +103,20 @@ Whirlwind withMinimumCore(const Whirlwind& given, double voxelSize_m) {
 }
 
 void addWhirlwind(const MacGrid& g, const Whirlwind& given, std::array<double, 2> c, double scale,
-                  const GroundHeight& ground, double zTop, std::vector<double>& u, std::vector<double>& v,
-                  std::vector<double>& w, const std::array<const std::vector<uint8_t>*, 3>& masks) {
+                  const GroundHeight& ground, double zTop, std::vector<double>& u,
+                  std::vector<double>& v, std::vector<double>& w,
+                  const std::array<const std::vector<uint8_t>*, 3>& masks) {
     const Whirlwind ww = withMinimumCore(given, g.voxelSize_m);
-    const double rc = ww.coreRadius_m, rSeed = ww.outerRadiusFactor * rc, rEnd = WINDOW_END_FACTOR * rSeed;
+    const double rc = ww.coreRadius_m, rSeed = ww.outerRadiusFactor * rc,
+                 rEnd = WINDOW_END_FACTOR * rSeed;
     double updraft = ww.updraft_mps;
     const double groundC = ground ? ground(c[0], c[1]) : g.wsMin_m[2];
     const double column = ww.height_m > 0.0 ? ww.height_m : std::max(zTop - groundC, g.voxelSize_m);
     if (ww.profile == VortexProfile::Burgers && updraft == 0.0) {
         // Burgers' strain a with r_c^2 = 4 nu / a; without a viscosity here we take the strain
         // that turns the core over once per column: a = v_peak / r_c, updraft a * column / 2.
-        updraft = std::abs(ww.tangentialSpeed_mps(1.1209 * rc)) / rc * 0.5 * std::min(column, 4.0 * rc);
+        updraft =
+            std::abs(ww.tangentialSpeed_mps(1.1209 * rc)) / rc * 0.5 * std::min(column, 4.0 * rc);
     }
     auto vertical = [&](double x, double y, double z) {
         const double above = z - (ground ? ground(x, y) : g.wsMin_m[2]);
@@ -105,8 +126,10 @@ void addWhirlwind(const MacGrid& g, const Whirlwind& given, std::array<double, 2
     auto radial = [&](double r) { return 1.0 - smoothstep((r - rSeed) / (rEnd - rSeed)); };
     const double h = g.voxelSize_m;
     const Vec3d isC = g.isFromWs({c[0], c[1], 0.0});
-    const int iLo = std::max(0, int(std::floor(isC[0] - rEnd / h)) - 1), iHi = std::min(g.nx, int(std::ceil(isC[0] + rEnd / h)) + 1);
-    const int jLo = std::max(0, int(std::floor(isC[1] - rEnd / h)) - 1), jHi = std::min(g.ny, int(std::ceil(isC[1] + rEnd / h)) + 1);
+    const int iLo = std::max(0, int(std::floor(isC[0] - rEnd / h)) - 1),
+              iHi = std::min(g.nx, int(std::ceil(isC[0] + rEnd / h)) + 1);
+    const int jLo = std::max(0, int(std::floor(isC[1] - rEnd / h)) - 1),
+              jHi = std::min(g.ny, int(std::ceil(isC[1] + rEnd / h)) + 1);
     std::vector<double>* arrays[3] = {&u, &v, &w};
     for (int comp = 0; comp < 3; ++comp) {
         const Placement p = Placement(comp);
@@ -119,7 +142,8 @@ void addWhirlwind(const MacGrid& g, const Whirlwind& given, std::array<double, 2
                     const size_t idx = size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k);
                     if (mask && !(*mask)[idx]) continue;
                     const Vec3d ws = g.wsPosition(p, i, j, k);
-                    const double dx = ws[0] - c[0], dy = ws[1] - c[1], r = std::sqrt(dx * dx + dy * dy);
+                    const double dx = ws[0] - c[0], dy = ws[1] - c[1],
+                                 r = std::sqrt(dx * dx + dy * dy);
                     if (r >= rEnd) continue;
                     const double wgt = scale * radial(r) * vertical(ws[0], ws[1], ws[2]);
                     if (wgt == 0.0) continue;
@@ -136,7 +160,8 @@ void addWhirlwind(const MacGrid& g, const Whirlwind& given, std::array<double, 2
     }
 }
 
-double circulationAround(const MacGrid& g, const MacVelocity& vel, std::array<double, 2> c, double r, double z) {
+double circulationAround(const MacGrid& g, const MacVelocity& vel, std::array<double, 2> c,
+                         double r, double z) {
     constexpr int POINTS = 64;  // a 64-gon: the trapezoidal rule is spectrally accurate on a circle
     double sum = 0.0;
     for (int n = 0; n < POINTS; ++n) {
@@ -160,15 +185,17 @@ double verticalVorticity(const MacGrid& g, const MacVelocity& vel, int i, int j,
         const size_t a = size_t(ii) + size_t(g.nx) * (jj + size_t(g.ny + 1) * k);
         return 0.5 * ((*vel.v)[a] + (*vel.v)[a + g.nx]);
     };
-    const int ip = std::min(i + 1, g.nx - 1), im = std::max(i - 1, 0), jp = std::min(j + 1, g.ny - 1), jm = std::max(j - 1, 0);
+    const int ip = std::min(i + 1, g.nx - 1), im = std::max(i - 1, 0),
+              jp = std::min(j + 1, g.ny - 1), jm = std::max(j - 1, 0);
     const double h = g.voxelSize_m;
     const double dvdx = (vc(ip, j) - vc(im, j)) / (std::max(ip - im, 1) * h);
     const double dudy = (uc(i, jp) - uc(i, jm)) / (std::max(jp - jm, 1) * h);
     return dvdx - dudy;
 }
 
-void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, double eps, double dt,
-                             std::vector<double>& u, std::vector<double>& v, std::vector<double>& w) {
+void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, double eps,
+                             double dt, std::vector<double>& u, std::vector<double>& v,
+                             std::vector<double>& w) {
     if (!(eps > 0.0)) return;
     const int nx = g.nx, ny = g.ny, nz = g.nz;
     const double h = g.voxelSize_m;
@@ -215,17 +242,20 @@ void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, 
                 const size_t c = cell(i, j, k);
                 if (!air[c]) continue;
                 auto m = [&](int ii, int jj, int kk) {
-                    ii = std::clamp(ii, 0, nx - 1), jj = std::clamp(jj, 0, ny - 1), kk = std::clamp(kk, 0, nz - 1);
+                    ii = std::clamp(ii, 0, nx - 1), jj = std::clamp(jj, 0, ny - 1),
+                    kk = std::clamp(kk, 0, nz - 1);
                     const size_t q = cell(ii, jj, kk);
                     return air[q] ? mag[q] : mag[c];
                 };
-                Vec3d eta{(m(i + 1, j, k) - m(i - 1, j, k)) / (2 * h), (m(i, j + 1, k) - m(i, j - 1, k)) / (2 * h),
+                Vec3d eta{(m(i + 1, j, k) - m(i - 1, j, k)) / (2 * h),
+                          (m(i, j + 1, k) - m(i, j - 1, k)) / (2 * h),
                           (m(i, j, k + 1) - m(i, j, k - 1)) / (2 * h)};
                 const double len = std::sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]);
                 if (!(len > 1e-12)) continue;
                 const Vec3d Nv{eta[0] / len, eta[1] / len, eta[2] / len};
                 const Vec3d& o = om[c];
-                f[c] = {eps * h * (Nv[1] * o[2] - Nv[2] * o[1]), eps * h * (Nv[2] * o[0] - Nv[0] * o[2]),
+                f[c] = {eps * h * (Nv[1] * o[2] - Nv[2] * o[1]),
+                        eps * h * (Nv[2] * o[0] - Nv[0] * o[2]),
                         eps * h * (Nv[0] * o[1] - Nv[1] * o[0])};
             }
     });
@@ -235,9 +265,14 @@ void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, 
             for (int i = 0; i < nx; ++i) {
                 const size_t c = cell(i, j, k);
                 if (!air[c]) continue;
-                if (i > 0 && air[c - 1]) u[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] += dt * 0.5 * (f[c][0] + f[c - 1][0]);
-                if (j > 0 && air[c - nx]) v[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] += dt * 0.5 * (f[c][1] + f[c - nx][1]);
-                if (k > 0 && air[c - size_t(nx) * ny]) w[c] += dt * 0.5 * (f[c][2] + f[c - size_t(nx) * ny][2]);
+                if (i > 0 && air[c - 1])
+                    u[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] +=
+                        dt * 0.5 * (f[c][0] + f[c - 1][0]);
+                if (j > 0 && air[c - nx])
+                    v[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] +=
+                        dt * 0.5 * (f[c][1] + f[c - nx][1]);
+                if (k > 0 && air[c - size_t(nx) * ny])
+                    w[c] += dt * 0.5 * (f[c][2] + f[c - size_t(nx) * ny][2]);
             }
     });
 }

@@ -1,7 +1,7 @@
 #pragma once
 /// \file Vortices.h
-/// Whirlwinds of the unsteady wind (docs/design.md 4.2): vertical-axis vortices with a finite core, seeded
-/// into the flow, carried by it, optionally kept alive by forcing during their lifetime; and
+/// Whirlwinds of the unsteady wind (docs/design.md 4.2): vertical-axis vortices with a finite core,
+/// seeded into the flow, carried by it, optionally kept alive by forcing during their lifetime; and
 /// vorticity confinement against numerical dissipation. Compiled always, run only when a scene
 /// has whirlwinds or asks for confinement (UnsteadyWindSolver skips the code path otherwise).
 ///
@@ -37,15 +37,16 @@ VortexProfile vortexProfileFromName(const std::string& name);
 
 struct Whirlwind {
     std::array<double, 2> wsPosition_m{0.0, 0.0};  ///< axis (x, y) when seeded, world metres
-    double coreRadius_m = 3.0;       ///< r_c, metres, > 0 (may be smaller than a cell)
-    double circulation_m2ps = 0.0;   ///< Gamma; used when peakSpeed_mps is 0
-    double peakSpeed_mps = 0.0;      ///< if != 0: Gamma is set so the profile's peak is this (sign: sense)
+    double coreRadius_m = 3.0;      ///< r_c, metres, > 0 (may be smaller than a cell)
+    double circulation_m2ps = 0.0;  ///< Gamma; used when peakSpeed_mps is 0
+    double peakSpeed_mps =
+        0.0;  ///< if != 0: Gamma is set so the profile's peak is this (sign: sense)
     VortexProfile profile = VortexProfile::LambOseen;
-    double updraft_mps = 0.0;        ///< core updraft, m/s (>= 0)
-    double start_s = 0.0;            ///< seeding time, seconds
-    double lifetime_s = 1e30;        ///< forcing (if forced) stops at start_s + lifetime_s, > 0
-    bool forced = false;             ///< relax the circulation back to the seeded one during the lifetime
-    double height_m = 0.0;           ///< column height above the ground, metres; 0: up to the top
+    double updraft_mps = 0.0;  ///< core updraft, m/s (>= 0)
+    double start_s = 0.0;      ///< seeding time, seconds
+    double lifetime_s = 1e30;  ///< forcing (if forced) stops at start_s + lifetime_s, > 0
+    bool forced = false;       ///< relax the circulation back to the seeded one during the lifetime
+    double height_m = 0.0;     ///< column height above the ground, metres; 0: up to the top
     double outerRadiusFactor = 4.0;  ///< seeded out to this many core radii (then tapered), >= 1
 
     /// Throws std::invalid_argument naming the field.
@@ -80,14 +81,15 @@ using GroundHeight = std::function<double(double wsX_m, double wsY_m)>;
 /// a core below the grid smoothed to MIN_SMOOTHED_CORE_CELLS (withMinimumCore);
 /// only samples with mask != 0 (if given) change. zTop_m is the domain top (column height when
 /// height_m is 0).
-void addWhirlwind(const MacGrid& g, const Whirlwind& ww, std::array<double, 2> wsAxis_m, double scale,
-                  const GroundHeight& ground, double zTop_m, std::vector<double>& u, std::vector<double>& v,
-                  std::vector<double>& w, const std::array<const std::vector<uint8_t>*, 3>& masks = {});
+void addWhirlwind(const MacGrid& g, const Whirlwind& ww, std::array<double, 2> wsAxis_m,
+                  double scale, const GroundHeight& ground, double zTop_m, std::vector<double>& u,
+                  std::vector<double>& v, std::vector<double>& w,
+                  const std::array<const std::vector<uint8_t>*, 3>& masks = {});
 
 /// Circulation, m^2/s, of the velocity along the horizontal circle of radius r_m around
 /// (x, y) at height z (64 points, trapezoidal rule); counter-clockwise positive.
-double circulationAround(const MacGrid& g, const MacVelocity& vel, std::array<double, 2> wsAxis_m, double r_m,
-                         double wsZ_m);
+double circulationAround(const MacGrid& g, const MacVelocity& vel, std::array<double, 2> wsAxis_m,
+                         double r_m, double wsZ_m);
 
 /// Vertical vorticity omega_z = dv/dx - du/dy at the cell centre, 1/s, from the faces around it.
 double verticalVorticity(const MacGrid& g, const MacVelocity& vel, int i, int j, int k);
@@ -95,7 +97,8 @@ double verticalVorticity(const MacGrid& g, const MacVelocity& vel, int i, int j,
 /// Vorticity confinement (Fedkiw, Stam, Jensen 2001): f = epsilon h (N x omega),
 /// N = grad|omega| / |grad|omega||, cell-centred, averaged to faces and added as dt_s * f.
 /// Only cells with air[c] != 0 take part; epsilon >= 0 (dimensionless).
-void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, double epsilon, double dt_s,
-                             std::vector<double>& u, std::vector<double>& v, std::vector<double>& w);
+void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, double epsilon,
+                             double dt_s, std::vector<double>& u, std::vector<double>& v,
+                             std::vector<double>& w);
 
 }  // namespace gale::sim

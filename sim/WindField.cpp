@@ -8,7 +8,12 @@ namespace gale::sim {
 
 WindField::WindField(int nx, int ny, int nz, double voxelSize_m, std::array<double, 3> wsMin_m,
                      std::shared_ptr<const Heightfield> terrain, std::vector<uint8_t> air)
-    : mNx(nx), mNy(ny), mNz(nz), mH(voxelSize_m), mWsMin(wsMin_m), mTerrain(std::move(terrain)),
+    : mNx(nx),
+      mNy(ny),
+      mNz(nz),
+      mH(voxelSize_m),
+      mWsMin(wsMin_m),
+      mTerrain(std::move(terrain)),
       mAir(std::move(air)) {
     mU.assign(size_t(nx + 1) * ny * nz, 0.0);
     mV.assign(size_t(nx) * (ny + 1) * nz, 0.0);
@@ -74,12 +79,13 @@ std::array<double, 3> WindField::velocityAboveTerrainAt_mps(double x, double y, 
             trilinear(mW, nx, ny, centreX, centreY, faceZ)};
 }
 
-std::array<double, 3> WindField::velocityComponentsAt_mps(const std::array<double, 3>& wsUV_m,
-                                                         const std::array<double, 3>& wsW_m) const {
+std::array<double, 3> WindField::velocityComponentsAt_mps(
+    const std::array<double, 3>& wsUV_m, const std::array<double, 3>& wsW_m) const {
     std::array<double, 3> out{0, 0, 0};
     if (mNx == 0) return out;
     const size_t nx = size_t(mNx), ny = size_t(mNy);
-    const double X = (wsUV_m[0] - mWsMin[0]) / mH, Y = (wsUV_m[1] - mWsMin[1]) / mH, Z = (wsUV_m[2] - mWsMin[2]) / mH;
+    const double X = (wsUV_m[0] - mWsMin[0]) / mH, Y = (wsUV_m[1] - mWsMin[1]) / mH,
+                 Z = (wsUV_m[2] - mWsMin[2]) / mH;
     const bool uvInBox = X >= 0.0 && X <= mNx && Y >= 0.0 && Y <= mNy && Z >= 0.0 && Z <= mNz;
     const AxisWeights centreX = axisWeights(X - 0.5, mNx), centreY = axisWeights(Y - 0.5, mNy);
     if (uvInBox) {
@@ -92,12 +98,15 @@ std::array<double, 3> WindField::velocityComponentsAt_mps(const std::array<doubl
     if (wsW_m[0] == wsUV_m[0] && wsW_m[1] == wsUV_m[1]) {
         const double Zw = (wsW_m[2] - mWsMin[2]) / mH;
         if (uvInBox || (X >= 0.0 && X <= mNx && Y >= 0.0 && Y <= mNy))
-            if (Zw >= 0.0 && Zw <= mNz) out[2] = trilinear(mW, nx, ny, centreX, centreY, axisWeights(Zw, mNz + 1));
+            if (Zw >= 0.0 && Zw <= mNz)
+                out[2] = trilinear(mW, nx, ny, centreX, centreY, axisWeights(Zw, mNz + 1));
         return out;
     }
-    const double Xw = (wsW_m[0] - mWsMin[0]) / mH, Yw = (wsW_m[1] - mWsMin[1]) / mH, Zw = (wsW_m[2] - mWsMin[2]) / mH;
+    const double Xw = (wsW_m[0] - mWsMin[0]) / mH, Yw = (wsW_m[1] - mWsMin[1]) / mH,
+                 Zw = (wsW_m[2] - mWsMin[2]) / mH;
     if (Xw >= 0.0 && Xw <= mNx && Yw >= 0.0 && Yw <= mNy && Zw >= 0.0 && Zw <= mNz)
-        out[2] = trilinear(mW, nx, ny, axisWeights(Xw - 0.5, mNx), axisWeights(Yw - 0.5, mNy), axisWeights(Zw, mNz + 1));
+        out[2] = trilinear(mW, nx, ny, axisWeights(Xw - 0.5, mNx), axisWeights(Yw - 0.5, mNy),
+                           axisWeights(Zw, mNz + 1));
     return out;
 }
 
@@ -123,7 +132,8 @@ bool WindField::isFlowFace(int axis, int i, int j, int k) const {
 bool WindField::isSolvedFace(int axis, int i, int j, int k) const {
     if (!isFlowFace(axis, i, j, k)) return false;
     if (!mTerrain) return true;
-    double c[3] = {mWsMin[0] + (i + 0.5) * mH, mWsMin[1] + (j + 0.5) * mH, mWsMin[2] + (k + 0.5) * mH};
+    double c[3] = {mWsMin[0] + (i + 0.5) * mH, mWsMin[1] + (j + 0.5) * mH,
+                   mWsMin[2] + (k + 0.5) * mH};
     c[axis] -= 0.5 * mH;
     return c[2] > mTerrain->sample(c[0], c[1]);
 }
@@ -138,9 +148,8 @@ bool WindField::readsOnlySolvedFaces(double x, double y, double z, unsigned comp
     const AxisWeights faceX = axisWeights(X, mNx + 1), centreX = axisWeights(X - 0.5, mNx);
     const AxisWeights faceY = axisWeights(Y, mNy + 1), centreY = axisWeights(Y - 0.5, mNy);
     const AxisWeights faceZ = axisWeights(Z, mNz + 1), centreZ = axisWeights(Z - 0.5, mNz);
-    const AxisWeights* stencil[3][3] = {{&faceX, &centreY, &centreZ},
-                                        {&centreX, &faceY, &centreZ},
-                                        {&centreX, &centreY, &faceZ}};
+    const AxisWeights* stencil[3][3] = {
+        {&faceX, &centreY, &centreZ}, {&centreX, &faceY, &centreZ}, {&centreX, &centreY, &faceZ}};
     for (int axis = 0; axis < 3; ++axis) {
         if (!(components & (1u << axis))) continue;
         const AxisWeights& a = *stencil[axis][0];

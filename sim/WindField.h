@@ -26,7 +26,7 @@ struct VdbMetadata {
 };
 
 class WindField {
-public:
+  public:
     WindField() = default;
     /// An all-zero field over nx * ny * nz cells of edge voxelSize_m whose cell (0, 0, 0) has its
     /// minimum corner at wsMin_m. `air` (nx*ny*nz flags, i fastest) marks the cells with air.
@@ -46,10 +46,18 @@ public:
     const std::vector<double>& u_mps() const { return mU; }
     const std::vector<double>& v_mps() const { return mV; }
     const std::vector<double>& w_mps() const { return mW; }
-    double u(int i, int j, int k) const { return mU[size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k)]; }
-    double v(int i, int j, int k) const { return mV[size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k)]; }
-    double w(int i, int j, int k) const { return mW[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)]; }
-    bool isAir(int i, int j, int k) const { return mAir[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)] != 0; }
+    double u(int i, int j, int k) const {
+        return mU[size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k)];
+    }
+    double v(int i, int j, int k) const {
+        return mV[size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k)];
+    }
+    double w(int i, int j, int k) const {
+        return mW[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)];
+    }
+    bool isAir(int i, int j, int k) const {
+        return mAir[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)] != 0;
+    }
 
     /// Velocity at a world position (metres), m/s: each component trilinearly interpolated from
     /// its own staggered faces (index coordinates clamped to the face grid, so within half a cell
@@ -58,8 +66,10 @@ public:
     /// for any number of concurrent readers.
     std::array<double, 3> velocityAt_mps(double wsX_m, double wsY_m, double wsZ_m) const;
     /// velocityAt_mps without the terrain test, for a caller that has made it once for points it
-    /// samples in many fields of the same geometry (coupling's grass sampler). Zero outside the box.
-    std::array<double, 3> velocityAboveTerrainAt_mps(double wsX_m, double wsY_m, double wsZ_m) const;
+    /// samples in many fields of the same geometry (coupling's grass sampler). Zero outside the
+    /// box.
+    std::array<double, 3> velocityAboveTerrainAt_mps(double wsX_m, double wsY_m,
+                                                     double wsZ_m) const;
     /// True when the point lies below the terrain surface (never for a field without terrain).
     bool belowTerrain(double wsX_m, double wsY_m, double wsZ_m) const;
     /// Component selectors for readsOnlySolvedFaces.
@@ -118,7 +128,7 @@ public:
     /// temporary name in the same folder, then renamed. Throws std::runtime_error on I/O failure.
     void writeVdb(const std::string& path, const VdbMetadata& metadata = {}) const;
 
-private:
+  private:
     int mNx = 0, mNy = 0, mNz = 0;
     double mH = 1.0;
     std::array<double, 3> mWsMin{};

@@ -55,13 +55,16 @@ struct RunResult {
     std::string out;
     std::string err;
     std::string describe() const {
-        std::string s = timedOut ? "timed out" : signal ? "killed by signal " + std::to_string(signal) + " (" + strsignal(signal) + ")" : "exit code " + std::to_string(exitCode);
+        std::string s =
+            timedOut ? "timed out"
+            : signal ? "killed by signal " + std::to_string(signal) + " (" + strsignal(signal) + ")"
+                     : "exit code " + std::to_string(exitCode);
         return s + "\n--- stdout:\n" + out + "--- stderr:\n" + err;
     }
 };
 
 struct RunOptions {
-    std::string cwd;                                 ///< empty: this process's folder
+    std::string cwd;                                       ///< empty: this process's folder
     std::vector<std::pair<std::string, std::string>> env;  ///< added to (or replacing in) ours
     std::vector<std::string> wrapper;  ///< programs put before gale (e.g. setpriv ...)
     double timeout_s = 300.0;
@@ -116,9 +119,8 @@ class Child {
         for (;;) {
             const pid_t p = ::waitpid(mPid, &status, WNOHANG);
             if (p == mPid) break;
-            const double elapsed = std::chrono::duration<double>(
-                                       std::chrono::steady_clock::now() - mStart)
-                                       .count();
+            const double elapsed =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - mStart).count();
             if (elapsed > timeout_s) {
                 ::kill(mPid, SIGKILL);
                 ::waitpid(mPid, &status, 0);

@@ -20,8 +20,8 @@ class TempDir {
   public:
     TempDir() {
         static std::atomic<int> counter{0};
-        mPath = fs::temp_directory_path() / ("gale_test_" + std::to_string(::getpid()) +
-                                             "_" + std::to_string(counter++));
+        mPath = fs::temp_directory_path() /
+                ("gale_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
         fs::remove_all(mPath);
         fs::create_directories(mPath);
     }

@@ -3,22 +3,23 @@
 
 #include "app/bench/BenchCoupling.h"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <nlohmann/json.hpp>
-#include <sstream>
-
-#include <glm/geometric.hpp>
 #include <openvdb/tools/Interpolation.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/bench/SvgPlot.h"
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
-#include "app/bench/SvgPlot.h"
 #include "app/io/Timing.h"
+#include "base/Numbers.h"
 #include "coupling/FieldSampling.h"
 #include "coupling/FieldWind.h"
 #include "coupling/TerrainMeshBuilder.h"
@@ -26,7 +27,6 @@
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/VdbIO.h"
-#include "base/Numbers.h"
 
 namespace gale::app {
 namespace {
@@ -36,8 +36,8 @@ namespace {
 // effects on the K-entry tables).
 constexpr double TARGET_STEP_MS_AT_1M = 50.0;
 constexpr double TARGET_FRAME_COST_GROWTH = 3.0;
-constexpr int SHELLS = 16;       // tip error is measured on a 16-shell blade of unit height
-constexpr int SPEED_STEPS = 8;   // field steps timed per mesh (the best is reported)
+constexpr int SHELLS = 16;      // tip error is measured on a 16-shell blade of unit height
+constexpr int SPEED_STEPS = 8;  // field steps timed per mesh (the best is reported)
 
 // The terrain and its solved wind the benchmark couples: a 200 m meadow with a 20 m hill, 6 m/s
 // log-law wind, solved once on 2 m cells.
@@ -72,8 +72,8 @@ glm::dvec2 tip(float intensity) {
 
 // The steady field modulated by a gust travelling along +x at 6 m/s with a 4 s period, so the
 // vertices' intensities differ in space and change in time.
-std::vector<glm::vec3> gustStep(const render::TerrainMesh& mesh, const std::vector<glm::vec3>& steady,
-                                double t_s) {
+std::vector<glm::vec3> gustStep(const render::TerrainMesh& mesh,
+                                const std::vector<glm::vec3>& steady, double t_s) {
     std::vector<glm::vec3> out(steady.size());
     for (size_t v = 0; v < steady.size(); ++v) {
         const double phase = 2.0 * PI * (t_s - mesh.wsPosition_m[v].x / 6.0) / 4.0;
@@ -105,16 +105,19 @@ void openVdbBaseline(const sim::WindField& field, const render::TerrainMesh& mes
         const openvdb::Vec3SGrid::Ptr grid = sim::staggeredVelocityGrid(field);
         bestGrid = std::min(bestGrid, msSince(start));
         start = Clock::now();
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, vdb.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-            // The sampler keeps a pointer to the accessor: the accessor must outlive it.
-            const openvdb::Vec3SGrid::ConstAccessor accessor = grid->getConstAccessor();
-            openvdb::tools::GridSampler<openvdb::Vec3SGrid::ConstAccessor, openvdb::tools::StaggeredBoxSampler>
-                sampler(accessor, grid->transform());
-            for (size_t v = r.begin(); v != r.end(); ++v) {
-                const glm::vec3& p = mesh.wsPosition_m[v];
-                vdb[v] = sampler.wsSample(openvdb::Vec3d(p.x, p.y, p.z + height_m));
-            }
-        });
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, vdb.size(), 4096),
+            [&](const tbb::blocked_range<size_t>& r) {
+                // The sampler keeps a pointer to the accessor: the accessor must outlive it.
+                const openvdb::Vec3SGrid::ConstAccessor accessor = grid->getConstAccessor();
+                openvdb::tools::GridSampler<openvdb::Vec3SGrid::ConstAccessor,
+                                            openvdb::tools::StaggeredBoxSampler>
+                    sampler(accessor, grid->transform());
+                for (size_t v = r.begin(); v != r.end(); ++v) {
+                    const glm::vec3& p = mesh.wsPosition_m[v];
+                    vdb[v] = sampler.wsSample(openvdb::Vec3d(p.x, p.y, p.z + height_m));
+                }
+            });
         bestSample = std::min(bestSample, msSince(start));
     }
     // Compared where both read the same faces: above the terrain (ours reads zero below it) and a
@@ -123,14 +126,17 @@ void openVdbBaseline(const sim::WindField& field, const render::TerrainMesh& mes
     double maxDiff = 0.0;
     const auto lo = field.wsMin_m();
     const double h = field.voxelSize_m();
-    auto inside = [&](double x, double lo_m, int cells) { return x >= lo_m + h && x <= lo_m + (cells - 1) * h; };
+    auto inside = [&](double x, double lo_m, int cells) {
+        return x >= lo_m + h && x <= lo_m + (cells - 1) * h;
+    };
     for (size_t v = 0; v < vdb.size(); ++v) {
         const glm::vec3& p = mesh.wsPosition_m[v];
         const double z = p.z + height_m;
         if (field.belowTerrain(p.x, p.y, z) || !inside(p.x, lo[0], field.nx()) ||
             !inside(p.y, lo[1], field.ny()) || !inside(z, lo[2], field.nz()))
             continue;
-        for (int c = 0; c < 3; ++c) maxDiff = std::max(maxDiff, std::fabs(double(vdb[v][c]) - reference[v][c]));
+        for (int c = 0; c < 3; ++c)
+            maxDiff = std::max(maxDiff, std::fabs(double(vdb[v][c]) - reference[v][c]));
     }
     row.vdbGrid_ms = bestGrid, row.vdbSample_ms = bestSample, row.vdbMaxDiff_mps = maxDiff;
 }
@@ -141,7 +147,8 @@ int runBenchCoupling(const BenchCouplingOptions& options) {
     std::fprintf(stderr, "bench coupling: solving the steady wind over a 200 m hill...\n");
     Field field;
     field.coarse = sim::makeTerrain(hillSpec(1.0));
-    field.domain.emplace(field.coarse, sim::DomainSpec{/*voxelSize_m=*/2.0, {}, /*memoryLimit_bytes=*/4e9});
+    field.domain.emplace(field.coarse,
+                         sim::DomainSpec{/*voxelSize_m=*/2.0, {}, /*memoryLimit_bytes=*/4e9});
     sim::AmbientWind ambient;
     ambient.speed_mps = 6.0;
     field.solved = sim::solveSteadyWind(*field.domain, ambient, {}, sim::SolverSettings{});
@@ -153,20 +160,23 @@ int runBenchCoupling(const BenchCouplingOptions& options) {
 
     // 1. Grouped against exact, as K grows.
     const render::TerrainMesh errorMesh = meshWith(options.quick ? 10000 : 100000);
-    const std::vector<glm::vec3> steady = coupling::sampleAtGrass(field.solved.field, errorMesh, grassHeight_m);
+    const std::vector<glm::vec3> steady =
+        coupling::sampleAtGrass(field.solved.field, errorMesh, grassHeight_m);
     std::vector<ErrorRow> errors;
     const int steps = options.quick ? 4 : 11;
-    std::printf("Grouped bend against the exact per-vertex bend: %zu vertices, static response,\n"
-                "field steps every %.2f s, frames at %.0f fps; tip error of a %d-shell blade in blade\n"
-                "lengths (RMS and max over vertices and frames).\n\n",
-                errorMesh.wsPosition_m.size(), fieldStep_s, fps, SHELLS);
+    std::printf(
+        "Grouped bend against the exact per-vertex bend: %zu vertices, static response,\n"
+        "field steps every %.2f s, frames at %.0f fps; tip error of a %d-shell blade in blade\n"
+        "lengths (RMS and max over vertices and frames).\n\n",
+        errorMesh.wsPosition_m.size(), fieldStep_s, fps, SHELLS);
     std::printf("%8s %12s %12s %14s\n", "groups", "RMS tip", "max tip", "frame us");
     for (int k : {1, 4, 16, 64, 256}) {
         coupling::FieldWindSpec spec;
         spec.grouping = coupling::Grouping::Levels;
         spec.groups = k;
         coupling::FieldWind wind(errorMesh, spec);
-        for (int s = 0; s <= steps; ++s) wind.addFieldStep(s * fieldStep_s, gustStep(errorMesh, steady, s * fieldStep_s));
+        for (int s = 0; s <= steps; ++s)
+            wind.addFieldStep(s * fieldStep_s, gustStep(errorMesh, steady, s * fieldStep_s));
         render::GrassWind out;
         double sum2 = 0.0, maxErr = 0.0, frameTime_us = 0.0;
         size_t count = 0, frames = 0;
@@ -180,7 +190,8 @@ int runBenchCoupling(const BenchCouplingOptions& options) {
             ++frames;
             const auto exact = wind.exactStaticIntensity(t);
             for (size_t v = 0; v < exact.size(); ++v) {
-                const double e = glm::length(tip(out.groupIntensity[out.group()[v]]) - tip(exact[v]));
+                const double e =
+                    glm::length(tip(out.groupIntensity[out.group()[v]]) - tip(exact[v]));
                 sum2 += e * e;
                 maxErr = std::max(maxErr, e);
                 ++count;
@@ -197,12 +208,16 @@ int runBenchCoupling(const BenchCouplingOptions& options) {
     // the per-vertex buffers); "first" is a run's first step, which also makes the terrain test
     // and pays the operating system for the pages of the renderer's copy.
     std::vector<SpeedRow> speeds;
-    std::printf("\nCost per field step (sample the field at grass height, then directions, intensities\n"
-                "and 64 level groups, handed to the renderer) and per frame (64 group intensities),\n"
-                "best of %d steps, 2 threads:\n\n", SPEED_STEPS);
-    std::printf("%10s %11s %11s %11s %11s %11s %13s %11s %13s\n", "vertices", "setup ms", "first ms", "sample ms",
-                "groups ms", "step ms", "step ns/vert", "frame us", "frame ns/vert");
-    for (size_t target : options.quick ? std::vector<size_t>{10000, 100000} : std::vector<size_t>{100000, 1000000}) {
+    std::printf(
+        "\nCost per field step (sample the field at grass height, then directions, intensities\n"
+        "and 64 level groups, handed to the renderer) and per frame (64 group intensities),\n"
+        "best of %d steps, 2 threads:\n\n",
+        SPEED_STEPS);
+    std::printf("%10s %11s %11s %11s %11s %11s %13s %11s %13s\n", "vertices", "setup ms",
+                "first ms", "sample ms", "groups ms", "step ms", "step ns/vert", "frame us",
+                "frame ns/vert");
+    for (size_t target : options.quick ? std::vector<size_t>{10000, 100000}
+                                       : std::vector<size_t>{100000, 1000000}) {
         const render::TerrainMesh mesh = meshWith(target);
         std::fprintf(stderr, "bench coupling: %zu vertices...\n", mesh.wsPosition_m.size());
         coupling::FieldWindSpec spec;
@@ -236,23 +251,27 @@ int runBenchCoupling(const BenchCouplingOptions& options) {
         row.frame_us = msSince(start) * 1000.0 / frames;
         // OpenVDB's sampler reads the faces as they stand: compared with ours reading them the same
         // way (the run's sampler carries the near-ground law on top, coupling/NearGround.h).
-        coupling::GrassSampler asItStands(mesh, grassHeight_m, {coupling::NearGroundModel::Interpolated});
+        coupling::GrassSampler asItStands(mesh, grassHeight_m,
+                                          {coupling::NearGroundModel::Interpolated});
         openVdbBaseline(field.solved.field, mesh, grassHeight_m, asItStands, row);
         speeds.push_back(row);
         const double n = double(row.vertices);
         std::printf("%10zu %11.2f %11.2f %11.2f %11.2f %11.2f %13.1f %11.2f %13.4f\n", row.vertices,
-                    row.setup_ms, row.first_ms, row.sample_ms, row.groups_ms, row.step_ms, row.step_ms * 1e6 / n,
-                    row.frame_us, row.frame_us * 1000.0 / n);
+                    row.setup_ms, row.first_ms, row.sample_ms, row.groups_ms, row.step_ms,
+                    row.step_ms * 1e6 / n, row.frame_us, row.frame_us * 1000.0 / n);
     }
 
-    std::printf("\nThe same sampling through OpenVDB (baseline): the field's faces as a staggered\n"
-                "Vec3s grid, read by tools::StaggeredBoxSampler through one accessor per task;\n"
-                "difference from ours above the terrain, a cell inside the box sides:\n\n");
+    std::printf(
+        "\nThe same sampling through OpenVDB (baseline): the field's faces as a staggered\n"
+        "Vec3s grid, read by tools::StaggeredBoxSampler through one accessor per task;\n"
+        "difference from ours above the terrain, a cell inside the box sides:\n\n");
     std::printf("%10s %11s %11s %11s %14s %16s\n", "vertices", "grid ms", "sample ms", "ours ms",
                 "vdb / ours", "max diff m/s");
     for (const SpeedRow& r : speeds)
-        std::printf("%10zu %11.2f %11.2f %11.2f %14.2f %16.2e\n", r.vertices, r.vdbGrid_ms, r.vdbSample_ms,
-                    r.sample_ms, (r.vdbGrid_ms + r.vdbSample_ms) / std::max(1e-9, r.sample_ms), r.vdbMaxDiff_mps);
+        std::printf("%10zu %11.2f %11.2f %11.2f %14.2f %16.2e\n", r.vertices, r.vdbGrid_ms,
+                    r.vdbSample_ms, r.sample_ms,
+                    (r.vdbGrid_ms + r.vdbSample_ms) / std::max(1e-9, r.sample_ms),
+                    r.vdbMaxDiff_mps);
 
     // Targets.
     const SpeedRow& large = speeds.back();
@@ -262,39 +281,49 @@ int runBenchCoupling(const BenchCouplingOptions& options) {
     const bool stepOk = options.quick || large.step_ms <= TARGET_STEP_MS_AT_1M;
     const bool flatOk = options.quick || growth <= TARGET_FRAME_COST_GROWTH;
     const char* flatVerdict = growth <= TARGET_FRAME_COST_GROWTH ? "met" : "missed";
-    std::printf("\nTargets: 1M-vertex field step <= %.0f ms: %s; per-frame cost flat in vertices "
-                "(growth %.2fx <= %.0fx): %s%s\n",
-                TARGET_STEP_MS_AT_1M,
-                options.quick ? "not measured (--quick)" : (stepOk ? "met" : "missed"), growth,
-                TARGET_FRAME_COST_GROWTH, flatVerdict, options.quick ? " (not judged in --quick)" : "");
+    std::printf(
+        "\nTargets: 1M-vertex field step <= %.0f ms: %s; per-frame cost flat in vertices "
+        "(growth %.2fx <= %.0fx): %s%s\n",
+        TARGET_STEP_MS_AT_1M,
+        options.quick ? "not measured (--quick)" : (stepOk ? "met" : "missed"), growth,
+        TARGET_FRAME_COST_GROWTH, flatVerdict, options.quick ? " (not judged in --quick)" : "");
 
     // Files: CSV and SVG of the grouping study; JSON of both tables.
     std::filesystem::create_directories(options.outputFolder);
     std::ostringstream csv;
     csv << "groups,rms_tip_error_blades,max_tip_error_blades,frame_us\n";
-    for (const ErrorRow& r : errors) csv << r.groups << "," << r.rmsTip << "," << r.maxTip << "," << r.frame_us << "\n";
+    for (const ErrorRow& r : errors)
+        csv << r.groups << "," << r.rmsTip << "," << r.maxTip << "," << r.frame_us << "\n";
     writeTextAtomic(options.outputFolder + "/coupling.csv", csv.str());
-    Series rms{"RMS tip error", "#1f77b4", false, {}, {}}, mx{"max tip error", "#d62728", true, {}, {}};
+    Series rms{"RMS tip error", "#1f77b4", false, {}, {}},
+        mx{"max tip error", "#d62728", true, {}, {}};
     for (const ErrorRow& r : errors) {
         rms.xy.push_back({std::max(r.frame_us, 1e-3), std::max(r.rmsTip, 1e-9)});
         rms.labels.push_back("K=" + std::to_string(r.groups));
         mx.xy.push_back({std::max(r.frame_us, 1e-3), std::max(r.maxTip, 1e-9)});
     }
     writeTextAtomic(options.outputFolder + "/coupling.svg",
-                    logLogSvg("Grouped bend: tip error against per-frame cost", "per-frame cost, us",
-                              "tip error, blade lengths", {rms, mx}));
-    std::fprintf(stderr, "bench coupling: wrote %s/coupling.csv and coupling.svg\n", options.outputFolder.c_str());
+                    logLogSvg("Grouped bend: tip error against per-frame cost",
+                              "per-frame cost, us", "tip error, blade lengths", {rms, mx}));
+    std::fprintf(stderr, "bench coupling: wrote %s/coupling.csv and coupling.svg\n",
+                 options.outputFolder.c_str());
     if (!options.jsonPath.empty()) {
         nlohmann::json j;
         for (const ErrorRow& r : errors)
-            j["grouping"].push_back({{"groups", r.groups}, {"rms_tip_error", r.rmsTip},
-                                     {"max_tip_error", r.maxTip}, {"frame_us", r.frame_us}});
+            j["grouping"].push_back({{"groups", r.groups},
+                                     {"rms_tip_error", r.rmsTip},
+                                     {"max_tip_error", r.maxTip},
+                                     {"frame_us", r.frame_us}});
         for (const SpeedRow& r : speeds)
-            j["speed"].push_back({{"vertices", r.vertices}, {"setup_ms", r.setup_ms},
+            j["speed"].push_back({{"vertices", r.vertices},
+                                  {"setup_ms", r.setup_ms},
                                   {"first_step_ms", r.first_ms},
-                                  {"sample_ms", r.sample_ms}, {"groups_ms", r.groups_ms},
-                                  {"step_ms", r.step_ms}, {"frame_us", r.frame_us},
-                                  {"openvdb_grid_ms", r.vdbGrid_ms}, {"openvdb_sample_ms", r.vdbSample_ms},
+                                  {"sample_ms", r.sample_ms},
+                                  {"groups_ms", r.groups_ms},
+                                  {"step_ms", r.step_ms},
+                                  {"frame_us", r.frame_us},
+                                  {"openvdb_grid_ms", r.vdbGrid_ms},
+                                  {"openvdb_sample_ms", r.vdbSample_ms},
                                   {"openvdb_max_diff_mps", r.vdbMaxDiff_mps}});
         j["targets_met"] = stepOk && flatOk;
         writeTextAtomic(options.jsonPath, j.dump(2) + "\n");

@@ -3,7 +3,6 @@
 /// 4.1; Bakay, Lalonde, Heidrich 2002, Table 2) and against a trivial fill on the same machine.
 
 #include "app/bench/BenchRender.h"
-#include "app/io/Progress.h"
 
 #include <unistd.h>
 
@@ -20,6 +19,7 @@
 
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
+#include "app/io/Progress.h"
 #include "app/io/Timing.h"
 #include "render/RenderBench.h"
 

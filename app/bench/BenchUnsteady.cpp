@@ -10,23 +10,22 @@
 #include <sstream>
 #include <vector>
 
-#include "app/io/AtomicFile.h"
-#include "app/io/Errors.h"
+#include "app/bench/ExactSolutions.h"
 #include "app/bench/SvgPlot.h"
 #include "app/bench/TranslatingVortex.h"
+#include "app/io/AtomicFile.h"
+#include "app/io/Errors.h"
 #include "app/io/Timing.h"
+#include "base/Numbers.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyStability.h"
 #include "sim/UnsteadyWind.h"
-#include "base/Numbers.h"
-#include "app/bench/ExactSolutions.h"
 
 namespace gale::app {
 namespace {
 
 using gale::PI;
-
 
 void writeJson(const std::string& path, const nlohmann::json& j) {
     if (path.empty()) return;
@@ -50,8 +49,8 @@ struct AccuracyRow {
     double courant = 0;  ///< V_PEAK dt / h
     int steps = 0;
     double h_m = 0, dt_s = 0;
-    double error = 0;    ///< max over rings 0.25..2 r(t) of |v - v_exact| / V_PEAK
-    double wall_s = 0;   ///< solver construction + steps (the steady start of calm air is trivial)
+    double error = 0;   ///< max over rings 0.25..2 r(t) of |v - v_exact| / V_PEAK
+    double wall_s = 0;  ///< solver construction + steps (the steady start of calm air is trivial)
     bool finite = true;
 };
 
@@ -86,11 +85,14 @@ AccuracyRow lambOseen(sim::AdvectionScheme scheme, int cellsPerCore, double cour
     sim::UnsteadyWindSolver solver(domain, steady.field, s, 1.0);
     for (int n = 0; n < row.steps; ++n) row.finite = row.finite && solver.step(row.dt_s).finite;
     row.wall_s = secondsSince(t0);
-    const double G = w.circulation(), rc2 = R0_M * R0_M + 4 * NU_M2PS * T_END_S, rt = std::sqrt(rc2);
+    const double G = w.circulation(), rc2 = R0_M * R0_M + 4 * NU_M2PS * T_END_S,
+                 rt = std::sqrt(rc2);
     const double z = hf.sample(half, half) + 0.5 * LID_CELLS * h;
     for (double r = 0.25 * rt; r <= 2.0 * rt + 1e-9; r += 0.25 * rt) {
         const double exact = gale::exact::lambOseenSpeed_mps(G, rc2, r);
-        const double got = sim::circulationAround(solver.grid(), solver.velocity(), {half, half}, r, z) / (2 * PI * r);
+        const double got =
+            sim::circulationAround(solver.grid(), solver.velocity(), {half, half}, r, z) /
+            (2 * PI * r);
         row.error = std::max(row.error, std::abs(got - exact) / V_PEAK_MPS);
     }
     if (!row.finite) row.error = NAN;
@@ -103,7 +105,8 @@ struct TimingRow {
     int nx = 0, ny = 0, nz = 0;
     std::string scheme;
     int steps = 0;
-    double advection_s = 0, projection_s = 0, forcing_s = 0, step_s = 0;  ///< means over the timed steps
+    double advection_s = 0, projection_s = 0, forcing_s = 0,
+           step_s = 0;  ///< means over the timed steps
     double firstProjection_s = 0;
     double meanIterations = 0;
     int firstIterations = 0;
@@ -140,15 +143,17 @@ TimingRow timeSteps(int n, int nz, sim::AdvectionScheme scheme, int steps) {
     row.firstProjection_s = first.projection_s, row.firstIterations = first.projection.iterations;
     for (int k = 0; k < steps; ++k) {
         const sim::StepReport r = solver.step(solver.nextDt_s());
-        row.advection_s += r.advection_s, row.projection_s += r.projection_s, row.forcing_s += r.forcing_s;
+        row.advection_s += r.advection_s, row.projection_s += r.projection_s,
+            row.forcing_s += r.forcing_s;
         row.step_s += r.total_s, row.meanIterations += r.projection.iterations;
         row.maxCfl = std::max(row.maxCfl, r.cfl);
     }
     row.steps = steps;
-    for (double* v : {&row.advection_s, &row.projection_s, &row.forcing_s, &row.step_s, &row.meanIterations}) *v /= steps;
+    for (double* v :
+         {&row.advection_s, &row.projection_s, &row.forcing_s, &row.step_s, &row.meanIterations})
+        *v /= steps;
     return row;
 }
-
 
 }  // namespace
 
@@ -170,8 +175,9 @@ constexpr double BURGERS_CORE_LIMIT = 0.1;
 int runBenchStability(const BenchStabilityOptions& opt) {
     bool all = true;
     nlohmann::json rows = nlohmann::json::array();
-    std::printf("%-24s %5s %7s %7s %11s %11s %8s %9s %9s %9s %6s %7s  %s\n", "case", "steps", "dt s", "CFL",
-                "KE start", "KE end", "KE %", "forcing", "deviation", "max div", "finite", "wall s", "verdict");
+    std::printf("%-24s %5s %7s %7s %11s %11s %8s %9s %9s %9s %6s %7s  %s\n", "case", "steps",
+                "dt s", "CFL", "KE start", "KE end", "KE %", "forcing", "deviation", "max div",
+                "finite", "wall s", "verdict");
     for (const std::string& n : sim::stabilityCaseNames(opt.quick)) {
         std::fprintf(stderr, "bench stability: %s...\n", n.c_str());
         const sim::StabilityRun r = sim::runStabilityCase(n);
@@ -179,14 +185,17 @@ int runBenchStability(const BenchStabilityOptions& opt) {
         std::string why;
         if (!r.finite) why += "NaN/Inf; ";
         if (!(r.maxDivergenceScaled <= DIVERGENCE_LIMIT)) why += "divergence; ";
-        if (!r.forced && !(r.keEnd_m5ps2 <= r.keStart_m5ps2 * (1 + ENERGY_GROWTH_LIMIT))) why += "energy grew; ";
-        if (cflCase && !(r.deviationFromStart <= STEADY_DEVIATION_LIMIT)) why += "left the steady flow; ";
+        if (!r.forced && !(r.keEnd_m5ps2 <= r.keStart_m5ps2 * (1 + ENERGY_GROWTH_LIMIT)))
+            why += "energy grew; ";
+        if (cflCase && !(r.deviationFromStart <= STEADY_DEVIATION_LIMIT))
+            why += "left the steady flow; ";
         all = all && why.empty();
-        const double change = r.keStart_m5ps2 > 0 ? 100.0 * (r.keEnd_m5ps2 - r.keStart_m5ps2) / r.keStart_m5ps2 : 0.0;
-        std::printf("%-24s %5d %7.3f %7.2f %11.4g %11.4g %+8.2f %9.3g %9.2e %9.2e %6s %7.2f  %s\n", n.c_str(), r.steps,
-                    r.dt_s, r.maxCfl, r.keStart_m5ps2, r.keEnd_m5ps2, change, r.forcingEnergy_m5ps2,
-                    r.deviationFromStart, r.maxDivergenceScaled, r.finite ? "yes" : "NO", r.wall_s,
-                    why.empty() ? "ok" : why.c_str());
+        const double change =
+            r.keStart_m5ps2 > 0 ? 100.0 * (r.keEnd_m5ps2 - r.keStart_m5ps2) / r.keStart_m5ps2 : 0.0;
+        std::printf("%-24s %5d %7.3f %7.2f %11.4g %11.4g %+8.2f %9.3g %9.2e %9.2e %6s %7.2f  %s\n",
+                    n.c_str(), r.steps, r.dt_s, r.maxCfl, r.keStart_m5ps2, r.keEnd_m5ps2, change,
+                    r.forcingEnergy_m5ps2, r.deviationFromStart, r.maxDivergenceScaled,
+                    r.finite ? "yes" : "NO", r.wall_s, why.empty() ? "ok" : why.c_str());
         rows.push_back({{"case", n},
                         {"description", r.description},
                         {"steps", r.steps},
@@ -203,49 +212,66 @@ int runBenchStability(const BenchStabilityOptions& opt) {
                         {"wall_s", r.wall_s},
                         {"failed", why}});
     }
-    std::printf("deviation: |u_end - u_start| / |u_start| (open-fraction weighted); the CFL cases start from the "
-                "steady potential flow, an exact steady Euler solution\n");
+    std::printf(
+        "deviation: |u_end - u_start| / |u_start| (open-fraction weighted); the CFL cases start "
+        "from the "
+        "steady potential flow, an exact steady Euler solution\n");
 
     // Translating inviscid Lamb-Oseen against its exact Galilean solution.
     using TV = sim::TranslatingVortexSpec;
-    std::printf("\ntranslating Lamb-Oseen (r_c %.0f m, peak %.0f m/s, wind %.0f m/s, t = %.0f s, no viscosity): "
-                "error = RMS |u - u_exact| / v_peak within 2 r_c\n",
-                TV::CORE_M, TV::PEAK_MPS, TV::WIND_MPS, TV::TIME_S);
-    std::printf("%-14s %9s %6s %7s %9s %8s %10s %8s\n", "refine", "cells/r_c", "CFL", "steps", "error", "order",
-                "KE change", "wall s");
+    std::printf(
+        "\ntranslating Lamb-Oseen (r_c %.0f m, peak %.0f m/s, wind %.0f m/s, t = %.0f s, no "
+        "viscosity): "
+        "error = RMS |u - u_exact| / v_peak within 2 r_c\n",
+        TV::CORE_M, TV::PEAK_MPS, TV::WIND_MPS, TV::TIME_S);
+    std::printf("%-14s %9s %6s %7s %9s %8s %10s %8s\n", "refine", "cells/r_c", "CFL", "steps",
+                "error", "order", "KE change", "wall s");
     nlohmann::json vortexRows = nlohmann::json::array();
     double hOrder = 0.0;
-    auto study = [&](const char* what, const std::vector<std::pair<int, double>>& runs, double* lastOrder) {
+    auto study = [&](const char* what, const std::vector<std::pair<int, double>>& runs,
+                     double* lastOrder) {
         double prev = 0.0;
         for (const auto& [cells, courant] : runs) {
-            std::fprintf(stderr, "bench stability: translating vortex, %d cells per core, CFL %.1f...\n", cells, courant);
+            std::fprintf(stderr,
+                         "bench stability: translating vortex, %d cells per core, CFL %.1f...\n",
+                         cells, courant);
             const sim::StabilityRun r = sim::runTranslatingVortex(cells, courant);
             const double e = exact::translatingVortexError(r);
             const double order = prev > 0 ? std::log2(prev / e) : NAN;
             if (prev > 0 && lastOrder) *lastOrder = order;
             prev = e;
-            std::printf("%-14s %9d %6.2f %7d %9.4f %8.2f %+9.2f%% %8.2f\n", what, cells, courant, r.steps, e, order,
+            std::printf("%-14s %9d %6.2f %7d %9.4f %8.2f %+9.2f%% %8.2f\n", what, cells, courant,
+                        r.steps, e, order,
                         100.0 * (r.keEnd_m5ps2 - r.keStart_m5ps2) / r.keStart_m5ps2, r.wall_s);
-            vortexRows.push_back({{"refine", what}, {"cells_per_core", cells}, {"cfl", courant}, {"steps", r.steps},
-                                  {"error", e}, {"kinetic_energy_start_m5ps2", r.keStart_m5ps2},
-                                  {"kinetic_energy_end_m5ps2", r.keEnd_m5ps2}, {"wall_s", r.wall_s}});
+            vortexRows.push_back({{"refine", what},
+                                  {"cells_per_core", cells},
+                                  {"cfl", courant},
+                                  {"steps", r.steps},
+                                  {"error", e},
+                                  {"kinetic_energy_start_m5ps2", r.keStart_m5ps2},
+                                  {"kinetic_energy_end_m5ps2", r.keEnd_m5ps2},
+                                  {"wall_s", r.wall_s}});
         }
     };
-    study("h, CFL 1", opt.quick ? std::vector<std::pair<int, double>>{{4, 1.0}, {8, 1.0}}
-                                : std::vector<std::pair<int, double>>{{4, 1.0}, {8, 1.0}, {16, 1.0}},
+    study("h, CFL 1",
+          opt.quick ? std::vector<std::pair<int, double>>{{4, 1.0}, {8, 1.0}}
+                    : std::vector<std::pair<int, double>>{{4, 1.0}, {8, 1.0}, {16, 1.0}},
           &hOrder);
     if (!opt.quick) study("dt, h fixed", {{8, 4.0}, {8, 2.0}, {8, 1.0}, {8, 0.5}}, nullptr);
     const bool orderOk = hOrder >= MIN_H_ORDER;
     all = all && orderOk;
-    std::printf("order in h at fixed CFL: %.2f (needs >= %.1f) %s\n", hOrder, MIN_H_ORDER, orderOk ? "ok" : "MISSED");
+    std::printf("order in h at fixed CFL: %.2f (needs >= %.1f) %s\n", hOrder, MIN_H_ORDER,
+                orderOk ? "ok" : "MISSED");
 
     // Burgers' vortex: held by strain against viscosity.
     using B = sim::BurgersSpec;
     const int burgersCells = opt.quick ? 4 : 8;
     const double aT = B::STRAIN_PER_S * B::TIME_S;
-    std::printf("\nBurgers vortex (r_c %.0f m, a %.2f 1/s, nu = a r_c^2 / 4 = %.2f m^2/s, t = %.0f s, %d cells per "
-                "core): core radius / r_c\n",
-                B::CORE_M, B::STRAIN_PER_S, B::viscosity_m2ps(), B::TIME_S, burgersCells);
+    std::printf(
+        "\nBurgers vortex (r_c %.0f m, a %.2f 1/s, nu = a r_c^2 / 4 = %.2f m^2/s, t = %.0f s, %d "
+        "cells per "
+        "core): core radius / r_c\n",
+        B::CORE_M, B::STRAIN_PER_S, B::viscosity_m2ps(), B::TIME_S, burgersCells);
     const double exact[3] = {1.0, std::exp(-0.5 * aT), std::sqrt(1.0 + aT)};
     const char* variants[3] = {"balanced", "no viscosity", "no strain"};
     nlohmann::json burgersRows = nlohmann::json::array();
@@ -255,15 +281,20 @@ int runBenchStability(const BenchStabilityOptions& opt) {
         const sim::StabilityRun r = sim::runBurgersVortex(sim::BurgersVariant(v), burgersCells);
         const double core = sim::burgersCoreRadius_m(r) / B::CORE_M;
         if (v == 0) balanced = core;
-        std::printf("%-14s core %.3f (exact %.3f)  KE %.4g -> %.4g  steps %d  wall %.2f s\n", variants[v], core,
-                    exact[v], r.keStart_m5ps2, r.keEnd_m5ps2, r.steps, r.wall_s);
-        burgersRows.push_back({{"variant", variants[v]}, {"core_over_rc", core}, {"exact", exact[v]},
+        std::printf("%-14s core %.3f (exact %.3f)  KE %.4g -> %.4g  steps %d  wall %.2f s\n",
+                    variants[v], core, exact[v], r.keStart_m5ps2, r.keEnd_m5ps2, r.steps, r.wall_s);
+        burgersRows.push_back({{"variant", variants[v]},
+                               {"core_over_rc", core},
+                               {"exact", exact[v]},
                                {"kinetic_energy_start_m5ps2", r.keStart_m5ps2},
-                               {"kinetic_energy_end_m5ps2", r.keEnd_m5ps2}, {"steps", r.steps}, {"wall_s", r.wall_s}});
+                               {"kinetic_energy_end_m5ps2", r.keEnd_m5ps2},
+                               {"steps", r.steps},
+                               {"wall_s", r.wall_s}});
     }
     const bool coreOk = std::abs(balanced - 1.0) <= BURGERS_CORE_LIMIT;
     all = all && coreOk;
-    std::printf("balanced core within %.0f%% of r_c: %s\n", 100 * BURGERS_CORE_LIMIT, coreOk ? "ok" : "MISSED");
+    std::printf("balanced core within %.0f%% of r_c: %s\n", 100 * BURGERS_CORE_LIMIT,
+                coreOk ? "ok" : "MISSED");
     std::printf("%s\n", all ? "stability: every rule holds" : "stability: SOME RULES FAIL");
     writeJson(opt.jsonPath, {{"cases", rows},
                              {"translating_vortex", vortexRows},
@@ -275,23 +306,27 @@ int runBenchStability(const BenchStabilityOptions& opt) {
 
 int runBenchUnsteady(const BenchUnsteadyOptions& opt) {
     using sim::AdvectionScheme;
-    const std::vector<AdvectionScheme> schemes = {AdvectionScheme::SemiLagrangian, AdvectionScheme::MacCormack,
-                                                  AdvectionScheme::Bfecc};
-    const std::vector<int> cores = opt.quick ? std::vector<int>{2, 4} : std::vector<int>{2, 4, 8, 16};
+    const std::vector<AdvectionScheme> schemes = {
+        AdvectionScheme::SemiLagrangian, AdvectionScheme::MacCormack, AdvectionScheme::Bfecc};
+    const std::vector<int> cores =
+        opt.quick ? std::vector<int>{2, 4} : std::vector<int>{2, 4, 8, 16};
     constexpr double COURANT = 1.0, LARGE_COURANT = 4.0;
     std::vector<AccuracyRow> rows;
     for (AdvectionScheme s : schemes) {
         for (int c : cores) {
-            std::fprintf(stderr, "bench unsteady: Lamb-Oseen, %s, %d cells per core...\n", sim::advectionSchemeName(s), c);
+            std::fprintf(stderr, "bench unsteady: Lamb-Oseen, %s, %d cells per core...\n",
+                         sim::advectionSchemeName(s), c);
             rows.push_back(lambOseen(s, c, COURANT));
         }
         if (!opt.quick) rows.push_back(lambOseen(s, cores.back(), LARGE_COURANT));
     }
-    std::printf("Lamb-Oseen vortex under viscosity (r0 %.0f m, peak %.0f m/s, nu %.0f m^2/s, t = %.0f s): error = max "
-                "|v - v_exact| / v_peak on rings 0.25..2 r(t)\n",
-                R0_M, V_PEAK_MPS, NU_M2PS, T_END_S);
-    std::printf("%-16s %10s %8s %8s %8s %8s %10s %10s %7s\n", "scheme", "cells/core", "h m", "Courant", "dt s", "steps",
-                "error", "wall s", "order");
+    std::printf(
+        "Lamb-Oseen vortex under viscosity (r0 %.0f m, peak %.0f m/s, nu %.0f m^2/s, t = %.0f s): "
+        "error = max "
+        "|v - v_exact| / v_peak on rings 0.25..2 r(t)\n",
+        R0_M, V_PEAK_MPS, NU_M2PS, T_END_S);
+    std::printf("%-16s %10s %8s %8s %8s %8s %10s %10s %7s\n", "scheme", "cells/core", "h m",
+                "Courant", "dt s", "steps", "error", "wall s", "order");
     std::ostringstream csv;
     csv << "scheme,cells_per_core,h_m,courant,dt_s,steps,error,wall_s,order\n";
     nlohmann::json jrows = nlohmann::json::array();
@@ -303,10 +338,12 @@ int runBenchUnsteady(const BenchUnsteadyOptions& opt) {
             rows[i - 1].cellsPerCore * 2 == r.cellsPerCore)
             order = std::log2(rows[i - 1].error / r.error);
         finite = finite && r.finite;
-        std::printf("%-16s %10d %8.3g %8.3g %8.3g %8d %10.3e %10.3f %7s\n", r.scheme.c_str(), r.cellsPerCore, r.h_m,
-                    r.courant, r.dt_s, r.steps, r.error, r.wall_s, std::isnan(order) ? "" : formatG(order, 2).c_str());
-        csv << r.scheme << "," << r.cellsPerCore << "," << r.h_m << "," << r.courant << "," << r.dt_s << "," << r.steps
-            << "," << r.error << "," << r.wall_s << "," << (std::isnan(order) ? "" : formatG(order, 3)) << "\n";
+        std::printf("%-16s %10d %8.3g %8.3g %8.3g %8d %10.3e %10.3f %7s\n", r.scheme.c_str(),
+                    r.cellsPerCore, r.h_m, r.courant, r.dt_s, r.steps, r.error, r.wall_s,
+                    std::isnan(order) ? "" : formatG(order, 2).c_str());
+        csv << r.scheme << "," << r.cellsPerCore << "," << r.h_m << "," << r.courant << ","
+            << r.dt_s << "," << r.steps << "," << r.error << "," << r.wall_s << ","
+            << (std::isnan(order) ? "" : formatG(order, 3)) << "\n";
         jrows.push_back({{"scheme", r.scheme},
                          {"cells_per_core", r.cellsPerCore},
                          {"h_m", r.h_m},
@@ -335,27 +372,34 @@ int runBenchUnsteady(const BenchUnsteadyOptions& opt) {
         if (!big.xy.empty()) series.push_back(big);
     }
     writeTextAtomic(opt.outputFolder + "/unsteady_accuracy.svg",
-                    logLogSvg("Viscous Lamb-Oseen vortex: velocity error against wall time", "wall time (steps), s",
-                              "max |v - v_exact| / v_peak", series));
-    std::fprintf(stderr, "bench unsteady: wrote %s/unsteady_accuracy.csv and .svg\n", opt.outputFolder.c_str());
+                    logLogSvg("Viscous Lamb-Oseen vortex: velocity error against wall time",
+                              "wall time (steps), s", "max |v - v_exact| / v_peak", series));
+    std::fprintf(stderr, "bench unsteady: wrote %s/unsteady_accuracy.csv and .svg\n",
+                 opt.outputFolder.c_str());
 
     // Step timing.
     struct Size {
         int n, nz, steps;
     };
-    const std::vector<Size> sizes = opt.quick ? std::vector<Size>{{48, 16, 3}} : std::vector<Size>{{128, 48, 8}, {256, 48, 4}};
-    std::printf("\nstep timing over a hill, 8 m/s log wind with a gust, CFL 2 (means over the steps after the first)\n");
-    std::printf("%-14s %-16s %6s %10s %10s %10s %8s %10s %12s %10s\n", "box", "scheme", "steps", "advect s", "project s",
-                "force s", "iters", "step s", "1st proj s", "1st iters");
+    const std::vector<Size> sizes =
+        opt.quick ? std::vector<Size>{{48, 16, 3}} : std::vector<Size>{{128, 48, 8}, {256, 48, 4}};
+    std::printf(
+        "\nstep timing over a hill, 8 m/s log wind with a gust, CFL 2 (means over the steps after "
+        "the first)\n");
+    std::printf("%-14s %-16s %6s %10s %10s %10s %8s %10s %12s %10s\n", "box", "scheme", "steps",
+                "advect s", "project s", "force s", "iters", "step s", "1st proj s", "1st iters");
     nlohmann::json jtiming = nlohmann::json::array();
     for (const Size& sz : sizes)
         for (AdvectionScheme s : {AdvectionScheme::SemiLagrangian, AdvectionScheme::MacCormack}) {
-            std::fprintf(stderr, "bench unsteady: timing %dx%dx%d, %s...\n", sz.n, sz.n, sz.nz, sim::advectionSchemeName(s));
+            std::fprintf(stderr, "bench unsteady: timing %dx%dx%d, %s...\n", sz.n, sz.n, sz.nz,
+                         sim::advectionSchemeName(s));
             const TimingRow t = timeSteps(sz.n, sz.nz, s, sz.steps);
-            const std::string box = std::to_string(t.nx) + "x" + std::to_string(t.ny) + "x" + std::to_string(t.nz);
-            std::printf("%-14s %-16s %6d %10.3f %10.3f %10.4f %8.1f %10.3f %12.3f %10d\n", box.c_str(), t.scheme.c_str(),
-                        t.steps, t.advection_s, t.projection_s, t.forcing_s, t.meanIterations, t.step_s,
-                        t.firstProjection_s, t.firstIterations);
+            const std::string box =
+                std::to_string(t.nx) + "x" + std::to_string(t.ny) + "x" + std::to_string(t.nz);
+            std::printf("%-14s %-16s %6d %10.3f %10.3f %10.4f %8.1f %10.3f %12.3f %10d\n",
+                        box.c_str(), t.scheme.c_str(), t.steps, t.advection_s, t.projection_s,
+                        t.forcing_s, t.meanIterations, t.step_s, t.firstProjection_s,
+                        t.firstIterations);
             jtiming.push_back({{"box", {t.nx, t.ny, t.nz}},
                                {"scheme", t.scheme},
                                {"steps", t.steps},
@@ -371,14 +415,16 @@ int runBenchUnsteady(const BenchUnsteadyOptions& opt) {
     writeJson(opt.jsonPath, {{"lamb_oseen", jrows}, {"timing", jtiming}});
     double finest = NAN;
     for (const AccuracyRow& r : rows)
-        if (r.scheme == "semi_lagrangian" && r.courant == COURANT && r.cellsPerCore == cores.back()) finest = r.error;
+        if (r.scheme == "semi_lagrangian" && r.courant == COURANT && r.cellsPerCore == cores.back())
+            finest = r.error;
     // Targets: the error falls with resolution for every scheme (observed order above
     // MIN_ORDER at Courant 1), and the full run's finest semi-Lagrangian error is within
     // TARGET_ERROR of the peak speed.
     constexpr double TARGET_ERROR = 0.05, MIN_ORDER = 0.5;
     bool ordersOk = true;
     for (size_t i = 1; i < rows.size(); ++i)
-        if (rows[i - 1].scheme == rows[i].scheme && rows[i].courant == COURANT && rows[i - 1].courant == COURANT &&
+        if (rows[i - 1].scheme == rows[i].scheme && rows[i].courant == COURANT &&
+            rows[i - 1].courant == COURANT &&
             !(std::log2(rows[i - 1].error / rows[i].error) > MIN_ORDER))
             ordersOk = false;
     const bool ok = finite && ordersOk && (opt.quick || finest <= TARGET_ERROR);

@@ -6,8 +6,9 @@
 ///    finiteness), the translating Lamb-Oseen vortex's errors and orders (h at fixed CFL, dt at
 ///    fixed h) and Burgers' vortex core, judged by the bench's own rules;
 ///  - `gale bench unsteady`: error against wall time on the exact viscous Lamb-Oseen vortex for
-///    each advection scheme over resolutions and time steps (CSV + SVG via app/bench/SvgPlot, observed
-///    orders), and the time per step and its parts over a hill at 128x128x48 (and 256x256x48).
+///    each advection scheme over resolutions and time steps (CSV + SVG via app/bench/SvgPlot,
+///    observed orders), and the time per step and its parts over a hill at 128x128x48 (and
+///    256x256x48).
 /// Tables go to stdout, progress lines to stderr.
 
 #include <string>
@@ -19,8 +20,8 @@ struct BenchStabilityOptions {
     std::string jsonPath;  ///< if set, the table as JSON (atomically)
 };
 
-/// Returns EXIT_OK when every rule holds, EXIT_UNMET otherwise. Throws std::runtime_error if the JSON cannot
-/// be written.
+/// Returns EXIT_OK when every rule holds, EXIT_UNMET otherwise. Throws std::runtime_error if the
+/// JSON cannot be written.
 int runBenchStability(const BenchStabilityOptions& options);
 
 struct BenchUnsteadyOptions {

@@ -20,9 +20,9 @@ namespace gale::exact {
 /// with r measured from the centre and theta from the wind axis (Lamb 1932, the sphere in a
 /// uniform stream; docs/design.md 4.1). The surface speed is 1.5 U sin(theta).
 struct HemisphereFlow {
-    double R_m = 1.0;     ///< radius
-    double U_mps = 1.0;   ///< free stream along +x
-    double cx_m = 3.0;    ///< centre
+    double R_m = 1.0;    ///< radius
+    double U_mps = 1.0;  ///< free stream along +x
+    double cx_m = 3.0;   ///< centre
     double cy_m = 3.0;
 
     /// The disturbance potential phi (m^2/s) at a point outside the hemisphere.

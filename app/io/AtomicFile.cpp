@@ -128,7 +128,8 @@ void syncTemporary(const std::string& tmpPath, const std::string& path) {
 
 void commitTemporary(const std::string& tmpPath, const std::string& path) {
     syncTemporary(tmpPath, path);
-    if (::rename(tmpPath.c_str(), path.c_str()) != 0) failWrite(path, std::strerror(errno), tmpPath);
+    if (::rename(tmpPath.c_str(), path.c_str()) != 0)
+        failWrite(path, std::strerror(errno), tmpPath);
     unregisterForRemoval(tmpPath);
     syncFolder(folderOf(path), path);
 }
@@ -271,8 +272,8 @@ void refuseAliases(const std::vector<RunPath>& inputs, const std::vector<RunPath
         if (out.path.empty()) continue;
         const auto [it, fresh] = seen.emplace(resolve(out.path), &out);
         if (!fresh)
-            throw InputError(out.role + ": '" + out.path + "' is also " + it->second->role +
-                             " ('" + it->second->path + "'); choose another output path");
+            throw InputError(out.role + ": '" + out.path + "' is also " + it->second->role + " ('" +
+                             it->second->path + "'); choose another output path");
     }
 }
 

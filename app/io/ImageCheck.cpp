@@ -36,7 +36,8 @@ void verifyImageFile(const std::string& tmpPath, const std::string& path, int wi
         }
     }
     if (ok) return;
-    const std::string reason = writerErrno != 0 ? std::strerror(writerErrno) : "the file is incomplete";
+    const std::string reason =
+        writerErrno != 0 ? std::strerror(writerErrno) : "the file is incomplete";
     throw std::runtime_error(path + ": cannot write: " + reason + " (it does not read back whole)");
 }
 

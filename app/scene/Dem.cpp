@@ -69,7 +69,8 @@ DatasetPtr openRaster(const std::string& path) {
     const fs::file_status st = fs::status(path, ec);
     if (ec || !fs::exists(st)) fail(path, "no such file");
     if (fs::is_directory(st)) fail(path, "is a folder, not a DEM");
-    if (fs::is_regular_file(st) && fs::file_size(path, ec) == 0) fail(path, "empty file, not a DEM");
+    if (fs::is_regular_file(st) && fs::file_size(path, ec) == 0)
+        fail(path, "empty file, not a DEM");
     ensureGdalRegistered();
     QuietGdal quiet;
     DatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
@@ -97,12 +98,14 @@ Georeference checkCrs(const std::string& path, GDALDataset& ds, const double gt[
                   (lat >= 0 ? "N" : "S") + ")";
         fail(path, "coordinate system '" + crsName +
                        "' is geographic (latitude/longitude); gale needs metres on a plane: "
-                       "reproject it first, e.g. " + fix);
+                       "reproject it first, e.g. " +
+                       fix);
     }
     if (!srs->IsProjected())
-        fail(path, "coordinate system '" + crsName +
-                       "' is neither projected nor geographic (a local or engineering system "
-                       "gale cannot place); assign the real one with gdal_edit.py -a_srs EPSG:NNNN");
+        fail(path,
+             "coordinate system '" + crsName +
+                 "' is neither projected nor geographic (a local or engineering system "
+                 "gale cannot place); assign the real one with gdal_edit.py -a_srs EPSG:NNNN");
     const char* unitName = nullptr;
     const double unit_m = srs->GetLinearUnits(&unitName);
     if (!(std::abs(unit_m - 1.0) < 1e-9))
@@ -183,7 +186,8 @@ Dem loadDem(const DemSpec& spec) {
     }
     const int wc = c1 - c0 + 1, wr = r1 - r0 + 1;
     const std::string dims = std::to_string(wc) + " x " + std::to_string(wr);
-    if (wc < 2 || wr < 2) fail(path, "too small for a DEM (" + dims + " pixels; need at least 2 x 2)");
+    if (wc < 2 || wr < 2)
+        fail(path, "too small for a DEM (" + dims + " pixels; need at least 2 x 2)");
     if (wc > MAX_SAMPLES_PER_SIDE || wr > MAX_SAMPLES_PER_SIDE)
         fail(path, "too large (" + dims + " pixels; at most " +
                        std::to_string(MAX_SAMPLES_PER_SIDE) +

@@ -44,9 +44,9 @@ struct CropWindow {
 };
 
 struct DemSpec {
-    std::string path;                 ///< any raster GDAL reads; band 1 holds heights in metres
-    std::optional<CropWindow> crop;   ///< DEM coordinates; absent: the whole raster
-    int meshStride = 1;               ///< render mesh stride, for the memory estimate only
+    std::string path;                ///< any raster GDAL reads; band 1 holds heights in metres
+    std::optional<CropWindow> crop;  ///< DEM coordinates; absent: the whole raster
+    int meshStride = 1;              ///< render mesh stride, for the memory estimate only
 };
 
 struct Dem {

@@ -4,17 +4,17 @@
 /// by parseSceneFile (SceneParser.h); the schema, with every key and its unit, is
 /// docs/scene-format.md.
 
+#include <cstdint>
 #include <map>
 #include <optional>
-#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "app/scene/Dem.h"
 #include "coupling/FieldOverlayBuilder.h"
 #include "coupling/FieldWind.h"
 #include "coupling/GustCurve.h"
 #include "coupling/PointSourceWind.h"
-#include "app/scene/Dem.h"
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"
 #include "sim/AirDomain.h"
@@ -35,22 +35,23 @@ struct TerrainSection {
     double heightOffset_m = 0.0;  ///< height of a zero pixel
     int meshStride = 1;           ///< render mesh takes every meshStride-th sample
     // kind == "dem" (spec.kind is then Heightmap: loaded, not procedural; Dem.h):
-    bool dem = false;              ///< terrain from a georeferenced raster through GDAL
-    std::string demPath;           ///< resolved against the scene file's folder
+    bool dem = false;                ///< terrain from a georeferenced raster through GDAL
+    std::string demPath;             ///< resolved against the scene file's folder
     std::optional<CropWindow> crop;  ///< crop_m, in the DEM's coordinates
 };
 
 struct GrassSection {
     render::GrassParams params;
-    std::string texturePath;  ///< empty: generate from `generated`
+    std::string texturePath;     ///< empty: generate from `generated`
     std::string densityMapPath;  ///< grass.density_map, resolved; empty: density 1 everywhere
     render::GrassTextureSpec generated;
 };
 
 /// point_source: the paper's heuristic (Bakay et al. 2002). solved: the steady mass-consistent
-/// field over the terrain (sim/SteadyWind), optionally with travelling gusts (coupling/SteadyGustWind).
-/// unsteady: the steady field as initial state and mean flow, stepped in time with gusts and
-/// whirlwinds ([unsteady], [[wind.gusts]], [[wind.whirlwinds]]; sim/UnsteadyWind, docs/unsteady.md).
+/// field over the terrain (sim/SteadyWind), optionally with travelling gusts
+/// (coupling/SteadyGustWind). unsteady: the steady field as initial state and mean flow, stepped in
+/// time with gusts and whirlwinds ([unsteady], [[wind.gusts]], [[wind.whirlwinds]];
+/// sim/UnsteadyWind, docs/unsteady.md).
 enum class WindKind { PointSource, Solved, Unsteady };
 
 struct WindSection {
@@ -63,10 +64,10 @@ struct WindSection {
     // kind == Solved (the ambient wind is also what `gale solve` solves for, whatever the kind):
     sim::AmbientWind ambient;
     coupling::FieldWindSpec response;  ///< blade response and, without gusts, grouping
-    double sampleHeight_m = -1.0;      ///< field sampled this high above the ground; < 0: grass height
-    bool gusts = false;                ///< [wind.gust] given: travelling gusts over the steady field
-    int arrivalBands = 16;             ///< gust groups: arrival-time bands ...
-    int levels = 4;                    ///< ... times steady-intensity levels
+    double sampleHeight_m = -1.0;  ///< field sampled this high above the ground; < 0: grass height
+    bool gusts = false;            ///< [wind.gust] given: travelling gusts over the steady field
+    int arrivalBands = 16;         ///< gust groups: arrival-time bands ...
+    int levels = 4;                ///< ... times steady-intensity levels
 };
 
 /// [solver]: the air domain and the elliptic solve (docs/solver.md).

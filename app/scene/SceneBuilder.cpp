@@ -3,26 +3,25 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <glm/common.hpp>
 #include <stdexcept>
 
-#include <glm/common.hpp>
-
 #include "app/io/Errors.h"
-#include "app/scene/Dem.h"
-#include "app/scene/Heightmap.h"
 #include "app/io/QuietStderr.h"
 #include "app/io/Timing.h"
+#include "app/scene/Dem.h"
+#include "app/scene/Heightmap.h"
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "coupling/FieldSampling.h"
 #include "coupling/FieldWind.h"
 #include "coupling/PointSourceWind.h"
 #include "coupling/SteadyGustWind.h"
+#include "coupling/TerrainMeshBuilder.h"
 #include "coupling/UnsteadyFieldWind.h"
+#include "render/ImageIO.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
-#include "coupling/TerrainMeshBuilder.h"
-#include "render/ImageIO.h"
-#include "base/Numbers.h"
-#include "base/ParameterError.h"
 
 namespace gale::app {
 namespace {
@@ -38,7 +37,8 @@ constexpr double DEFAULT_ELEVATION_DEG = 28.0;
 }
 
 /// What the grass reads below the first solved faces: the log law of the wall stress for the
-/// momentum model, the free-slip tangential law for the mass-consistent one (coupling/NearGround.h).
+/// momentum model, the free-slip tangential law for the mass-consistent one
+/// (coupling/NearGround.h).
 coupling::NearGround nearGroundOf(const Scene& scene) {
     coupling::NearGround n;
     if (scene.solver.model == sim::SteadyModel::Momentum) {
@@ -64,8 +64,7 @@ void rethrowAsSceneError(const Scene& scene, const std::string& fallbackKey,
     const std::string section = p->key().substr(0, p->key().rfind('.'));
     const int line = lineOf(section) > 0 ? lineOf(section) : lineOf(fallbackKey);
     throw SceneError(scene.path + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
-                     p->key() + ": " + p->expected() + " (got " + p->value() +
-                     ", the default)");
+                     p->key() + ": " + p->expected() + " (got " + p->value() + ", the default)");
 }
 
 namespace {
@@ -97,7 +96,6 @@ render::GrassTexture loadTexture(const Scene& scene) {
     }
 }
 
-
 coupling::GustCurve gustCurve(const Scene& scene) {
     return scene.wind.curve ? *scene.wind.curve
                             : coupling::GustCurve::attackDecay(/*period_s=*/4.0, /*base=*/0.1,
@@ -115,7 +113,8 @@ void buildPointSourceWind(const Scene& scene, BuiltScene& built) {
     }
     built.wsWindSource_m = source.wsSource_m;
     try {
-        built.wind = std::make_unique<coupling::PointSourceWind>(built.mesh, source, gustCurve(scene));
+        built.wind =
+            std::make_unique<coupling::PointSourceWind>(built.mesh, source, gustCurve(scene));
     } catch (const std::invalid_argument& e) {
         rethrowAsSceneError(scene, "wind", e);
     }
@@ -123,17 +122,19 @@ void buildPointSourceWind(const Scene& scene, BuiltScene& built) {
 
 std::string describeDomain(const sim::AirDomain& d) {
     char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "%d x %d x %d cells of %.3g m, %zu air cells (%.0f%% of the box), top at %.1f m, "
-                  "about %.0f MiB",
-                  d.nx(), d.ny(), d.nz(), d.voxelSize_m(), d.activeCellCount(),
-                  100.0 * double(d.activeCellCount()) / double(std::max<size_t>(1, d.boxCellCount())),
-                  d.wsTop_m(), d.memoryEstimate_bytes() / (1024.0 * 1024.0));
+    std::snprintf(
+        buf, sizeof buf,
+        "%d x %d x %d cells of %.3g m, %zu air cells (%.0f%% of the box), top at %.1f m, "
+        "about %.0f MiB",
+        d.nx(), d.ny(), d.nz(), d.voxelSize_m(), d.activeCellCount(),
+        100.0 * double(d.activeCellCount()) / double(std::max<size_t>(1, d.boxCellCount())),
+        d.wsTop_m(), d.memoryEstimate_bytes() / (1024.0 * 1024.0));
     return buf;
 }
 
-/// wind.kind = "solved": the steady mass-consistent field (docs/design.md 4.1) sampled at grass height,
-/// then either held (steady) or swept by travelling gusts (docs/design.md 4.2, kinematic mode).
+/// wind.kind = "solved": the steady mass-consistent field (docs/design.md 4.1) sampled at grass
+/// height, then either held (steady) or swept by travelling gusts (docs/design.md 4.2, kinematic
+/// mode).
 void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
     const auto start = Clock::now();
     std::optional<sim::AirDomain> domain;
@@ -147,8 +148,9 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
     if (options.progress) options.progress("solving the steady wind: " + built.domainSummary);
     sim::SteadyModelResult result;
     try {
-        result = sim::solveSteadyModel(*domain, scene.wind.ambient, scene.solver.model, scene.solver.weights,
-                                       scene.solver.settings, scene.solver.momentum);
+        result = sim::solveSteadyModel(*domain, scene.wind.ambient, scene.solver.model,
+                                       scene.solver.weights, scene.solver.settings,
+                                       scene.solver.momentum);
     } catch (const std::invalid_argument& e) {
         rethrowAsSceneError(scene, "wind", e);
     }
@@ -172,7 +174,7 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
             const double a = scene.wind.ambient.direction_deg * PI / 180.0;
             spec.wsDirection = glm::vec3(std::cos(a), std::sin(a), 0.0f);
             auto wind = std::make_unique<coupling::SteadyGustWind>(built.mesh, velocity, spec,
-                                                                    gustCurve(scene));
+                                                                   gustCurve(scene));
             wind->keepField(field);
             built.wind = std::move(wind);
         } else {
@@ -188,33 +190,36 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
 }
 
 /// wind.kind = "unsteady": the steady field as initial state and mean flow, stepped in time by
-/// sim::UnsteadyWindSolver inside a coupling::UnsteadyFieldWind as the frames ask (docs/design.md 4.2).
+/// sim::UnsteadyWindSolver inside a coupling::UnsteadyFieldWind as the frames ask
+/// (docs/design.md 4.2).
 void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
     const auto start = Clock::now();
-    auto domain = std::make_unique<sim::AirDomain>(
-        [&]() -> sim::AirDomain {
-            try {
-                return sim::AirDomain(built.heightfield, scene.solver.domain);
-            } catch (const std::invalid_argument& e) {
-                rethrowAsSceneError(scene, "solver", e);
-            }
-        }());
+    auto domain = std::make_unique<sim::AirDomain>([&]() -> sim::AirDomain {
+        try {
+            return sim::AirDomain(built.heightfield, scene.solver.domain);
+        } catch (const std::invalid_argument& e) {
+            rethrowAsSceneError(scene, "solver", e);
+        }
+    }());
     built.domainSummary = describeDomain(*domain);
     if (!options.solveWind) return;
-    if (options.progress) options.progress("solving the steady wind (initial state): " + built.domainSummary);
+    if (options.progress)
+        options.progress("solving the steady wind (initial state): " + built.domainSummary);
     sim::SteadyWindResult result;
     try {
-        result = sim::solveSteadyWind(*domain, scene.wind.ambient, scene.solver.weights, scene.solver.settings);
+        result = sim::solveSteadyWind(*domain, scene.wind.ambient, scene.solver.weights,
+                                      scene.solver.settings);
     } catch (const std::invalid_argument& e) {
         rethrowAsSceneError(scene, "wind", e);
     }
     built.solve = result.report;
-    const double sampleHeight_m = scene.wind.sampleHeight_m >= 0.0 ? scene.wind.sampleHeight_m
-                                                                    : double(scene.grass.params.height_m);
+    const double sampleHeight_m = scene.wind.sampleHeight_m >= 0.0
+                                      ? scene.wind.sampleHeight_m
+                                      : double(scene.grass.params.height_m);
     try {
         built.wind = std::make_unique<coupling::UnsteadyFieldWind>(
-            built.mesh, std::move(domain), result.field, scene.unsteady.settings, scene.wind.ambient.speed_mps,
-            scene.wind.response, sampleHeight_m);
+            built.mesh, std::move(domain), result.field, scene.unsteady.settings,
+            scene.wind.ambient.speed_mps, scene.wind.response, sampleHeight_m);
     } catch (const std::invalid_argument& e) {
         rethrowAsSceneError(scene, "unsteady", e);
     }
@@ -235,8 +240,8 @@ SceneTerrain buildTerrain(const Scene& scene) {
     }
     if (t.spec.kind == sim::TerrainKind::Heightmap) {
         try {
-            return {loadHeightmap({t.imagePath, t.metresPerPixel, t.heightScale_m,
-                                   t.heightOffset_m, t.meshStride}),
+            return {loadHeightmap({t.imagePath, t.metresPerPixel, t.heightScale_m, t.heightOffset_m,
+                                   t.meshStride}),
                     {}};
         } catch (const ImageError& e) {
             failAt(scene, "terrain.image", e.what());

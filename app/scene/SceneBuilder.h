@@ -27,19 +27,19 @@ namespace gale::app {
 
 struct BuiltScene {
     sim::Heightfield heightfield;  ///< in the local frame (Dem.h) for a DEM
-    Georeference georef;           ///< the DEM's coordinate system and local offset; empty otherwise
+    Georeference georef;  ///< the DEM's coordinate system and local offset; empty otherwise
     render::TerrainMesh mesh;
     render::GrassTexture texture;
-    render::DensityMap densityMap;   ///< grass.density_map over the mesh's plan; width 0: none
+    render::DensityMap densityMap;  ///< grass.density_map over the mesh's plan; width 0: none
     std::unique_ptr<coupling::WindSource> wind;
     render::Camera camera;           ///< the scene's camera with defaults resolved
     glm::vec3 wsWindSource_m{0.0f};  ///< point source actually used
     double build_ms = 0.0;           ///< wall time of buildScene
 
     // wind.kind = "solved":
-    std::string domainSummary;               ///< cells, air cells, memory of the air domain
-    std::optional<sim::SolveReport> solve;   ///< the steady solve (absent when not solved)
-    double solve_ms = 0.0;                   ///< domain + solve + sampling wall time
+    std::string domainSummary;              ///< cells, air cells, memory of the air domain
+    std::optional<sim::SolveReport> solve;  ///< the steady solve (absent when not solved)
+    double solve_ms = 0.0;                  ///< domain + solve + sampling wall time
 };
 
 struct BuildOptions {

@@ -10,10 +10,11 @@ std::string readDemKeys(Section& s, TerrainSection& t, bool isDem) {
     if (s.take("crop_m")) {
         const auto c = s.vec<4>("crop_m", {0, 0, 0, 0}, anyFinite());
         if (!(c[2] > c[0]) || !(c[3] > c[1]))
-            s.failKey("crop_m", "expected [min x, min y, max x, max y] with max > min, in the "
-                                "DEM's coordinates (got [" + Limit::num(c[0]) + ", " +
-                                    Limit::num(c[1]) + ", " + Limit::num(c[2]) + ", " +
-                                    Limit::num(c[3]) + "])");
+            s.failKey("crop_m",
+                      "expected [min x, min y, max x, max y] with max > min, in the "
+                      "DEM's coordinates (got [" +
+                          Limit::num(c[0]) + ", " + Limit::num(c[1]) + ", " + Limit::num(c[2]) +
+                          ", " + Limit::num(c[3]) + "])");
         t.crop = CropWindow{c[0], c[1], c[2], c[3]};
     }
     if (isDem && dem.empty()) {
@@ -26,17 +27,18 @@ std::string readDemKeys(Section& s, TerrainSection& t, bool isDem) {
 void readFromDeg(Section& s, sim::AmbientWind& a) {
     if (!s.take("from_deg")) return;
     if (s.given("direction_deg"))
-        s.failKey("from_deg", "give either from_deg (meteorological: where the wind comes from, "
-                              "clockwise from north) or direction_deg (where it blows, "
-                              "counter-clockwise from +x), not both");
-    a.direction_deg = sim::AmbientWind::towardsFromMeteorological_deg(
-        s.number("from_deg", 0.0, anyFinite()));
+        s.failKey("from_deg",
+                  "give either from_deg (meteorological: where the wind comes from, "
+                  "clockwise from north) or direction_deg (where it blows, "
+                  "counter-clockwise from +x), not both");
+    a.direction_deg =
+        sim::AmbientWind::towardsFromMeteorological_deg(s.number("from_deg", 0.0, anyFinite()));
 }
 
 void noteAmbientWithoutKind(Context& ctx, Section& s) {
     if (s.given("kind")) return;
-    for (const char* key : {"speed_mps", "direction_deg", "from_deg", "profile", "roughness_m",
-                            "reference_height_m"})
+    for (const char* key :
+         {"speed_mps", "direction_deg", "from_deg", "profile", "roughness_m", "reference_height_m"})
         if (s.given(key)) {
             ctx.scene->notes.push_back(
                 ctx.scene->where(s.full(key)) +

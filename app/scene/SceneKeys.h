@@ -4,9 +4,8 @@
 /// meteorological wind direction and the whole [wind] section. Only the parser's files include it.
 
 #include <array>
-#include <string>
-
 #include <glm/vec3.hpp>
+#include <string>
 
 #include "app/scene/SceneSection.h"
 

@@ -120,10 +120,10 @@ void readTerrain(Context& ctx, Section s) {
             return heightmap;
         return true;
     };
-    for (const char* key : {"size_m", "spacing_m", "height_m", "radius_m", "center_m", "axis_deg",
-                            "seed", "octaves", "roughness", "feature_size_m", "image",
-                            "metres_per_pixel", "height_scale_m", "height_offset_m", "dem",
-                            "crop_m"}) {
+    for (const char* key :
+         {"size_m", "spacing_m", "height_m", "radius_m", "center_m", "axis_deg", "seed", "octaves",
+          "roughness", "feature_size_m", "image", "metres_per_pixel", "height_scale_m",
+          "height_offset_m", "dem", "crop_m"}) {
         if (s.given(key) && !uses(key))
             ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) + ": not used by kind \"" +
                                        kindName + "\" (ignored)");
@@ -222,7 +222,8 @@ void readSolver(Context& ctx, Section s) {
         s.number("memory_limit_mb", 4096.0, above(0.0, 1e9)) * 1024.0 * 1024.0;
     v.weights.alphaH = s.number("alpha_h", 1.0, above(0.0, 1e6));
     v.weights.alphaV = s.number("alpha_v", 1.0, above(0.0, 1e6));
-    const double ratio = (v.weights.alphaH / v.weights.alphaV) * (v.weights.alphaH / v.weights.alphaV);
+    const double ratio =
+        (v.weights.alphaH / v.weights.alphaV) * (v.weights.alphaH / v.weights.alphaV);
     if (ratio < sim::SteadyWindSolver::MIN_VERTICAL_RATIO ||
         ratio > sim::SteadyWindSolver::MAX_VERTICAL_RATIO)
         s.failKey(s.given("alpha_v") ? "alpha_v" : "alpha_h",
@@ -242,7 +243,8 @@ void readSolver(Context& ctx, Section s) {
     }
     v.domain.momentumModel = v.model == sim::SteadyModel::Momentum;
     v.momentum.displacementHeight_m = s.number("displacement_height_m", 0.0, closed(0.0, 1e4));
-    v.momentum.maxIterations = static_cast<int>(s.integer("momentum_max_iterations", 300, 1, 100000));
+    v.momentum.maxIterations =
+        static_cast<int>(s.integer("momentum_max_iterations", 300, 1, 100000));
     s.finish();
 }
 
@@ -254,7 +256,8 @@ void readUnsteady(Context& ctx, Section s) {
     v.dt_s = s.number("dt_s", 0.0, above(0.0, 1e6));
     if (!s.given("dt_s")) v.dt_s = 0.0;
     v.cfl = s.number("cfl", 2.0, above(0.0, 1000.0));
-    if (s.given("dt_s") && s.given("cfl")) s.failKey("cfl", "give either dt_s (fixed step) or cfl (adaptive), not both");
+    if (s.given("dt_s") && s.given("cfl"))
+        s.failKey("cfl", "give either dt_s (fixed step) or cfl (adaptive), not both");
     v.maxDt_s = s.number("max_dt_s", 1.0, above(0.0, 1e6));
     const std::string adv = s.string("advection", "semi_lagrangian");
     try {
@@ -294,7 +297,8 @@ void readUnsteady(Context& ctx, Section s) {
                           " unless unsteady.max_steps raises it");
     }
     if (s.present() && ctx.scene->wind.kind != WindKind::Unsteady)
-        ctx.scene->notes.push_back(ctx.scene->where("unsteady") + ": used by wind.kind = \"unsteady\" only (ignored)");
+        ctx.scene->notes.push_back(ctx.scene->where("unsteady") +
+                                   ": used by wind.kind = \"unsteady\" only (ignored)");
 }
 
 void readLighting(Context& ctx, Section s) {

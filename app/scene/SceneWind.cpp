@@ -2,8 +2,8 @@
 /// The [wind] section of the scene format, with its gusts and whirlwinds: the reader SceneParser
 /// calls (SceneKeys.h). Split from SceneParser.cpp, whose other sections stay there.
 
-#include "app/scene/SceneParser.h"
 #include <toml++/toml.h>
+
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -16,8 +16,10 @@
 #include <set>
 #include <sstream>
 #include <system_error>
+
 #include "app/io/Errors.h"
 #include "app/scene/SceneKeys.h"
+#include "app/scene/SceneParser.h"
 #include "app/scene/SceneSection.h"
 #include "render/GrassInput.h"
 #include "render/RenderLimits.h"
@@ -58,27 +60,39 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
         gs.finish();
         for (const char* key : {"region_start_m", "region_radius_m", "region_speed_mps"})
             if (gs.given(key) && g.entry != sim::GustEntry::Region)
-                ctx.scene->notes.push_back(ctx.scene->where(gs.full(key)) + ": used by entry = \"region\" only (ignored)");
+                ctx.scene->notes.push_back(ctx.scene->where(gs.full(key)) +
+                                           ": used by entry = \"region\" only (ignored)");
         if (gs.given("attack_s") && g.envelope != sim::GustEnvelope::Spline)
-            ctx.scene->notes.push_back(ctx.scene->where(gs.full("attack_s")) + ": only the spline envelope has an attack time (ignored)");
+            ctx.scene->notes.push_back(ctx.scene->where(gs.full("attack_s")) +
+                                       ": only the spline envelope has an attack time (ignored)");
         if (g.attack_s > 0.0 && !(g.attack_s < g.duration_s))
-            gs.failKey("attack_s", "must be shorter than duration_s = " + Limit::num(g.duration_s) + " (got " +
-                                       Limit::num(g.attack_s) + ")");
+            gs.failKey("attack_s", "must be shorter than duration_s = " + Limit::num(g.duration_s) +
+                                       " (got " + Limit::num(g.attack_s) + ")");
         u.gusts.push_back(g);
-        if (!unsteady) ctx.scene->notes.push_back(ctx.file + ":" + std::to_string(gs.line()) + ": " + gs.name() + ": gusts are used by kind \"unsteady\" only (ignored)");
+        if (!unsteady)
+            ctx.scene->notes.push_back(ctx.file + ":" + std::to_string(gs.line()) + ": " +
+                                       gs.name() +
+                                       ": gusts are used by kind \"unsteady\" only (ignored)");
     }
     for (Section& ws : s.tables("whirlwinds")) {
         sim::Whirlwind v;
-        if (!ws.take("position_m")) ws.fail(ws.line(), "", "missing key position_m (required: [x, y] of the axis)");
+        if (!ws.take("position_m"))
+            ws.fail(ws.line(), "", "missing key position_m (required: [x, y] of the axis)");
         v.wsPosition_m = ws.vec<2>("position_m", {0, 0}, anyFinite());
         v.coreRadius_m = ws.number("core_radius_m", 3.0, above(0.0, 1e6));
-        const bool hasGamma = ws.take("circulation_m2ps") != nullptr, hasPeak = ws.take("peak_speed_mps") != nullptr;
+        const bool hasGamma = ws.take("circulation_m2ps") != nullptr,
+                   hasPeak = ws.take("peak_speed_mps") != nullptr;
         v.circulation_m2ps = ws.number("circulation_m2ps", 0.0, closed(-1e7, 1e7));
         v.peakSpeed_mps = ws.number("peak_speed_mps", 0.0, closed(-1000.0, 1000.0));
-        if (hasGamma && hasPeak) ws.failKey("peak_speed_mps", "give either circulation_m2ps or peak_speed_mps, not both");
-        if (!hasGamma && !hasPeak) ws.fail(ws.line(), "", "missing key circulation_m2ps or peak_speed_mps (one is required)");
+        if (hasGamma && hasPeak)
+            ws.failKey("peak_speed_mps",
+                       "give either circulation_m2ps or peak_speed_mps, not both");
+        if (!hasGamma && !hasPeak)
+            ws.fail(ws.line(), "",
+                    "missing key circulation_m2ps or peak_speed_mps (one is required)");
         if ((hasPeak && v.peakSpeed_mps == 0.0) || (hasGamma && v.circulation_m2ps == 0.0))
-            ws.failKey(hasPeak ? "peak_speed_mps" : "circulation_m2ps", "must not be 0 (the sign gives the sense of rotation)");
+            ws.failKey(hasPeak ? "peak_speed_mps" : "circulation_m2ps",
+                       "must not be 0 (the sign gives the sense of rotation)");
         const std::string profile = ws.string("profile", "lamb_oseen");
         try {
             v.profile = sim::vortexProfileFromName(profile);
@@ -92,11 +106,14 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
         v.height_m = ws.number("height_m", 0.0, closed(0.0, 1e6));
         ws.finish();
         if (ws.given("lifetime_s") && !v.forced)
-            ctx.scene->notes.push_back(ctx.scene->where(ws.full("lifetime_s")) +
-                                       ": the lifetime ends the forcing, and forced = false (ignored)");
+            ctx.scene->notes.push_back(
+                ctx.scene->where(ws.full("lifetime_s")) +
+                ": the lifetime ends the forcing, and forced = false (ignored)");
         u.whirlwinds.push_back(v);
         if (!unsteady)
-            ctx.scene->notes.push_back(ctx.file + ":" + std::to_string(ws.line()) + ": " + ws.name() + ": whirlwinds are used by kind \"unsteady\" only (ignored)");
+            ctx.scene->notes.push_back(ctx.file + ":" + std::to_string(ws.line()) + ": " +
+                                       ws.name() +
+                                       ": whirlwinds are used by kind \"unsteady\" only (ignored)");
     }
 }
 
@@ -112,7 +129,8 @@ void readWind(Context& ctx, Section s) {
     else if (kind == "unsteady")
         w.kind = WindKind::Unsteady;
     else
-        s.failKey("kind", "expected \"point_source\", \"solved\" or \"unsteady\" (got \"" + kind + "\")");
+        s.failKey("kind",
+                  "expected \"point_source\", \"solved\" or \"unsteady\" (got \"" + kind + "\")");
     coupling::PointSourceSpec& p = w.pointSource;
     w.autoSource = !s.take("source_m");
     if (!w.autoSource) p.wsSource_m = toVec3(s.vec<3>("source_m", {0, 0, 0}, anyFinite()));
@@ -121,8 +139,8 @@ void readWind(Context& ctx, Section s) {
     p.blowAway = s.boolean("blow_away", true);
     p.blendGroups = s.boolean("blend_groups", true);
 
-    // The ambient wind (first guess of the solve, docs/design.md 4.1): read whatever the kind, since
-    // `gale solve` uses it for any scene.
+    // The ambient wind (first guess of the solve, docs/design.md 4.1): read whatever the kind,
+    // since `gale solve` uses it for any scene.
     sim::AmbientWind& a = w.ambient;
     a.speed_mps = s.number("speed_mps", a.speed_mps, closed(0.0, 1000.0));
     a.referenceHeight_m = s.number("reference_height_m", a.referenceHeight_m, above(0.0, 1e5));
@@ -149,8 +167,8 @@ void readWind(Context& ctx, Section s) {
     coupling::FieldWindSpec& r = w.response;
     try {
         r.response = coupling::bladeResponseFromName(s.string("response", "static"));
-        r.grouping = coupling::groupingFromName(
-            s.string("grouping", r.response == coupling::BladeResponse::Oscillator ? "tiles" : "levels"));
+        r.grouping = coupling::groupingFromName(s.string(
+            "grouping", r.response == coupling::BladeResponse::Oscillator ? "tiles" : "levels"));
     } catch (const std::invalid_argument& e) {
         s.failKey(s.given("grouping") ? "grouping" : "response", e.what());
     }
@@ -172,11 +190,11 @@ void readWind(Context& ctx, Section s) {
     const bool solved = w.kind != WindKind::PointSource;
     for (const char* key : {"source_m", "steps", "step_delay_s", "blow_away"})
         if (solved && s.given(key))
-            ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) + ": not used by kind \"" + kind +
-                                       "\" (ignored)");
-    for (const char* key : {"response", "grouping", "groups", "bend_speed_mps", "max_intensity",
-                            "frequency_hz", "damping_ratio", "sample_height_m", "arrival_bands",
-                            "levels"})
+            ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) + ": not used by kind \"" +
+                                       kind + "\" (ignored)");
+    for (const char* key :
+         {"response", "grouping", "groups", "bend_speed_mps", "max_intensity", "frequency_hz",
+          "damping_ratio", "sample_height_m", "arrival_bands", "levels"})
         if (!solved && s.given(key))
             ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) +
                                        ": not used by kind \"point_source\" (ignored)");
@@ -186,9 +204,10 @@ void readWind(Context& ctx, Section s) {
     Section g = s.table("gust");
     w.gusts = g.present();
     if (w.gusts && w.kind == WindKind::Unsteady)
-        ctx.scene->notes.push_back(ctx.scene->where("wind.gust") +
-                                   ": the kinematic gust curve is not used by kind \"unsteady\" (its gusts are "
-                                   "[[wind.gusts]]) (ignored)");
+        ctx.scene->notes.push_back(
+            ctx.scene->where("wind.gust") +
+            ": the kinematic gust curve is not used by kind \"unsteady\" (its gusts are "
+            "[[wind.gusts]]) (ignored)");
     const double period_s = g.number("period_s", 4.0, above(0.0, 1e6));
     const toml::node* keys = g.take("keys");
     const bool shaped = g.take("base") || g.take("peak") || g.take("attack_s") || g.take("decay_s");

@@ -13,8 +13,8 @@
 #include <system_error>
 
 #include "app/io/AtomicFile.h"
-#include "sim/AmbientWind.h"
 #include "base/Numbers.h"
+#include "sim/AmbientWind.h"
 
 namespace gale::app {
 namespace {
@@ -94,14 +94,19 @@ std::vector<std::string> writeWindRasters(const sim::WindField& field, const sim
         }
     }
     const double h = t.spacing_m;
-    const double gt[6] = {g.demX_m(t.originX_m) - 0.5 * h, h, 0.0,
-                          g.demY_m(t.originY_m + (ny - 1) * h) + 0.5 * h, 0.0, -h};
+    const double gt[6] = {g.demX_m(t.originX_m) - 0.5 * h,
+                          h,
+                          0.0,
+                          g.demY_m(t.originY_m + (ny - 1) * h) + 0.5 * h,
+                          0.0,
+                          -h};
     std::vector<std::string> written;
     auto fill = [&](GDALDataset* ds, int band, std::vector<float>& data, const char* what) {
         GDALRasterBand* b = ds->GetRasterBand(band);
         b->SetNoDataValue(WIND_RASTER_NODATA);
         b->SetDescription(what);
-        if (b->RasterIO(GF_Write, 0, 0, nx, ny, data.data(), nx, ny, GDT_Float32, 0, 0, nullptr) != CE_None)
+        if (b->RasterIO(GF_Write, 0, 0, nx, ny, data.data(), nx, ny, GDT_Float32, 0, 0, nullptr) !=
+            CE_None)
             throw std::runtime_error(stem + ": cannot fill the raster band " + what);
     };
     // The GeoTIFF holds both bands; an ASCII grid holds one, the speed.

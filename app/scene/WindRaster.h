@@ -21,7 +21,8 @@ inline constexpr double WIND_RASTER_NODATA = -9999.0;
 /// there. North-up; the geotransform is in the DEM's coordinates (the local offset added back).
 /// Each file is written to a temporary name and renamed. Returns the paths written. Throws
 /// std::runtime_error naming the path when GDAL cannot write it.
-std::vector<std::string> writeWindRasters(const sim::WindField& field, const sim::Heightfield& terrain,
+std::vector<std::string> writeWindRasters(const sim::WindField& field,
+                                          const sim::Heightfield& terrain,
                                           const Georeference& georef, double height_m,
                                           const std::string& stem);
 

@@ -22,12 +22,12 @@ namespace gale::app::test {
 
 namespace fs = std::filesystem;
 
-using gale::test::TempDir;
 using gale::test::readFile;
+using gale::test::TempDir;
 using gale::test::writeFile;
 
-using gale::test::RunResult;
 using gale::test::runGale;
+using gale::test::RunResult;
 
 using gale::test::sourcePath;
 

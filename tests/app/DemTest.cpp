@@ -98,7 +98,9 @@ TEST(Dem, AsciiGridWithItsPrjIsReadLikeAGeoTiff) {
     TempDir dir;
     TestRaster r = projectedWithBorder();
     r.nodata = false;
-    r.value = [](int col, int row) { return plane_m(X0 + (col + 0.5) * PIXEL_M, Y0 - (row + 0.5) * PIXEL_M); };
+    r.value = [](int col, int row) {
+        return plane_m(X0 + (col + 0.5) * PIXEL_M, Y0 - (row + 0.5) * PIXEL_M);
+    };
     ASSERT_EQ(test::writeTestRaster(dir / "dem.asc", r, "AAIGrid"), "");
     const Dem dem = loadDem({dir / "dem.asc"});
     EXPECT_EQ(dem.field.nx, COLS);

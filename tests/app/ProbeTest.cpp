@@ -70,8 +70,10 @@ top_m = 70.0
 TEST(Probe, FlatGroundWithALogProfileGivesTheLogLawAt2And10And50Metres) {
     TempDir dir;
     test::writeFile(dir / "flat.toml", FLAT_SCENE);
-    test::writeFile(dir / "masts.csv", "name,x,y,height_agl_m\nm2,10,10,2\nm10,10,10,10\nm50,10,10,50\n");
-    const auto r = test::runGale({"probe", dir / "flat.toml", dir / "masts.csv", "-o", dir / "out.csv"});
+    test::writeFile(dir / "masts.csv",
+                    "name,x,y,height_agl_m\nm2,10,10,2\nm10,10,10,10\nm50,10,10,50\n");
+    const auto r =
+        test::runGale({"probe", dir / "flat.toml", dir / "masts.csv", "-o", dir / "out.csv"});
     ASSERT_EQ(r.exitCode, 0) << r.describe();
     const auto rows = readCsv(test::readFile(dir / "out.csv"));
     ASSERT_EQ(rows.size(), 3u);
@@ -102,10 +104,12 @@ TEST(Probe, DemCoordinatesAndHeightsRoundTripThroughAProbe) {
         return plane(x0 + (c + 0.5) * pixel, y0 - (row + 0.5) * pixel);
     };
     ASSERT_EQ(test::writeTestRaster(dir / "dem.tif", r), "");
-    test::writeFile(dir / "dem.toml", "[terrain]\nkind = \"dem\"\ndem = \"dem.tif\"\n[wind]\nkind = \"solved\"\n"
-                                      "[solver]\nvoxel_size_m = 2.0\ntop_m = 200.0\n");
+    test::writeFile(dir / "dem.toml",
+                    "[terrain]\nkind = \"dem\"\ndem = \"dem.tif\"\n[wind]\nkind = \"solved\"\n"
+                    "[solver]\nvoxel_size_m = 2.0\ntop_m = 200.0\n");
     const double px = x0 + 21.0, py = y0 - 17.0;  // inside the data, between pixel centres
-    test::writeFile(dir / "p.csv", "name,x,y,height_agl_m\nmast," + std::to_string(px) + "," + std::to_string(py) + ",10\n");
+    test::writeFile(dir / "p.csv", "name,x,y,height_agl_m\nmast," + std::to_string(px) + "," +
+                                       std::to_string(py) + ",10\n");
     const auto run = test::runGale({"probe", dir / "dem.toml", dir / "p.csv"});
     ASSERT_EQ(run.exitCode, 0) << run.describe();
     const auto rows = readCsv(run.out);
@@ -133,14 +137,16 @@ TEST(Probe, BadProbeRowsExitTwoNamingFileAndLineAndWriteNothing) {
     const Case cases[] = {
         {"x,y,height_agl_m\n1,1,2\n1,zz,2\n", "masts.csv:3: y: not a finite number (got 'zz')"},
         {"x,y,height_agl_m\n1,1\n", "masts.csv:2: expected 3 values, got 2"},
-        {"x,y,height_agl_m\n\n25,1,2\n", "masts.csv:3: point (25.000, 1.000) is outside the terrain"},
+        {"x,y,height_agl_m\n\n25,1,2\n",
+         "masts.csv:3: point (25.000, 1.000) is outside the terrain"},
         {"x,y,z_m\n5,5,-1\n", "masts.csv:2: point is not above the ground"},
         {"x,y\n5,5\n", "masts.csv:1: the header must name exactly one of height_agl_m"},
         {"x,y,speed\n", "masts.csv:1: unknown column 'speed'"},
     };
     for (const Case& c : cases) {
         test::writeFile(dir / "masts.csv", c.csv);
-        const auto r = test::runGale({"probe", dir / "flat.toml", dir / "masts.csv", "-o", dir / "out/p.csv"});
+        const auto r =
+            test::runGale({"probe", dir / "flat.toml", dir / "masts.csv", "-o", dir / "out/p.csv"});
         EXPECT_EQ(r.exitCode, 2) << r.describe();
         EXPECT_EQ(test::countLines(r.err), 1) << r.err;
         EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
@@ -160,9 +166,10 @@ TEST(Probe, BadDemsExitTwoWithOneLineNamingTheFileAndWriteNothing) {
         double value;
         const char* reason;
     };
-    const Case cases[] = {{"", 1.0, "has no coordinate system"},
-                          {"LOCAL_CS[\"mine\",UNIT[\"metre\",1]]", 1.0, "neither projected nor geographic"},
-                          {"EPSG:32632", test::TEST_NODATA, "every height in the raster is nodata"}};
+    const Case cases[] = {
+        {"", 1.0, "has no coordinate system"},
+        {"LOCAL_CS[\"mine\",UNIT[\"metre\",1]]", 1.0, "neither projected nor geographic"},
+        {"EPSG:32632", test::TEST_NODATA, "every height in the raster is nodata"}};
     for (const Case& c : cases) {
         r.srs = c.srs;
         const double v = c.value;
@@ -179,8 +186,9 @@ TEST(Probe, BadDemsExitTwoWithOneLineNamingTheFileAndWriteNothing) {
 }
 
 TEST(FromDeg, MeteorologicalAndMathematicalDirectionsGiveTheSameField) {
-    const std::string base = "[terrain]\nkind = \"gaussian_hill\"\nsize_m = [16.0, 16.0]\nspacing_m = 0.5\n"
-                             "[wind]\nkind = \"solved\"\n";
+    const std::string base =
+        "[terrain]\nkind = \"gaussian_hill\"\nsize_m = [16.0, 16.0]\nspacing_m = 0.5\n"
+        "[wind]\nkind = \"solved\"\n";
     const Scene met = parseSceneString(base + "from_deg = 210.0\n", "met.toml");
     const Scene math = parseSceneString(base + "direction_deg = 60.0\n", "math.toml");
     // 210 from = towards bearing 30 = 60 counter-clockwise from +x (to double rounding).
@@ -189,8 +197,10 @@ TEST(FromDeg, MeteorologicalAndMathematicalDirectionsGiveTheSameField) {
     sim::DomainSpec spec;
     spec.voxelSize_m = 1.0;
     const sim::AirDomain domain(field, spec);
-    const auto a = sim::solveSteadyWind(domain, met.wind.ambient, met.solver.weights, met.solver.settings);
-    const auto b = sim::solveSteadyWind(domain, math.wind.ambient, math.solver.weights, math.solver.settings);
+    const auto a =
+        sim::solveSteadyWind(domain, met.wind.ambient, met.solver.weights, met.solver.settings);
+    const auto b =
+        sim::solveSteadyWind(domain, math.wind.ambient, math.solver.weights, math.solver.settings);
     double worst = 0.0;
     for (size_t i = 0; i < a.field.u_mps().size(); ++i)
         worst = std::max(worst, std::abs(a.field.u_mps()[i] - b.field.u_mps()[i]));
@@ -198,15 +208,20 @@ TEST(FromDeg, MeteorologicalAndMathematicalDirectionsGiveTheSameField) {
         worst = std::max(worst, std::abs(a.field.v_mps()[i] - b.field.v_mps()[i]));
     // Same direction to 1e-12 deg: the fields agree to the solver's rounding.
     EXPECT_LT(worst, 1e-9);
-    EXPECT_NE(test::errorOf(base + "from_deg = 10.0\ndirection_deg = 5.0\n").find("not both"), std::string::npos);
+    EXPECT_NE(test::errorOf(base + "from_deg = 10.0\ndirection_deg = 5.0\n").find("not both"),
+              std::string::npos);
 }
 
 TEST(FromDeg, CheckPrintsBothConventions) {
     TempDir dir;
-    test::writeFile(dir / "s.toml", "[terrain]\nkind = \"flat\"\nsize_m = [10.0, 10.0]\n[wind]\nkind = \"solved\"\nfrom_deg = 210.0\n");
+    test::writeFile(dir / "s.toml",
+                    "[terrain]\nkind = \"flat\"\nsize_m = [10.0, 10.0]\n[wind]\nkind = "
+                    "\"solved\"\nfrom_deg = 210.0\n");
     const auto r = test::runGale({"check", dir / "s.toml"});
     ASSERT_EQ(r.exitCode, 0) << r.describe();
-    EXPECT_NE(r.out.find("from 210 deg = towards 30 deg, counter-clockwise from +x 60 deg"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("from 210 deg = towards 30 deg, counter-clockwise from +x 60 deg"),
+              std::string::npos)
+        << r.out;
 }
 
 }  // namespace

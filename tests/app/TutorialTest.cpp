@@ -42,13 +42,16 @@ TEST(Tutorial, CommandsRun) {
     ASSERT_FALSE(script.empty()) << "docs/tutorial.md has no sh blocks";
     test::writeFile(dir / "tutorial.sh", "set -euo pipefail\n" + script);
     const std::string bin = std::filesystem::path(GALE_EXE).parent_path().string();
-    const std::string command = "cd '" + dir.str() + "' && PATH='" + bin + "':\"$PATH\" bash tutorial.sh > log.txt 2>&1";
+    const std::string command =
+        "cd '" + dir.str() + "' && PATH='" + bin + "':\"$PATH\" bash tutorial.sh > log.txt 2>&1";
     const int status = std::system(command.c_str());
     const std::string log = test::readFile(dir / "log.txt");
     ASSERT_EQ(status, 0) << log;
     // What the tutorial tells the reader they will see.
     EXPECT_NE(log.find("UTM zone 32N"), std::string::npos) << log;
-    EXPECT_NE(log.find("from 270 deg = towards 90 deg, counter-clockwise from +x 0 deg"), std::string::npos) << log;
+    EXPECT_NE(log.find("from 270 deg = towards 90 deg, counter-clockwise from +x 0 deg"),
+              std::string::npos)
+        << log;
     EXPECT_TRUE(std::filesystem::exists(dir / "out/wind_10m.tif")) << log;
     EXPECT_TRUE(std::filesystem::exists(dir / "out/frames/frame_0001.png")) << log;
     const std::string masts = test::readFile(dir / "out/masts.csv");

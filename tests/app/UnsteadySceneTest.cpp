@@ -1,5 +1,6 @@
 // Scenes of the unsteady wind: the examples parse with their gusts and whirlwinds, defaults apply,
-// and bad [unsteady] / [[wind.gusts]] / [[wind.whirlwinds]] keys are errors naming FILE:LINE and key.
+// and bad [unsteady] / [[wind.gusts]] / [[wind.whirlwinds]] keys are errors naming FILE:LINE and
+// key.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -27,7 +28,8 @@ TEST(UnsteadyScene, ExamplesParseWithTheirEvents) {
 }
 
 TEST(UnsteadyScene, DefaultsApply) {
-    const Scene s = parseSceneString(std::string(BASE) + "[[wind.gusts]]\npeak_mps = 2.0\n", "scene.toml");
+    const Scene s =
+        parseSceneString(std::string(BASE) + "[[wind.gusts]]\npeak_mps = 2.0\n", "scene.toml");
     EXPECT_EQ(s.unsteady.settings.dt_s, 0.0);  // adaptive
     EXPECT_EQ(s.unsteady.settings.cfl, 2.0);
     EXPECT_FALSE(s.unsteady.settings.openTop);
@@ -50,15 +52,20 @@ TEST(UnsteadyScene, BadKeysNameFileLineAndKey) {
     EXPECT_NE(m.find("position_m"), std::string::npos) << m;
     m = errorOf(std::string(BASE) + "[[wind.whirlwinds]]\nposition_m = [1, 2]\n");
     EXPECT_NE(m.find("circulation_m2ps or peak_speed_mps"), std::string::npos) << m;
-    m = errorOf(std::string(BASE) + "[[wind.whirlwinds]]\nposition_m = [1, 2]\npeak_speed_mps = 3\ncirculation_m2ps = 4\n");
+    m = errorOf(
+        std::string(BASE) +
+        "[[wind.whirlwinds]]\nposition_m = [1, 2]\npeak_speed_mps = 3\ncirculation_m2ps = 4\n");
     EXPECT_NE(m.find("not both"), std::string::npos) << m;
-    m = errorOf(std::string(BASE) + "[[wind.whirlwinds]]\nposition_m = [1, 2]\npeak_speed_mps = 3\nprofile = \"tornado\"\n");
+    m = errorOf(
+        std::string(BASE) +
+        "[[wind.whirlwinds]]\nposition_m = [1, 2]\npeak_speed_mps = 3\nprofile = \"tornado\"\n");
     EXPECT_NE(m.find("wind.whirlwinds[0].profile"), std::string::npos) << m;
 }
 
 TEST(UnsteadyScene, EventsOfAnotherKindAreNotedAsIgnored) {
-    const Scene s = parseSceneString("[wind]\nkind = \"solved\"\n[[wind.gusts]]\npeak_mps = 1\n[unsteady]\ncfl = 3\n",
-                                     "scene.toml");
+    const Scene s = parseSceneString(
+        "[wind]\nkind = \"solved\"\n[[wind.gusts]]\npeak_mps = 1\n[unsteady]\ncfl = 3\n",
+        "scene.toml");
     ASSERT_GE(s.notes.size(), 2u);
     bool gustNote = false, unsteadyNote = false;
     for (const std::string& n : s.notes) {

@@ -16,8 +16,9 @@
 namespace gale::app::test {
 namespace {
 
-// The window's context is OSMesa too (docs/design.md 7), so the pixels should be those of `gale render`;
-// the same slack as the reference-image tests covers any difference in the copy to the window.
+// The window's context is OSMesa too (docs/design.md 7), so the pixels should be those of `gale
+// render`; the same slack as the reference-image tests covers any difference in the copy to the
+// window.
 constexpr int kChannelTolerance = 8;
 constexpr double kMaxDifferingFraction = 0.005;
 // A blank (one-colour) frame has variance 0; sky over grass has thousands (8-bit levels squared).

@@ -38,13 +38,16 @@ TEST(WindRaster, GeoTiffAndAsciiGridCarryTheDemsCrsGeotransformAndTheWind) {
     std::copy(gt, gt + 6, r.gt);
     r.srs = "EPSG:32631";
     r.nodata = true;
-    r.value = [](int c, int) { return c == 0 ? test::TEST_NODATA : GROUND_M; };  // west column trimmed
+    r.value = [](int c, int) {
+        return c == 0 ? test::TEST_NODATA : GROUND_M;
+    };  // west column trimmed
     ASSERT_EQ(test::writeTestRaster(dir / "dem.tif", r), "");
     test::writeFile(dir / "s.toml",
                     "[terrain]\nkind = \"dem\"\ndem = \"dem.tif\"\n[wind]\nkind = \"solved\"\n"
                     "speed_mps = 5.0\nreference_height_m = 10.0\nfrom_deg = 270.0\n"
                     "[solver]\nvoxel_size_m = 1.0\ntop_m = 140.0\n");
-    const auto run = test::runGale({"solve", dir / "s.toml", "-o", dir / "out/w.vdb", "--grid-height-m", "10"});
+    const auto run =
+        test::runGale({"solve", dir / "s.toml", "-o", dir / "out/w.vdb", "--grid-height-m", "10"});
     ASSERT_EQ(run.exitCode, 0) << run.describe();
     const std::string report = test::readFile(dir / "out/w.json");
     for (const char* listed : {"w_10m.tif", "w_10m.asc", "velocity_faces"})
@@ -52,7 +55,8 @@ TEST(WindRaster, GeoTiffAndAsciiGridCarryTheDemsCrsGeotransformAndTheWind) {
 
     ensureGdalRegistered();
     for (const char* name : {"out/w_10m.tif", "out/w_10m.asc"}) {
-        std::unique_ptr<GDALDataset, Closer> ds(GDALDataset::Open((dir / name).c_str(), GDAL_OF_RASTER));
+        std::unique_ptr<GDALDataset, Closer> ds(
+            GDALDataset::Open((dir / name).c_str(), GDAL_OF_RASTER));
         ASSERT_TRUE(ds) << name;
         EXPECT_EQ(ds->GetRasterXSize(), COLS - 1) << name;
         EXPECT_EQ(ds->GetRasterYSize(), ROWS) << name;
@@ -69,11 +73,15 @@ TEST(WindRaster, GeoTiffAndAsciiGridCarryTheDemsCrsGeotransformAndTheWind) {
         EXPECT_NEAR(out[5], -PIXEL_M, 1e-9) << name;
         // Flat ground: 10 m above it the log profile's reference speed, 5 m/s, from the west.
         float speed = 0.f;
-        ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 11, 9, 1, 1, &speed, 1, 1, GDT_Float32, 0, 0, nullptr), CE_None);
+        ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 11, 9, 1, 1, &speed, 1, 1, GDT_Float32, 0,
+                                                 0, nullptr),
+                  CE_None);
         EXPECT_NEAR(speed, 5.0, LOG_LAW_RELATIVE_TOLERANCE * 5.0) << name;
         if (ds->GetRasterCount() == 2) {
             float from = 0.f;
-            ASSERT_EQ(ds->GetRasterBand(2)->RasterIO(GF_Read, 11, 9, 1, 1, &from, 1, 1, GDT_Float32, 0, 0, nullptr), CE_None);
+            ASSERT_EQ(ds->GetRasterBand(2)->RasterIO(GF_Read, 11, 9, 1, 1, &from, 1, 1, GDT_Float32,
+                                                     0, 0, nullptr),
+                      CE_None);
             EXPECT_NEAR(from, 270.0, 0.5);
             // The same cell through gale probe, by its DEM coordinates (pixel centre).
             const double px = out[0] + 11.5 * out[1], py = out[3] + 9.5 * out[5];
@@ -81,7 +89,8 @@ TEST(WindRaster, GeoTiffAndAsciiGridCarryTheDemsCrsGeotransformAndTheWind) {
             csv.precision(12);
             csv << "x,y,height_agl_m\n" << px << "," << py << ",10\n";
             test::writeFile(dir / "p.csv", csv.str());
-            const auto probe = test::runGale({"probe", dir / "s.toml", dir / "p.csv", "--vdb", dir / "out/w.vdb"});
+            const auto probe =
+                test::runGale({"probe", dir / "s.toml", dir / "p.csv", "--vdb", dir / "out/w.vdb"});
             ASSERT_EQ(probe.exitCode, 0) << probe.describe();
             const std::string row = probe.out.substr(probe.out.find('\n') + 1);
             std::istringstream cells(row);

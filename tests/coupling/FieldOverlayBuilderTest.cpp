@@ -77,15 +77,20 @@ TEST(FieldOverlayBuilder, AutomaticScaleHoldsItsLargestTopOverARun) {
     spec.arrowSpacing_m = 2.0;
     const float calmAlone = coupling::buildFieldOverlay(calm.field, calm.mesh, spec, 0.5).speedMax;
     coupling::OverlayScaleKeeper keeper;
-    const render::FieldOverlayData first = coupling::buildFieldOverlay(windy.field, windy.mesh, keeper.frame(spec), 0.5);
+    const render::FieldOverlayData first =
+        coupling::buildFieldOverlay(windy.field, windy.mesh, keeper.frame(spec), 0.5);
     keeper.seen(first);
-    const render::FieldOverlayData second = coupling::buildFieldOverlay(calm.field, calm.mesh, keeper.frame(spec), 0.5);
+    const render::FieldOverlayData second =
+        coupling::buildFieldOverlay(calm.field, calm.mesh, keeper.frame(spec), 0.5);
     keeper.seen(second);
-    EXPECT_LT(calmAlone, first.speedMax);           // on its own the calm frame would rescale...
-    EXPECT_EQ(second.speedMax, first.speedMax);     // ...within the run it keeps the windy top
-    EXPECT_NEAR(glm::length(second.arrows[0].wsVector_m), 0.25f * glm::length(first.arrows[0].wsVector_m), VECTOR_TOL);
+    EXPECT_LT(calmAlone, first.speedMax);        // on its own the calm frame would rescale...
+    EXPECT_EQ(second.speedMax, first.speedMax);  // ...within the run it keeps the windy top
+    EXPECT_NEAR(glm::length(second.arrows[0].wsVector_m),
+                0.25f * glm::length(first.arrows[0].wsVector_m), VECTOR_TOL);
     spec.speedMax_mps = 2.0;
-    EXPECT_EQ(coupling::buildFieldOverlay(windy.field, windy.mesh, keeper.frame(spec), 0.5).speedMax, 2.0f);
+    EXPECT_EQ(
+        coupling::buildFieldOverlay(windy.field, windy.mesh, keeper.frame(spec), 0.5).speedMax,
+        2.0f);
 }
 
 TEST(FieldOverlayBuilder, StreamlinesInUniformWindAreStraightAndCrossTheTerrain) {

@@ -16,7 +16,7 @@ using namespace gale;
 namespace {
 
 constexpr int NX = 8, NY = 8, NZ = 6;
-constexpr double H = 1.0;           // cell edge, metres
+constexpr double H = 1.0;  // cell edge, metres
 constexpr double SAMPLE_HEIGHT_M = 0.5;
 const coupling::NearGround AS_IT_STANDS{coupling::NearGroundModel::Interpolated};
 
@@ -76,7 +76,7 @@ TEST(GrassSampler, ReadsTheFieldAtGrassHeightStepAfterStep) {
         sampler.sample(f, out);
         expectMatchesField(out, f, mesh);
         EXPECT_FLOAT_EQ(out[0].x, float(1.0 + 2.5 + offset));  // u = 1 + z at z = 2.5 m
-        EXPECT_EQ(out.back(), glm::vec3(0.0f));                 // outside the box
+        EXPECT_EQ(out.back(), glm::vec3(0.0f));                // outside the box
     }
 }
 
@@ -89,7 +89,8 @@ TEST(GrassSampler, MakesTheTerrainTestAgainForAnotherGeometry) {
     const sim::WindField low = field(flatTerrain(2.0f), 0.0);
     sampler.sample(low, out);
     EXPECT_NE(out[0], glm::vec3(0.0f));
-    const sim::WindField high = field(flatTerrain(4.0f), 0.0);  // the sample points are now 1.5 m under ground
+    const sim::WindField high =
+        field(flatTerrain(4.0f), 0.0);  // the sample points are now 1.5 m under ground
     sampler.sample(high, out);
     for (const glm::vec3& u : out) EXPECT_EQ(u, glm::vec3(0.0f));
     sampler.sample(low, out);

@@ -4,16 +4,15 @@
 
 #include <cmath>
 #include <functional>
+#include <glm/geometric.hpp>
 #include <memory>
 #include <set>
 
-#include <glm/geometric.hpp>
-
+#include "base/Numbers.h"
 #include "coupling/FieldWind.h"
 #include "coupling/TerrainMeshBuilder.h"
 #include "render/Bend.h"
 #include "sim/Heightfield.h"
-#include "base/Numbers.h"
 
 using namespace gale;
 using coupling::BladeResponse;
@@ -48,7 +47,8 @@ TEST(FieldWind, UniformWindOverFlatGroundBendsEveryVertexAlike) {
     FieldWindSpec spec;
     spec.bendSpeed_mps = 10.0;
     FieldWind wind(mesh, spec);
-    wind.addFieldStep(0.0, sampleAll(mesh, [](auto&, double) { return glm::vec3(6, 0, 0); }, 0.0));
+    wind.addFieldStep(0.0, sampleAll(
+                               mesh, [](auto&, double) { return glm::vec3(6, 0, 0); }, 0.0));
     render::GrassWind out;
     wind.update(0.0, out);
     const std::vector<float> shown = FieldWind::shownIntensity(out);
@@ -129,8 +129,8 @@ TEST(FieldWind, DegenerateWindsGiveFiniteZeroBend) {
     const render::TerrainMesh mesh = flatMesh(4.0, 1.0);
     FieldWind wind(mesh, FieldWindSpec{});
     std::vector<glm::vec3> w(mesh.wsPosition_m.size(), glm::vec3(0.0f, 0.0f, 7.0f));  // along N
-    w[1] = glm::vec3(0.0f);                                                        // calm
-    w[2] = glm::vec3(NAN, 1.0f, 0.0f);            // outside the domain, as a sampler may report
+    w[1] = glm::vec3(0.0f);                                                           // calm
+    w[2] = glm::vec3(NAN, 1.0f, 0.0f);  // outside the domain, as a sampler may report
     w[3] = glm::vec3(INFINITY, 0.0f, 0.0f);
     wind.addFieldStep(0.0, w);
     render::GrassWind out;
@@ -209,7 +209,8 @@ TEST(FieldWind, GroupedBendApproachesTheExactBendAsGroupsGrow) {
         spec.groups = k;
         FieldWind wind(mesh, spec);
         // Field steps of 0.1 s, as an unsteady solver gives them; frames at 24 fps in between.
-        for (int step = 0; step <= 5; ++step) wind.addFieldStep(0.1 * step, sampleAll(mesh, f, 0.1 * step));
+        for (int step = 0; step <= 5; ++step)
+            wind.addFieldStep(0.1 * step, sampleAll(mesh, f, 0.1 * step));
         render::GrassWind out;
         double sum2 = 0.0;
         size_t count = 0;
@@ -277,7 +278,8 @@ TEST(FieldWind, SharesDirectionsWithoutCopiesAndNeverRewritesOnesStillHeld) {
     for (double t : {1.5, 2.5, 3.5}) {
         wind.update(t, a);
         EXPECT_NE(a.vertex, held);
-        EXPECT_EQ(held->wsDirection, before.wsDirection) << "a held buffer was rewritten at t = " << t;
+        EXPECT_EQ(held->wsDirection, before.wsDirection)
+            << "a held buffer was rewritten at t = " << t;
         EXPECT_EQ(held->group, before.group);
     }
     EXPECT_GT(glm::length(a.vertex->wsDirection[0] - before.wsDirection[0]), 0.1f);

@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <glm/geometric.hpp>
 
 #include "coupling/PointSourceWind.h"
@@ -36,7 +35,8 @@ TEST(PointSourceWind, VerticesFartherFromTheSourceGetTheGustLater) {
     // Group is monotone in distance from the source.
     std::vector<std::pair<float, uint32_t>> byDistance;
     for (size_t v = 0; v < mesh.wsPosition_m.size(); ++v)
-        byDistance.emplace_back(glm::length(mesh.wsPosition_m[v] - spec.wsSource_m), wind.groupOf(v));
+        byDistance.emplace_back(glm::length(mesh.wsPosition_m[v] - spec.wsSource_m),
+                                wind.groupOf(v));
     std::sort(byDistance.begin(), byDistance.end());
     for (size_t k = 1; k < byDistance.size(); ++k)
         EXPECT_GE(byDistance[k].second, byDistance[k - 1].second);

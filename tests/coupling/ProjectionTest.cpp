@@ -3,12 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <limits>
 
-#include <glm/geometric.hpp>
-
-#include "coupling/PointSourceWind.h"
 #include "base/Numbers.h"
+#include "coupling/PointSourceWind.h"
 
 using gale::coupling::tangentWindDirection;
 
@@ -31,7 +30,8 @@ TEST(Projection, FlatGroundKeepsTheHorizontalPart) {
 }
 
 TEST(Projection, HandComputedSlope) {
-    // N = (1, 0, 1)/sqrt2, W = (1, 0, 0): W.N = 1/sqrt2, V = (1,0,0) - (1/2)(1,0,1) = (1/2, 0, -1/2).
+    // N = (1, 0, 1)/sqrt2, W = (1, 0, 0): W.N = 1/sqrt2, V = (1,0,0) - (1/2)(1,0,1) = (1/2, 0,
+    // -1/2).
     const glm::vec3 n = glm::normalize(glm::vec3(1, 0, 1));
     expectVecNear(tangentWindDirection({1, 0, 0}, n), glm::normalize(glm::vec3(1, 0, -1)),
                   VECTOR_TOL);
@@ -44,7 +44,8 @@ TEST(Projection, ResultIsPerpendicularToTheNormalOnSteepSlopes) {
     for (float slope_deg : {0.0f, 30.0f, 60.0f, 85.0f, 89.9f}) {
         const float a = float(gale::radiansFromDegrees(slope_deg));
         const glm::vec3 n(std::sin(a), 0.1f * std::sin(a), std::cos(a));
-        for (const glm::vec3& w : {glm::vec3(1, 0, 0), glm::vec3(0.3f, -2, 0.5f), glm::vec3(0.2f, 0.1f, -1)}) {
+        for (const glm::vec3& w :
+             {glm::vec3(1, 0, 0), glm::vec3(0.3f, -2, 0.5f), glm::vec3(0.2f, 0.1f, -1)}) {
             const glm::vec3 v = tangentWindDirection(w, n);
             ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
             EXPECT_LT(std::abs(glm::dot(v, glm::normalize(n))), PERPENDICULAR_TOL) << slope_deg;

@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <glm/geometric.hpp>
 
 #include "coupling/FieldSampling.h"

@@ -61,7 +61,8 @@ TEST(SteadyGustWind, OscillatorStaysFiniteAndBoundedUnderAStepGust) {
     spec.response.frequency_hz = 3.0;
     spec.response.dampingRatio = 0.05;
     // A near-step attack: 1 ms.
-    coupling::SteadyGustWind wind(mesh, steady, spec, coupling::GustCurve::attackDecay(5.0, 0.0, 1.0, 0.001, 2.0));
+    coupling::SteadyGustWind wind(mesh, steady, spec,
+                                  coupling::GustCurve::attackDecay(5.0, 0.0, 1.0, 0.001, 2.0));
     render::GrassWind out;
     for (double t = 0.0; t < 30.0; t += 1.0 / 30.0) {
         wind.update(t, out);
@@ -89,8 +90,9 @@ TEST(SteadyGustWind, FieldViewCarriesTheSameTravellingFront) {
 
     // A uniform 5 m/s field over the mesh's plan, 2 m cells.
     constexpr int NX = 25, NY = 5, NZ = 4;
-    auto field = std::make_shared<sim::WindField>(NX, NY, NZ, 2.0, std::array<double, 3>{0.0, 0.0, 0.0}, nullptr,
-                                                  std::vector<uint8_t>(size_t(NX) * NY * NZ, 1));
+    auto field =
+        std::make_shared<sim::WindField>(NX, NY, NZ, 2.0, std::array<double, 3>{0.0, 0.0, 0.0},
+                                         nullptr, std::vector<uint8_t>(size_t(NX) * NY * NZ, 1));
     std::fill(field->u_mps().begin(), field->u_mps().end(), 5.0);
     wind.keepField(field);
     for (double t : {1.0, 4.0, 4.0, 7.5}) {
@@ -99,7 +101,8 @@ TEST(SteadyGustWind, FieldViewCarriesTheSameTravellingFront) {
         ASSERT_NE(gust, nullptr);
         for (double x : {4.0, 22.0, 40.0}) {  // on x-faces (every 2 m), at a cell centre in y and z
             const double expected = 5.0 * curve(t - x / 5.0);
-            EXPECT_NEAR(gust->velocityAt_mps(x, 5.0, 3.0)[0], expected, 1e-9) << "t = " << t << ", x = " << x;
+            EXPECT_NEAR(gust->velocityAt_mps(x, 5.0, 3.0)[0], expected, 1e-9)
+                << "t = " << t << ", x = " << x;
         }
         EXPECT_EQ(gust->v_mps(), field->v_mps());  // zero stays zero
     }

@@ -48,9 +48,9 @@ RunOptions withThreads(const std::string& cwd, Threads t) {
 /// Renders `scene` (3 frames of 320 x 240) into cwd/out-<tag> and returns each frame's bytes.
 std::vector<std::string> renderFrames(const TempDir& cwd, const std::string& tag, Threads t) {
     const std::string out = "out-" + tag;
-    const RunResult r = runGale({"render", "scene.toml", "-o", out, "--width", "320", "--height",
-                                 "240"},
-                                withThreads(cwd.str(), t));
+    const RunResult r =
+        runGale({"render", "scene.toml", "-o", out, "--width", "320", "--height", "240"},
+                withThreads(cwd.str(), t));
     EXPECT_EQ(r.exitCode, 0) << r.describe();
     std::vector<std::string> frames;
     for (int k = 0; k < 3; ++k) {
@@ -66,8 +66,8 @@ void expectSameFrames(const std::vector<std::string>& a, const std::vector<std::
                       const std::string& what) {
     ASSERT_EQ(a.size(), b.size());
     for (size_t k = 0; k < a.size(); ++k)
-        EXPECT_TRUE(a[k] == b[k]) << what << ": frame " << k << " differs ("
-                                  << a[k].size() << " vs " << b[k].size() << " bytes)";
+        EXPECT_TRUE(a[k] == b[k]) << what << ": frame " << k << " differs (" << a[k].size()
+                                  << " vs " << b[k].size() << " bytes)";
 }
 
 TEST(Determinism, PointSourceFramesAreByteIdenticalAcrossRunsAndLlvmpipeThreadCounts) {
@@ -134,7 +134,8 @@ struct Solved {
 
 Solved solve(const TempDir& cwd, const std::string& tag, const char* threads) {
     const std::string vdb = cwd / ("wind-" + tag + ".vdb");
-    const RunResult r = runGale({"solve", "scene.toml", "-o", vdb}, withThreads(cwd.str(), {"1", threads}));
+    const RunResult r =
+        runGale({"solve", "scene.toml", "-o", vdb}, withThreads(cwd.str(), {"1", threads}));
     EXPECT_EQ(r.exitCode, 0) << r.describe();
     Solved s;
     s.values = vdbValues(vdb);

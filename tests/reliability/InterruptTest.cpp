@@ -43,7 +43,6 @@ std::string frameName(int k) {
     return name;
 }
 
-
 /// The frames in `folder` are exactly frame_0000 .. frame_<n-1>, each a complete w x h PNG.
 void expectCompleteFrames(const std::string& folder, int n, int width, int height) {
     int pngs = 0;

@@ -30,7 +30,8 @@ std::map<std::string, std::string> snapshot(const std::string& folder) {
 
 std::string names(const std::map<std::string, std::string>& files) {
     std::string s;
-    for (const auto& [name, bytes] : files) s += "  " + name + " (" + std::to_string(bytes.size()) + " B)\n";
+    for (const auto& [name, bytes] : files)
+        s += "  " + name + " (" + std::to_string(bytes.size()) + " B)\n";
     return s;
 }
 
@@ -52,7 +53,11 @@ RunResult runOnFullDisk(const std::vector<std::string>& args, const std::string&
 /// The one-line error of a failed write: names the file and the reason.
 void expectOneWriteError(const RunResult& r, const std::string& folder) {
     EXPECT_EQ(r.exitCode, 1) << r.describe();
-    EXPECT_EQ(countLines(r.err.substr(r.err.find("gale: error:") == std::string::npos ? 0 : r.err.find("gale: error:"))), 1) << r.err;
+    EXPECT_EQ(
+        countLines(r.err.substr(
+            r.err.find("gale: error:") == std::string::npos ? 0 : r.err.find("gale: error:"))),
+        1)
+        << r.err;
     EXPECT_NE(r.err.find("gale: error: " + folder), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("cannot write: No space left on device"), std::string::npos) << r.err;
 }
@@ -92,13 +97,15 @@ TEST(FullDisk, RenderThatFillsTheDiskFailsWithExit1AndKeepsTheEarlierFramesByteF
     // 0: the first frame cannot be written; 5000: the second frame is cut (a tiny frame is
     // about 3.4 kB); 12000: the frames fit, the GIF or contact sheet does not; 24000: all but
     // the report.
-    expectFullDiskKeepsEarlierRun({{"render", "scene.toml", "-o", "frames"}, "frames", {0, 5000, 12000, 24000}},
-                                  readFile(sourcePath(TINY)));
+    expectFullDiskKeepsEarlierRun(
+        {{"render", "scene.toml", "-o", "frames"}, "frames", {0, 5000, 12000, 24000}},
+        readFile(sourcePath(TINY)));
 }
 
 TEST(FullDisk, TerrainExportThatFillsTheDiskFailsWithExit1AndKeepsTheEarlierPng) {
-    expectFullDiskKeepsEarlierRun({{"terrain", "scene.toml", "-o", "out/hill.png"}, "out", {0, 100, 400}},
-                                  readFile(sourcePath(TINY)));
+    expectFullDiskKeepsEarlierRun(
+        {{"terrain", "scene.toml", "-o", "out/hill.png"}, "out", {0, 100, 400}},
+        readFile(sourcePath(TINY)));
 }
 
 /// A solve of a few thousand cells: a .vdb of some tens of kB.
@@ -107,8 +114,8 @@ const char* const SMALL_SOLVE =
     "[wind]\nkind = \"solved\"\n[solver]\nvoxel_size_m = 0.5\n";
 
 TEST(FullDisk, SolveThatFillsTheDiskFailsWithExit1AndKeepsTheEarlierFieldAndReport) {
-    expectFullDiskKeepsEarlierRun({{"solve", "scene.toml", "-o", "field/wind.vdb"}, "field", {0, 1000, 100000}},
-                                  SMALL_SOLVE);
+    expectFullDiskKeepsEarlierRun(
+        {{"solve", "scene.toml", "-o", "field/wind.vdb"}, "field", {0, 1000, 100000}}, SMALL_SOLVE);
 }
 
 /// An unsteady run of a few steps writing a short .vdb sequence.
@@ -118,8 +125,9 @@ const char* const SMALL_UNSTEADY =
     "[unsteady]\nduration_s = 0.6\noutput_every_s = 0.2\n";
 
 TEST(FullDisk, UnsteadySolveThatFillsTheDiskMidSequenceKeepsTheEarlierSequence) {
-    expectFullDiskKeepsEarlierRun({{"solve", "scene.toml", "-o", "field/wind.vdb"}, "field", {0, 60000, 300000}},
-                                  SMALL_UNSTEADY);
+    expectFullDiskKeepsEarlierRun(
+        {{"solve", "scene.toml", "-o", "field/wind.vdb"}, "field", {0, 60000, 300000}},
+        SMALL_UNSTEADY);
 }
 
 }  // namespace

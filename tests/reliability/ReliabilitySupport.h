@@ -8,15 +8,15 @@ namespace gale::reliability {
 namespace fs = std::filesystem;
 
 using gale::test::Child;
-using gale::test::RunOptions;
-using gale::test::RunResult;
-using gale::test::TempDir;
 using gale::test::countLines;
 using gale::test::describeTree;
 using gale::test::listTree;
 using gale::test::readFile;
 using gale::test::runGale;
+using gale::test::RunOptions;
+using gale::test::RunResult;
 using gale::test::sourcePath;
+using gale::test::TempDir;
 using gale::test::writeFile;
 
 /// Files under `folder` that a finished run must not leave: temporaries are hidden

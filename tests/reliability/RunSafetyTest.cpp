@@ -10,8 +10,8 @@
 #include <chrono>
 #include <functional>
 #include <map>
-#include <set>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -50,13 +50,13 @@ std::map<std::string, std::string> snapshot(const std::string& folder) {
 bool waitFor(const std::function<bool()>& ready, double timeout_s) {
     const auto start = std::chrono::steady_clock::now();
     while (!ready()) {
-        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeout_s)
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+            timeout_s)
             return false;
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     return true;
 }
-
 
 /// A PID that no process has: a child that has exited and been reaped.
 pid_t deadPid() {
@@ -90,10 +90,12 @@ TEST(OutputAliases, SolveReportOntoItsOwnFieldIsRefusedWithExit2) {
 TEST(OutputAliases, SolveReportOntoTheSceneIsRefusedWithExit2) {
     TempDir cwd;
     writeFile(cwd / "s.toml", SMALL_SOLVE);
-    expectRefusedUpFront({"solve", "s.toml", "-o", "w.vdb", "--report", "s.toml"}, cwd.str(), "is also the scene");
+    expectRefusedUpFront({"solve", "s.toml", "-o", "w.vdb", "--report", "s.toml"}, cwd.str(),
+                         "is also the scene");
     // Through a symbolic link and another spelling of the path too.
     fs::create_symlink("s.toml", cwd / "link.json");
-    expectRefusedUpFront({"solve", "s.toml", "-o", "w.vdb", "--report", "link.json"}, cwd.str(), "is also the scene");
+    expectRefusedUpFront({"solve", "s.toml", "-o", "w.vdb", "--report", "link.json"}, cwd.str(),
+                         "is also the scene");
     fs::create_directories(cwd / "sub");
     expectRefusedUpFront({"solve", "s.toml", "-o", "w.vdb", "--report", "sub/../s.toml"}, cwd.str(),
                          "is also the scene");
@@ -103,7 +105,8 @@ TEST(OutputAliases, TerrainExportOntoTheScenesOwnHeightmapIsRefusedWithExit2) {
     TempDir cwd;
     writeFile(cwd / "tiny.toml", readFile(sourcePath(TINY)));
     ASSERT_EQ(runGale({"terrain", "tiny.toml", "-o", "hill.png"}, cwd.str()).exitCode, 0);
-    writeFile(cwd / "h.toml", "[terrain]\nkind = \"heightmap\"\nimage = \"hill.png\"\nmetres_per_pixel = 0.5\n");
+    writeFile(cwd / "h.toml",
+              "[terrain]\nkind = \"heightmap\"\nimage = \"hill.png\"\nmetres_per_pixel = 0.5\n");
     expectRefusedUpFront({"terrain", "h.toml", "-o", "hill.png"}, cwd.str(), "(the heightmap)");
 }
 
@@ -111,8 +114,10 @@ TEST(OutputAliases, RenderIntoTheScenesFolderOverAnInputNamedLikeAFrameIsRefused
     TempDir cwd;
     writeFile(cwd / "tiny.toml", readFile(sourcePath(TINY)));
     ASSERT_EQ(runGale({"terrain", "tiny.toml", "-o", "frame_0001.png"}, cwd.str()).exitCode, 0);
-    writeFile(cwd / "h.toml", "[terrain]\nkind = \"heightmap\"\nimage = \"frame_0001.png\"\n"
-                              "metres_per_pixel = 0.5\n[output]\nfolder = \".\"\nframes = 3\nwidth = 64\nheight = 48\n");
+    writeFile(
+        cwd / "h.toml",
+        "[terrain]\nkind = \"heightmap\"\nimage = \"frame_0001.png\"\n"
+        "metres_per_pixel = 0.5\n[output]\nfolder = \".\"\nframes = 3\nwidth = 64\nheight = 48\n");
     expectRefusedUpFront({"render", "h.toml"}, cwd.str(), "(a frame)");
 }
 
@@ -121,7 +126,8 @@ TEST(OutputAliases, SolveOutputNamingAFolderIsRefusedBeforeAnyWork) {
     writeFile(cwd / "s.toml", SMALL_SOLVE);
     fs::create_directories(cwd / "w.vdb");
     expectRefusedUpFront({"solve", "s.toml", "-o", "w.vdb"}, cwd.str(), "is a folder");
-    expectRefusedUpFront({"solve", "s.toml", "-o", "x.vdb", "--report", "w.vdb"}, cwd.str(), "is a folder");
+    expectRefusedUpFront({"solve", "s.toml", "-o", "x.vdb", "--report", "w.vdb"}, cwd.str(),
+                         "is a folder");
 }
 
 /// Sends `sig` to a render of 100000 tiny frames once it has finished a few, and checks what it
@@ -140,7 +146,8 @@ void expectRenderStopsCleanlyOn(int sig) {
     const RunResult r = child.wait(STOP_TIMEOUT_S);
     ASSERT_FALSE(r.timedOut) << r.describe();
     EXPECT_EQ(r.exitCode, 128 + sig) << r.describe();
-    EXPECT_NE(r.out.find(std::string("interrupted (SIG") + sigabbrev_np(sig)), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(std::string("interrupted (SIG") + sigabbrev_np(sig)), std::string::npos)
+        << r.out;
     const nlohmann::json report = nlohmann::json::parse(readFile(cwd / "frames/frame_report.json"));
     EXPECT_TRUE(report["interrupted"].get<bool>());
     EXPECT_EQ(report["stopped_by"], std::string("SIG") + sigabbrev_np(sig));
@@ -148,14 +155,19 @@ void expectRenderStopsCleanlyOn(int sig) {
     EXPECT_GE(done, 4);
     EXPECT_EQ(report["files"].size(), size_t(done));
     for (const auto& name : report["files"]) {
-        const render::Image image = render::readImageRgba8(cwd / ("frames/" + name.get<std::string>()));
+        const render::Image image =
+            render::readImageRgba8(cwd / ("frames/" + name.get<std::string>()));
         EXPECT_EQ(image.width, 64);
     }
     EXPECT_TRUE(hiddenOrTemporary(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
 }
 
-TEST(Signals, SigtermDuringRenderKeepsCompleteFramesAndExits143) { expectRenderStopsCleanlyOn(SIGTERM); }
-TEST(Signals, SighupDuringRenderKeepsCompleteFramesAndExits129) { expectRenderStopsCleanlyOn(SIGHUP); }
+TEST(Signals, SigtermDuringRenderKeepsCompleteFramesAndExits143) {
+    expectRenderStopsCleanlyOn(SIGTERM);
+}
+TEST(Signals, SighupDuringRenderKeepsCompleteFramesAndExits129) {
+    expectRenderStopsCleanlyOn(SIGHUP);
+}
 
 TEST(Signals, SigtermOrSighupDuringASteadySolveWritesNothingAndSaysWhere) {
     for (const int sig : {SIGTERM, SIGHUP}) {
@@ -168,12 +180,14 @@ TEST(Signals, SigtermOrSighupDuringASteadySolveWritesNothingAndSaysWhere) {
         RunOptions options;
         options.cwd = cwd.str();
         Child child({"solve", "scene.toml", "-o", "field/wind.vdb"}, options);
-        ASSERT_TRUE(waitFor([&] { return child.errSoFar().find("solving") != std::string::npos; }, REACH_TIMEOUT_S));
+        ASSERT_TRUE(waitFor([&] { return child.errSoFar().find("solving") != std::string::npos; },
+                            REACH_TIMEOUT_S));
         child.signal(sig);
         const RunResult r = child.wait(STOP_TIMEOUT_S);
         ASSERT_FALSE(r.timedOut) << r.describe();
         EXPECT_EQ(r.exitCode, 128 + sig) << r.describe();
-        EXPECT_NE(r.err.find(std::string("interrupted (SIG") + sigabbrev_np(sig) + ") while solving: nothing written"),
+        EXPECT_NE(r.err.find(std::string("interrupted (SIG") + sigabbrev_np(sig) +
+                             ") while solving: nothing written"),
                   std::string::npos)
             << r.err;
         EXPECT_TRUE(listTree(cwd / "field").empty()) << describeTree(listTree(cwd / "field"));
@@ -188,7 +202,8 @@ TEST(Signals, AnySignalDuringAnUnsteadySolveKeepsTheCompleteSequenceAndAReport) 
         RunOptions options;
         options.cwd = cwd.str();
         Child child({"solve", "scene.toml", "-o", "field/w.vdb"}, options);
-        ASSERT_TRUE(waitFor([&] { return child.errSoFar().find(" 3/1000") != std::string::npos; }, REACH_TIMEOUT_S))
+        ASSERT_TRUE(waitFor([&] { return child.errSoFar().find(" 3/1000") != std::string::npos; },
+                            REACH_TIMEOUT_S))
             << child.errSoFar();
         child.signal(sig);
         const RunResult r = child.wait(STOP_TIMEOUT_S);
@@ -202,7 +217,8 @@ TEST(Signals, AnySignalDuringAnUnsteadySolveKeepsTheCompleteSequenceAndAReport) 
         EXPECT_GE(frames.size(), 4u);
         // Exactly the files the report names, and the report: nothing half written.
         std::set<std::string> expected{"w.json"};
-        for (const auto& f : frames) expected.insert(fs::path(f["path"].get<std::string>()).filename().string());
+        for (const auto& f : frames)
+            expected.insert(fs::path(f["path"].get<std::string>()).filename().string());
         std::set<std::string> found;
         for (const auto& [rel, size] : listTree(cwd / "field")) found.insert(rel);
         EXPECT_EQ(found, expected) << describeTree(listTree(cwd / "field"));
@@ -219,7 +235,9 @@ TEST(Leftovers, AKilledRunsTemporariesAreNamedByCheckAndRemovedByTheNextRun) {
     writeFile(cwd / ("frames/w.vdb.tmp" + dead), "half a field");
     const RunResult check = runGale({"check", "scene.toml", "-o", "frames"}, cwd.str());
     EXPECT_EQ(check.exitCode, 0) << check.describe();
-    EXPECT_NE(check.out.find("2 temporary files left by a gale run that was stopped"), std::string::npos) << check.out;
+    EXPECT_NE(check.out.find("2 temporary files left by a gale run that was stopped"),
+              std::string::npos)
+        << check.out;
     EXPECT_TRUE(fs::exists(cwd / ("frames/" + tmpName)));  // check only names them
     const RunResult render = runGale({"render", "scene.toml", "-o", "frames"}, cwd.str());
     EXPECT_EQ(render.exitCode, 0) << render.describe();
@@ -233,12 +251,15 @@ TEST(OneRunPerFolder, ASecondRenderIntoABusyFolderExits2NamingTheOwner) {
     RunOptions options;
     options.cwd = cwd.str();
     Child first({"render", "scene.toml", "-o", "frames", "--frames", "100000"}, options);
-    ASSERT_TRUE(waitFor([&] { return first.errSoFar().find(" 2/100000") != std::string::npos; }, REACH_TIMEOUT_S))
+    ASSERT_TRUE(waitFor([&] { return first.errSoFar().find(" 2/100000") != std::string::npos; },
+                        REACH_TIMEOUT_S))
         << first.errSoFar();
-    const RunResult second = runGale({"render", "scene.toml", "-o", "frames", "--frames", "3"}, cwd.str());
+    const RunResult second =
+        runGale({"render", "scene.toml", "-o", "frames", "--frames", "3"}, cwd.str());
     EXPECT_EQ(second.exitCode, 2) << second.describe();
     EXPECT_EQ(countLines(second.err), 1) << second.err;
-    EXPECT_NE(second.err.find("in use by another gale run (PID " + std::to_string(first.pid())), std::string::npos)
+    EXPECT_NE(second.err.find("in use by another gale run (PID " + std::to_string(first.pid())),
+              std::string::npos)
         << second.err;
     first.signal(SIGINT);
     const RunResult r = first.wait(STOP_TIMEOUT_S);
@@ -257,7 +278,8 @@ TEST(OneRunPerFolder, ALockLeftByADeadRunIsTakenOverWithANote) {
     writeFile(cwd / "frames/.gale.lock", dead + "\n");
     const RunResult r = runGale({"render", "scene.toml", "-o", "frames"}, cwd.str());
     EXPECT_EQ(r.exitCode, 0) << r.describe();
-    EXPECT_NE(r.err.find("taking over frames/.gale.lock from PID " + dead), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("taking over frames/.gale.lock from PID " + dead), std::string::npos)
+        << r.err;
     EXPECT_TRUE(hiddenOrTemporary(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
 }
 
@@ -275,7 +297,8 @@ TEST(BoundsOnWork, CheckReportsTheFilesAndStepsAnUnsteadyRunPlans) {
     const RunResult r = runGale({"check", "scene.toml"}, cwd.str());
     EXPECT_EQ(r.exitCode, 0) << r.describe();
     // 200 s every 0.2 s and the file at t = 0; adaptive steps of at most cfl h / U = 2 x 0.5 / 2 s.
-    EXPECT_NE(r.out.find("gale solve plans 1001 .vdb files (limit 10000"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("gale solve plans 1001 .vdb files (limit 10000"), std::string::npos)
+        << r.out;
     EXPECT_NE(r.out.find("at least 400 time steps"), std::string::npos) << r.out;
     // The scene sets the limit: below the plan, the run is refused naming the line.
     writeFile(cwd / "low.toml", std::string(LONG_UNSTEADY) + "max_files = 1000\n");

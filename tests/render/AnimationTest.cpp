@@ -1,7 +1,6 @@
 // Contact sheets and animated GIFs: sizes, frame selection, frame count, nothing left on failure.
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <filesystem>
 

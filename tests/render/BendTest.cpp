@@ -1,4 +1,5 @@
-// The length-preserving bend (docs/design.md 5.1): segment lengths, tip tilt, straight blade at rest.
+// The length-preserving bend (docs/design.md 5.1): segment lengths, tip tilt, straight blade at
+// rest.
 #include <gtest/gtest.h>
 
 #include <cmath>

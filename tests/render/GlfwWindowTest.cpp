@@ -1,7 +1,6 @@
 // The GLFW window context: same GL implementation as headless, or a clear no-display error.
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
-
 #include <gtest/gtest.h>
 
 #include <cstdlib>

@@ -2,12 +2,13 @@
 /// \file RenderTestUtil.h
 /// Scenes and image comparison shared by the render tests.
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <glm/geometric.hpp>
-#include <gtest/gtest.h>
 #include <string>
 #include <vector>
 
@@ -118,8 +119,9 @@ inline ImageDiff compareImages(const Image& a, const Image& b, int channelTolera
     return result;
 }
 
-// llvmpipe is deterministic for one Mesa build (docs/design.md 7); a few levels of slack per channel
-// absorb differences between CPU instruction sets (AVX2 / AVX-512 code paths) and Mesa updates.
+// llvmpipe is deterministic for one Mesa build (docs/design.md 7); a few levels of slack per
+// channel absorb differences between CPU instruction sets (AVX2 / AVX-512 code paths) and Mesa
+// updates.
 constexpr int kReferenceChannelTolerance = 8;
 // A handful of pixels on blade edges may flip between blade and ground under such differences.
 constexpr double kReferenceMaxDifferingFraction = 0.005;
@@ -142,7 +144,8 @@ inline void expectMatchesReference(const Image& actual, const std::string& name)
     if (diff.differingFraction > kReferenceMaxDifferingFraction) {
         const fs::path out = fs::path(GALE_BINARY_DIR) / "render_test_output";
         fs::create_directories(out);
-        const fs::path actualPath = out / (name + ".actual.png"), diffPath = out / (name + ".diff.png");
+        const fs::path actualPath = out / (name + ".actual.png"),
+                       diffPath = out / (name + ".diff.png");
         writeImageAtomic(actual, actualPath.string());
         writeImageAtomic(diff.diff, diffPath.string());
         ADD_FAILURE() << diff.differingFraction * 100.0 << "% of pixels differ by more than "

@@ -24,7 +24,8 @@ double logMisfit(const WindField& f, int i, int j, double z0_m, double topHeight
     double worst = 0.0;
     for (int k = 1; (k + 0.5) * h <= topHeight_m; ++k) {
         const double z = (k + 0.5) * h;
-        worst = std::max(worst, std::abs(f.u(i, j, k) / surface::logLawSpeed_mps(uStar, z, z0_m) - 1.0));
+        worst = std::max(worst,
+                         std::abs(f.u(i, j, k) / surface::logLawSpeed_mps(uStar, z, z0_m) - 1.0));
     }
     return worst;
 }
@@ -54,7 +55,8 @@ TEST(UnsteadyWallStress, UniformWindOverRoughGroundSlowsNearTheGroundAndApproach
     constexpr double SLOWED_FRACTION = 0.8;  // the log law puts 1 m at 0.6 U when 17 m is at U
     EXPECT_LT(solver.field().u(i, j, 0), SLOWED_FRACTION * U);
     // Approaches the log law: the misfit falls as the layer develops and ends small.
-    constexpr double LOG_SHAPE_TOLERANCE = 0.05;  // mixing length below kappa z aloft bends the profile a little
+    constexpr double LOG_SHAPE_TOLERANCE =
+        0.05;  // mixing length below kappa z aloft bends the profile a little
     EXPECT_LT(misfitEarly, misfitStart);
     EXPECT_LE(misfitLate, misfitEarly);
     EXPECT_LE(misfitLate, LOG_SHAPE_TOLERANCE);

@@ -56,7 +56,8 @@ DomainSpec cubes(double cell_m) {
 double maxSlope(double height_m, double sigma_m) { return height_m / sigma_m * std::exp(-0.5); }
 
 /// Most negative u on the lowest open x-face of each column of row j between x0 and x1 (m/s).
-double mostReversedNearGround(const AirDomain& d, const WindField& f, int j, double x0_m, double x1_m) {
+double mostReversedNearGround(const AirDomain& d, const WindField& f, int j, double x0_m,
+                              double x1_m) {
     double worst = 0.0;
     for (int i = 0; i <= d.nx(); ++i) {
         const double x = d.wsMin_m()[0] + i * d.voxelSize_m();
@@ -127,8 +128,10 @@ TEST(MomentumWind, SteepRidgeSlowsTheLeeBelowMassConsistentAndReversesTheFlow) {
     const double y = 1.5 * h;
     // 10 m above the lee slope (crest + sigma, where the slope is steepest).
     const double x = 150 + sigma, z = hf.sample(x, y) + 10.0;
-    const double sMom = std::hypot(mom.field.velocityAt_mps(x, y, z)[0], mom.field.velocityAt_mps(x, y, z)[2]);
-    const double sMc = std::hypot(mc.field.velocityAt_mps(x, y, z)[0], mc.field.velocityAt_mps(x, y, z)[2]);
+    const double sMom =
+        std::hypot(mom.field.velocityAt_mps(x, y, z)[0], mom.field.velocityAt_mps(x, y, z)[2]);
+    const double sMc =
+        std::hypot(mc.field.velocityAt_mps(x, y, z)[0], mc.field.velocityAt_mps(x, y, z)[2]);
     EXPECT_LT(sMom, sMc);
     // Reversed flow on the lowest open faces behind the crest (within 5 sigma).
     EXPECT_LT(mostReversedNearGround(domain, mom.field, 1, 150, 150 + 5 * sigma), 0.0);
@@ -167,8 +170,9 @@ TEST(MomentumWind, ConvergedFieldIsDivergenceFreeAndFiniteOnCutCells) {
         for (int j = 0; j < domain.ny(); ++j)
             for (int i = 0; i < domain.nx(); ++i)
                 if (domain.isAir(i, j, k))
-                    maxDiv = std::max(maxDiv, std::abs(domain.openOutflux(res.field.u_mps(), res.field.v_mps(),
-                                                                          res.field.w_mps(), i, j, k)));
+                    maxDiv = std::max(
+                        maxDiv, std::abs(domain.openOutflux(res.field.u_mps(), res.field.v_mps(),
+                                                            res.field.w_mps(), i, j, k)));
     EXPECT_LE(maxDiv / wind.speed_mps, DIVERGENCE_FACTOR * ms.finalProjection.relativeTolerance);
 }
 
@@ -183,7 +187,8 @@ TEST(MomentumWind, StaysFiniteForHugeWindTinyCellsAndACliff) {
     const MomentumWindResult res = solveMomentumWind(domain, logWind(100.0), ms);
     EXPECT_TRUE(res.report.finite) << res.report.message;
     EXPECT_TRUE(allFinite(res.field));
-    for (const MomentumIteration& it : res.report.history) EXPECT_TRUE(std::isfinite(it.momentumResidual));
+    for (const MomentumIteration& it : res.report.history)
+        EXPECT_TRUE(std::isfinite(it.momentumResidual));
     // Bounded: no face faster than a few times the fastest inflow (the log law at the top).
     constexpr double SPEED_BOUND_FACTOR = 5.0;  // generous: a crest speeds the flow up, never by 5x
     const double top = 100.0 * std::log(30.0 / 0.03) / std::log(10.0 / 0.03);

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "SimTestUtil.h"
 #include "base/Numbers.h"
 #include "sim/PoissonSolver.h"
-#include "SimTestUtil.h"
 
 namespace gale::sim {
 namespace {

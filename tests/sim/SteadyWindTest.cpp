@@ -12,12 +12,12 @@
 #include <string>
 
 #include "SimTestUtil.h"
+#include "app/bench/ExactSolutions.h"
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/VdbIO.h"
-#include "base/Numbers.h"
-#include "app/bench/ExactSolutions.h"
-#include "base/ParameterError.h"
 
 namespace gale::sim {
 namespace {
@@ -58,7 +58,8 @@ bool allFinite(const WindField& f) {
 
 TEST(SteadyWind, UniformWindOverFlatGroundStaysUniform) {
     constexpr double REL_TOL = 1e-6;  // the bound; the exact answer is u0 itself
-    AirDomain domain(flat(40.0, 1.0, 3.3), DomainSpec{/*voxelSize_m=*/2.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    AirDomain domain(flat(40.0, 1.0, 3.3),
+                     DomainSpec{/*voxelSize_m=*/2.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
     const AmbientWind a = uniformWind(7.0, 30.0);
     const SteadyWindResult res = solveSteadyWind(domain, a, {}, SolverSettings{});
     ASSERT_TRUE(res.report.converged) << res.report.message;
@@ -68,7 +69,8 @@ TEST(SteadyWind, UniformWindOverFlatGroundStaysUniform) {
         for (double y = 1.0; y < 40.0; y += 4.1)
             for (double z = 3.4; z < domain.wsTop_m(); z += 2.3) {
                 const auto u = res.field.velocityAt_mps(x, y, z);
-                for (int c = 0; c < 3; ++c) err = std::max(err, std::abs(u[c] - u0[c]) / a.speed_mps);
+                for (int c = 0; c < 3; ++c)
+                    err = std::max(err, std::abs(u[c] - u0[c]) / a.speed_mps);
             }
     EXPECT_LT(err, REL_TOL);
 }
@@ -76,7 +78,8 @@ TEST(SteadyWind, UniformWindOverFlatGroundStaysUniform) {
 TEST(SteadyWind, LogProfileOverFlatGroundIsAlreadyDivergenceFree) {
     // A horizontal wind varying only with height has no divergence: the solve must not change it.
     constexpr double REL_TOL = 1e-6;
-    AirDomain domain(flat(32.0, 1.0), DomainSpec{/*voxelSize_m=*/1.0, /*top_m=*/20.0, /*memoryLimit_bytes=*/1e9});
+    AirDomain domain(flat(32.0, 1.0),
+                     DomainSpec{/*voxelSize_m=*/1.0, /*top_m=*/20.0, /*memoryLimit_bytes=*/1e9});
     AmbientWind a;  // log law, 5 m/s at 10 m, z0 = 0.03 m
     a.direction_deg = 90.0;
     const SteadyWindResult res = solveSteadyWind(domain, a, {}, SolverSettings{});
@@ -84,7 +87,8 @@ TEST(SteadyWind, LogProfileOverFlatGroundIsAlreadyDivergenceFree) {
     for (double z : {0.5, 1.5, 5.5, 10.0, 19.5}) {
         const auto u = res.field.velocityAt_mps(16.3, 15.2, z);
         // The field samples the profile at face centres and interpolates linearly between them.
-        const double zLo = std::max(0.5, std::floor(z - 0.5) + 0.5), zHi = std::min(19.5, zLo + 1.0);
+        const double zLo = std::max(0.5, std::floor(z - 0.5) + 0.5),
+                     zHi = std::min(19.5, zLo + 1.0);
         const double t = std::clamp(z - zLo, 0.0, 1.0);
         const double expect = (1 - t) * a.speedAt_mps(zLo) + t * a.speedAt_mps(zHi);
         EXPECT_NEAR(u[1], expect, REL_TOL * a.speed_mps) << "z " << z;
@@ -107,19 +111,20 @@ Heightfield gaussianHill(double spacing_m) {
 TEST(SteadyWind, SolvedFieldIsDivergenceFreeAndDoesNotCrossTheTerrain) {
     // Divergence: the solve's relative residual 1e-9 bounds the flux imbalance per cell.
     constexpr double MAX_DIVERGENCE = 1e-6;
-    AirDomain domain(gaussianHill(0.5), DomainSpec{/*voxelSize_m=*/2.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    AirDomain domain(gaussianHill(0.5),
+                     DomainSpec{/*voxelSize_m=*/2.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
     AmbientWind a;
     a.direction_deg = 20.0;
     const SteadyWindResult res = solveSteadyWind(domain, a, {}, tight());
     ASSERT_TRUE(res.report.converged) << res.report.message;
     EXPECT_LT(res.report.maxDivergenceScaled, MAX_DIVERGENCE);
     EXPECT_TRUE(allFinite(res.field));
-
 }
 
 // Largest n.u / U sampled half a cell above the hill's surface (uniform 5 m/s wind).
 double maxNormalSpeedNearTerrain(double voxel_m) {
-    AirDomain domain(gaussianHill(0.25), DomainSpec{voxel_m, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    AirDomain domain(gaussianHill(0.25),
+                     DomainSpec{voxel_m, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
     const AmbientWind a = uniformWind(5.0, 20.0);
     const SteadyWindResult res = solveSteadyWind(domain, a, {}, SolverSettings{});
     EXPECT_TRUE(res.report.converged) << res.report.message;
@@ -132,7 +137,8 @@ double maxNormalSpeedNearTerrain(double voxel_m) {
             const double dhdy = (T.sample(x, y + e) - T.sample(x, y - e)) / (2 * e);
             const double len = std::sqrt(dhdx * dhdx + dhdy * dhdy + 1.0);
             const auto u = res.field.velocityAt_mps(x, y, T.sample(x, y) + 0.5 * voxel_m);
-            worst = std::max(worst, std::abs((-dhdx * u[0] - dhdy * u[1] + u[2]) / len) / a.speed_mps);
+            worst =
+                std::max(worst, std::abs((-dhdx * u[0] - dhdy * u[1] + u[2]) / len) / a.speed_mps);
         }
     return worst;
 }
@@ -165,7 +171,8 @@ HemisphereError hemisphereError(int cellsPerRadius) {
     ts.spacing_m = R / 128;
     ts.radius_m = R;
     ts.centerX_m = ts.centerY_m = c;
-    AirDomain domain(makeTerrain(ts), DomainSpec{R / cellsPerRadius, /*top_m=*/3.0 * R, /*memoryLimit_bytes=*/2e9});
+    AirDomain domain(makeTerrain(ts),
+                     DomainSpec{R / cellsPerRadius, /*top_m=*/3.0 * R, /*memoryLimit_bytes=*/2e9});
     const gale::exact::HemisphereFlow flow{R, /*U_mps=*/1.0, c, c};
     auto phi = [&](double x, double y, double z) { return flow.phi(x, y, z); };
     const SteadyWindResult res = solveSteadyWind(domain, uniformWind(1.0, 0.0), {}, tight(), phi);
@@ -192,13 +199,15 @@ TEST(SteadyWind, HemisphereNearSurfaceErrorIsSmallAndConvergesAtLeastAtOrderOneP
     const HemisphereError e8 = hemisphereError(8), e16 = hemisphereError(16);
     EXPECT_LT(e16.nearL2, MAX_NEAR_L2_AT_16);
     EXPECT_GE(std::log2(e8.nearL2 / e16.nearL2), MIN_ORDER) << e8.nearL2 << " -> " << e16.nearL2;
-    EXPECT_GE(std::log2(e8.nearMax / e16.nearMax), MIN_ORDER) << e8.nearMax << " -> " << e16.nearMax;
+    EXPECT_GE(std::log2(e8.nearMax / e16.nearMax), MIN_ORDER)
+        << e8.nearMax << " -> " << e16.nearMax;
 }
 
 // --- warm start -----------------------------------------------------------------------------
 
 TEST(SteadyWind, WarmStartFromTheExactSolutionConvergesInAtMostOneIteration) {
-    AirDomain domain(gaussianHill(1.0), DomainSpec{/*voxelSize_m=*/2.5, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    AirDomain domain(gaussianHill(1.0),
+                     DomainSpec{/*voxelSize_m=*/2.5, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
     SteadyWindSolver solver(domain);
     AmbientWind a;
     const SteadyWindResult first = solver.solve(a, tight());
@@ -234,13 +243,17 @@ TEST(SteadyWind, IterationsOnCutCellTerrainStayNearlyFlatAsTheCellSizeHalves) {
 }
 
 TEST(SteadyWind, AnisotropicWeightsConvergeWithinTheSupportedRange) {
-    constexpr int MAX_ITERATIONS = 40;  // r = 0.1 and 10: 15 and 13 iterations measured (docs/solver.md)
-    AirDomain domain(gaussianHill(1.0), DomainSpec{/*voxelSize_m=*/2.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
-    for (const MassConsistentWeights w : {MassConsistentWeights{1.0, std::sqrt(10.0)}, MassConsistentWeights{std::sqrt(10.0), 1.0}}) {
+    constexpr int MAX_ITERATIONS =
+        40;  // r = 0.1 and 10: 15 and 13 iterations measured (docs/solver.md)
+    AirDomain domain(gaussianHill(1.0),
+                     DomainSpec{/*voxelSize_m=*/2.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    for (const MassConsistentWeights w : {MassConsistentWeights{1.0, std::sqrt(10.0)},
+                                          MassConsistentWeights{std::sqrt(10.0), 1.0}}) {
         SolverSettings s;
         s.maxIterations = MAX_ITERATIONS;
         const SteadyWindResult res = solveSteadyWind(domain, AmbientWind{}, w, s);
-        EXPECT_TRUE(res.report.converged) << "alphaH " << w.alphaH << " alphaV " << w.alphaV << ": " << res.report.message;
+        EXPECT_TRUE(res.report.converged)
+            << "alphaH " << w.alphaH << " alphaV " << w.alphaV << ": " << res.report.message;
     }
     expectThrowsNaming([&] { SteadyWindSolver s(domain, {1.0, 10.0}); }, "alphaH/alphaV");
     expectThrowsNaming([&] { SteadyWindSolver s(domain, {0.0, 1.0}); }, "alphaH");
@@ -263,7 +276,8 @@ TEST(SteadyWind, VerticalCliffConvergesWithFiniteValues) {
     Heightfield hf = flat(40.0, 0.25);
     for (int j = 0; j < hf.ny; ++j)
         for (int i = 0; i < hf.nx; ++i)
-            if (i * hf.spacing_m > 20.3) hf.height_m[size_t(j) * hf.nx + i] = 12.0f;  // 12 m wall in one sample
+            if (i * hf.spacing_m > 20.3)
+                hf.height_m[size_t(j) * hf.nx + i] = 12.0f;  // 12 m wall in one sample
     expectExtremeCaseSolves(hf, 1.0);
 }
 
@@ -282,14 +296,18 @@ TEST(SteadyWind, ClosedValleyConvergesWithFiniteValues) {
     for (int j = 0; j < hf.ny; ++j)
         for (int i = 0; i < hf.nx; ++i) {
             const double r = std::hypot(i * 0.5 - 20.0, j * 0.5 - 20.0);
-            if (r < 8.0) hf.height_m[size_t(j) * hf.nx + i] = float(10.0 - 9.0 * (1.0 - (r / 8.0) * (r / 8.0)));
+            if (r < 8.0)
+                hf.height_m[size_t(j) * hf.nx + i] =
+                    float(10.0 - 9.0 * (1.0 - (r / 8.0) * (r / 8.0)));
         }
     expectExtremeCaseSolves(hf, 1.0);
 }
 
 TEST(SteadyWind, CalmWindGivesAZeroField) {
-    AirDomain domain(gaussianHill(2.0), DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
-    const SteadyWindResult res = solveSteadyWind(domain, uniformWind(0.0, 0.0), {}, SolverSettings{});
+    AirDomain domain(gaussianHill(2.0),
+                     DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    const SteadyWindResult res =
+        solveSteadyWind(domain, uniformWind(0.0, 0.0), {}, SolverSettings{});
     EXPECT_TRUE(res.report.converged);
     for (double v : res.field.u_mps()) ASSERT_EQ(v, 0.0);
 }
@@ -303,7 +321,8 @@ TEST(AirDomain, ActivatesAirOnlyAboveTheTerrain) {
     ts.spacing_m = 0.05;
     ts.radius_m = 2.0;
     ts.centerX_m = ts.centerY_m = 4.0;
-    AirDomain domain(makeTerrain(ts), DomainSpec{/*voxelSize_m=*/0.5, /*top_m=*/4.0, /*memoryLimit_bytes=*/1e9});
+    AirDomain domain(makeTerrain(ts),
+                     DomainSpec{/*voxelSize_m=*/0.5, /*top_m=*/4.0, /*memoryLimit_bytes=*/1e9});
     EXPECT_EQ(domain.nx(), 16);
     EXPECT_EQ(domain.nz(), 8);
     EXPECT_EQ(size_t(airMaskGrid(domain)->activeVoxelCount()), domain.activeCellCount());
@@ -325,12 +344,24 @@ TEST(AirDomain, BadInputThrowsNamingTheParameter) {
     const Heightfield hf = flat(20.0, 1.0);
     expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{0.0, {}, 1e9}); }, "solver.voxel_size_m");
     expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{-1.0, {}, 1e9}); }, "solver.voxel_size_m");
-    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{std::nan(""), {}, 1e9}); }, "solver.voxel_size_m");
+    expectThrowsNaming(
+        [&] {
+            AirDomain d(hf, DomainSpec{std::nan(""), {}, 1e9});
+        },
+        "solver.voxel_size_m");
     expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{100.0, {}, 1e9}); }, "solver.voxel_size_m");
     expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{1.0, /*top_m=*/-1.0, 1e9}); }, "top_m");
     expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{1.0, /*top_m=*/0.0, 1e9}); }, "no air");
-    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{0.01, /*top_m=*/50.0, 1e9}); }, "solver.memory_limit_mb");
-    expectThrowsNaming([&] { AirDomain d(hf, DomainSpec{1.0, {}, 0.0}); }, "solver.memory_limit_mb");
+    expectThrowsNaming(
+        [&] {
+            AirDomain d(hf, DomainSpec{0.01, /*top_m=*/50.0, 1e9});
+        },
+        "solver.memory_limit_mb");
+    expectThrowsNaming(
+        [&] {
+            AirDomain d(hf, DomainSpec{1.0, {}, 0.0});
+        },
+        "solver.memory_limit_mb");
     // The typed error carries the scene's key and the value in the key's unit (MiB).
     try {
         AirDomain d(hf, DomainSpec{0.01, /*top_m=*/50.0, /*memoryLimit_bytes=*/64.0 * 1024 * 1024});
@@ -355,8 +386,10 @@ TEST(AirDomain, BadInputThrowsNamingTheParameter) {
 // --- field sampling and output --------------------------------------------------------------
 
 TEST(WindField, SamplingIsZeroBelowTheTerrainAndOutsideTheBox) {
-    AirDomain domain(gaussianHill(2.0), DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
-    const SteadyWindResult res = solveSteadyWind(domain, uniformWind(5.0, 0.0), {}, SolverSettings{});
+    AirDomain domain(gaussianHill(2.0),
+                     DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    const SteadyWindResult res =
+        solveSteadyWind(domain, uniformWind(5.0, 0.0), {}, SolverSettings{});
     const auto below = res.field.velocityAt_mps(50.0, 50.0, 10.0);  // inside the 15 m hill
     const auto outside = res.field.velocityAt_mps(-5.0, 50.0, 20.0);
     const auto above = res.field.velocityAt_mps(50.0, 50.0, 30.0);
@@ -368,18 +401,24 @@ TEST(WindField, SamplingIsZeroBelowTheTerrainAndOutsideTheBox) {
 }
 
 TEST(WindField, ConcurrentSamplingMatchesSerialSampling) {
-    AirDomain domain(gaussianHill(2.0), DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    AirDomain domain(gaussianHill(2.0),
+                     DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
     const SteadyWindResult res = solveSteadyWind(domain, AmbientWind{}, {}, SolverSettings{});
     std::vector<std::array<double, 3>> pts, serial, parallel(4000);
-    for (int n = 0; n < 4000; ++n) pts.push_back({(n * 37) % 100 + 0.3, (n * 53) % 100 + 0.7, 5.0 + (n % 40)});
+    for (int n = 0; n < 4000; ++n)
+        pts.push_back({(n * 37) % 100 + 0.3, (n * 53) % 100 + 0.7, 5.0 + (n % 40)});
     for (const auto& p : pts) serial.push_back(res.field.velocityAt_mps(p[0], p[1], p[2]));
-    tbb::parallel_for(0, 4000, [&](int n) { parallel[n] = res.field.velocityAt_mps(pts[n][0], pts[n][1], pts[n][2]); });
+    tbb::parallel_for(0, 4000, [&](int n) {
+        parallel[n] = res.field.velocityAt_mps(pts[n][0], pts[n][1], pts[n][2]);
+    });
     EXPECT_EQ(serial, parallel);  // bit-identical: sampling is a pure function of the field
 }
 
 TEST(SteadyWind, DirectionIsWhereTheWindBlowsTowardsCounterClockwiseFromX) {
-    AirDomain domain(flat(40.0, 2.0), DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
-    const SteadyWindResult res = solveSteadyWind(domain, uniformWind(5.0, 90.0), {}, SolverSettings{});
+    AirDomain domain(flat(40.0, 2.0),
+                     DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    const SteadyWindResult res =
+        solveSteadyWind(domain, uniformWind(5.0, 90.0), {}, SolverSettings{});
     const auto u = res.field.velocityAt_mps(20.0, 20.0, 10.0);
     constexpr double REL_TOL = 1e-6;  // as for uniform flow: the solve leaves u0 unchanged
     EXPECT_NEAR(u[0], 0.0, REL_TOL * 5.0);
@@ -387,10 +426,13 @@ TEST(SteadyWind, DirectionIsWhereTheWindBlowsTowardsCounterClockwiseFromX) {
 }
 
 TEST(WindField, WritesAVdbWithVelocitySpeedAndStaggeredFaceGrids) {
-    AirDomain domain(gaussianHill(2.0), DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
-    const SteadyWindResult res = solveSteadyWind(domain, uniformWind(5.0, 0.0), {}, SolverSettings{});
+    AirDomain domain(gaussianHill(2.0),
+                     DomainSpec{/*voxelSize_m=*/4.0, /*top_m=*/{}, /*memoryLimit_bytes=*/1e9});
+    const SteadyWindResult res =
+        solveSteadyWind(domain, uniformWind(5.0, 0.0), {}, SolverSettings{});
     const std::string path = std::string(GALE_BINARY_DIR) + "/steady_wind_test.vdb";
-    res.field.writeVdb(path, VdbMetadata{{{"case", "test"}}, {{"iterations", double(res.report.iterations)}}});
+    res.field.writeVdb(
+        path, VdbMetadata{{{"case", "test"}}, {{"iterations", double(res.report.iterations)}}});
     openvdb::initialize();
     openvdb::io::File file(path);
     file.open();
@@ -410,15 +452,17 @@ TEST(WindField, WritesAVdbWithVelocitySpeedAndStaggeredFaceGrids) {
     const auto c = res.field.cellVelocity_mps(3, 4, 5);
     const openvdb::Vec3s v = vel->tree().getValue(openvdb::Coord(3, 4, 5));
     EXPECT_NEAR(v[0], c[0], FLOAT_TOL * 5.0);
-    EXPECT_NEAR(speed->tree().getValue(openvdb::Coord(3, 4, 5)), std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
-                FLOAT_TOL * 5.0);
+    EXPECT_NEAR(speed->tree().getValue(openvdb::Coord(3, 4, 5)),
+                std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), FLOAT_TOL * 5.0);
     // The staggered faces: OpenVDB's staggered sampler reads the wind the grass reads, down to
     // half a cell above the hill (where closed faces hold extrapolated values), and the grid's
     // active voxels are the air's (every air cell's own voxel at least; no voxel without air).
     EXPECT_EQ(faces->getGridClass(), openvdb::GRID_STAGGERED);
     EXPECT_GE(size_t(faces->activeVoxelCount()), domain.activeCellCount());
-    EXPECT_LT(size_t(faces->activeVoxelCount()), size_t(domain.nx() + 1) * (domain.ny() + 1) * (domain.nz() + 1));
-    openvdb::tools::GridSampler<openvdb::Vec3SGrid, openvdb::tools::StaggeredBoxSampler> sampler(*faces);
+    EXPECT_LT(size_t(faces->activeVoxelCount()),
+              size_t(domain.nx() + 1) * (domain.ny() + 1) * (domain.nz() + 1));
+    openvdb::tools::GridSampler<openvdb::Vec3SGrid, openvdb::tools::StaggeredBoxSampler> sampler(
+        *faces);
     const Heightfield& ground = domain.terrain();
     int compared = 0;
     for (double x = 6.0; x < domain.nx() * 4.0 - 6.0; x += 3.7)
@@ -426,7 +470,8 @@ TEST(WindField, WritesAVdbWithVelocitySpeedAndStaggeredFaceGrids) {
             const double z = ground.sample(x, y) + 2.0;
             const auto ours = res.field.velocityAt_mps(x, y, z);
             const openvdb::Vec3s theirs = sampler.wsSample(openvdb::Vec3d(x, y, z));
-            for (int k = 0; k < 3; ++k) EXPECT_NEAR(theirs[k], ours[k], FLOAT_TOL * 5.0) << x << ", " << y;
+            for (int k = 0; k < 3; ++k)
+                EXPECT_NEAR(theirs[k], ours[k], FLOAT_TOL * 5.0) << x << ", " << y;
             ++compared;
         }
     EXPECT_GT(compared, 50);

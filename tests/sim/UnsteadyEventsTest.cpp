@@ -4,9 +4,9 @@
 
 #include <cmath>
 
+#include "base/Numbers.h"
 #include "sim/Gusts.h"
 #include "sim/Vortices.h"
-#include "base/Numbers.h"
 
 namespace gale::sim {
 namespace {
@@ -27,13 +27,14 @@ double maxOver(const GustEvent& g, double* at = nullptr) {
     double m = -1e9;
     for (int i = 0; i <= 10000; ++i) {
         const double t = g.start_s + g.duration_s * i / 10000.0, v = g.envelopeAt(t);
-        if (v > m) m = v, at ? *at = t : 0.0;
+        if (v > m) m = v, at ? * at = t : 0.0;
     }
     return m;
 }
 
 TEST(GustEnvelope, EveryShapePeaksAtOneAndVanishesOutsideItsDuration) {
-    for (GustEnvelope e : {GustEnvelope::Spline, GustEnvelope::IecEog, GustEnvelope::OneMinusCosine, GustEnvelope::Step}) {
+    for (GustEnvelope e : {GustEnvelope::Spline, GustEnvelope::IecEog, GustEnvelope::OneMinusCosine,
+                           GustEnvelope::Step}) {
         const GustEvent g = gust(e);
         EXPECT_NEAR(maxOver(g), 1.0, PEAK_TOLERANCE) << gustEnvelopeName(e);
         EXPECT_EQ(g.envelopeAt(1.9), 0.0);
@@ -55,9 +56,11 @@ TEST(GustEnvelope, SplineHasASharpAttackAndAGradualDecay) {
 
 TEST(GustEnvelope, IecEogHasItsDipsAndPeaksAtHalfTime) {
     const GustEvent g = gust(GustEnvelope::IecEog);
-    // IEC 61400-1: V = V_hub - 0.37 V_gust sin(3 pi t/T)(1 - cos(2 pi t/T)), peak 0.74 V_gust at T/2.
+    // IEC 61400-1: V = V_hub - 0.37 V_gust sin(3 pi t/T)(1 - cos(2 pi t/T)), peak 0.74 V_gust at
+    // T/2.
     EXPECT_NEAR(g.envelopeAt(g.start_s + 5.0), 1.0, SHAPE_TOLERANCE);
-    const double s = 0.1, expected = -0.37 * std::sin(3 * PI * s) * (1 - std::cos(2 * PI * s)) / 0.74;
+    const double s = 0.1,
+                 expected = -0.37 * std::sin(3 * PI * s) * (1 - std::cos(2 * PI * s)) / 0.74;
     EXPECT_NEAR(g.envelopeAt(g.start_s + s * 10.0), expected, SHAPE_TOLERANCE);
     EXPECT_LT(expected, 0.0);  // the dip before the rise
 }
@@ -81,11 +84,13 @@ TEST(GustEnvelope, BadValuesAreRefused) {
 }
 
 TEST(WhirlwindProfile, PeakSpeedIsTheRequestedOneForEveryProfile) {
-    for (VortexProfile p : {VortexProfile::Rankine, VortexProfile::LambOseen, VortexProfile::Burgers}) {
+    for (VortexProfile p :
+         {VortexProfile::Rankine, VortexProfile::LambOseen, VortexProfile::Burgers}) {
         Whirlwind w;
         w.coreRadius_m = 3.0, w.peakSpeed_mps = -5.0, w.profile = p;
         double m = 0.0;
-        for (int i = 1; i <= 30000; ++i) m = std::min(m, w.tangentialSpeed_mps(i * 1e-4 * w.coreRadius_m));
+        for (int i = 1; i <= 30000; ++i)
+            m = std::min(m, w.tangentialSpeed_mps(i * 1e-4 * w.coreRadius_m));
         EXPECT_NEAR(m, -5.0, 1e-4) << vortexProfileName(p);
         EXPECT_LT(w.circulation(), 0.0);  // clockwise seen from above
         // Far outside the core every profile is the potential vortex Gamma / (2 pi r).

@@ -1,13 +1,12 @@
 // WindField's staggered trilinear sampling: exact on linear fields, the same numbers as OpenVDB's
 // StaggeredBoxSampler inside the box, and the terrain test split off for callers that cache it.
 #include <gtest/gtest.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Interpolation.h>
 
 #include <cmath>
 #include <memory>
 #include <random>
-
-#include <openvdb/openvdb.h>
-#include <openvdb/tools/Interpolation.h>
 
 #include "sim/VdbIO.h"
 #include "sim/WindField.h"
@@ -17,7 +16,7 @@ using namespace gale::sim;
 namespace {
 
 constexpr int NX = 9, NY = 7, NZ = 5;
-constexpr double H = 0.75;                         // cell edge, metres
+constexpr double H = 0.75;  // cell edge, metres
 constexpr std::array<double, 3> WS_MIN{-3.0, 2.0, 10.0};
 
 std::shared_ptr<const Heightfield> slopedTerrain(double baseHeight_m) {
@@ -35,9 +34,11 @@ WindField emptyField(std::shared_ptr<const Heightfield> terrain = nullptr) {
                      std::vector<uint8_t>(size_t(NX) * NY * NZ, 1));
 }
 
-// World position of a face of each kind (sim/WindField.h: x-face i of row (j, k) at wsMin + (i, j+1/2, k+1/2) h).
+// World position of a face of each kind (sim/WindField.h: x-face i of row (j, k) at wsMin + (i,
+// j+1/2, k+1/2) h).
 std::array<double, 3> facePosition(int axis, int i, int j, int k) {
-    std::array<double, 3> p{WS_MIN[0] + (i + 0.5) * H, WS_MIN[1] + (j + 0.5) * H, WS_MIN[2] + (k + 0.5) * H};
+    std::array<double, 3> p{WS_MIN[0] + (i + 0.5) * H, WS_MIN[1] + (j + 0.5) * H,
+                            WS_MIN[2] + (k + 0.5) * H};
     p[axis] -= 0.5 * H;
     return p;
 }
@@ -46,13 +47,19 @@ template <class F>
 void fillFaces(WindField& f, F&& value) {
     for (int k = 0; k < NZ; ++k)
         for (int j = 0; j < NY; ++j)
-            for (int i = 0; i <= NX; ++i) f.u_mps()[i + size_t(NX + 1) * (j + size_t(NY) * k)] = value(0, facePosition(0, i, j, k));
+            for (int i = 0; i <= NX; ++i)
+                f.u_mps()[i + size_t(NX + 1) * (j + size_t(NY) * k)] =
+                    value(0, facePosition(0, i, j, k));
     for (int k = 0; k < NZ; ++k)
         for (int j = 0; j <= NY; ++j)
-            for (int i = 0; i < NX; ++i) f.v_mps()[i + size_t(NX) * (j + size_t(NY + 1) * k)] = value(1, facePosition(1, i, j, k));
+            for (int i = 0; i < NX; ++i)
+                f.v_mps()[i + size_t(NX) * (j + size_t(NY + 1) * k)] =
+                    value(1, facePosition(1, i, j, k));
     for (int k = 0; k <= NZ; ++k)
         for (int j = 0; j < NY; ++j)
-            for (int i = 0; i < NX; ++i) f.w_mps()[i + size_t(NX) * (j + size_t(NY) * k)] = value(2, facePosition(2, i, j, k));
+            for (int i = 0; i < NX; ++i)
+                f.w_mps()[i + size_t(NX) * (j + size_t(NY) * k)] =
+                    value(2, facePosition(2, i, j, k));
 }
 
 // A point whose every stencil lies inside the face grids (at least one cell from each side).
@@ -67,7 +74,8 @@ std::array<double, 3> interiorPoint(std::mt19937& rng) {
 TEST(WindFieldSampling, LinearFieldIsReproducedExactly) {
     WindField f = emptyField();
     auto linear = [](int c, const std::array<double, 3>& p) {
-        const double a[3][4] = {{1.5, 0.3, -0.2, 0.1}, {-2.0, 0.05, 0.4, -0.3}, {0.25, -0.1, 0.2, 0.6}};
+        const double a[3][4] = {
+            {1.5, 0.3, -0.2, 0.1}, {-2.0, 0.05, 0.4, -0.3}, {0.25, -0.1, 0.2, 0.6}};
         return a[c][0] + a[c][1] * p[0] + a[c][2] * p[1] + a[c][3] * p[2];
     };
     fillFaces(f, linear);
@@ -109,26 +117,30 @@ TEST(WindFieldSampling, MatchesOpenVdbStaggeredBoxSamplerInsideTheBox) {
                                    (p[2] - WS_MIN[2]) / H - 0.5);
         const openvdb::Vec3d vdb = openvdb::tools::StaggeredBoxSampler::sample(grid->tree(), index);
         const auto ours = f.velocityAt_mps(p[0], p[1], p[2]);
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(ours[c], vdb[c], 1e-11) << "component " << c << " sample " << n;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(ours[c], vdb[c], 1e-11) << "component " << c << " sample " << n;
     }
 
     // The grid gale builds for OpenVDB (float faces, world transform) samples the same in world
     // space, to float precision (|u| <= 20 m/s: 2e-5 m/s).
     const openvdb::Vec3SGrid::Ptr faces = staggeredVelocityGrid(f);
     EXPECT_EQ(faces->getGridClass(), openvdb::GRID_STAGGERED);
-    openvdb::tools::GridSampler<openvdb::Vec3SGrid, openvdb::tools::StaggeredBoxSampler> sampler(*faces);
+    openvdb::tools::GridSampler<openvdb::Vec3SGrid, openvdb::tools::StaggeredBoxSampler> sampler(
+        *faces);
     for (int n = 0; n < 2000; ++n) {
         const auto p = interiorPoint(rng);
         const openvdb::Vec3s vdb = sampler.wsSample(openvdb::Vec3d(p[0], p[1], p[2]));
         const auto ours = f.velocityAt_mps(p[0], p[1], p[2]);
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(ours[c], vdb[c], 2e-5) << "component " << c << " sample " << n;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(ours[c], vdb[c], 2e-5) << "component " << c << " sample " << n;
     }
 }
 
 // The terrain test alone decides between velocityAt_mps and velocityAboveTerrainAt_mps; a
 // geometry names the terrain it was made with.
 TEST(WindFieldSampling, TerrainTestIsTheOnlyDifferenceFromTheUncheckedSampler) {
-    WindField f = emptyField(slopedTerrain(11.0));  // ground from 11 m (x = -4) rising 0.2 m per metre
+    WindField f =
+        emptyField(slopedTerrain(11.0));  // ground from 11 m (x = -4) rising 0.2 m per metre
     fillFaces(f, [](int c, const std::array<double, 3>& p) { return 3.0 + c + 0.1 * p[2]; });
     std::mt19937 rng(3);
     int below = 0, above = 0;
@@ -148,13 +160,16 @@ TEST(WindFieldSampling, TerrainTestIsTheOnlyDifferenceFromTheUncheckedSampler) {
     EXPECT_GT(below, 50);
     EXPECT_GT(above, 50);
     // Outside the box both give zero.
-    const auto outside = f.velocityAboveTerrainAt_mps(WS_MIN[0] - 1.0, WS_MIN[1] + 1.0, WS_MIN[2] + 1.0);
+    const auto outside =
+        f.velocityAboveTerrainAt_mps(WS_MIN[0] - 1.0, WS_MIN[1] + 1.0, WS_MIN[2] + 1.0);
     for (double c : outside) EXPECT_EQ(c, 0.0);
 
     EXPECT_TRUE(f.geometry() != emptyField().geometry());
-    const WindField same(NX, NY, NZ, H, WS_MIN, nullptr, std::vector<uint8_t>(size_t(NX) * NY * NZ, 1));
+    const WindField same(NX, NY, NZ, H, WS_MIN, nullptr,
+                         std::vector<uint8_t>(size_t(NX) * NY * NZ, 1));
     EXPECT_TRUE(emptyField().geometry() == same.geometry());
-    EXPECT_TRUE(emptyField(slopedTerrain(11.0)).geometry() != f.geometry());  // another terrain object
+    EXPECT_TRUE(emptyField(slopedTerrain(11.0)).geometry() !=
+                f.geometry());  // another terrain object
 }
 
 // Reading u and v at one point and w at another gives each component as the ordinary sampler
@@ -173,7 +188,8 @@ TEST(WindFieldSampling, ComponentsAtTwoPointsMatchTheOrdinarySamplerAtEach) {
         EXPECT_EQ(split[1], atA[1]);
         EXPECT_EQ(split[2], atB[2]);
     }
-    const auto outside = f.velocityComponentsAt_mps({WS_MIN[0] - 1.0, WS_MIN[1], WS_MIN[2]}, {WS_MIN[0], WS_MIN[1] - 1.0, WS_MIN[2]});
+    const auto outside = f.velocityComponentsAt_mps({WS_MIN[0] - 1.0, WS_MIN[1], WS_MIN[2]},
+                                                    {WS_MIN[0], WS_MIN[1] - 1.0, WS_MIN[2]});
     for (double c : outside) EXPECT_EQ(c, 0.0);
 }
 
@@ -182,17 +198,21 @@ TEST(WindFieldSampling, ComponentsAtTwoPointsMatchTheOrdinarySamplerAtEach) {
 TEST(WindFieldSampling, SolvedFacesAreFlowFacesWithTheirCentreAboveTheGround) {
     auto t = std::make_shared<Heightfield>();
     t->nx = t->ny = 20, t->spacing_m = 0.5, t->originX_m = -4.0, t->originY_m = 1.0;
-    t->height_m.assign(size_t(t->nx) * t->ny, float(WS_MIN[2] + 0.3 * H));  // ground cut 0.3 cells up
+    t->height_m.assign(size_t(t->nx) * t->ny,
+                       float(WS_MIN[2] + 0.3 * H));  // ground cut 0.3 cells up
     const WindField f(NX, NY, NZ, H, WS_MIN, t, std::vector<uint8_t>(size_t(NX) * NY * NZ, 1));
-    EXPECT_TRUE(f.isFlowFace(0, 3, 3, 0));     // both cells air
-    EXPECT_TRUE(f.isSolvedFace(0, 3, 3, 0));   // centre 0.5 cells up, ground 0.3
-    EXPECT_FALSE(f.isFlowFace(2, 3, 3, 0));    // the box bottom
+    EXPECT_TRUE(f.isFlowFace(0, 3, 3, 0));    // both cells air
+    EXPECT_TRUE(f.isSolvedFace(0, 3, 3, 0));  // centre 0.5 cells up, ground 0.3
+    EXPECT_FALSE(f.isFlowFace(2, 3, 3, 0));   // the box bottom
     EXPECT_FALSE(f.isSolvedFace(2, 3, 3, 0));
     EXPECT_TRUE(f.isSolvedFace(2, 3, 3, 1));
     const double x = WS_MIN[0] + 4.2 * H, y = WS_MIN[1] + 3.1 * H;
     EXPECT_FALSE(f.readsOnlySolvedFaces(x, y, WS_MIN[2] + 0.4 * H));  // below the first centre
-    EXPECT_TRUE(f.readsOnlySolvedFaces(x, y, WS_MIN[2] + 0.6 * H, WindField::COMPONENT_U | WindField::COMPONENT_V));
-    EXPECT_FALSE(f.readsOnlySolvedFaces(x, y, WS_MIN[2] + 0.6 * H, WindField::COMPONENT_W));  // reads the bottom
+    EXPECT_TRUE(f.readsOnlySolvedFaces(x, y, WS_MIN[2] + 0.6 * H,
+                                       WindField::COMPONENT_U | WindField::COMPONENT_V));
+    EXPECT_FALSE(f.readsOnlySolvedFaces(x, y, WS_MIN[2] + 0.6 * H,
+                                        WindField::COMPONENT_W));  // reads the bottom
     EXPECT_TRUE(f.readsOnlySolvedFaces(x, y, WS_MIN[2] + 1.6 * H));
-    EXPECT_FALSE(f.readsOnlySolvedFaces(WS_MIN[0] - 1.0, y, WS_MIN[2] + 1.6 * H));  // outside the box
+    EXPECT_FALSE(
+        f.readsOnlySolvedFaces(WS_MIN[0] - 1.0, y, WS_MIN[2] + 1.6 * H));  // outside the box
 }
