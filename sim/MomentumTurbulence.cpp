@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "sim/Format.h"
 
 namespace gale::sim {
@@ -47,16 +48,20 @@ struct ColumnScratch {
 
 }  // namespace
 
+void validateWallAndMixing(double displacementHeight_m, double mixingLengthMax_m) {
+    if (!(displacementHeight_m >= 0.0) || !std::isfinite(displacementHeight_m))
+        throw ParameterError("solver.displacement_height_m", num(displacementHeight_m),
+                             "must be >= 0 and finite");
+    if (!(mixingLengthMax_m > 0.0) || !std::isfinite(mixingLengthMax_m))
+        throw ParameterError("solver.mixing_length_max_m", num(mixingLengthMax_m),
+                             "must be > 0 and finite");
+}
+
 void SurfaceLayerSettings::validate() const {
     if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
         throw std::invalid_argument("solver.roughness_m must be > 0 and finite, got " +
                                     num(roughness_m));
-    if (!(displacementHeight_m >= 0.0) || !std::isfinite(displacementHeight_m))
-        throw std::invalid_argument("solver.displacement_height_m must be >= 0 and finite, got " +
-                                    num(displacementHeight_m));
-    if (!(mixingLengthMax_m > 0.0) || !std::isfinite(mixingLengthMax_m))
-        throw std::invalid_argument("solver.mixing_length_max_m must be > 0 and finite, got " +
-                                    num(mixingLengthMax_m));
+    validateWallAndMixing(displacementHeight_m, mixingLengthMax_m);
     if (balanced) {
         balanced->validate();
         if (!(balanced->referenceHeight_m > displacementHeight_m + roughness_m))

@@ -49,6 +49,11 @@
 
 namespace gale::sim {
 
+/// Throws ParameterError naming solver.displacement_height_m (m, must be >= 0) or
+/// solver.mixing_length_max_m (m, must be > 0), each finite: the checks both the momentum model and
+/// the surface-layer stresses need.
+void validateWallAndMixing(double displacementHeight_m, double mixingLengthMax_m);
+
 struct SurfaceLayerSettings {
     bool enabled = false;       ///< false: no eddy viscosity, no wall stress
     double roughness_m = 0.03;  ///< aerodynamic roughness length z0, metres, > 0

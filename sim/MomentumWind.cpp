@@ -62,12 +62,7 @@ void MomentumSettings::validate() const {
     if (!(residualTolerance > 0.0) || !std::isfinite(residualTolerance))
         throw std::invalid_argument("solver.momentum_tolerance must be > 0, got " +
                                     num(residualTolerance));
-    if (!(displacementHeight_m >= 0.0) || !std::isfinite(displacementHeight_m))
-        throw std::invalid_argument("solver.displacement_height_m must be >= 0 and finite, got " +
-                                    num(displacementHeight_m));
-    if (!(mixingLengthMax_m > 0.0) || !std::isfinite(mixingLengthMax_m))
-        throw std::invalid_argument("solver.mixing_length_max_m must be > 0 and finite, got " +
-                                    num(mixingLengthMax_m));
+    validateWallAndMixing(displacementHeight_m, mixingLengthMax_m);
 }
 
 MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind& ambient,

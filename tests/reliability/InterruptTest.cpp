@@ -26,17 +26,6 @@ constexpr int EXIT_INTERRUPTED = 130;
 /// Frames finished before we interrupt: more than one, to see several complete frames kept.
 constexpr int FRAMES_BEFORE_INTERRUPT = 3;
 
-bool waitFor(const std::function<bool()>& ready, double timeout_s) {
-    const auto start = std::chrono::steady_clock::now();
-    while (!ready()) {
-        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
-            timeout_s)
-            return false;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return true;
-}
-
 std::string frameName(int k) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%04d.png", k);

@@ -1,6 +1,10 @@
 #pragma once
 // The reliability tests' view of the program: tests/GaleProcess.h runs it.
 
+#include <chrono>
+#include <functional>
+#include <thread>
+
 #include "GaleProcess.h"
 
 namespace gale::reliability {
@@ -28,6 +32,18 @@ inline std::vector<std::string> hiddenOrTemporary(const std::string& folder) {
         if (name[0] == '.' || name.find(".tmp") != std::string::npos) out.push_back(rel);
     }
     return out;
+}
+
+/// Polls `ready` every 10 ms until it holds (true) or `timeout_s` seconds pass (false).
+inline bool waitFor(const std::function<bool()>& ready, double timeout_s) {
+    const auto start = std::chrono::steady_clock::now();
+    while (!ready()) {
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+            timeout_s)
+            return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return true;
 }
 
 }  // namespace gale::reliability

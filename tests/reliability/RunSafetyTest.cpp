@@ -47,17 +47,6 @@ std::map<std::string, std::string> snapshot(const std::string& folder) {
     return out;
 }
 
-bool waitFor(const std::function<bool()>& ready, double timeout_s) {
-    const auto start = std::chrono::steady_clock::now();
-    while (!ready()) {
-        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
-            timeout_s)
-            return false;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return true;
-}
-
 /// A PID that no process has: a child that has exited and been reaped.
 pid_t deadPid() {
     const pid_t pid = ::fork();
