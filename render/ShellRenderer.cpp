@@ -19,51 +19,9 @@ void ShellRenderer::Impl::init() {
     }
     maxTextureSize = info.maxTextureSize;
 
-    shellProgram = detail::Program(detail::linkProgramFiles("shell.vert", "shell.frag"));
     fillProgram = detail::Program(detail::linkProgramFiles("fill.vert", "fill.frag"));
-
-    const GLuint sp = shellProgram.get();
-    // Uniform locations of shell.vert / shell.frag (-1 for a name the compiler dropped).
-    const std::pair<GLint*, const char*> shellNames[] = {
-        {&shellLoc.clipFromWorld, "uClipFromWorld"},
-        {&shellLoc.eyePos, "uEyePos"},
-        {&shellLoc.shells, "uShells"},
-        {&shellLoc.topShell, "uTopShell"},
-        {&shellLoc.shellStride, "uShellStride"},
-        {&shellLoc.lodD1, "uLodD1"},
-        {&shellLoc.bend, "uBend"},
-        {&shellLoc.grass, "uGrass"},
-        {&shellLoc.groups, "uGroupTilt"},
-        {&shellLoc.groupColumns, "uGroupColumns"},
-        {&shellLoc.blendGroups, "uBlendGroups"},
-        {&shellLoc.maxTilt, "uMaxTilt"},
-        {&shellLoc.aperiodic, "uAperiodic"},
-        {&shellLoc.hasDensity, "uHasDensity"},
-        {&shellLoc.density, "uDensity"},
-        {&shellLoc.densityCut, "uDensityCut"},
-        {&shellLoc.densityMin, "uDensityMin"},
-        {&shellLoc.densitySize, "uDensitySize"},
-        {&shellLoc.lightCount, "uLightCount"},
-        {&shellLoc.lightPos, "uLightPos"},
-        {&shellLoc.lightColor, "uLightColor"},
-        {&shellLoc.lightAtten, "uLightAtten"},
-        {&shellLoc.ambient, "uAmbient"},
-        {&shellLoc.specularPower, "uSpecularPower"},
-        {&shellLoc.specularStrength, "uSpecularStrength"},
-        {&shellLoc.shadowMin, "uShadowMin"}};
-    for (const auto& [loc, name] : shellNames) *loc = uniform(sp, name);
-    // The shader's light arrays must be exactly kMaxLights long.
-    GLint arraySize = 0;
-    const GLuint index = glGetProgramResourceIndex(sp, GL_UNIFORM, "uLightPos[0]");
-    if (index != GL_INVALID_INDEX) {
-        const GLenum prop = GL_ARRAY_SIZE;
-        glGetProgramResourceiv(sp, GL_UNIFORM, index, 1, &prop, 1, nullptr, &arraySize);
-    }
-    if (arraySize != kMaxLights) {
-        throw std::runtime_error("shaders/shell.vert: MAX_LIGHTS is " + std::to_string(arraySize) +
-                                 ", expected kMaxLights = " + std::to_string(kMaxLights) +
-                                 " (render/RenderLimits.h)");
-    }
+    // The plain variant now, so a shader that does not compile fails here, not at the first draw.
+    shellProgram(0u);
 
     const GLuint fp = fillProgram.get();
     fillLoc.clipFromWorld = uniform(fp, "uClipFromWorld");
@@ -71,13 +29,6 @@ void ShellRenderer::Impl::init() {
     fillLoc.shellSpacing = uniform(fp, "uShellSpacing");
     fillLoc.grass = uniform(fp, "uGrass");
 
-    glUseProgram(sp);
-    glUniform1i(shellLoc.grass, kGrassUnit);
-    glUniform1i(shellLoc.bend, kBendUnit);
-    glUniform1i(shellLoc.groups, kGroupUnit);
-    glUniform1i(shellLoc.density, kDensityUnit);
-    glUniform1i(shellLoc.densityCut, kDensityCutUnit);
-    glUniform1f(shellLoc.maxTilt, static_cast<float>(kMaxTipTilt_rad));
     glUseProgram(fp);
     glUniform1i(fillLoc.grass, kGrassUnit);
     glUseProgram(0);
@@ -126,11 +77,77 @@ void ShellRenderer::Impl::init() {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     detail::checkFramebufferComplete("ShellRenderer (default framebuffer)");
     detail::checkGlError("ShellRenderer setup");
-
-    uploadLighting();
 }
 
-void ShellRenderer::Impl::uploadLighting() {
+namespace shell_detail {
+std::string shellVariantDefines(unsigned bits) {
+    const auto line = [bits](const char* name, unsigned bit) {
+        return std::string("#define ") + name + ((bits & bit) != 0u ? " 1\n" : " 0\n");
+    };
+    return line("APERIODIC", kVariantAperiodic) + line("FADE", kVariantFade) +
+           line("DENSITY", kVariantDensity) + line("BLEND_GROUPS", kVariantBlend);
+}
+}  // namespace shell_detail
+
+ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
+    std::unique_ptr<ShellProgram>& slot = shellPrograms.at(bits);
+    if (slot) return *slot;
+    auto p = std::make_unique<ShellProgram>();
+    p->program = detail::Program(
+        detail::linkProgramFiles("shell.vert", "shell.frag", shellVariantDefines(bits)));
+    const GLuint sp = p->program.get();
+    ShellLocations& loc = p->loc;
+    const std::pair<GLint*, const char*> names[] = {{&loc.clipFromWorld, "uClipFromWorld"},
+                                                    {&loc.eyePos, "uEyePos"},
+                                                    {&loc.shells, "uShells"},
+                                                    {&loc.topShell, "uTopShell"},
+                                                    {&loc.shellStride, "uShellStride"},
+                                                    {&loc.lodD1, "uLodD1"},
+                                                    {&loc.bend, "uBend"},
+                                                    {&loc.grass, "uGrass"},
+                                                    {&loc.groups, "uGroupTilt"},
+                                                    {&loc.groupColumns, "uGroupColumns"},
+                                                    {&loc.maxTilt, "uMaxTilt"},
+                                                    {&loc.density, "uDensity"},
+                                                    {&loc.densityCut, "uDensityCut"},
+                                                    {&loc.densityMin, "uDensityMin"},
+                                                    {&loc.densitySize, "uDensitySize"},
+                                                    {&loc.lightCount, "uLightCount"},
+                                                    {&loc.lightPos, "uLightPos"},
+                                                    {&loc.lightColor, "uLightColor"},
+                                                    {&loc.lightAtten, "uLightAtten"},
+                                                    {&loc.ambient, "uAmbient"},
+                                                    {&loc.specularPower, "uSpecularPower"},
+                                                    {&loc.specularStrength, "uSpecularStrength"},
+                                                    {&loc.shadowMin, "uShadowMin"}};
+    for (const auto& [where, name] : names) *where = uniform(sp, name);
+    // The shader's light arrays must be exactly kMaxLights long.
+    GLint arraySize = 0;
+    const GLuint index = glGetProgramResourceIndex(sp, GL_UNIFORM, "uLightPos[0]");
+    if (index != GL_INVALID_INDEX) {
+        const GLenum prop = GL_ARRAY_SIZE;
+        glGetProgramResourceiv(sp, GL_UNIFORM, index, 1, &prop, 1, nullptr, &arraySize);
+    }
+    if (arraySize != kMaxLights) {
+        throw std::runtime_error("shaders/shell.vert: MAX_LIGHTS is " + std::to_string(arraySize) +
+                                 ", expected kMaxLights = " + std::to_string(kMaxLights) +
+                                 " (render/RenderLimits.h)");
+    }
+    glUseProgram(sp);
+    glUniform1i(loc.grass, kGrassUnit);
+    glUniform1i(loc.bend, kBendUnit);
+    glUniform1i(loc.groups, kGroupUnit);
+    glUniform1i(loc.density, kDensityUnit);
+    glUniform1i(loc.densityCut, kDensityCutUnit);
+    glUniform1f(loc.maxTilt, static_cast<float>(kMaxTipTilt_rad));
+    glUseProgram(0);
+    uploadLighting(*p);
+    slot = std::move(p);
+    return *slot;
+}
+
+void ShellRenderer::Impl::uploadLighting(const ShellProgram& program) const {
+    const ShellLocations& shellLoc = program.loc;
     const int count = static_cast<int>(lighting.lights.size());
     std::vector<glm::vec3> pos(kMaxLights, glm::vec3(0.0f));
     std::vector<glm::vec3> color(kMaxLights, glm::vec3(0.0f));
@@ -140,7 +157,7 @@ void ShellRenderer::Impl::uploadLighting() {
         color[l] = lighting.lights[l].color;
         atten[l] = lighting.lights[l].attenuation;
     }
-    glUseProgram(shellProgram.get());
+    glUseProgram(program.program.get());
     glUniform1i(shellLoc.lightCount, count);
     glUniform3fv(shellLoc.lightPos, kMaxLights, glm::value_ptr(pos[0]));
     glUniform3fv(shellLoc.lightColor, kMaxLights, glm::value_ptr(color[0]));
@@ -373,7 +390,8 @@ void ShellRenderer::setLighting(const Lighting& lighting) {
     }
     mImpl->context.makeCurrent();
     mImpl->lighting = lighting;
-    mImpl->uploadLighting();
+    for (const auto& program : mImpl->shellPrograms)
+        if (program) mImpl->uploadLighting(*program);
 }
 
 void ShellRenderer::setShellCount(int shells) {

@@ -56,6 +56,10 @@ float distanceToBox(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi
     return glm::length(glm::max(glm::max(lo - p, p - hi), glm::vec3(0.0f)));
 }
 
+float farthestInBox(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi) {
+    return glm::length(glm::max(glm::abs(p - lo), glm::abs(hi - p)));
+}
+
 ShellRange shellRange(int shells, float d1_m, float distance_m) {
     ShellRange range;
     range.top = shells;
@@ -66,6 +70,11 @@ ShellRange shellRange(int shells, float d1_m, float distance_m) {
     range.stride = stride;
     range.top = shells - shells % stride;
     return range;
+}
+
+bool chunkMayFade(const ShellRange& range, float d1_m, float far_m) {
+    if (!(d1_m > 0.0f) || !std::isfinite(d1_m) || range.top <= 0) return false;
+    return far_m >= kLodFadeStart * d1_m * static_cast<float>(range.stride);
 }
 
 }  // namespace gale::render::detail

@@ -44,6 +44,9 @@ bool boxMayBeVisible(const glm::mat4& clipFromWorld, const glm::vec3& lo, const 
 /// Distance, metres, from p to the box [lo, hi] (0 inside).
 float distanceToBox(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi);
 
+/// Distance, metres, from p to the farthest point of the box [lo, hi] (its farthest corner).
+float farthestInBox(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi);
+
 /// The shells a chunk at distance d draws: every `stride`-th shell from `top` down to 0.
 struct ShellRange {
     int top = 0;
@@ -54,5 +57,12 @@ struct ShellRange {
 /// For N shells, drop distance D1 (metres, > 0; infinite = no LOD) and chunk distance d:
 /// the smallest stride 2^k with D1 2^k > d, and the highest multiple of it <= N.
 ShellRange shellRange(int shells, float d1_m, float distance_m);
+
+/// True if a shell of `range` may have started to thin out somewhere in a chunk whose ground
+/// reaches `far_m` metres from the eye: the nearest drop distance among the drawn shells above
+/// the ground is D1 stride (an odd multiple of the stride has no more trailing zero bits), and
+/// thinning starts at kLodFadeStart of it. False when D1 is 0 (no level of detail) or only the
+/// ground is drawn. A chunk for which this is false can be drawn without the fade.
+bool chunkMayFade(const ShellRange& range, float d1_m, float far_m);
 
 }  // namespace gale::render::detail

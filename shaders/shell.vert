@@ -6,6 +6,17 @@
 // metres; lighting is evaluated per vertex, as in the thesis, so the fragment stage stays a texture
 // fetch, an alpha test and a multiply.
 
+// Specialised by defines (ShellRenderer compiles one program per combination, see shell.frag):
+//   BLEND_GROUPS  1: blend the four nearest groups at aGroupCoord (bilinear), so no stripes show
+//                 where groups change; 0: this vertex's group alone.
+//   FADE          1: pass the level of detail's fade to the fragment stage.
+#ifndef BLEND_GROUPS
+#define BLEND_GROUPS 0
+#endif
+#ifndef FADE
+#define FADE 0
+#endif
+
 // Must equal gale::render::kMaxLights (render/RenderLimits.h); ShellRenderer checks the array size.
 #define MAX_LIGHTS 16
 
@@ -14,7 +25,7 @@ layout(location = 1) in vec3 aNormal;    // unit terrain normal
 layout(location = 2) in vec2 aUv;        // grass texture coordinates
 layout(location = 3) in vec3 aWindDir;   // unit tangent-plane wind direction, or zero
 layout(location = 4) in uint aGroup;     // animation-step group
-layout(location = 5) in vec2 aGroupCoord; // position in the group grid (when uBlendGroups)
+layout(location = 5) in vec2 aGroupCoord; // position in the group grid (when BLEND_GROUPS)
 
 uniform mat4 uClipFromWorld;
 uniform vec3 uEyePos;          // camera position
@@ -31,9 +42,6 @@ uniform float uMaxTilt;        // radians
 // Tip tilt per group this frame (radians), groups row by row uGroupColumns wide.
 uniform sampler2D uGroupTilt;
 uniform int uGroupColumns;
-// 1: blend the four nearest groups at aGroupCoord (bilinear), so no stripes show where groups
-// change; 0: this vertex's group alone.
-uniform int uBlendGroups;
 
 uniform int uLightCount;
 uniform vec3 uLightPos[MAX_LIGHTS];
@@ -55,12 +63,13 @@ out vec3 vLight;           // light reaching the vertex, multiplies the texture 
 flat out float vThreshold; // alpha test: keep texels with alpha >= vThreshold
 
 float groupTilt() {
-    if (uBlendGroups != 0) {
-        vec2 size = vec2(textureSize(uGroupTilt, 0));
-        return texture(uGroupTilt, (aGroupCoord + 0.5) / size).r;
-    }
+#if BLEND_GROUPS
+    vec2 size = vec2(textureSize(uGroupTilt, 0));
+    return texture(uGroupTilt, (aGroupCoord + 0.5) / size).r;
+#else
     int g = int(aGroup);
     return texelFetch(uGroupTilt, ivec2(g % uGroupColumns, g / uGroupColumns), 0).r;
+#endif
 }
 
 // The bend of shell i at tilt row `row` (fractional), linear between the two nearest rows.
@@ -83,10 +92,12 @@ void main() {
     vec2 plan = (aPosition.xy - uDensityMin) / uDensitySize;
     vDensityUv = vec2(plan.x, 1.0 - plan.y);
     vFade = 1.0;
+#if FADE
     if (uLodD1 > 0.0 && i > 0) {
         float drop = uLodD1 * float(1 << findLSB(i));
         vFade = 1.0 - smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
     }
+#endif
 
     // Thesis 3.1: shell i keeps texels with alpha >= i/N; the ground keeps every texel. Half an
     // 8-bit step of slack so a blade of alpha 255 i/N passes its shell despite rounding; never
