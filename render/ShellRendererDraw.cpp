@@ -126,11 +126,16 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         const ShellLocations& loc = useProgram(sceneBits | (fades ? kVariantFade : 0u));
         glUniform1i(loc.topShell, range.top);
         glUniform1i(loc.shellStride, range.stride);
+        // The chunk's mesh level (render/TerrainChunks.h): coarser far away, its border always
+        // at full resolution, so neighbours at different levels meet without cracks.
+        const detail::IndexRange& mesh =
+            chunk->levels[detail::meshLevel(*chunk, focal_px, m.grass.lodPixels, near_m)];
         glDrawElementsInstanced(
-            GL_TRIANGLES, static_cast<GLsizei>(chunk->indexCount), GL_UNSIGNED_INT,
-            reinterpret_cast<const void*>(size_t(chunk->firstIndex) * sizeof(uint32_t)), count);
+            GL_TRIANGLES, static_cast<GLsizei>(mesh.count), GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(size_t(mesh.first) * sizeof(uint32_t)), count);
         ++stats.chunks;
         stats.layers += count;
+        stats.triangles += static_cast<long long>(mesh.count / 3) * count;
     }
     glBindVertexArray(0);
     glUseProgram(0);

@@ -25,15 +25,38 @@ namespace gale::render::detail {
 constexpr int kChunkQuads = 32;
 /// A shell starts thinning at this fraction of its drop distance.
 constexpr float kLodFadeStart = 0.7f;
+/// Mesh levels per chunk: level l takes every 2^l-th vertex inside the chunk (l = 5: one coarse
+/// cell per 32-quad chunk).
+constexpr int kMeshLevels = 6;
+/// A chunk takes the coarsest mesh level whose cells are at most this many times
+/// GrassParams::lodPixels across on screen (default 2 px: 8-pixel cells; the ground is smooth at
+/// that scale, and a software rasteriser pays per vertex and per small triangle).
+constexpr float kMeshCellPerLodPixel = 4.0f;
+
+/// A range of the terrain's index buffer.
+struct IndexRange {
+    uint32_t first = 0;
+    uint32_t count = 0;
+};
 
 struct TerrainChunk {
-    uint32_t firstIndex = 0;  ///< into the terrain's index buffer
+    uint32_t firstIndex = 0;  ///< into the terrain's index buffer: the full mesh (level 0)
     uint32_t indexCount = 0;
+    /// levels[l], l < levelCount: the mesh taking every 2^l-th vertex inside the chunk, with the
+    /// chunk's border always at full resolution (stitched), so neighbours at any levels share
+    /// the same border and no crack opens. levels[0] is the full mesh.
+    IndexRange levels[kMeshLevels];
+    int levelCount = 1;
+    float quad_m = 0.0f;                     ///< the longest quad side in the chunk (3-D), metres
     glm::vec3 wsMin_m{0.0f}, wsMax_m{0.0f};  ///< bounds of the ground, before the grass margin
 };
 
 /// Chunks of the nx x ny grid, kChunkQuads quads a side (fewer at the far edges), and their index
-/// list (two triangles per quad, the order of TerrainGrid.h), appended to `indices`.
+/// lists, appended to `indices`: level 0 is two triangles per quad (the order of TerrainGrid.h);
+/// level l >= 1 exists when 2^l divides the chunk's quads on both sides, and takes every 2^l-th
+/// vertex: a coarse cell inside the chunk is two triangles, a cell on the chunk's border a fan
+/// around its centre vertex through every full-resolution vertex of its border side(s). All
+/// triangles are counter-clockwise in plan. Requires nx, ny >= 2 and nx * ny positions.
 std::vector<TerrainChunk> buildChunks(int nx, int ny, const std::vector<glm::vec3>& wsPosition_m,
                                       std::vector<uint32_t>& indices);
 
@@ -57,6 +80,12 @@ struct ShellRange {
 /// For N shells, drop distance D1 (metres, > 0; infinite = no LOD) and chunk distance d:
 /// the smallest stride 2^k with D1 2^k > d, and the highest multiple of it <= N.
 ShellRange shellRange(int shells, float d1_m, float distance_m);
+
+/// The mesh level of a chunk whose nearest ground point is `near_m` metres from the eye: the
+/// coarsest l < chunk.levelCount whose cells (2^l quad_m) span at most kMeshCellPerLodPixel
+/// lodPixels on screen at that distance (focal_px the focal length in pixels). 0 when lodPixels
+/// is 0 (no level of detail).
+int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float near_m);
 
 /// True if a shell of `range` may have started to thin out somewhere in a chunk whose ground
 /// reaches `far_m` metres from the eye: the nearest drop distance among the drawn shells above
