@@ -103,6 +103,8 @@ ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
                                                     {&loc.topShell, "uTopShell"},
                                                     {&loc.shellStride, "uShellStride"},
                                                     {&loc.lodD1, "uLodD1"},
+                                                    {&loc.lastShell, "uLastShell"},
+                                                    {&loc.bladeColor, "uBladeColor"},
                                                     {&loc.bend, "uBend"},
                                                     {&loc.grass, "uGrass"},
                                                     {&loc.groups, "uGroupTilt"},
@@ -240,6 +242,23 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
     }
 }
 
+glm::vec3 shell_detail::meanBladeColor(const Image& level) {
+    glm::dvec3 sum(0.0);
+    size_t blades = 0;
+    for (size_t p = 0; p + 3 < level.rgba.size(); p += 4) {
+        if (level.rgba[p + 3] == 0) continue;
+        sum += glm::dvec3(level.rgba[p], level.rgba[p + 1], level.rgba[p + 2]);
+        ++blades;
+    }
+    // A texture without blades: the ground's mean colour stands in for itself.
+    if (blades == 0) {
+        for (size_t p = 0; p + 3 < level.rgba.size(); p += 4)
+            sum += glm::dvec3(level.rgba[p], level.rgba[p + 1], level.rgba[p + 2]);
+        blades = std::max<size_t>(level.rgba.size() / 4, 1);
+    }
+    return glm::vec3(sum / (255.0 * static_cast<double>(blades)));
+}
+
 ShellRenderer::ShellRenderer(GlContext& context) : mImpl(std::make_unique<Impl>(context)) {
     mImpl->init();
 }
@@ -351,6 +370,7 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     m.density->setCuts(texture.levels[0]);
+    m.bladeColor = meanBladeColor(texture.levels[0]);
     detail::checkGlError("ShellRenderer::setGrass");
     m.grass = params;
     m.haveGrass = true;

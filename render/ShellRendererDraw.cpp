@@ -73,6 +73,8 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     const unsigned sceneBits = (m.grass.aperiodic ? kVariantAperiodic : 0u) |
                                (m.density->active() ? kVariantDensity : 0u) |
                                (m.windBlends && groupCount > 0 ? kVariantBlend : 0u);
+    int lastShell = 0;  // the largest power of two <= shells (the one dropped last), 0 without
+    while (shells > 0 && lastShell * 2 <= shells) lastShell = lastShell == 0 ? 1 : lastShell * 2;
     unsigned preparedPrograms = 0;  // bit k: variant k has this frame's uniforms
     GLuint boundProgram = 0;
     const auto useProgram = [&](unsigned bits) -> const ShellLocations& {
@@ -88,6 +90,8 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         glUniform1i(loc.shells, m.grass.shells);
         glUniform1i(loc.groupColumns, m.tables->columns());
         glUniform1f(loc.lodD1, d1_m);
+        glUniform1i(loc.lastShell, lastShell);
+        glUniform3fv(loc.bladeColor, 1, glm::value_ptr(m.bladeColor));
         glUniform2fv(loc.densityMin, 1, glm::value_ptr(m.density->wsMin_m()));
         glUniform2fv(loc.densitySize, 1, glm::value_ptr(m.density->wsSize_m()));
         return loc;
@@ -122,7 +126,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         // +5-18 % fill rate on llvmpipe).
         if (range.top < bottom) continue;
         const int count = (range.top - bottom) / range.stride + 1;
-        const bool fades = detail::chunkMayFade(range, d1_m, far_m);
+        const bool fades = detail::chunkMayFade(range, shells, d1_m, far_m);
         const ShellLocations& loc = useProgram(sceneBits | (fades ? kVariantFade : 0u));
         glUniform1i(loc.topShell, range.top);
         glUniform1i(loc.shellStride, range.stride);

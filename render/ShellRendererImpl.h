@@ -80,13 +80,17 @@ enum ShellVariantBits : unsigned {
 };
 constexpr unsigned kShellVariants = 16;
 
+/// Mean colour (linear RGB in [0, 1]) of the blade texels (alpha > 0) of a texture level; of all
+/// texels if it has no blade.
+glm::vec3 meanBladeColor(const Image& level);
+
 /// The defines that select `bits` in the shell shaders.
 std::string shellVariantDefines(unsigned bits);
 
 /// Uniform locations of one shell program (-1 for a name the compiler dropped).
 struct ShellLocations {
     GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns, maxTilt,
-        shellStride, lodD1, density, densityCut, densityMin, densitySize;
+        shellStride, lodD1, lastShell, bladeColor, density, densityCut, densityMin, densitySize;
     GLint lightCount, lightPos, lightColor, lightAtten;
     GLint ambient, specularPower, specularStrength, shadowMin;
 };
@@ -128,6 +132,7 @@ struct ShellRenderer::Impl {
     // Grass.
     bool haveGrass = false;
     GrassParams grass;
+    glm::vec3 bladeColor{0.0f};  ///< mean colour of the texture's blade texels, linear [0, 1]
 
     // Lighting (uploaded to the shell program on setLighting).
     Lighting lighting;

@@ -133,9 +133,12 @@ int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float 
     return level;
 }
 
-bool chunkMayFade(const ShellRange& range, float d1_m, float far_m) {
-    if (!(d1_m > 0.0f) || !std::isfinite(d1_m) || range.top <= 0) return false;
-    return far_m >= kLodFadeStart * d1_m * static_cast<float>(range.stride);
+bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m) {
+    if (!(d1_m > 0.0f) || !std::isfinite(d1_m) || shells <= 0) return false;
+    int lastShell = 1;
+    while (lastShell * 2 <= shells) lastShell *= 2;
+    const int nearestDrop = range.top > 0 ? std::min(range.stride, lastShell) : lastShell;
+    return far_m >= kLodFadeStart * d1_m * static_cast<float>(nearestDrop);
 }
 
 }  // namespace gale::render::detail

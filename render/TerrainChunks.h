@@ -87,11 +87,13 @@ ShellRange shellRange(int shells, float d1_m, float distance_m);
 /// is 0 (no level of detail).
 int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float near_m);
 
-/// True if a shell of `range` may have started to thin out somewhere in a chunk whose ground
-/// reaches `far_m` metres from the eye: the nearest drop distance among the drawn shells above
-/// the ground is D1 stride (an odd multiple of the stride has no more trailing zero bits), and
-/// thinning starts at kLodFadeStart of it. False when D1 is 0 (no level of detail) or only the
-/// ground is drawn. A chunk for which this is false can be drawn without the fade.
-bool chunkMayFade(const ShellRange& range, float d1_m, float far_m);
+/// True if, somewhere in a chunk whose ground reaches `far_m` metres from the eye, a shell of
+/// `range` (of N = `shells`) may have started to thin out, or the ground may have started to stand
+/// in for the dropped grass (shells.vert: between 0.7 and 1 of the drop distance of the shell
+/// dropped last, D1 times the largest power of two <= N). The nearest drop distance among the
+/// drawn shells above the ground is D1 stride (an odd multiple of the stride has no more trailing
+/// zero bits); thinning starts at kLodFadeStart of it. False when D1 is 0 (no level of detail) or
+/// N is 0. A chunk for which this is false can be drawn without the fade.
+bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m);
 
 }  // namespace gale::render::detail

@@ -26,10 +26,12 @@
 uniform sampler2D uGrass;       // RGB colour, alpha = blade height fraction, blade-keeping MIP chain
 uniform sampler2D uDensity;     // density in [0, 1] over the plan (R channel)
 uniform sampler2D uDensityCut;  // 256 x 1: texel k is the alpha cut for density k / 255
+uniform vec3 uBladeColor;       // mean colour of the texture's blade texels (level 0)
 
 in vec2 vUv;
 in vec2 vDensityUv;
 in float vFade;
+in float vStandIn;
 in vec3 vLight;
 flat in float vThreshold;
 
@@ -106,5 +108,9 @@ void main() {
     }
 #endif
     if (texel.a < threshold) discard;
+#if FADE
+    // The far ground standing in for the dropped grass (shell.vert) shows the blades' colour.
+    texel.rgb = mix(texel.rgb, uBladeColor, vStandIn);
+#endif
     oColor = vec4(texel.rgb * vLight, 1.0);
 }

@@ -35,6 +35,8 @@ uniform int uShellStride;      // instance k draws shell uTopShell - k uShellStr
 // Level of detail (render/TerrainChunks.h): shell i thins out between 0.7 D(i) and D(i), D(i) =
 // uLodD1 2^(trailing zero bits of i), metres from the eye; 0 = no level of detail.
 uniform float uLodD1;
+// The shell the level of detail drops last: the largest power of two <= N (render/TerrainChunks.h).
+uniform int uLastShell;
 // Bends over tip tilts (render/BendTables.h): texel (i, l) holds (n_i, w_i) in metres for shell i
 // of a blade whose tip tilts by -uMaxTilt + 2 uMaxTilt l / (L - 1) (Bakay 2003, 3.2).
 uniform sampler2D uBend;
@@ -59,6 +61,7 @@ uniform vec2 uDensitySize;
 out vec2 vUv;
 out vec2 vDensityUv;       // where the blade's root is on the density map (row 0 = north)
 out float vFade;           // share of this shell's blades the level of detail keeps, [0, 1]
+out float vStandIn;        // ground only: how far it stands in for the dropped grass, [0, 1]
 out vec3 vLight;           // light reaching the vertex, multiplies the texture colour
 flat out float vThreshold; // alpha test: keep texels with alpha >= vThreshold
 
@@ -92,10 +95,18 @@ void main() {
     vec2 plan = (aPosition.xy - uDensityMin) / uDensitySize;
     vDensityUv = vec2(plan.x, 1.0 - plan.y);
     vFade = 1.0;
+    vStandIn = 0.0;
 #if FADE
     if (uLodD1 > 0.0 && i > 0) {
         float drop = uLodD1 * float(1 << findLSB(i));
         vFade = 1.0 - smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
+    }
+    // Where the last shell thins out the ground alone remains; it takes over the look of the
+    // grass it replaces (shaded as the top layer, in the mean blade colour), at the same pace, so
+    // the far field keeps the grass's brightness instead of the shaded soil's.
+    if (uLodD1 > 0.0 && i == 0 && uLastShell > 0) {
+        float drop = uLodD1 * float(uLastShell);
+        vStandIn = smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
     }
 #endif
 
@@ -130,5 +141,6 @@ void main() {
     // Banks 1994 self-shadowing (thesis 3.3.3): S = (D_cur / D_max)(1 - S_min) + S_min with
     // D_cur / D_max = i / N; ambient added after attenuation and shadowing (thesis 3.3.4).
     float S = float(i) / float(max(uShells, 1)) * (1.0 - uShadowMin) + uShadowMin;
+    S = mix(S, 1.0, vStandIn);
     vLight = lit * S + uAmbient;
 }

@@ -55,14 +55,18 @@ TEST(LodShellRange, DropsShellsByTrailingZeroBitsOfTheirIndex) {
 
 TEST(LodShellRange, AChunkDrawnWithoutTheFadeHasNoShellThinningInIt) {
     // The renderer draws a chunk with the plain program when chunkMayFade says no shell of it has
-    // started to thin out: check that against the shader's own rule, fade(i, d) = 1 for
-    // d <= 0.7 D(i), at every distance up to the chunk's far side.
+    // started to thin out and the ground does not yet stand in for the grass: check that against
+    // the shader's own rules, fade(i, d) = 1 for d <= 0.7 D(i) and the ground's stand-in 0 for
+    // d <= 0.7 D(last), last the largest power of two <= N, at every distance up to the chunk's
+    // far side.
     const float d1_m = 10.0f;
     for (int shells : {1, 8, 17, 64}) {
         for (float near_m : {0.0f, 3.0f, 9.0f, 14.0f, 30.0f, 75.0f, 400.0f}) {
             const detail::ShellRange r = detail::shellRange(shells, d1_m, near_m);
             for (float far_m = near_m; far_m < near_m + 60.0f; far_m += 0.25f) {
-                bool anyFades = false;
+                int last = 1;
+                while (last * 2 <= shells) last *= 2;
+                bool anyFades = far_m > detail::kLodFadeStart * d1_m * float(last);
                 for (int k = 0; k < r.count(); ++k) {
                     const int i = r.top - k * r.stride;
                     if (i == 0) continue;
@@ -71,12 +75,13 @@ TEST(LodShellRange, AChunkDrawnWithoutTheFadeHasNoShellThinningInIt) {
                     anyFades = anyFades || far_m > detail::kLodFadeStart * d1_m * float(1 << v);
                 }
                 if (anyFades) {
-                    EXPECT_TRUE(detail::chunkMayFade(r, d1_m, far_m))
+                    EXPECT_TRUE(detail::chunkMayFade(r, shells, d1_m, far_m))
                         << shells << " shells, chunk " << near_m << "-" << far_m << " m";
                 }
             }
         }
-        EXPECT_FALSE(detail::chunkMayFade(detail::shellRange(shells, 0.0f, 5.0f), 0.0f, 1e6f));
+        EXPECT_FALSE(
+            detail::chunkMayFade(detail::shellRange(shells, 0.0f, 5.0f), shells, 0.0f, 1e6f));
     }
 }
 
