@@ -38,7 +38,9 @@ uniform float uLodD1;
 // The shell the level of detail drops last: the largest power of two <= N (render/TerrainChunks.h).
 uniform int uLastShell;
 // Bends over tip tilts (render/BendTables.h): texel (i, l) holds (n_i, w_i) in metres for shell i
-// of a blade whose tip tilts by -uMaxTilt + 2 uMaxTilt l / (L - 1) (Bakay 2003, 3.2).
+// of a blade whose tip tilts by -uMaxTilt + 2 uMaxTilt l / (L - 1) (Bakay 2003, 3.2), and in .ba
+// segment i, (n_i - n_{i-1}, w_i - w_{i-1}): interpolated between rows like the offsets, it is
+// exactly the difference of the two interpolated shell positions, so one fetch pair gives both.
 uniform sampler2D uBend;
 uniform float uMaxTilt;        // radians
 // Tip tilt per group this frame (radians), groups row by row uGroupColumns wide.
@@ -75,21 +77,22 @@ float groupTilt() {
 #endif
 }
 
-// The bend of shell i at tilt row `row` (fractional), linear between the two nearest rows.
-vec3 shellPosition(int i, float row) {
+// The bend of shell i at tilt row `row` (fractional), linear between the two nearest rows:
+// (n_i, w_i, segment n, segment w), metres.
+vec4 shellBend(int i, float row) {
     int last = textureSize(uBend, 0).y - 1;
     int r0 = min(int(row), last);
-    vec2 a = texelFetch(uBend, ivec2(i, r0), 0).rg;
-    vec2 b = texelFetch(uBend, ivec2(i, min(r0 + 1, last)), 0).rg;
-    vec2 nw = mix(a, b, row - float(r0));
-    return aPosition + nw.x * aNormal + nw.y * aWindDir;
+    vec4 a = texelFetch(uBend, ivec2(i, r0), 0);
+    vec4 b = texelFetch(uBend, ivec2(i, min(r0 + 1, last)), 0);
+    return mix(a, b, row - float(r0));
 }
 
 void main() {
     int i = uTopShell - gl_InstanceID * uShellStride;
     float last = float(textureSize(uBend, 0).y - 1);
     float row = clamp((groupTilt() / uMaxTilt * 0.5 + 0.5) * last, 0.0, last);
-    vec3 pos = shellPosition(i, row);
+    vec4 bend = shellBend(i, row);
+    vec3 pos = aPosition + bend.x * aNormal + bend.y * aWindDir;
     gl_Position = uClipFromWorld * vec4(pos, 1.0);
     vUv = aUv;
     vec2 plan = (aPosition.xy - uDensityMin) / uDensitySize;
@@ -118,7 +121,7 @@ void main() {
 
     // Strand tangent (thesis 3.3.1): from this vertex on shell i-1 to shell i; the ground uses the
     // terrain normal.
-    vec3 T = (i == 0) ? aNormal : normalize(pos - shellPosition(i - 1, row));
+    vec3 T = (i == 0) ? aNormal : normalize(bend.z * aNormal + bend.w * aWindDir);
     vec3 V = normalize(uEyePos - pos);
 
     vec3 lit = vec3(0.0);
