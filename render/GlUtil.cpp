@@ -121,6 +121,7 @@ void deleteProgram(GLuint name) { glDeleteProgram(name); }
 void deleteBuffer(GLuint name) { glDeleteBuffers(1, &name); }
 void deleteTexture(GLuint name) { glDeleteTextures(1, &name); }
 void deleteVertexArray(GLuint name) { glDeleteVertexArrays(1, &name); }
+void deleteSampler(GLuint name) { glDeleteSamplers(1, &name); }
 
 }  // namespace detail
 

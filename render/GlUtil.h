@@ -64,10 +64,12 @@ void deleteProgram(GLuint name);
 void deleteBuffer(GLuint name);
 void deleteTexture(GLuint name);
 void deleteVertexArray(GLuint name);
+void deleteSampler(GLuint name);
 
 using Program = GlName<deleteProgram>;
 using Buffer = GlName<deleteBuffer>;
 using Texture = GlName<deleteTexture>;
 using VertexArray = GlName<deleteVertexArray>;
+using Sampler = GlName<deleteSampler>;
 
 }  // namespace gale::render::detail

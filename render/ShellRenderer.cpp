@@ -44,6 +44,12 @@ void ShellRenderer::Impl::init() {
     indexBuffer = detail::Buffer(name);
     glGenTextures(1, &name);
     grassTexture = detail::Texture(name);
+    glGenSamplers(1, &name);
+    nearestSampler = detail::Sampler(name);
+    glSamplerParameteri(name, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    glSamplerParameteri(name, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(name, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glSamplerParameteri(name, GL_TEXTURE_WRAP_T, GL_REPEAT);
     tables = std::make_unique<detail::BendTables>();
     density = std::make_unique<detail::DensityTables>();
 

@@ -116,6 +116,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     }
     std::sort(visible.begin(), visible.end(),
               [](const Visible& a, const Visible& b) { return a.near_m < b.near_m; });
+    if (options.nearestTexels) glBindSampler(kGrassUnit, m.nearestSampler.get());
     glBindVertexArray(m.vao.get());
     for (const auto& [near_m, far_m, chunk] : visible) {
         const detail::ShellRange range = detail::shellRange(shells, d1_m, near_m);
@@ -142,6 +143,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         stats.triangles += static_cast<long long>(mesh.count / 3) * count;
     }
     glBindVertexArray(0);
+    glBindSampler(kGrassUnit, 0);
     glUseProgram(0);
     glFinish();
     stats.gpu_ms = msSince(gpuStart);
@@ -167,23 +169,12 @@ FrameStats ShellRenderer::drawFillBaseline(const Camera& camera, bool nearestSam
     glUniform1f(m.fillLoc.shellSpacing,
                 m.grass.shells > 0 ? m.grass.height_m / static_cast<float>(m.grass.shells) : 0.0f);
     // A sampler object overrides the texture's own filtering while it is bound to the unit.
-    GLuint sampler = 0;
-    if (nearestSampling) {
-        glGenSamplers(1, &sampler);
-        glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-        glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_REPEAT);
-        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_REPEAT);
-        glBindSampler(kGrassUnit, sampler);
-    }
+    if (nearestSampling) glBindSampler(kGrassUnit, m.nearestSampler.get());
     glBindVertexArray(m.vao.get());
     glDrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
                             m.grass.shells + 1);
     glBindVertexArray(0);
-    if (nearestSampling) {
-        glBindSampler(kGrassUnit, 0);
-        glDeleteSamplers(1, &sampler);
-    }
+    glBindSampler(kGrassUnit, 0);
     glUseProgram(0);
     glFinish();
     stats.gpu_ms = msSince(gpuStart);

@@ -114,6 +114,7 @@ struct ShellRenderer::Impl {
     detail::Buffer windVbo;
     detail::Buffer indexBuffer;
     detail::Texture grassTexture;
+    detail::Sampler nearestSampler;  ///< overrides the grass texture's filtering (DrawOptions)
     std::unique_ptr<detail::BendTables> tables;
     std::unique_ptr<detail::DensityTables> density;
 
