@@ -54,7 +54,9 @@ TEST(ChunkMesh, EveryLevelCoversItsChunkOnceCounterClockwise) {
             // All triangles counter-clockwise and their areas adding up to the chunk's: no
             // overlap and no hole.
             EXPECT_NEAR(sum, chunkArea, AREA_TOLERANCE) << "level " << l;
-            if (l > 0) EXPECT_LT(r.count, c.levels[l - 1].count) << "level " << l;
+            if (l > 0) {
+                EXPECT_LT(r.count, c.levels[l - 1].count) << "level " << l;
+            }
         }
     }
 }
@@ -149,10 +151,13 @@ TEST(ChunkMesh, TheLevelCoarsensWithDistanceAndKeepsCellsWithinThePixelBudget) {
         ASSERT_GE(l, 0);
         ASSERT_LT(l, c.levelCount);
         EXPECT_GE(l, previous) << d << " m";
-        if (l > 0) EXPECT_LE(float(1 << l) * c.quad_m * focal_px / d, budget_px) << d << " m";
-        // One level finer would still fit: the coarsest that fits is taken.
-        if (l + 1 < c.levelCount)
+        if (l > 0) {
+            EXPECT_LE(float(1 << l) * c.quad_m * focal_px / d, budget_px) << d << " m";
+        }
+        // One level coarser would not fit: the coarsest that fits is taken.
+        if (l + 1 < c.levelCount) {
             EXPECT_GT(float(2 << l) * c.quad_m * focal_px, budget_px * d) << d << " m";
+        }
         previous = l;
     }
     EXPECT_EQ(detail::meshLevel(c, focal_px, lodPixels, 1e6f), detail::kMeshLevels - 1);
