@@ -317,7 +317,8 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     glBindVertexArray(0);
     detail::checkGlError("ShellRenderer::setTerrain");
     m.vertexCount = n;
-    m.indexCount = static_cast<GLsizei>(indices.size());
+    // The full mesh: every chunk's level 0, at the start of the index buffer (buildChunks).
+    m.indexCount = static_cast<GLsizei>(static_cast<size_t>(mesh.nx - 1) * (mesh.ny - 1) * 6u);
     m.chunks = std::move(chunks);
     m.haveTerrain = true;
     m.windUploaded = false;  // the per-vertex wind arrays must match the new vertex count

@@ -127,7 +127,7 @@ struct ShellRenderer::Impl {
     // Terrain.
     bool haveTerrain = false;
     size_t vertexCount = 0;
-    GLsizei indexCount = 0;
+    GLsizei indexCount = 0;  ///< indices of the full mesh, from the buffer's start
     std::vector<detail::TerrainChunk> chunks;
 
     // Grass.

@@ -52,7 +52,9 @@ struct TerrainChunk {
 };
 
 /// Chunks of the nx x ny grid, kChunkQuads quads a side (fewer at the far edges), and their index
-/// lists, appended to `indices`: level 0 is two triangles per quad (the order of TerrainGrid.h);
+/// lists, appended to `indices`: every chunk's level 0 first (together one contiguous range, two
+/// triangles per quad of the whole grid, in the order of TerrainGrid.h within each chunk), then
+/// the coarser levels;
 /// level l >= 1 exists when 2^l divides the chunk's quads on both sides, and takes every 2^l-th
 /// vertex: a coarse cell inside the chunk is two triangles, a cell on the chunk's border a fan
 /// around its centre vertex through every full-resolution vertex of its border side(s). All

@@ -91,9 +91,16 @@ TEST(LodChunks, CoverEveryQuadOnceAndBoundTheirVertices) {
     std::vector<uint32_t> indices;
     const auto chunks = detail::buildChunks(mesh.nx, mesh.ny, mesh.wsPosition_m, indices);
     EXPECT_EQ(chunks.size(), 3u * 2u);  // 69 x 39 quads in chunks of 32
+    // The full meshes come first, one after the other: [0, 69 * 39 * 6) is the whole grid once
+    // (the fill baseline draws that range in one call); the coarser levels follow.
     size_t fullIndices = 0;
-    for (const auto& c : chunks) fullIndices += c.indexCount;
+    for (const auto& c : chunks) {
+        EXPECT_EQ(c.firstIndex, fullIndices);
+        fullIndices += c.indexCount;
+    }
     EXPECT_EQ(fullIndices, size_t(69) * 39 * 6);
+    for (const auto& c : chunks)
+        for (int l = 1; l < c.levelCount; ++l) EXPECT_GE(c.levels[l].first, fullIndices);
     std::multiset<std::array<uint32_t, 3>> triangles;
     for (const auto& c : chunks)
         for (uint32_t t = c.firstIndex; t < c.firstIndex + c.indexCount; t += 3) {
