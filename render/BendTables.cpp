@@ -30,20 +30,29 @@ BendTables::BendTables()
 void BendTables::setBlade(int shells, float height_m, float stiffness) {
     if (shells == mShells && height_m == mHeight_m && stiffness == mStiffness) return;
     const int width = shells + 1;
-    std::vector<float> table(static_cast<size_t>(width) * kTiltLevels * 2u, 0.0f);
+    std::vector<float> table(static_cast<size_t>(width) * kTiltLevels * 4u, 0.0f);
     std::vector<ShellOffset> row(static_cast<size_t>(width));
-    for (int l = 0; l < kTiltLevels && shells > 0; ++l) {
-        const double tilt = kMaxTipTilt_rad * (2.0 * l / (kTiltLevels - 1) - 1.0);
-        bendBladeByTiltInto(shells, height_m, tilt, stiffness, row.data());
-        float* out = &table[static_cast<size_t>(l) * width * 2u];
+    for (int l = 0; l < kTiltLevels; ++l) {
+        if (shells > 0) {
+            const double tilt = kMaxTipTilt_rad * (2.0 * l / (kTiltLevels - 1) - 1.0);
+            bendBladeByTiltInto(shells, height_m, tilt, stiffness, row.data());
+        } else {
+            row[0] = ShellOffset{0.0, 0.0};
+        }
+        float* out = &table[static_cast<size_t>(l) * width * 4u];
         for (int i = 0; i < width; ++i) {
-            out[2 * i] = static_cast<float>(row[i].n_m);
-            out[2 * i + 1] = static_cast<float>(row[i].w_m);
+            out[4 * i] = static_cast<float>(row[i].n_m);
+            out[4 * i + 1] = static_cast<float>(row[i].w_m);
+            // Segment i (shell i - 1 to shell i), the strand tangent's direction before
+            // normalising; the ground's strand is the normal.
+            out[4 * i + 2] = i == 0 ? 1.0f : static_cast<float>(row[i].n_m - row[i - 1].n_m);
+            out[4 * i + 3] = i == 0 ? 0.0f : static_cast<float>(row[i].w_m - row[i - 1].w_m);
         }
     }
     glBindTexture(GL_TEXTURE_2D, mBend.get());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, width, kTiltLevels, 0, GL_RG, GL_FLOAT, table.data());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, kTiltLevels, 0, GL_RGBA, GL_FLOAT,
+                 table.data());
     glBindTexture(GL_TEXTURE_2D, 0);
     mShells = shells, mHeight_m = height_m, mStiffness = stiffness;
 }

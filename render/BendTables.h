@@ -3,7 +3,9 @@
 /// The two small textures the shell vertex shader bends blades with (Bakay 2003, Table 3.2, in a
 /// form that lets neighbouring groups blend). Internal to render/.
 ///
-/// - The bend table: texel (i, l) holds (n_i, w_i), metres, of shell i for the tip tilt
+/// - The bend table: texel (i, l) holds (n_i, w_i, n_i - n_{i-1}, w_i - w_{i-1}), metres, of
+///   shell i (the last two: segment i, whose direction is the strand tangent; (1, 0) for the
+///   ground) for the tip tilt
 ///   theta_l = -max + 2 max l / (L - 1), max = kMaxTipTilt_rad, L = kTiltLevels (render/Bend.h).
 ///   It depends on the blade alone (N, height, stiffness), so it is built when they change, not
 ///   per frame. The shader interpolates linearly between tilt rows: a blade between two rows is

@@ -33,13 +33,22 @@ std::string programLog(GLuint program) {
 
 }  // namespace
 
-GLuint compileShaderFile(GLenum stage, const char* fileName) {
+GLuint compileShaderFile(GLenum stage, const char* fileName, const std::string& defines) {
     const char* source = shaderSource(fileName);
     if (source == nullptr) {
         throw std::runtime_error(std::string("shaders/") + fileName +
                                  ": no such shader embedded in the binary");
     }
-    return compileShaderSource(stage, fileName, source);
+    if (defines.empty()) return compileShaderSource(stage, fileName, source);
+    // GLSL wants #version first: the defines go on the lines right after it.
+    std::string text(source);
+    const size_t lineEnd = text.find('\n');
+    if (text.rfind("#version", 0) != 0 || lineEnd == std::string::npos) {
+        throw std::runtime_error(std::string("shaders/") + fileName +
+                                 ": defines need the file to start with a #version line");
+    }
+    text.insert(lineEnd + 1, defines);
+    return compileShaderSource(stage, fileName, text.c_str());
 }
 
 GLuint compileShaderSource(GLenum stage, const char* fileName, const char* source) {
@@ -60,11 +69,12 @@ GLuint compileShaderSource(GLenum stage, const char* fileName, const char* sourc
     return shader;
 }
 
-GLuint linkProgramFiles(const char* vertexFile, const char* fragmentFile) {
-    const GLuint vs = compileShaderFile(GL_VERTEX_SHADER, vertexFile);
+GLuint linkProgramFiles(const char* vertexFile, const char* fragmentFile,
+                        const std::string& defines) {
+    const GLuint vs = compileShaderFile(GL_VERTEX_SHADER, vertexFile, defines);
     GLuint fs = 0;
     try {
-        fs = compileShaderFile(GL_FRAGMENT_SHADER, fragmentFile);
+        fs = compileShaderFile(GL_FRAGMENT_SHADER, fragmentFile, defines);
     } catch (...) {
         glDeleteShader(vs);
         throw;
@@ -111,6 +121,7 @@ void deleteProgram(GLuint name) { glDeleteProgram(name); }
 void deleteBuffer(GLuint name) { glDeleteBuffers(1, &name); }
 void deleteTexture(GLuint name) { glDeleteTextures(1, &name); }
 void deleteVertexArray(GLuint name) { glDeleteVertexArrays(1, &name); }
+void deleteSampler(GLuint name) { glDeleteSamplers(1, &name); }
 
 }  // namespace detail
 

@@ -11,17 +11,21 @@
 namespace gale::render::detail {
 
 /// Compiles shaders/<fileName> (embedded, see ShaderSources.h) as a shader of `stage`
-/// (GL_VERTEX_SHADER, GL_FRAGMENT_SHADER). Requires a current context. Throws std::runtime_error
-/// naming the file and carrying the compiler log if the file is missing or does not compile.
-GLuint compileShaderFile(GLenum stage, const char* fileName);
+/// (GL_VERTEX_SHADER, GL_FRAGMENT_SHADER). `defines` (whole lines, e.g. "#define FOO 1\n") go
+/// right after the file's #version line: the way one file yields several specialised shaders.
+/// Requires a current context. Throws std::runtime_error naming the file and carrying the compiler
+/// log if the file is missing or does not compile.
+GLuint compileShaderFile(GLenum stage, const char* fileName, const std::string& defines = {});
 
 /// Compiles `source` as a shader of `stage`; `fileName` only names it in errors. Throws
 /// std::runtime_error naming the file and carrying the compiler log if it does not compile.
 GLuint compileShaderSource(GLenum stage, const char* fileName, const char* source);
 
-/// Links a program from shaders/<vertexFile> and shaders/<fragmentFile>. Throws
-/// std::runtime_error naming both files and carrying the compile or link log.
-GLuint linkProgramFiles(const char* vertexFile, const char* fragmentFile);
+/// Links a program from shaders/<vertexFile> and shaders/<fragmentFile>, both compiled with
+/// `defines` (as compileShaderFile). Throws std::runtime_error naming both files and carrying the
+/// compile or link log.
+GLuint linkProgramFiles(const char* vertexFile, const char* fragmentFile,
+                        const std::string& defines = {});
 
 /// Throws std::runtime_error naming `what` if the bound draw framebuffer is not complete.
 void checkFramebufferComplete(const char* what);
@@ -60,10 +64,12 @@ void deleteProgram(GLuint name);
 void deleteBuffer(GLuint name);
 void deleteTexture(GLuint name);
 void deleteVertexArray(GLuint name);
+void deleteSampler(GLuint name);
 
 using Program = GlName<deleteProgram>;
 using Buffer = GlName<deleteBuffer>;
 using Texture = GlName<deleteTexture>;
 using VertexArray = GlName<deleteVertexArray>;
+using Sampler = GlName<deleteSampler>;
 
 }  // namespace gale::render::detail

@@ -25,13 +25,14 @@ struct ShellFillResult {
     int layers = 0;
     int width = 0;
     int height = 0;
-    long triangles = 0;        ///< per frame: base triangles x layers
-    double fps = 0.0;          ///< full renderer: bend, Kajiya-Kay / Banks lighting, alpha test
-    double baselineFps = 0.0;  ///< texture fetch + alpha test only, same geometry and layers
-    double nearestFps = 0.0;   ///< the same fill with nearest-texel sampling: the fill's floor
-    double cpu_ms = 0.0;       ///< mean per-frame CPU part of the full renderer (tables, uploads)
-    double coverage = 0.0;     ///< fraction of pixels covered by terrain/grass in the last frame
-    std::string renderer;      ///< GL_RENDERER, GL_VERSION
+    long triangles = 0;           ///< per frame: base triangles x layers
+    double fps = 0.0;             ///< full renderer: bend, Kajiya-Kay / Banks lighting, alpha test
+    double baselineFps = 0.0;     ///< texture fetch + alpha test only, same geometry and layers
+    double nearestFps = 0.0;      ///< the same fill with nearest-texel sampling: the fill's floor
+    double fullNearestFps = 0.0;  ///< full renderer with DrawOptions::nearestTexels
+    double cpu_ms = 0.0;    ///< mean per-frame CPU part of the full renderer (tables, uploads)
+    double coverage = 0.0;  ///< fraction of pixels covered by terrain/grass in the last frame
+    std::string renderer;   ///< GL_RENDERER, GL_VERSION
 };
 
 /// Flat square grid on z = 0 centred at the origin: verticesPerSide^2 vertices spanning size_m,

@@ -19,51 +19,9 @@ void ShellRenderer::Impl::init() {
     }
     maxTextureSize = info.maxTextureSize;
 
-    shellProgram = detail::Program(detail::linkProgramFiles("shell.vert", "shell.frag"));
     fillProgram = detail::Program(detail::linkProgramFiles("fill.vert", "fill.frag"));
-
-    const GLuint sp = shellProgram.get();
-    // Uniform locations of shell.vert / shell.frag (-1 for a name the compiler dropped).
-    const std::pair<GLint*, const char*> shellNames[] = {
-        {&shellLoc.clipFromWorld, "uClipFromWorld"},
-        {&shellLoc.eyePos, "uEyePos"},
-        {&shellLoc.shells, "uShells"},
-        {&shellLoc.topShell, "uTopShell"},
-        {&shellLoc.shellStride, "uShellStride"},
-        {&shellLoc.lodD1, "uLodD1"},
-        {&shellLoc.bend, "uBend"},
-        {&shellLoc.grass, "uGrass"},
-        {&shellLoc.groups, "uGroupTilt"},
-        {&shellLoc.groupColumns, "uGroupColumns"},
-        {&shellLoc.blendGroups, "uBlendGroups"},
-        {&shellLoc.maxTilt, "uMaxTilt"},
-        {&shellLoc.aperiodic, "uAperiodic"},
-        {&shellLoc.hasDensity, "uHasDensity"},
-        {&shellLoc.density, "uDensity"},
-        {&shellLoc.densityCut, "uDensityCut"},
-        {&shellLoc.densityMin, "uDensityMin"},
-        {&shellLoc.densitySize, "uDensitySize"},
-        {&shellLoc.lightCount, "uLightCount"},
-        {&shellLoc.lightPos, "uLightPos"},
-        {&shellLoc.lightColor, "uLightColor"},
-        {&shellLoc.lightAtten, "uLightAtten"},
-        {&shellLoc.ambient, "uAmbient"},
-        {&shellLoc.specularPower, "uSpecularPower"},
-        {&shellLoc.specularStrength, "uSpecularStrength"},
-        {&shellLoc.shadowMin, "uShadowMin"}};
-    for (const auto& [loc, name] : shellNames) *loc = uniform(sp, name);
-    // The shader's light arrays must be exactly kMaxLights long.
-    GLint arraySize = 0;
-    const GLuint index = glGetProgramResourceIndex(sp, GL_UNIFORM, "uLightPos[0]");
-    if (index != GL_INVALID_INDEX) {
-        const GLenum prop = GL_ARRAY_SIZE;
-        glGetProgramResourceiv(sp, GL_UNIFORM, index, 1, &prop, 1, nullptr, &arraySize);
-    }
-    if (arraySize != kMaxLights) {
-        throw std::runtime_error("shaders/shell.vert: MAX_LIGHTS is " + std::to_string(arraySize) +
-                                 ", expected kMaxLights = " + std::to_string(kMaxLights) +
-                                 " (render/RenderLimits.h)");
-    }
+    // The plain variant now, so a shader that does not compile fails here, not at the first draw.
+    shellProgram(0u);
 
     const GLuint fp = fillProgram.get();
     fillLoc.clipFromWorld = uniform(fp, "uClipFromWorld");
@@ -71,13 +29,6 @@ void ShellRenderer::Impl::init() {
     fillLoc.shellSpacing = uniform(fp, "uShellSpacing");
     fillLoc.grass = uniform(fp, "uGrass");
 
-    glUseProgram(sp);
-    glUniform1i(shellLoc.grass, kGrassUnit);
-    glUniform1i(shellLoc.bend, kBendUnit);
-    glUniform1i(shellLoc.groups, kGroupUnit);
-    glUniform1i(shellLoc.density, kDensityUnit);
-    glUniform1i(shellLoc.densityCut, kDensityCutUnit);
-    glUniform1f(shellLoc.maxTilt, static_cast<float>(kMaxTipTilt_rad));
     glUseProgram(fp);
     glUniform1i(fillLoc.grass, kGrassUnit);
     glUseProgram(0);
@@ -93,6 +44,12 @@ void ShellRenderer::Impl::init() {
     indexBuffer = detail::Buffer(name);
     glGenTextures(1, &name);
     grassTexture = detail::Texture(name);
+    glGenSamplers(1, &name);
+    nearestSampler = detail::Sampler(name);
+    glSamplerParameteri(name, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    glSamplerParameteri(name, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(name, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glSamplerParameteri(name, GL_TEXTURE_WRAP_T, GL_REPEAT);
     tables = std::make_unique<detail::BendTables>();
     density = std::make_unique<detail::DensityTables>();
 
@@ -126,11 +83,79 @@ void ShellRenderer::Impl::init() {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     detail::checkFramebufferComplete("ShellRenderer (default framebuffer)");
     detail::checkGlError("ShellRenderer setup");
-
-    uploadLighting();
 }
 
-void ShellRenderer::Impl::uploadLighting() {
+namespace shell_detail {
+std::string shellVariantDefines(unsigned bits) {
+    const auto line = [bits](const char* name, unsigned bit) {
+        return std::string("#define ") + name + ((bits & bit) != 0u ? " 1\n" : " 0\n");
+    };
+    return line("APERIODIC", kVariantAperiodic) + line("FADE", kVariantFade) +
+           line("DENSITY", kVariantDensity) + line("BLEND_GROUPS", kVariantBlend);
+}
+}  // namespace shell_detail
+
+ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
+    std::unique_ptr<ShellProgram>& slot = shellPrograms.at(bits);
+    if (slot) return *slot;
+    auto p = std::make_unique<ShellProgram>();
+    p->program = detail::Program(
+        detail::linkProgramFiles("shell.vert", "shell.frag", shellVariantDefines(bits)));
+    const GLuint sp = p->program.get();
+    ShellLocations& loc = p->loc;
+    const std::pair<GLint*, const char*> names[] = {{&loc.clipFromWorld, "uClipFromWorld"},
+                                                    {&loc.eyePos, "uEyePos"},
+                                                    {&loc.shells, "uShells"},
+                                                    {&loc.topShell, "uTopShell"},
+                                                    {&loc.shellStride, "uShellStride"},
+                                                    {&loc.lodD1, "uLodD1"},
+                                                    {&loc.lastShell, "uLastShell"},
+                                                    {&loc.bladeColor, "uBladeColor"},
+                                                    {&loc.bend, "uBend"},
+                                                    {&loc.grass, "uGrass"},
+                                                    {&loc.groups, "uGroupTilt"},
+                                                    {&loc.groupColumns, "uGroupColumns"},
+                                                    {&loc.maxTilt, "uMaxTilt"},
+                                                    {&loc.density, "uDensity"},
+                                                    {&loc.densityCut, "uDensityCut"},
+                                                    {&loc.densityMin, "uDensityMin"},
+                                                    {&loc.densitySize, "uDensitySize"},
+                                                    {&loc.lightCount, "uLightCount"},
+                                                    {&loc.lightPos, "uLightPos"},
+                                                    {&loc.lightColor, "uLightColor"},
+                                                    {&loc.lightAtten, "uLightAtten"},
+                                                    {&loc.ambient, "uAmbient"},
+                                                    {&loc.specularPower, "uSpecularPower"},
+                                                    {&loc.specularStrength, "uSpecularStrength"},
+                                                    {&loc.shadowMin, "uShadowMin"}};
+    for (const auto& [where, name] : names) *where = uniform(sp, name);
+    // The shader's light arrays must be exactly kMaxLights long.
+    GLint arraySize = 0;
+    const GLuint index = glGetProgramResourceIndex(sp, GL_UNIFORM, "uLightPos[0]");
+    if (index != GL_INVALID_INDEX) {
+        const GLenum prop = GL_ARRAY_SIZE;
+        glGetProgramResourceiv(sp, GL_UNIFORM, index, 1, &prop, 1, nullptr, &arraySize);
+    }
+    if (arraySize != kMaxLights) {
+        throw std::runtime_error("shaders/shell.vert: MAX_LIGHTS is " + std::to_string(arraySize) +
+                                 ", expected kMaxLights = " + std::to_string(kMaxLights) +
+                                 " (render/RenderLimits.h)");
+    }
+    glUseProgram(sp);
+    glUniform1i(loc.grass, kGrassUnit);
+    glUniform1i(loc.bend, kBendUnit);
+    glUniform1i(loc.groups, kGroupUnit);
+    glUniform1i(loc.density, kDensityUnit);
+    glUniform1i(loc.densityCut, kDensityCutUnit);
+    glUniform1f(loc.maxTilt, static_cast<float>(kMaxTipTilt_rad));
+    glUseProgram(0);
+    uploadLighting(*p);
+    slot = std::move(p);
+    return *slot;
+}
+
+void ShellRenderer::Impl::uploadLighting(const ShellProgram& program) const {
+    const ShellLocations& shellLoc = program.loc;
     const int count = static_cast<int>(lighting.lights.size());
     std::vector<glm::vec3> pos(kMaxLights, glm::vec3(0.0f));
     std::vector<glm::vec3> color(kMaxLights, glm::vec3(0.0f));
@@ -140,7 +165,7 @@ void ShellRenderer::Impl::uploadLighting() {
         color[l] = lighting.lights[l].color;
         atten[l] = lighting.lights[l].attenuation;
     }
-    glUseProgram(shellProgram.get());
+    glUseProgram(program.program.get());
     glUniform1i(shellLoc.lightCount, count);
     glUniform3fv(shellLoc.lightPos, kMaxLights, glm::value_ptr(pos[0]));
     glUniform3fv(shellLoc.lightColor, kMaxLights, glm::value_ptr(color[0]));
@@ -223,6 +248,23 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
     }
 }
 
+glm::vec3 shell_detail::meanBladeColor(const Image& level) {
+    glm::dvec3 sum(0.0);
+    size_t blades = 0;
+    for (size_t p = 0; p + 3 < level.rgba.size(); p += 4) {
+        if (level.rgba[p + 3] == 0) continue;
+        sum += glm::dvec3(level.rgba[p], level.rgba[p + 1], level.rgba[p + 2]);
+        ++blades;
+    }
+    // A texture without blades: the ground's mean colour stands in for itself.
+    if (blades == 0) {
+        for (size_t p = 0; p + 3 < level.rgba.size(); p += 4)
+            sum += glm::dvec3(level.rgba[p], level.rgba[p + 1], level.rgba[p + 2]);
+        blades = std::max<size_t>(level.rgba.size() / 4, 1);
+    }
+    return glm::vec3(sum / (255.0 * static_cast<double>(blades)));
+}
+
 ShellRenderer::ShellRenderer(GlContext& context) : mImpl(std::make_unique<Impl>(context)) {
     mImpl->init();
 }
@@ -275,7 +317,8 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     glBindVertexArray(0);
     detail::checkGlError("ShellRenderer::setTerrain");
     m.vertexCount = n;
-    m.indexCount = static_cast<GLsizei>(indices.size());
+    // The full mesh: every chunk's level 0, at the start of the index buffer (buildChunks).
+    m.indexCount = static_cast<GLsizei>(static_cast<size_t>(mesh.nx - 1) * (mesh.ny - 1) * 6u);
     m.chunks = std::move(chunks);
     m.haveTerrain = true;
     m.windUploaded = false;  // the per-vertex wind arrays must match the new vertex count
@@ -334,6 +377,7 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     m.density->setCuts(texture.levels[0]);
+    m.bladeColor = meanBladeColor(texture.levels[0]);
     detail::checkGlError("ShellRenderer::setGrass");
     m.grass = params;
     m.haveGrass = true;
@@ -373,7 +417,8 @@ void ShellRenderer::setLighting(const Lighting& lighting) {
     }
     mImpl->context.makeCurrent();
     mImpl->lighting = lighting;
-    mImpl->uploadLighting();
+    for (const auto& program : mImpl->shellPrograms)
+        if (program) mImpl->uploadLighting(*program);
 }
 
 void ShellRenderer::setShellCount(int shells) {

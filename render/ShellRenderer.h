@@ -14,17 +14,22 @@
 namespace gale::render {
 
 struct FrameStats {
-    double cpu_ms = 0.0;   ///< table building and uploads on the CPU
-    double gpu_ms = 0.0;   ///< draw calls through glFinish
-    int chunks = 0;        ///< terrain chunks in the frustum (render/TerrainChunks.h)
-    int chunksCulled = 0;  ///< chunks outside it, not drawn
-    long long layers = 0;  ///< chunk layers drawn (sum over chunks of the shells each drew)
+    double cpu_ms = 0.0;      ///< table building and uploads on the CPU
+    double gpu_ms = 0.0;      ///< draw calls through glFinish
+    int chunks = 0;           ///< terrain chunks in the frustum (render/TerrainChunks.h)
+    int chunksCulled = 0;     ///< chunks outside it, not drawn
+    long long layers = 0;     ///< chunk layers drawn (sum over chunks of the shells each drew)
+    long long triangles = 0;  ///< triangles drawn: over chunks, mesh triangles x layers
 };
 
 /// What draw() shows; the viewer's toggles. Both off draws only the sky.
 struct DrawOptions {
     bool terrain = true;  ///< shell 0, the ground
     bool grass = true;    ///< shells 1..N
+    /// The grass texture read with GL_NEAREST_MIPMAP_NEAREST (one texel of the nearest level)
+    /// instead of its trilinear filtering: about twice the fill rate on a software rasteriser,
+    /// at the price of blockier blades close up and visible MIP-level steps.
+    bool nearestTexels = false;
 };
 
 class ShellRenderer {

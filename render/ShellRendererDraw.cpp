@@ -48,20 +48,10 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
 
     const auto gpuStart = Clock::now();
     m.beginFrame();
-    glUseProgram(m.shellProgram.get());
-    glUniformMatrix4fv(m.shellLoc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(clipFromWorldM));
-    glUniform3fv(m.shellLoc.eyePos, 1, glm::value_ptr(camera.wsPosition_m));
-    glUniform1i(m.shellLoc.shells, m.grass.shells);
-    glUniform1i(m.shellLoc.groupColumns, m.tables->columns());
-    glUniform1i(m.shellLoc.blendGroups, m.windBlends && groupCount > 0 ? 1 : 0);
     glActiveTexture(GL_TEXTURE0 + kBendUnit);
     glBindTexture(GL_TEXTURE_2D, m.tables->bendTexture());
     glActiveTexture(GL_TEXTURE0 + kGroupUnit);
     glBindTexture(GL_TEXTURE_2D, m.tables->groupTexture());
-    glUniform1i(m.shellLoc.aperiodic, m.grass.aperiodic ? 1 : 0);
-    glUniform1i(m.shellLoc.hasDensity, m.density->active() ? 1 : 0);
-    glUniform2fv(m.shellLoc.densityMin, 1, glm::value_ptr(m.density->wsMin_m()));
-    glUniform2fv(m.shellLoc.densitySize, 1, glm::value_ptr(m.density->wsSize_m()));
     glActiveTexture(GL_TEXTURE0 + kDensityUnit);
     glBindTexture(GL_TEXTURE_2D, m.density->mapTexture());
     glActiveTexture(GL_TEXTURE0 + kDensityCutUnit);
@@ -77,25 +67,59 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         m.grass.lodPixels > 0.0f && shells > 0
             ? 2.0f * (m.grass.height_m / static_cast<float>(shells)) * focal_px / m.grass.lodPixels
             : 0.0f;
-    glUniform1f(m.shellLoc.lodD1, d1_m);
+    // The program of each chunk (ShellVariantBits): the scene's choices, plus the fade where a
+    // chunk reaches the distance at which one of its shells starts to thin out. Each program gets
+    // this frame's uniforms the first time a chunk uses it.
+    const unsigned sceneBits = (m.grass.aperiodic ? kVariantAperiodic : 0u) |
+                               (m.density->active() ? kVariantDensity : 0u) |
+                               (m.windBlends && groupCount > 0 ? kVariantBlend : 0u);
+    int lastShell = 0;  // the largest power of two <= shells (the one dropped last), 0 without
+    while (shells > 0 && lastShell * 2 <= shells) lastShell = lastShell == 0 ? 1 : lastShell * 2;
+    unsigned preparedPrograms = 0;  // bit k: variant k has this frame's uniforms
+    GLuint boundProgram = 0;
+    const auto useProgram = [&](unsigned bits) -> const ShellLocations& {
+        const ShellProgram& p = m.shellProgram(bits);
+        const ShellLocations& loc = p.loc;
+        if (p.program.get() == boundProgram) return loc;
+        boundProgram = p.program.get();
+        glUseProgram(boundProgram);
+        if ((preparedPrograms & (1u << bits)) != 0u) return loc;
+        preparedPrograms |= 1u << bits;
+        glUniformMatrix4fv(loc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(clipFromWorldM));
+        glUniform3fv(loc.eyePos, 1, glm::value_ptr(camera.wsPosition_m));
+        glUniform1i(loc.shells, m.grass.shells);
+        glUniform1i(loc.groupColumns, m.tables->columns());
+        glUniform1f(loc.lodD1, d1_m);
+        glUniform1i(loc.lastShell, lastShell);
+        glUniform3fv(loc.bladeColor, 1, glm::value_ptr(m.bladeColor));
+        glUniform2fv(loc.densityMin, 1, glm::value_ptr(m.density->wsMin_m()));
+        glUniform2fv(loc.densitySize, 1, glm::value_ptr(m.density->wsSize_m()));
+        return loc;
+    };
     // Visible chunks, nearest first (the early depth test then discards more of the far ones),
     // their boxes grown by the grass height: a bent blade reaches that far from its root.
     const glm::vec3 reach(m.grass.height_m);
-    std::vector<std::pair<float, const detail::TerrainChunk*>> visible;
+    struct Visible {
+        float near_m, far_m;  // nearest and farthest point of the chunk's ground from the eye
+        const detail::TerrainChunk* chunk;
+    };
+    std::vector<Visible> visible;
     for (const detail::TerrainChunk& chunk : m.chunks) {
         if (!detail::boxMayBeVisible(clipFromWorldM, chunk.wsMin_m - reach,
                                      chunk.wsMax_m + reach)) {
             ++stats.chunksCulled;
             continue;
         }
-        visible.emplace_back(
-            detail::distanceToBox(camera.wsPosition_m, chunk.wsMin_m, chunk.wsMax_m), &chunk);
+        visible.push_back({detail::distanceToBox(camera.wsPosition_m, chunk.wsMin_m, chunk.wsMax_m),
+                           detail::farthestInBox(camera.wsPosition_m, chunk.wsMin_m, chunk.wsMax_m),
+                           &chunk});
     }
     std::sort(visible.begin(), visible.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
+              [](const Visible& a, const Visible& b) { return a.near_m < b.near_m; });
+    if (options.nearestTexels) glBindSampler(kGrassUnit, m.nearestSampler.get());
     glBindVertexArray(m.vao.get());
-    for (const auto& [distance_m, chunk] : visible) {
-        const detail::ShellRange range = detail::shellRange(shells, d1_m, distance_m);
+    for (const auto& [near_m, far_m, chunk] : visible) {
+        const detail::ShellRange range = detail::shellRange(shells, d1_m, near_m);
         // Instance k is shell top - k stride: top shell first, ground last. The thesis (3.1)
         // draws bottom to top because its shells were blended; ours are alpha-tested and opaque
         // with the depth test on, so the image does not depend on the order, and top first lets
@@ -103,15 +127,23 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         // +5-18 % fill rate on llvmpipe).
         if (range.top < bottom) continue;
         const int count = (range.top - bottom) / range.stride + 1;
-        glUniform1i(m.shellLoc.topShell, range.top);
-        glUniform1i(m.shellLoc.shellStride, range.stride);
+        const bool fades = detail::chunkMayFade(range, shells, d1_m, far_m);
+        const ShellLocations& loc = useProgram(sceneBits | (fades ? kVariantFade : 0u));
+        glUniform1i(loc.topShell, range.top);
+        glUniform1i(loc.shellStride, range.stride);
+        // The chunk's mesh level (render/TerrainChunks.h): coarser far away, its border always
+        // at full resolution, so neighbours at different levels meet without cracks.
+        const detail::IndexRange& mesh =
+            chunk->levels[detail::meshLevel(*chunk, focal_px, m.grass.lodPixels, near_m)];
         glDrawElementsInstanced(
-            GL_TRIANGLES, static_cast<GLsizei>(chunk->indexCount), GL_UNSIGNED_INT,
-            reinterpret_cast<const void*>(size_t(chunk->firstIndex) * sizeof(uint32_t)), count);
+            GL_TRIANGLES, static_cast<GLsizei>(mesh.count), GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(size_t(mesh.first) * sizeof(uint32_t)), count);
         ++stats.chunks;
         stats.layers += count;
+        stats.triangles += static_cast<long long>(mesh.count / 3) * count;
     }
     glBindVertexArray(0);
+    glBindSampler(kGrassUnit, 0);
     glUseProgram(0);
     glFinish();
     stats.gpu_ms = msSince(gpuStart);
@@ -137,23 +169,12 @@ FrameStats ShellRenderer::drawFillBaseline(const Camera& camera, bool nearestSam
     glUniform1f(m.fillLoc.shellSpacing,
                 m.grass.shells > 0 ? m.grass.height_m / static_cast<float>(m.grass.shells) : 0.0f);
     // A sampler object overrides the texture's own filtering while it is bound to the unit.
-    GLuint sampler = 0;
-    if (nearestSampling) {
-        glGenSamplers(1, &sampler);
-        glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-        glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_REPEAT);
-        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_REPEAT);
-        glBindSampler(kGrassUnit, sampler);
-    }
+    if (nearestSampling) glBindSampler(kGrassUnit, m.nearestSampler.get());
     glBindVertexArray(m.vao.get());
     glDrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
                             m.grass.shells + 1);
     glBindVertexArray(0);
-    if (nearestSampling) {
-        glBindSampler(kGrassUnit, 0);
-        glDeleteSamplers(1, &sampler);
-    }
+    glBindSampler(kGrassUnit, 0);
     glUseProgram(0);
     glFinish();
     stats.gpu_ms = msSince(gpuStart);

@@ -4,11 +4,13 @@
 /// ShellRendererDraw.cpp (frames). Internal to render/.
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <glm/gtc/type_ptr.hpp>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -68,29 +70,54 @@ inline GLint uniform(GLuint program, const char* name) {
     return glGetUniformLocation(program, name);
 }
 
+/// Specialisations of shaders/shell.vert + shell.frag, one program per combination of these bits
+/// (a branch on a uniform costs both sides on llvmpipe; docs/render.md).
+enum ShellVariantBits : unsigned {
+    kVariantAperiodic = 1u,  ///< APERIODIC: the jittered-cell texture layout
+    kVariantFade = 2u,       ///< FADE: the level of detail thins shells near their drop distance
+    kVariantDensity = 4u,    ///< DENSITY: a density map thins the blades
+    kVariantBlend = 8u,      ///< BLEND_GROUPS: the four nearest groups blended per vertex
+};
+constexpr unsigned kShellVariants = 16;
+
+/// Mean colour (linear RGB in [0, 1]) of the blade texels (alpha > 0) of a texture level; of all
+/// texels if it has no blade.
+glm::vec3 meanBladeColor(const Image& level);
+
+/// The defines that select `bits` in the shell shaders.
+std::string shellVariantDefines(unsigned bits);
+
+/// Uniform locations of one shell program (-1 for a name the compiler dropped).
+struct ShellLocations {
+    GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns, maxTilt,
+        shellStride, lodD1, lastShell, bladeColor, density, densityCut, densityMin, densitySize;
+    GLint lightCount, lightPos, lightColor, lightAtten;
+    GLint ambient, specularPower, specularStrength, shadowMin;
+};
+
+struct ShellProgram {
+    detail::Program program;
+    ShellLocations loc{};
+};
+
 }  // namespace shell_detail
 
 struct ShellRenderer::Impl {
     GlContext& context;
 
-    detail::Program shellProgram;
+    /// Compiled on first use (ShellVariantBits); index = bits.
+    std::array<std::unique_ptr<shell_detail::ShellProgram>, shell_detail::kShellVariants>
+        shellPrograms;
     detail::Program fillProgram;
     detail::VertexArray vao;
     detail::Buffer terrainVbo;
     detail::Buffer windVbo;
     detail::Buffer indexBuffer;
     detail::Texture grassTexture;
+    detail::Sampler nearestSampler;  ///< overrides the grass texture's filtering (DrawOptions)
     std::unique_ptr<detail::BendTables> tables;
     std::unique_ptr<detail::DensityTables> density;
 
-    // Uniform locations of shell.vert / shell.frag.
-    struct {
-        GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns,
-            blendGroups, maxTilt, shellStride, lodD1, aperiodic, hasDensity, density, densityCut,
-            densityMin, densitySize;
-        GLint lightCount, lightPos, lightColor, lightAtten;
-        GLint ambient, specularPower, specularStrength, shadowMin;
-    } shellLoc{};
     struct {
         GLint clipFromWorld, shells, shellSpacing, grass;
     } fillLoc{};
@@ -100,12 +127,13 @@ struct ShellRenderer::Impl {
     // Terrain.
     bool haveTerrain = false;
     size_t vertexCount = 0;
-    GLsizei indexCount = 0;
+    GLsizei indexCount = 0;  ///< indices of the full mesh, from the buffer's start
     std::vector<detail::TerrainChunk> chunks;
 
     // Grass.
     bool haveGrass = false;
     GrassParams grass;
+    glm::vec3 bladeColor{0.0f};  ///< mean colour of the texture's blade texels, linear [0, 1]
 
     // Lighting (uploaded to the shell program on setLighting).
     Lighting lighting;
@@ -121,7 +149,9 @@ struct ShellRenderer::Impl {
     explicit Impl(GlContext& ctx) : context(ctx) {}
 
     void init();
-    void uploadLighting();
+    /// The program of `bits`, compiled (with its samplers and lighting set) on first use.
+    shell_detail::ShellProgram& shellProgram(unsigned bits);
+    void uploadLighting(const shell_detail::ShellProgram& program) const;
     void uploadWind(const GrassWind& wind);
     void requireReady(const char* what) const;
     void beginFrame();

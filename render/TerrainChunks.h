@@ -25,15 +25,40 @@ namespace gale::render::detail {
 constexpr int kChunkQuads = 32;
 /// A shell starts thinning at this fraction of its drop distance.
 constexpr float kLodFadeStart = 0.7f;
+/// Mesh levels per chunk: level l takes every 2^l-th vertex inside the chunk (l = 5: one coarse
+/// cell per 32-quad chunk).
+constexpr int kMeshLevels = 6;
+/// A chunk takes the coarsest mesh level whose cells are at most this many times
+/// GrassParams::lodPixels across on screen (default 2 px: 8-pixel cells; the ground is smooth at
+/// that scale, and a software rasteriser pays per vertex and per small triangle).
+constexpr float kMeshCellPerLodPixel = 4.0f;
+
+/// A range of the terrain's index buffer.
+struct IndexRange {
+    uint32_t first = 0;
+    uint32_t count = 0;
+};
 
 struct TerrainChunk {
-    uint32_t firstIndex = 0;  ///< into the terrain's index buffer
+    uint32_t firstIndex = 0;  ///< into the terrain's index buffer: the full mesh (level 0)
     uint32_t indexCount = 0;
+    /// levels[l], l < levelCount: the mesh taking every 2^l-th vertex inside the chunk, with the
+    /// chunk's border always at full resolution (stitched), so neighbours at any levels share
+    /// the same border and no crack opens. levels[0] is the full mesh.
+    IndexRange levels[kMeshLevels];
+    int levelCount = 1;
+    float quad_m = 0.0f;                     ///< the longest quad side in the chunk (3-D), metres
     glm::vec3 wsMin_m{0.0f}, wsMax_m{0.0f};  ///< bounds of the ground, before the grass margin
 };
 
 /// Chunks of the nx x ny grid, kChunkQuads quads a side (fewer at the far edges), and their index
-/// list (two triangles per quad, the order of TerrainGrid.h), appended to `indices`.
+/// lists, appended to `indices`: every chunk's level 0 first (together one contiguous range, two
+/// triangles per quad of the whole grid, in the order of TerrainGrid.h within each chunk), then
+/// the coarser levels;
+/// level l >= 1 exists when 2^l divides the chunk's quads on both sides, and takes every 2^l-th
+/// vertex: a coarse cell inside the chunk is two triangles, a cell on the chunk's border a fan
+/// around its centre vertex through every full-resolution vertex of its border side(s). All
+/// triangles are counter-clockwise in plan. Requires nx, ny >= 2 and nx * ny positions.
 std::vector<TerrainChunk> buildChunks(int nx, int ny, const std::vector<glm::vec3>& wsPosition_m,
                                       std::vector<uint32_t>& indices);
 
@@ -43,6 +68,9 @@ bool boxMayBeVisible(const glm::mat4& clipFromWorld, const glm::vec3& lo, const 
 
 /// Distance, metres, from p to the box [lo, hi] (0 inside).
 float distanceToBox(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi);
+
+/// Distance, metres, from p to the farthest point of the box [lo, hi] (its farthest corner).
+float farthestInBox(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi);
 
 /// The shells a chunk at distance d draws: every `stride`-th shell from `top` down to 0.
 struct ShellRange {
@@ -54,5 +82,20 @@ struct ShellRange {
 /// For N shells, drop distance D1 (metres, > 0; infinite = no LOD) and chunk distance d:
 /// the smallest stride 2^k with D1 2^k > d, and the highest multiple of it <= N.
 ShellRange shellRange(int shells, float d1_m, float distance_m);
+
+/// The mesh level of a chunk whose nearest ground point is `near_m` metres from the eye: the
+/// coarsest l < chunk.levelCount whose cells (2^l quad_m) span at most kMeshCellPerLodPixel
+/// lodPixels on screen at that distance (focal_px the focal length in pixels). 0 when lodPixels
+/// is 0 (no level of detail).
+int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float near_m);
+
+/// True if, somewhere in a chunk whose ground reaches `far_m` metres from the eye, a shell of
+/// `range` (of N = `shells`) may have started to thin out, or the ground may have started to stand
+/// in for the dropped grass (shells.vert: between 0.7 and 1 of the drop distance of the shell
+/// dropped last, D1 times the largest power of two <= N). The nearest drop distance among the
+/// drawn shells above the ground is D1 stride (an odd multiple of the stride has no more trailing
+/// zero bits); thinning starts at kLodFadeStart of it. False when D1 is 0 (no level of detail) or
+/// N is 0. A chunk for which this is false can be drawn without the fade.
+bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m);
 
 }  // namespace gale::render::detail

@@ -6,16 +6,32 @@
 // height is above the cut that leaves the map's fraction of the texture's blade area), and the
 // texture is laid aperiodically (each cell of a jittered grid over the texture plane shows the
 // texture rotated by a multiple of 90 degrees, mirrored and shifted at random), so no repeat shows.
+//
+// Specialised by defines, one program per combination (ShellRenderer): a branch on a uniform is
+// not free on llvmpipe, which runs the code of both sides under a lane mask. Measured: the unused
+// aperiodic branch alone cost the shell pass 0.34 -> 0.80 of the trivial fill (docs/render.md).
+//   APERIODIC  1: the jittered-cell layout; 0: the plain repeat
+//   FADE       1: the level of detail's fade (vFade) thins the blades
+//   DENSITY    1: the density map (uDensity) thins the blades
+#ifndef APERIODIC
+#define APERIODIC 0
+#endif
+#ifndef FADE
+#define FADE 0
+#endif
+#ifndef DENSITY
+#define DENSITY 0
+#endif
 
 uniform sampler2D uGrass;       // RGB colour, alpha = blade height fraction, blade-keeping MIP chain
-uniform int uAperiodic;         // 1: the jittered-cell layout; 0: the plain repeat
-uniform int uHasDensity;        // 1: read uDensity
 uniform sampler2D uDensity;     // density in [0, 1] over the plan (R channel)
 uniform sampler2D uDensityCut;  // 256 x 1: texel k is the alpha cut for density k / 255
+uniform vec3 uBladeColor;       // mean colour of the texture's blade texels (level 0)
 
 in vec2 vUv;
 in vec2 vDensityUv;
 in float vFade;
+in float vStandIn;
 in vec3 vLight;
 flat in float vThreshold;
 
@@ -33,6 +49,7 @@ uvec2 pcg2d(uvec2 v) {
     return v;
 }
 
+#if APERIODIC
 // The texture lookup of the aperiodic layout. Cells are the unit squares of the texture plane;
 // each has a feature point jittered within +-0.25 of its centre, and a fragment belongs to the
 // cell of the nearest feature point among the four cells around it (a Voronoi partition of a
@@ -65,19 +82,35 @@ vec4 aperiodicTexel(vec2 uv) {
     m = rot * m;
     return textureGrad(uGrass, m * uv + shift, m * dFdx(uv), m * dFdy(uv));
 }
+#endif
 
 void main() {
-    vec4 texel = (uAperiodic != 0) ? aperiodicTexel(vUv) : texture(uGrass, vUv);
+#if APERIODIC
+    vec4 texel = aperiodicTexel(vUv);
+#else
+    vec4 texel = texture(uGrass, vUv);
+#endif
     float threshold = vThreshold;
+#if FADE || DENSITY
     // The map's density times the level of detail's fade (render/TerrainChunks.h).
-    float density = vFade;
-    if (uHasDensity != 0) density *= clamp(texture(uDensity, vDensityUv).r, 0.0, 1.0);
+    float density = 1.0;
+#if FADE
+    density *= vFade;
+#endif
+#if DENSITY
+    density *= clamp(texture(uDensity, vDensityUv).r, 0.0, 1.0);
+#endif
     if (density < 1.0 && threshold > 0.0) {
         // The cut that keeps this share of blade area: blades shorter than it vanish whole, the
         // others keep their full height.
         float cut = texture(uDensityCut, vec2((density * 255.0 + 0.5) / 256.0, 0.5)).r;
         threshold = max(threshold, cut);
     }
+#endif
     if (texel.a < threshold) discard;
+#if FADE
+    // The far ground standing in for the dropped grass (shell.vert) shows the blades' colour.
+    texel.rgb = mix(texel.rgb, uBladeColor, vStandIn);
+#endif
     oColor = vec4(texel.rgb * vLight, 1.0);
 }

@@ -6,6 +6,17 @@
 // metres; lighting is evaluated per vertex, as in the thesis, so the fragment stage stays a texture
 // fetch, an alpha test and a multiply.
 
+// Specialised by defines (ShellRenderer compiles one program per combination, see shell.frag):
+//   BLEND_GROUPS  1: blend the four nearest groups at aGroupCoord (bilinear), so no stripes show
+//                 where groups change; 0: this vertex's group alone.
+//   FADE          1: pass the level of detail's fade to the fragment stage.
+#ifndef BLEND_GROUPS
+#define BLEND_GROUPS 0
+#endif
+#ifndef FADE
+#define FADE 0
+#endif
+
 // Must equal gale::render::kMaxLights (render/RenderLimits.h); ShellRenderer checks the array size.
 #define MAX_LIGHTS 16
 
@@ -14,7 +25,7 @@ layout(location = 1) in vec3 aNormal;    // unit terrain normal
 layout(location = 2) in vec2 aUv;        // grass texture coordinates
 layout(location = 3) in vec3 aWindDir;   // unit tangent-plane wind direction, or zero
 layout(location = 4) in uint aGroup;     // animation-step group
-layout(location = 5) in vec2 aGroupCoord; // position in the group grid (when uBlendGroups)
+layout(location = 5) in vec2 aGroupCoord; // position in the group grid (when BLEND_GROUPS)
 
 uniform mat4 uClipFromWorld;
 uniform vec3 uEyePos;          // camera position
@@ -24,16 +35,17 @@ uniform int uShellStride;      // instance k draws shell uTopShell - k uShellStr
 // Level of detail (render/TerrainChunks.h): shell i thins out between 0.7 D(i) and D(i), D(i) =
 // uLodD1 2^(trailing zero bits of i), metres from the eye; 0 = no level of detail.
 uniform float uLodD1;
+// The shell the level of detail drops last: the largest power of two <= N (render/TerrainChunks.h).
+uniform int uLastShell;
 // Bends over tip tilts (render/BendTables.h): texel (i, l) holds (n_i, w_i) in metres for shell i
-// of a blade whose tip tilts by -uMaxTilt + 2 uMaxTilt l / (L - 1) (Bakay 2003, 3.2).
+// of a blade whose tip tilts by -uMaxTilt + 2 uMaxTilt l / (L - 1) (Bakay 2003, 3.2), and in .ba
+// segment i, (n_i - n_{i-1}, w_i - w_{i-1}): interpolated between rows like the offsets, it is
+// exactly the difference of the two interpolated shell positions, so one fetch pair gives both.
 uniform sampler2D uBend;
 uniform float uMaxTilt;        // radians
 // Tip tilt per group this frame (radians), groups row by row uGroupColumns wide.
 uniform sampler2D uGroupTilt;
 uniform int uGroupColumns;
-// 1: blend the four nearest groups at aGroupCoord (bilinear), so no stripes show where groups
-// change; 0: this vertex's group alone.
-uniform int uBlendGroups;
 
 uniform int uLightCount;
 uniform vec3 uLightPos[MAX_LIGHTS];
@@ -51,42 +63,55 @@ uniform vec2 uDensitySize;
 out vec2 vUv;
 out vec2 vDensityUv;       // where the blade's root is on the density map (row 0 = north)
 out float vFade;           // share of this shell's blades the level of detail keeps, [0, 1]
+out float vStandIn;        // ground only: how far it stands in for the dropped grass, [0, 1]
 out vec3 vLight;           // light reaching the vertex, multiplies the texture colour
 flat out float vThreshold; // alpha test: keep texels with alpha >= vThreshold
 
 float groupTilt() {
-    if (uBlendGroups != 0) {
-        vec2 size = vec2(textureSize(uGroupTilt, 0));
-        return texture(uGroupTilt, (aGroupCoord + 0.5) / size).r;
-    }
+#if BLEND_GROUPS
+    vec2 size = vec2(textureSize(uGroupTilt, 0));
+    return texture(uGroupTilt, (aGroupCoord + 0.5) / size).r;
+#else
     int g = int(aGroup);
     return texelFetch(uGroupTilt, ivec2(g % uGroupColumns, g / uGroupColumns), 0).r;
+#endif
 }
 
-// The bend of shell i at tilt row `row` (fractional), linear between the two nearest rows.
-vec3 shellPosition(int i, float row) {
+// The bend of shell i at tilt row `row` (fractional), linear between the two nearest rows:
+// (n_i, w_i, segment n, segment w), metres.
+vec4 shellBend(int i, float row) {
     int last = textureSize(uBend, 0).y - 1;
     int r0 = min(int(row), last);
-    vec2 a = texelFetch(uBend, ivec2(i, r0), 0).rg;
-    vec2 b = texelFetch(uBend, ivec2(i, min(r0 + 1, last)), 0).rg;
-    vec2 nw = mix(a, b, row - float(r0));
-    return aPosition + nw.x * aNormal + nw.y * aWindDir;
+    vec4 a = texelFetch(uBend, ivec2(i, r0), 0);
+    vec4 b = texelFetch(uBend, ivec2(i, min(r0 + 1, last)), 0);
+    return mix(a, b, row - float(r0));
 }
 
 void main() {
     int i = uTopShell - gl_InstanceID * uShellStride;
     float last = float(textureSize(uBend, 0).y - 1);
     float row = clamp((groupTilt() / uMaxTilt * 0.5 + 0.5) * last, 0.0, last);
-    vec3 pos = shellPosition(i, row);
+    vec4 bend = shellBend(i, row);
+    vec3 pos = aPosition + bend.x * aNormal + bend.y * aWindDir;
     gl_Position = uClipFromWorld * vec4(pos, 1.0);
     vUv = aUv;
     vec2 plan = (aPosition.xy - uDensityMin) / uDensitySize;
     vDensityUv = vec2(plan.x, 1.0 - plan.y);
     vFade = 1.0;
+    vStandIn = 0.0;
+#if FADE
     if (uLodD1 > 0.0 && i > 0) {
         float drop = uLodD1 * float(1 << findLSB(i));
         vFade = 1.0 - smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
     }
+    // Where the last shell thins out the ground alone remains; it takes over the look of the
+    // grass it replaces (shaded as the top layer, in the mean blade colour), at the same pace, so
+    // the far field keeps the grass's brightness instead of the shaded soil's.
+    if (uLodD1 > 0.0 && i == 0 && uLastShell > 0) {
+        float drop = uLodD1 * float(uLastShell);
+        vStandIn = smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
+    }
+#endif
 
     // Thesis 3.1: shell i keeps texels with alpha >= i/N; the ground keeps every texel. Half an
     // 8-bit step of slack so a blade of alpha 255 i/N passes its shell despite rounding; never
@@ -96,7 +121,7 @@ void main() {
 
     // Strand tangent (thesis 3.3.1): from this vertex on shell i-1 to shell i; the ground uses the
     // terrain normal.
-    vec3 T = (i == 0) ? aNormal : normalize(pos - shellPosition(i - 1, row));
+    vec3 T = (i == 0) ? aNormal : normalize(bend.z * aNormal + bend.w * aWindDir);
     vec3 V = normalize(uEyePos - pos);
 
     vec3 lit = vec3(0.0);
@@ -119,5 +144,6 @@ void main() {
     // Banks 1994 self-shadowing (thesis 3.3.3): S = (D_cur / D_max)(1 - S_min) + S_min with
     // D_cur / D_max = i / N; ambient added after attenuation and shadowing (thesis 3.3.4).
     float S = float(i) / float(max(uShells, 1)) * (1.0 - uShadowMin) + uShadowMin;
+    S = mix(S, 1.0, vStandIn);
     vLight = lit * S + uAmbient;
 }

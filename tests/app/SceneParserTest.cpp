@@ -26,8 +26,8 @@ void expectError(const std::string& text, std::initializer_list<std::string> fra
 }
 
 TEST(SceneParser, EveryExampleSceneParses) {
-    for (const char* name :
-         {"knoll.toml", "valley_heightmap.toml", "valley_source.toml", "fractal_meadow.toml"}) {
+    for (const char* name : {"knoll.toml", "valley_heightmap.toml", "valley_source.toml",
+                             "fractal_meadow.toml", "landscape.toml", "landscape_source.toml"}) {
         SCOPED_TRACE(name);
         EXPECT_NO_THROW(parseSceneFile(test::sourcePath(std::string("examples/") + name)));
     }

@@ -7,6 +7,7 @@
 
 #include "render/GlContext.h"
 #include "render/GlUtil.h"
+#include "render/ShellRendererImpl.h"
 
 namespace gale::render {
 namespace {
@@ -42,6 +43,28 @@ TEST(ShaderCompile, EmbeddedShadersCompileAndLink) {
     const detail::Program fill(detail::linkProgramFiles("fill.vert", "fill.frag"));
     EXPECT_NE(shell.get(), 0u);
     EXPECT_NE(fill.get(), 0u);
+}
+
+TEST(ShaderCompile, EveryShellVariantCompilesAndLinks) {
+    // The renderer compiles a variant when a frame first needs it: all of them must build.
+    auto context = createOsMesaContext(8, 8);
+    for (unsigned bits = 0; bits < shell_detail::kShellVariants; ++bits) {
+        const std::string defines = shell_detail::shellVariantDefines(bits);
+        EXPECT_NO_THROW(
+            detail::Program(detail::linkProgramFiles("shell.vert", "shell.frag", defines)))
+            << defines;
+    }
+}
+
+TEST(ShaderCompile, DefinesGoAfterTheVersionLine) {
+    auto context = createOsMesaContext(8, 8);
+    // A define the shader tests with #if: without it the shader would not compile.
+    const char* defines = "#define BLEND_GROUPS 1\n#define UNUSED_BY_THE_SHADER 3\n";
+    EXPECT_NO_THROW(detail::Program(detail::linkProgramFiles("shell.vert", "shell.frag", defines)));
+    const std::string message = messageOf([] {
+        detail::compileShaderFile(GL_VERTEX_SHADER, "shell.vert", "#error from the defines\n");
+    });
+    EXPECT_NE(message.find("from the defines"), std::string::npos) << message;
 }
 
 }  // namespace

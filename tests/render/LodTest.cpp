@@ -53,13 +53,54 @@ TEST(LodShellRange, DropsShellsByTrailingZeroBitsOfTheirIndex) {
     }
 }
 
+TEST(LodShellRange, AChunkDrawnWithoutTheFadeHasNoShellThinningInIt) {
+    // The renderer draws a chunk with the plain program when chunkMayFade says no shell of it has
+    // started to thin out and the ground does not yet stand in for the grass: check that against
+    // the shader's own rules, fade(i, d) = 1 for d <= 0.7 D(i) and the ground's stand-in 0 for
+    // d <= 0.7 D(last), last the largest power of two <= N, at every distance up to the chunk's
+    // far side.
+    const float d1_m = 10.0f;
+    for (int shells : {1, 8, 17, 64}) {
+        for (float near_m : {0.0f, 3.0f, 9.0f, 14.0f, 30.0f, 75.0f, 400.0f}) {
+            const detail::ShellRange r = detail::shellRange(shells, d1_m, near_m);
+            for (float far_m = near_m; far_m < near_m + 60.0f; far_m += 0.25f) {
+                int last = 1;
+                while (last * 2 <= shells) last *= 2;
+                bool anyFades = far_m > detail::kLodFadeStart * d1_m * float(last);
+                for (int k = 0; k < r.count(); ++k) {
+                    const int i = r.top - k * r.stride;
+                    if (i == 0) continue;
+                    int v = 0;
+                    while (((i >> v) & 1) == 0) ++v;
+                    anyFades = anyFades || far_m > detail::kLodFadeStart * d1_m * float(1 << v);
+                }
+                if (anyFades) {
+                    EXPECT_TRUE(detail::chunkMayFade(r, shells, d1_m, far_m))
+                        << shells << " shells, chunk " << near_m << "-" << far_m << " m";
+                }
+            }
+        }
+        EXPECT_FALSE(
+            detail::chunkMayFade(detail::shellRange(shells, 0.0f, 5.0f), shells, 0.0f, 1e6f));
+    }
+}
+
 TEST(LodChunks, CoverEveryQuadOnceAndBoundTheirVertices) {
     const TerrainMesh mesh =
         test::makeGridMesh(70, 40, 10.0f, 1.0f, [](float x, float y) { return 0.1f * x * y; });
     std::vector<uint32_t> indices;
     const auto chunks = detail::buildChunks(mesh.nx, mesh.ny, mesh.wsPosition_m, indices);
     EXPECT_EQ(chunks.size(), 3u * 2u);  // 69 x 39 quads in chunks of 32
-    EXPECT_EQ(indices.size(), size_t(69) * 39 * 6);
+    // The full meshes come first, one after the other: [0, 69 * 39 * 6) is the whole grid once
+    // (the fill baseline draws that range in one call); the coarser levels follow.
+    size_t fullIndices = 0;
+    for (const auto& c : chunks) {
+        EXPECT_EQ(c.firstIndex, fullIndices);
+        fullIndices += c.indexCount;
+    }
+    EXPECT_EQ(fullIndices, size_t(69) * 39 * 6);
+    for (const auto& c : chunks)
+        for (int l = 1; l < c.levelCount; ++l) EXPECT_GE(c.levels[l].first, fullIndices);
     std::multiset<std::array<uint32_t, 3>> triangles;
     for (const auto& c : chunks)
         for (uint32_t t = c.firstIndex; t < c.firstIndex + c.indexCount; t += 3) {

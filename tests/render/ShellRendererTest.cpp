@@ -111,6 +111,37 @@ TEST(ShellRenderer, TheNearestSampledBaselineLeavesTheGrassFilteringAlone) {
     EXPECT_EQ(rig.frame(wind).rgba, before.rgba);
 }
 
+TEST(ShellRenderer, NearestTexelsChangeOnlyTheFilteringOfTheirOwnFrame) {
+    // DrawOptions::nearestTexels: the same grass with one texel of the nearest MIP level. Its frame
+    // differs from the trilinear one but covers the same ground (the same geometry and alpha
+    // test, so nearly the same pixels are sky), and the next default frame is the default again.
+    constexpr int kChannelNoise = 8;              // the reference tolerance
+    constexpr double kMaxSkyChange = 0.01;        // blade edges move by a texel at most
+    constexpr double kMinChangedFraction = 0.05;  // the filtering visibly changes the grass
+    ReferenceRig rig(160, 120);
+    const GrassWind wind = rig.scene.wind(0.35f, 0.9f);
+    const Image before = rig.frame(wind);
+    DrawOptions nearestTexels;
+    nearestTexels.nearestTexels = true;
+    rig.renderer.draw(rig.scene.camera, wind, nearestTexels);
+    Image nearest;
+    rig.context->readPixels(nearest);
+    EXPECT_GT(test::compareImages(before, nearest, kChannelNoise).differingFraction,
+              kMinChangedFraction);
+    const auto skyShare = [](const Image& image) {
+        const auto sky = [](float v) { return static_cast<int>(std::lround(v * 255.0f)); };
+        size_t n = 0;
+        for (size_t p = 0; p < image.rgba.size(); p += 4)
+            n += image.rgba[p] == sky(ShellRenderer::kSkyColor[0]) &&
+                 image.rgba[p + 1] == sky(ShellRenderer::kSkyColor[1]) &&
+                 image.rgba[p + 2] == sky(ShellRenderer::kSkyColor[2]);
+        return static_cast<double>(n) / static_cast<double>(image.rgba.size() / 4);
+    };
+    EXPECT_NEAR(skyShare(nearest), skyShare(before), kMaxSkyChange);
+    EXPECT_GT(skyShare(before), 0.05);  // the check above has sky to compare
+    EXPECT_EQ(rig.frame(wind).rgba, before.rgba);
+}
+
 TEST(ShellRenderer, EmptyGroupIntensityMeansNoWind) {
     ReferenceScene scene;
     GrassWind none;  // no per-vertex arrays, no groups
