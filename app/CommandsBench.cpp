@@ -9,6 +9,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/Cli.h"
@@ -43,117 +44,110 @@ std::array<int, 3> parseBoxSize(const std::string& text) {
     return n;
 }
 
+/// One `gale bench NAME` verb: its options, the --quick and --json every benchmark has, the exit
+/// codes footer, and its entry in the verb table, which runs `run` on the parsed options (bad
+/// options become bad input). Returns the verb and its options for the verb's own flags.
+template <class Options>
+std::pair<CLI::App*, std::shared_ptr<Options>> addBench(CLI::App& bench, VerbTable& verbs,
+                                                        const std::string& name,
+                                                        const std::string& description,
+                                                        const std::string& quickHelp,
+                                                        std::function<int(Options&)> run) {
+    auto o = std::make_shared<Options>();
+    CLI::App* verb = bench.add_subcommand(name, description);
+    verb->add_flag("--quick", o->quick, quickHelp);
+    verb->add_option("--json", o->jsonPath, "Also write the results as JSON here");
+    verb->footer(EXIT_CODES_FOOTER);
+    verbs.add(verb, [o, run] { return runBench([&] { return run(*o); }); });
+    return {verb, o};
+}
+
 void addRender(CLI::App& bench, VerbTable& verbs) {
-    auto o = std::make_shared<BenchRenderOptions>();
-    CLI::App* verb = bench.add_subcommand("render",
-                                          "Time the shell renderer (the paper's Table 2) "
-                                          "against a trivial fill of the same geometry");
+    auto [verb, o] = addBench<BenchRenderOptions>(
+        bench, verbs, "render",
+        "Time the shell renderer (the paper's Table 2) against a trivial fill of the same "
+        "geometry",
+        "2 frames and 1 warm-up per row: a smoke run, not a measurement (targets printed, not "
+        "judged)",
+        [](BenchRenderOptions& options) { return runBenchRender(options); });
     verb->add_option("--frames", o->frames, "Timed frames per row and pass")
         ->capture_default_str()
         ->check(CLI::Range(1, MAX_FRAMES));
-    verb->add_flag("--quick", o->quick,
-                   "2 frames and 1 warm-up per row: a smoke run, not a measurement (targets "
-                   "printed, not judged)");
-    verb->add_option("--json", o->jsonPath, "Also write the results as JSON here");
-    verb->footer(EXIT_CODES_FOOTER);
-    verbs.add(verb, [o] { return runBench([o] { return runBenchRender(*o); }); });
 }
 
 void addAccuracy(CLI::App& bench, VerbTable& verbs) {
-    auto o = std::make_shared<BenchAccuracyOptions>();
-    CLI::App* verb = bench.add_subcommand(
-        "accuracy",
+    auto [verb, o] = addBench<BenchAccuracyOptions>(
+        bench, verbs, "accuracy",
         "Error against run time of the steady solver on the exact hemisphere (potential flow "
-        "past a sphere): CSV, SVG plot and convergence order");
+        "past a sphere): CSV, SVG plot and convergence order",
+        "4, 8, 16 cells per radius at one tolerance (a CI smoke run)",
+        [](BenchAccuracyOptions& options) { return runBenchAccuracy(options); });
     verb->add_option("--out", o->outputFolder, "Folder for accuracy.csv and accuracy.svg")
         ->capture_default_str();
-    verb->add_flag("--quick", o->quick,
-                   "4, 8, 16 cells per radius at one tolerance (a CI smoke run)");
-    verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
-    verb->footer(EXIT_CODES_FOOTER);
-    verbs.add(verb, [o] { return runBench([o] { return runBenchAccuracy(*o); }); });
 }
 
 void addSolve(CLI::App& bench, VerbTable& verbs) {
-    auto o = std::make_shared<BenchSolveOptions>();
     auto sizes = std::make_shared<std::vector<std::string>>();
     auto noOpenVdb = std::make_shared<bool>(false);
-    CLI::App* verb = bench.add_subcommand(
-        "solve",
-        "Our MGPCG against OpenVDB's PCG on the same elliptic problem, with memory and "
-        "the bandwidth floor");
+    auto [verb, o] = addBench<BenchSolveOptions>(
+        bench, verbs, "solve",
+        "Our MGPCG against OpenVDB's PCG on the same elliptic problem, with memory and the "
+        "bandwidth floor",
+        "Only the first size (a CI smoke run)", [sizes, noOpenVdb](BenchSolveOptions& options) {
+            options.openVdb = !*noOpenVdb;
+            for (const std::string& text : *sizes) options.sizes.push_back(parseBoxSize(text));
+            return runBenchSolve(options);
+        });
     verb->add_option("--size", *sizes,
                      "Box NXxNYxNZ (repeatable; default 64x64x32 128x128x64 256x256x64)");
-    verb->add_flag("--quick", o->quick, "Only the first size (a CI smoke run)");
     verb->add_flag("--no-openvdb", *noOpenVdb, "Skip OpenVDB's solver (ours only)");
     verb->add_option("--tolerance", o->relativeTolerance,
                      "Max-norm relative residual for both solvers")
         ->capture_default_str()
         ->check(CLI::Range(1e-14, 0.5));
-    verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
-    verb->footer(EXIT_CODES_FOOTER);
-    verbs.add(verb, [o, sizes, noOpenVdb] {
-        o->openVdb = !*noOpenVdb;
-        for (const std::string& text : *sizes) o->sizes.push_back(parseBoxSize(text));
-        return runBench([o] { return runBenchSolve(*o); });
-    });
 }
 
 void addCoupling(CLI::App& bench, VerbTable& verbs) {
-    auto o = std::make_shared<BenchCouplingOptions>();
-    CLI::App* verb = bench.add_subcommand(
-        "coupling",
-        "Grouped against exact bends as the group count grows, and the coupling's "
-        "cost per field step and per frame at 100k and 1M vertices");
+    auto [verb, o] = addBench<BenchCouplingOptions>(
+        bench, verbs, "coupling",
+        "Grouped against exact bends as the group count grows, and the coupling's cost per "
+        "field step and per frame at 100k and 1M vertices",
+        "10k and 100k vertices (a CI smoke run)",
+        [](BenchCouplingOptions& options) { return runBenchCoupling(options); });
     verb->add_option("--out", o->outputFolder, "Folder for coupling.csv and coupling.svg")
         ->capture_default_str();
-    verb->add_flag("--quick", o->quick, "10k and 100k vertices (a CI smoke run)");
-    verb->add_option("--json", o->jsonPath, "Also write the tables as JSON");
-    verb->footer(EXIT_CODES_FOOTER);
-    verbs.add(verb, [o] { return runBench([o] { return runBenchCoupling(*o); }); });
 }
 
 void addRough(CLI::App& bench, VerbTable& verbs) {
-    auto o = std::make_shared<BenchRoughOptions>();
-    CLI::App* verb = bench.add_subcommand(
-        "rough",
+    (void)addBench<BenchRoughOptions>(
+        bench, verbs, "rough",
         "Steady-solve iterations on a fractal and a sharp-feature terrain at 20, 10 and 5 m "
-        "cells (target: <= 20 at every resolution)");
-    verb->add_flag("--quick", o->quick, "A 320 m square instead of 1280 m (a CI smoke run)");
-    verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
-    verb->footer(EXIT_CODES_FOOTER);
-    verbs.add(verb, [o] { return runBench([o] { return runBenchRough(*o); }); });
+        "cells (target: <= 20 at every resolution)",
+        "A 320 m square instead of 1280 m (a CI smoke run)",
+        [](BenchRoughOptions& options) { return runBenchRough(options); });
 }
 
 void addStability(CLI::App& bench, VerbTable& verbs) {
-    auto o = std::make_shared<BenchStabilityOptions>();
-    CLI::App* verb = bench.add_subcommand(
-        "stability",
-        "The unsteady wind's stability suite: CFL 5/20/50 over a ridge, 0 and 100 m/s, "
-        "cliff, spike, sub-cell vortex, nu dt/h^2 = 1000, gusts (energy budgets, "
-        "deviation from the steady start); the translating Lamb-Oseen vortex's orders "
-        "and Burgers' vortex against their exact solutions");
-    verb->add_flag("--quick", o->quick, "Only the fast subset (what sim_tests runs)");
-    verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
-    verb->footer(EXIT_CODES_FOOTER);
-    verbs.add(verb, [o] { return runBench([o] { return runBenchStability(*o); }); });
+    (void)addBench<BenchStabilityOptions>(
+        bench, verbs, "stability",
+        "The unsteady wind's stability suite: CFL 5/20/50 over a ridge, 0 and 100 m/s, cliff, "
+        "spike, sub-cell vortex, nu dt/h^2 = 1000, gusts (energy budgets, deviation from the "
+        "steady start); the translating Lamb-Oseen vortex's orders and Burgers' vortex against "
+        "their exact solutions",
+        "Only the fast subset (what sim_tests runs)",
+        [](BenchStabilityOptions& options) { return runBenchStability(options); });
 }
 
 void addUnsteady(CLI::App& bench, VerbTable& verbs) {
-    auto o = std::make_shared<BenchUnsteadyOptions>();
-    CLI::App* verb = bench.add_subcommand(
-        "unsteady",
-        "Error against run time of the unsteady solver on the exact viscous "
-        "Lamb-Oseen vortex (CSV, SVG, orders) per advection scheme, and the time per "
-        "step and its parts");
+    auto [verb, o] = addBench<BenchUnsteadyOptions>(
+        bench, verbs, "unsteady",
+        "Error against run time of the unsteady solver on the exact viscous Lamb-Oseen vortex "
+        "(CSV, SVG, orders) per advection scheme, and the time per step and its parts",
+        "2 and 4 cells per core, a 48x48x16 timing box (a CI smoke run)",
+        [](BenchUnsteadyOptions& options) { return runBenchUnsteady(options); });
     verb->add_option("--out", o->outputFolder,
                      "Folder for unsteady_accuracy.csv and unsteady_accuracy.svg")
         ->capture_default_str();
-    verb->add_flag("--quick", o->quick,
-                   "2 and 4 cells per core, a 48x48x16 timing box (a CI smoke run)");
-    verb->add_option("--json", o->jsonPath, "Also write the tables as JSON");
-    verb->footer(EXIT_CODES_FOOTER);
-    verbs.add(verb, [o] { return runBench([o] { return runBenchUnsteady(*o); }); });
 }
 
 }  // namespace

@@ -152,10 +152,10 @@ int runCheck(const SceneRunOptions& options) {
                      formatG(v.wsPosition_m[1], 3) + ") m, core " + formatG(v.coreRadius_m, 3) +
                      " m, circulation " + formatG(v.circulation(), 3) + " m^2/s" +
                      (v.updraft_mps > 0 ? ", updraft " + formatG(v.updraft_mps, 3) + " m/s" : "") +
-                     (v.forced ? ", forced" + (v.lifetime_s < 1e29
-                                                   ? " for " + formatG(v.lifetime_s, 3) + " s"
-                                                   : std::string())
-                               : ", free"));
+                     (v.forced
+                          ? ", forced" + (v.lifetime_s ? " for " + formatG(*v.lifetime_s, 3) + " s"
+                                                       : std::string())
+                          : ", free"));
         }
         line("", std::string("blade response ") +
                      coupling::bladeResponseName(scene.wind.response.response) + ", " +
@@ -213,21 +213,21 @@ int runCheck(const SceneRunOptions& options) {
             if (on) views += (views.empty() ? "" : ", ") + what;
         };
         add(ov.arrows, "arrows every " +
-                           (ov.arrowSpacing_m > 0 ? formatG(ov.arrowSpacing_m, 3) + " m"
-                                                  : std::string("1/16 of the terrain")) +
+                           (ov.arrowSpacing_m ? formatG(*ov.arrowSpacing_m, 3) + " m"
+                                              : std::string("1/16 of the terrain")) +
                            " at " +
-                           (ov.arrowHeight_m >= 0 ? formatG(ov.arrowHeight_m, 3) + " m"
-                                                  : std::string("1.25 x grass height")));
+                           (ov.arrowHeight_m ? formatG(*ov.arrowHeight_m, 3) + " m"
+                                             : std::string("1.25 x grass height")));
         add(ov.slice, "terrain-following slice " + formatG(ov.sliceHeight_m, 3) + " m up");
         add(ov.streamlines,
             std::to_string(ov.streamlineCount) + " streamlines from the upstream edge");
         add(ov.vortexCores, "vortex cores (Q > " +
-                                (ov.vortexQ_per_s2 > 0 ? formatG(ov.vortexQ_per_s2, 3) + " 1/s^2"
-                                                       : std::string("auto")) +
+                                (ov.vortexQ_per_s2 ? formatG(*ov.vortexQ_per_s2, 3) + " 1/s^2"
+                                                   : std::string("auto")) +
                                 ")");
         line("overlay", views + "; colour map viridis up to " +
-                            (ov.speedMax_mps > 0 ? formatG(ov.speedMax_mps, 3) + " m/s"
-                                                 : std::string("the largest speed")) +
+                            (ov.speedMax_mps ? formatG(*ov.speedMax_mps, 3) + " m/s"
+                                             : std::string("the largest speed")) +
                             (ov.legend ? ", with legend" : ", no legend"));
         if (!solved && (ov.slice || ov.streamlines || ov.vortexCores))
             line("",

@@ -207,7 +207,7 @@ int runProbe(const ProbeOptions& o) {
     try {
         domain = std::make_unique<sim::AirDomain>(terrain.field, scene.solver.domain);
     } catch (const std::invalid_argument& e) {
-        throw InputError(scene.where("solver") + ": " + e.what());
+        rethrowAsSceneError(scene, "solver", e);  // at the key's line when it names one
     }
     const std::vector<ProbePoint> points =
         readPoints(o.pointsPath, terrain.field, terrain.georef, domain->wsTop_m());
@@ -244,7 +244,7 @@ int runProbe(const ProbeOptions& o) {
             steady =
                 sim::solveSteadyWind(*domain, ambient, scene.solver.weights, scene.solver.settings);
         } catch (const std::invalid_argument& e) {
-            throw InputError(scene.where("wind") + ": " + e.what());
+            rethrowAsSceneError(scene, "wind", e);
         }
         if (!series) {
             appendRows(csv, points, steady.field, ambient, o.reference, std::nan(""));

@@ -4,7 +4,12 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <stdexcept>
+#include <string>
+
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 
 namespace gale::coupling {
 namespace {
@@ -28,7 +33,7 @@ constexpr double STREAMLINE_STEP_VOXELS = 0.5;
 glm::dvec3 toD(const std::array<double, 3>& a) { return glm::dvec3(a[0], a[1], a[2]); }
 
 double defaultSpacing(const MeshHeight& h, const OverlaySpec& spec) {
-    if (spec.arrowSpacing_m > 0.0) return spec.arrowSpacing_m;
+    if (spec.arrowSpacing_m) return *spec.arrowSpacing_m;
     return std::max(h.maxX() - h.minX(), h.maxY() - h.minY()) / DEFAULT_ARROWS_ALONG;
 }
 
@@ -63,21 +68,22 @@ render::OverlaySlice buildSlice(const MeshHeight& ground, double spacing, double
 
 void validate(const OverlaySpec& spec) {
     auto bad = [](const std::string& key, const std::string& what, double got) {
-        throw std::invalid_argument("overlay." + key + ": " + what + " (got " +
-                                    std::to_string(got) + ")");
+        throw ParameterError("overlay." + key, formatG(got), what);
     };
-    if (!(spec.arrowSpacing_m >= 0.0) || !std::isfinite(spec.arrowSpacing_m))
-        bad("arrow_spacing_m", "must be >= 0 (0: automatic)", spec.arrowSpacing_m);
-    if (!std::isfinite(spec.arrowHeight_m))
-        bad("arrow_height_m", "must be finite", spec.arrowHeight_m);
+    // An unset optional means "automatic"; a set one must be a usable number.
+    auto badOptional = [&](const std::optional<double>& v, const std::string& key, double lo,
+                           bool loOpen) {
+        if (v && (!std::isfinite(*v) || (loOpen ? !(*v > lo) : !(*v >= lo))))
+            bad(key, std::string(loOpen ? "must be > " : "must be >= ") + formatG(lo), *v);
+    };
+    badOptional(spec.arrowSpacing_m, "arrow_spacing_m", 0.0, /*loOpen=*/true);
+    badOptional(spec.arrowHeight_m, "arrow_height_m", 0.0, /*loOpen=*/false);
     if (!(spec.sliceHeight_m > 0.0) || !std::isfinite(spec.sliceHeight_m))
         bad("slice_height_m", "must be > 0", spec.sliceHeight_m);
     if (spec.streamlineCount < 1 || spec.streamlineCount > 1000)
         bad("streamline_count", "must be in 1..1000", spec.streamlineCount);
-    if (!(spec.vortexQ_per_s2 >= 0.0) || !std::isfinite(spec.vortexQ_per_s2))
-        bad("vortex_q_per_s2", "must be >= 0 (0: automatic)", spec.vortexQ_per_s2);
-    if (!(spec.speedMax_mps >= 0.0) || !std::isfinite(spec.speedMax_mps))
-        bad("speed_max_mps", "must be >= 0 (0: automatic)", spec.speedMax_mps);
+    badOptional(spec.vortexQ_per_s2, "vortex_q_per_s2", 0.0, /*loOpen=*/true);
+    badOptional(spec.speedMax_mps, "speed_max_mps", 0.0, /*loOpen=*/true);
 }
 
 MeshHeight::MeshHeight(const render::TerrainMesh& mesh) : mMesh(mesh) {
@@ -147,8 +153,7 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
         return toD(field.velocityAt_mps(p.x, p.y, p.z));
     };
     const double spacing = defaultSpacing(ground, spec);
-    const double arrowHeight =
-        spec.arrowHeight_m >= 0.0 ? spec.arrowHeight_m : ARROW_ABOVE_GRASS * grassHeight_m;
+    const double arrowHeight = spec.arrowHeight_m.value_or(ARROW_ABOVE_GRASS * grassHeight_m);
     render::FieldOverlayData data;
     data.legend = spec.legend;
     float maxSpeed = 0.0f;
@@ -243,9 +248,8 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
                     q[idx(i, j, k)] = qCriterion(g);
                     qMax = std::max(qMax, q[idx(i, j, k)]);
                 }
-        const double threshold = spec.vortexQ_per_s2 > 0.0
-                                     ? spec.vortexQ_per_s2
-                                     : std::max(0.25 * qMax, (0.1 * uMax / h) * (0.1 * uMax / h));
+        const double threshold = spec.vortexQ_per_s2.value_or(
+            std::max(0.25 * qMax, (0.1 * uMax / h) * (0.1 * uMax / h)));
         std::vector<std::pair<double, size_t>> cores;
         for (int k = 1; k + 1 < nz; ++k)
             for (int j = 1; j + 1 < ny; ++j)
@@ -281,8 +285,8 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
             data.vortexCores.push_back(m);
         }
     }
-    data.speedMax = spec.speedMax_mps > 0.0
-                        ? float(spec.speedMax_mps)
+    data.speedMax = spec.speedMax_mps
+                        ? float(*spec.speedMax_mps)
                         : std::max(float(spec.speedMaxFloor_mps), niceSpeedMax(maxSpeed));
     const double arrowScale = ARROW_LENGTH_OF_SPACING * spacing / data.speedMax;
     for (size_t a = 0; a < data.arrows.size(); ++a)
@@ -298,15 +302,14 @@ render::FieldOverlayData buildGrassWindOverlay(const render::GrassWind& wind,
     render::FieldOverlayData data;
     data.legend = spec.legend;
     data.unit = "intensity";
-    data.speedMax = spec.speedMax_mps > 0.0 ? float(spec.speedMax_mps) : 1.0f;
+    data.speedMax = float(spec.speedMax_mps.value_or(1.0));
     const std::vector<glm::vec3>& direction = wind.wsDirection();
     const std::vector<uint32_t>& group = wind.group();
     if (!spec.arrows || direction.size() != mesh.wsPosition_m.size() ||
         group.size() != mesh.wsPosition_m.size())
         return data;
     const double spacing = defaultSpacing(ground, spec);
-    const double arrowHeight =
-        spec.arrowHeight_m >= 0.0 ? spec.arrowHeight_m : ARROW_ABOVE_GRASS * grassHeight_m;
+    const double arrowHeight = spec.arrowHeight_m.value_or(ARROW_ABOVE_GRASS * grassHeight_m);
     const double arrowScale = ARROW_LENGTH_OF_SPACING * spacing / data.speedMax;
     for (double y : insetGrid(ground.minY(), ground.maxY(), spacing))
         for (double x : insetGrid(ground.minX(), ground.maxX(), spacing)) {

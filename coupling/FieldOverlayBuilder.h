@@ -10,6 +10,7 @@
 #include <array>
 #include <functional>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,19 +24,21 @@ namespace gale::coupling {
 /// The scene's [overlay] section (docs/scene-format.md). Heights are above the local ground.
 struct OverlaySpec {
     bool arrows = false;
-    double arrowSpacing_m =
-        0.0;  ///< grid spacing of the arrows; 0: 1/16 of the terrain's larger side
-    double arrowHeight_m =
-        -1.0;  ///< arrow bases this high above the ground; < 0: 1.25 x grass height
+    /// Grid spacing of the arrows, metres, > 0; unset: 1/16 of the terrain's larger side.
+    std::optional<double> arrowSpacing_m;
+    /// Arrow bases this high above the ground, metres, >= 0; unset: 1.25 x the grass height.
+    std::optional<double> arrowHeight_m;
     bool slice = false;
     double sliceHeight_m = 2.0;  ///< terrain-following slice this high above the ground, > 0
     bool streamlines = false;
     int streamlineCount = 12;  ///< seeds along the upstream edge, 1..1000
     bool vortexCores = false;
-    double vortexQ_per_s2 = 0.0;  ///< Q threshold, 1/s^2; 0: automatic (see buildFieldOverlay)
+    /// Q threshold, 1/s^2, > 0; unset: automatic (see buildFieldOverlay).
+    std::optional<double> vortexQ_per_s2;
     bool legend = true;
-    double speedMax_mps = 0.0;  ///< top of the colour map; 0: the largest speed shown, rounded up
-    /// With speedMax_mps = 0: the automatic top never goes below this, m/s. A run passes the last
+    /// Top of the colour map, m/s, > 0; unset: the largest speed shown, rounded up.
+    std::optional<double> speedMax_mps;
+    /// With speedMax_mps unset: the automatic top never goes below this, m/s. A run passes the last
     /// frame's top here so its colour scale only ever grows (frames stay comparable, the legend
     /// does not flicker as gusts come and go); see OverlayScaleKeeper.
     double speedMaxFloor_mps = 0.0;
@@ -60,7 +63,7 @@ class OverlayScaleKeeper {
     double mTop = 0.0;
 };
 
-/// Throws std::invalid_argument naming the key (overlay.arrow_spacing_m ...) on a bad value.
+/// Throws gale::ParameterError with the scene key (overlay.arrow_spacing_m ...) on a bad value.
 void validate(const OverlaySpec& spec);
 
 /// The terrain's height under a point, by bilinear interpolation of a render mesh (a regular grid

@@ -7,6 +7,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
+
 namespace gale::coupling {
 namespace {
 
@@ -26,8 +29,8 @@ void forEachPoint(size_t count, F&& f) {
 GrassSampler::GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_m,
                            const NearGround& nearGround) {
     if (!std::isfinite(sampleHeight_m) || sampleHeight_m < 0.0)
-        throw std::invalid_argument("wind.sample_height_m must be finite and >= 0, got " +
-                                    std::to_string(sampleHeight_m));
+        throw ParameterError("wind.sample_height_m", formatG(sampleHeight_m),
+                             "must be finite and >= 0");
     validate(nearGround);
     mVertex = mesh.wsPosition_m;
     mHeight_m = sampleHeight_m;

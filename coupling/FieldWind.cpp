@@ -11,6 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "coupling/GroupGrid.h"
 #include "coupling/PointSourceWind.h"
 
@@ -39,8 +41,7 @@ int fromName(const Named (&table)[N], const std::string& name, const char* field
         if (name == n.name) return n.value;
         valid += std::string(valid.empty() ? "" : ", ") + n.name;
     }
-    throw std::invalid_argument(std::string(field) + ": unknown value '" + name +
-                                "' (expected one of: " + valid + ")");
+    throw ParameterError(field, "'" + name + "'", "expected one of: " + valid);
 }
 
 template <size_t N>
@@ -51,11 +52,8 @@ const char* toName(const Named (&table)[N], int value) {
 }
 
 void requirePositive(double v, const char* field) {
-    if (!std::isfinite(v) || v <= 0.0) {
-        std::ostringstream msg;
-        msg << field << " must be a finite number > 0, got " << v;
-        throw std::invalid_argument(msg.str());
-    }
+    if (!std::isfinite(v) || v <= 0.0)
+        throw ParameterError(field, formatG(v), "must be a finite number > 0");
 }
 
 glm::vec3 finiteOrZero(const glm::vec3& v) {
@@ -75,17 +73,16 @@ Grouping groupingFromName(const std::string& name) {
 
 void validate(const FieldWindSpec& spec) {
     if (spec.grouping != Grouping::PerVertex && (spec.groups < 1 || spec.groups > 4096))
-        throw std::invalid_argument("wind.groups must be in 1..4096, got " +
-                                    std::to_string(spec.groups));
+        throw ParameterError("wind.groups", std::to_string(spec.groups), "must be in 1..4096");
     requirePositive(spec.bendSpeed_mps, "wind.bend_speed_mps");
     requirePositive(spec.maxIntensity, "wind.max_intensity");
     requirePositive(spec.frequency_hz, "wind.frequency_hz");
     requirePositive(spec.dampingRatio, "wind.damping_ratio");
     if (spec.response == BladeResponse::Oscillator && spec.grouping == Grouping::Levels)
-        throw std::invalid_argument(
-            "wind.grouping 'levels' regroups vertices at every field step, which would tear an "
-            "oscillator's state apart: use grouping = \"tiles\" or \"per_vertex\" with "
-            "response = \"oscillator\"");
+        throw ParameterError("wind.grouping", "\"levels\"",
+                             "\"tiles\" or \"per_vertex\" with response = \"oscillator\": "
+                             "'levels' regroups vertices at every field step, which would tear "
+                             "an oscillator's state apart");
 }
 
 FieldWind::FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec)

@@ -1,16 +1,17 @@
 #include "coupling/GustCurve.h"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
+
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 
 namespace gale::coupling {
 namespace {
 
-[[noreturn]] void badKey(size_t k, const std::string& why) {
-    std::ostringstream msg;
-    msg << "gust key " << k << ": " << why;
-    throw std::invalid_argument(msg.str());
+[[noreturn]] void badKey(size_t k, const GustKey& key, const std::string& why) {
+    throw ParameterError("wind.gust.keys[" + std::to_string(k) + "]",
+                         "[" + formatG(key.t_s) + ", " + formatG(key.intensity) + "]", why);
 }
 
 }  // namespace
@@ -18,19 +19,18 @@ namespace {
 GustCurve::GustCurve(double period_s, std::vector<GustKey> keys)
     : mPeriod_s(period_s), mKeys(std::move(keys)) {
     if (!std::isfinite(period_s) || period_s <= 0.0)
-        throw std::invalid_argument("gust period_s must be finite and > 0, got " +
-                                    std::to_string(period_s));
+        throw ParameterError("wind.gust.period_s", formatG(period_s), "must be finite and > 0");
     if (mKeys.empty()) throw std::invalid_argument("gust curve needs at least one key");
     for (size_t k = 0; k < mKeys.size(); ++k) {
         const GustKey& key = mKeys[k];
         if (!std::isfinite(key.t_s) || !std::isfinite(key.intensity))
-            badKey(k, "time and intensity must be finite");
+            badKey(k, key, "time and intensity must be finite");
         if (key.t_s < 0.0 || key.t_s >= period_s)
-            badKey(k, "time " + std::to_string(key.t_s) +
-                          " s is outside [0, period_s = " + std::to_string(period_s) + ")");
+            badKey(k, key, "time must be in [0, period_s = " + formatG(period_s) + ")");
         if (k > 0 && key.t_s <= mKeys[k - 1].t_s)
-            badKey(k, "times must increase strictly (previous key is at " +
-                          std::to_string(mKeys[k - 1].t_s) + " s)");
+            badKey(k, key,
+                   "times must increase strictly (previous key is at " + formatG(mKeys[k - 1].t_s) +
+                       " s)");
     }
     // Tangents of a monotone piecewise-cubic Hermite interpolant (Fritsch and Butland 1984):
     // zero at a local extremum of the keys, else a weighted harmonic mean of the neighbouring
@@ -58,15 +58,13 @@ GustCurve::GustCurve(double period_s, std::vector<GustKey> keys)
 GustCurve GustCurve::attackDecay(double period_s, double base, double peak, double attack_s,
                                  double decay_s) {
     if (!std::isfinite(attack_s) || attack_s <= 0.0)
-        throw std::invalid_argument("gust attack_s must be finite and > 0, got " +
-                                    std::to_string(attack_s));
+        throw ParameterError("wind.gust.attack_s", formatG(attack_s), "must be finite and > 0");
     if (!std::isfinite(decay_s) || decay_s <= 0.0)
-        throw std::invalid_argument("gust decay_s must be finite and > 0, got " +
-                                    std::to_string(decay_s));
+        throw ParameterError("wind.gust.decay_s", formatG(decay_s), "must be finite and > 0");
     if (!(attack_s + decay_s < period_s))
-        throw std::invalid_argument(
-            "gust attack_s + decay_s (" + std::to_string(attack_s + decay_s) +
-            " s) must be shorter than period_s (" + std::to_string(period_s) + " s)");
+        throw ParameterError("wind.gust.decay_s", formatG(decay_s),
+                             "attack_s + decay_s = " + formatG(attack_s + decay_s) +
+                                 " s must be shorter than period_s = " + formatG(period_s) + " s");
     return GustCurve(period_s, {{0.0, base}, {attack_s, peak}, {attack_s + decay_s, base}});
 }
 

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "coupling/GroupGrid.h"
 
 namespace gale::coupling {
@@ -22,12 +24,15 @@ PointSourceWind::PointSourceWind(const render::TerrainMesh& mesh, const PointSou
                                  GustCurve curve)
     : mSpec(spec), mCurve(std::move(curve)) {
     if (spec.steps < 1 || spec.steps > 1024)
-        throw std::invalid_argument("wind.steps must be in 1..1024, got " +
-                                    std::to_string(spec.steps));
+        throw ParameterError("wind.steps", std::to_string(spec.steps), "must be in 1..1024");
     if (!std::isfinite(spec.stepDelay_s) || spec.stepDelay_s < 0.0)
-        throw std::invalid_argument("wind.step_delay_s must be finite and >= 0, got " +
-                                    std::to_string(spec.stepDelay_s));
-    if (!finite(spec.wsSource_m)) throw std::invalid_argument("wind.source_m must be finite");
+        throw ParameterError("wind.step_delay_s", formatG(spec.stepDelay_s),
+                             "must be finite and >= 0");
+    if (!finite(spec.wsSource_m))
+        throw ParameterError("wind.source_m",
+                             "[" + formatG(spec.wsSource_m.x) + ", " + formatG(spec.wsSource_m.y) +
+                                 ", " + formatG(spec.wsSource_m.z) + "]",
+                             "must be finite");
     const size_t count = mesh.wsPosition_m.size();
     if (mesh.wsNormal.size() != count)
         throw std::invalid_argument("terrain mesh has " + std::to_string(count) +

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "coupling/GroupGrid.h"
 #include "coupling/PointSourceWind.h"
 
@@ -19,11 +21,10 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
     response.grouping = Grouping::Tiles;  // fixed groups: validate the rest as FieldWind does
     validate(response);
     if (spec.arrivalBands < 1 || spec.arrivalBands > 1024)
-        throw std::invalid_argument("wind.arrival_bands must be in 1..1024, got " +
-                                    std::to_string(spec.arrivalBands));
+        throw ParameterError("wind.arrival_bands", std::to_string(spec.arrivalBands),
+                             "must be in 1..1024");
     if (spec.levels < 1 || spec.levels > 256)
-        throw std::invalid_argument("wind.levels must be in 1..256, got " +
-                                    std::to_string(spec.levels));
+        throw ParameterError("wind.levels", std::to_string(spec.levels), "must be in 1..256");
     if (!std::isfinite(spec.convection_mps) || spec.convection_mps <= 0.0)
         throw std::invalid_argument("gust convection speed must be finite and > 0, got " +
                                     std::to_string(spec.convection_mps));

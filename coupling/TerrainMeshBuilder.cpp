@@ -4,6 +4,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
+
 namespace gale::coupling {
 namespace {
 
@@ -19,10 +22,9 @@ std::vector<int> strided(int n, int stride) {
 
 render::TerrainMesh buildTerrainMesh(const sim::Heightfield& field, float tile_m, int stride) {
     if (stride < 1)
-        throw std::invalid_argument("mesh stride must be >= 1, got " + std::to_string(stride));
+        throw ParameterError("terrain.mesh_stride", std::to_string(stride), "must be >= 1");
     if (!std::isfinite(tile_m) || tile_m <= 0.0f)
-        throw std::invalid_argument("grass.tile_m must be finite and > 0, got " +
-                                    std::to_string(tile_m));
+        throw ParameterError("grass.tile_m", formatG(tile_m), "must be finite and > 0");
     if (field.nx < 2 || field.ny < 2) throw std::invalid_argument("heightfield smaller than 2x2");
     const std::vector<int> is = strided(field.nx, stride), js = strided(field.ny, stride);
     render::TerrainMesh mesh;

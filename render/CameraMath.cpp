@@ -9,6 +9,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
+
 namespace gale::render {
 namespace {
 
@@ -20,12 +23,14 @@ bool finite3(const glm::vec3& v) {
 
 glm::mat4 cameraFromWorld(const Camera& camera) {
     if (!finite3(camera.wsPosition_m) || !finite3(camera.wsTarget_m)) {
-        throw std::invalid_argument("Camera: wsPosition_m and wsTarget_m must be finite");
+        throw ParameterError("camera.position_m", "a non-finite position or target",
+                             "camera.position_m and camera.target_m must be finite");
     }
     const glm::vec3 forward = camera.wsTarget_m - camera.wsPosition_m;
     const float length = glm::length(forward);
     if (!(length > 0.0f)) {
-        throw std::invalid_argument("Camera: wsPosition_m equals wsTarget_m; no view direction");
+        throw ParameterError("camera.target_m", "the camera's position",
+                             "must differ from camera.position_m (no view direction)");
     }
     // Within ~0.06 degrees of vertical the z-up hint is too close to the view direction.
     const bool vertical = std::abs(forward.z / length) > 0.999999f;
@@ -35,17 +40,17 @@ glm::mat4 cameraFromWorld(const Camera& camera) {
 
 glm::mat4 clipFromCamera(const Camera& camera, float aspect) {
     if (!(camera.fovY_deg > 0.0f && camera.fovY_deg < 180.0f)) {
-        throw std::invalid_argument("Camera.fovY_deg must be in (0, 180), got " +
-                                    std::to_string(camera.fovY_deg));
+        throw ParameterError("camera.fov_deg", formatG(camera.fovY_deg), "must be in (0, 180)");
     }
     if (!(aspect > 0.0f) || !std::isfinite(aspect)) {
         throw std::invalid_argument("Camera: aspect (width / height) must be > 0, got " +
                                     std::to_string(aspect));
     }
     if (!(camera.near_m > 0.0f && camera.far_m > camera.near_m && std::isfinite(camera.far_m))) {
-        throw std::invalid_argument("Camera: need 0 < near_m < far_m, got near_m " +
-                                    std::to_string(camera.near_m) + ", far_m " +
-                                    std::to_string(camera.far_m));
+        throw ParameterError(
+            !(camera.near_m > 0.0f) ? "camera.near_m" : "camera.far_m",
+            "near_m " + formatG(camera.near_m) + ", far_m " + formatG(camera.far_m),
+            "need 0 < near_m < far_m, both finite");
     }
     return glm::perspective(glm::radians(camera.fovY_deg), aspect, camera.near_m, camera.far_m);
 }

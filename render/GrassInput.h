@@ -78,7 +78,7 @@ struct PointLight {
 };
 
 struct Lighting {
-    glm::vec3 ambient{0.15f};        ///< added after attenuation (thesis 3.3.4)
+    glm::vec3 ambient{0.25f};        ///< added after attenuation (thesis 3.3.4)
     std::vector<PointLight> lights;  ///< any number, including none
     float specularPower = 32.0f;     ///< Kajiya-Kay specular exponent p
     float specularStrength = 0.3f;   ///< weight of the specular term
@@ -89,8 +89,8 @@ struct Camera {
     glm::vec3 wsPosition_m{0.0f, -50.0f, 30.0f};
     glm::vec3 wsTarget_m{0.0f};
     float fovY_deg = 45.0f;
-    float near_m = 0.5f;
-    float far_m = 2000.0f;
+    float near_m = 0.1f;
+    float far_m = 1000.0f;
 };
 
 /// Shell grass parameters (Bakay 2003, chapter 3; docs/render.md).
@@ -98,7 +98,7 @@ struct GrassParams {
     float height_m = 0.5f;   ///< full blade height
     int shells = 16;         ///< N: shells above the ground (N + 1 drawn with the ground), 1..256
     float stiffness = 1.0f;  ///< gamma in theta_j = (pi/2) I (j/N)^gamma; 1 is the paper's
-    float tile_m = 2.0f;     ///< metres one repeat of the grass texture spans
+    float tile_m = 3.0f;     ///< metres one repeat of the grass texture spans
     /// Lay the texture aperiodically: each cell of a jittered grid (one texture repeat wide) shows
     /// it turned, mirrored and shifted at random, so no repeat shows (docs/render.md). false: the
     /// plain repeat.

@@ -10,6 +10,9 @@
 #include <string>
 #include <utility>
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
+
 namespace gale::render {
 namespace {
 
@@ -64,22 +67,23 @@ void requireSquarePowerOfTwo(const Image& image, const char* what) {
 }
 
 void validateSpec(const GrassTextureSpec& spec) {
-    auto fail = [](const std::string& field, const std::string& expected, double got) {
-        throw std::invalid_argument("GrassTextureSpec." + field + " must be " + expected +
-                                    ", got " + std::to_string(got));
+    // The scene's keys ([grass.generated], docs/scene-format.md).
+    auto fail = [](const std::string& key, const std::string& expected, double got) {
+        throw ParameterError("grass.generated." + key, formatG(got), "must be " + expected);
     };
     if (!isPowerOfTwo(spec.size) || spec.size < 16 || spec.size > 4096) {
         fail("size", "a power of two in 16..4096", spec.size);
     }
     if (!(spec.density > 0.0f && spec.density <= 1.0f)) fail("density", "in (0, 1]", spec.density);
     if (!(spec.minHeight > 0.0f && spec.minHeight <= 1.0f)) {
-        fail("minHeight", "in (0, 1]", spec.minHeight);
+        fail("min_height", "in (0, 1]", spec.minHeight);
     }
     if (!(spec.colorVariation >= 0.0f && spec.colorVariation <= 1.0f)) {
-        fail("colorVariation", "in [0, 1]", spec.colorVariation);
+        fail("color_variation", "in [0, 1]", spec.colorVariation);
     }
     if (!finite3(spec.groundColor) || !finite3(spec.baseColor) || !finite3(spec.tipColor)) {
-        throw std::invalid_argument("GrassTextureSpec colours must be finite");
+        throw ParameterError("grass.generated.base_color", "a non-finite colour",
+                             "ground_color, base_color and tip_color must be finite");
     }
 }
 

@@ -13,7 +13,7 @@
 namespace gale::render {
 
 struct GrassTextureSpec {
-    int size = 512;  ///< texels per side (power of two, 16..4096)
+    int size = 256;  ///< texels per side (power of two, 16..4096)
     uint32_t seed = 1;
     float density = 0.35f;    ///< fraction of texels covered by blade cross-sections, (0, 1]
     float minHeight = 0.35f;  ///< shortest blade, fraction of the grass height, (0, 1]

@@ -38,9 +38,10 @@
 namespace gale::sim {
 
 struct DomainSpec {
-    double voxelSize_m = 2.0;          ///< cell edge (cubic cells), metres, > 0
-    std::optional<double> top_m;       ///< world z of the open top boundary; unset: automatic
-    double memoryLimit_bytes = 4.0e9;  ///< refuse domains whose estimate exceeds this, > 0
+    double voxelSize_m = 1.0;     ///< cell edge (cubic cells), metres, > 0
+    std::optional<double> top_m;  ///< world z of the open top boundary; unset: automatic
+    /// Refuse domains whose estimate exceeds this, bytes, > 0 (the scene's 4096 MiB).
+    double memoryLimit_bytes = 4096.0 * 1024.0 * 1024.0;
     /// true: cut cells (open fractions in [0, 1]); false: stair-steps, every fraction rounded to
     /// 0 or 1 at 1/2 (for comparisons: first-order boundary, docs/solver.md).
     bool cutCells = true;

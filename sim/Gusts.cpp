@@ -67,10 +67,10 @@ void GustEvent::validate() const {
         (!(regionSpeed_mps >= 0.0) || !std::isfinite(regionSpeed_mps)))
         throw std::invalid_argument("gust.region_speed_mps must be >= 0, got " +
                                     num(regionSpeed_mps));
-    if (envelope == GustEnvelope::Spline && attack_s >= 0.0 &&
-        !(attack_s > 0.0 && attack_s < duration_s))
+    if (envelope == GustEnvelope::Spline && attack_s &&
+        !(*attack_s > 0.0 && *attack_s < duration_s))
         throw std::invalid_argument("gust.attack_s must be in (0, duration_s = " + num(duration_s) +
-                                    "), got " + num(attack_s));
+                                    "), got " + num(*attack_s));
 }
 
 double GustEvent::envelopeAt(double t_s) const {
@@ -78,7 +78,7 @@ double GustEvent::envelopeAt(double t_s) const {
     if (!(s >= 0.0) || s > 1.0) return 0.0;
     switch (envelope) {
         case GustEnvelope::Spline: {
-            const double a = attack_s > 0.0 ? attack_s / duration_s : DEFAULT_ATTACK_FRACTION;
+            const double a = attack_s ? *attack_s / duration_s : DEFAULT_ATTACK_FRACTION;
             return s < a ? smoothstep(s / a) : 1.0 - smoothstep((s - a) / (1.0 - a));
         }
         case GustEnvelope::IecEog:

@@ -20,6 +20,7 @@
 ///    suite.
 
 #include <array>
+#include <optional>
 #include <string>
 
 namespace gale::sim {
@@ -49,7 +50,8 @@ struct GustEvent {
     double peak_mps = 3.0;       ///< peak added speed, m/s (may be negative: a lull)
     double duration_s = 4.0;     ///< length of the envelope, seconds, > 0
     GustEnvelope envelope = GustEnvelope::Spline;
-    double attack_s = -1.0;  ///< Spline only: rise time, in (0, duration_s); < 0: 0.15 duration
+    /// Spline only: rise time, seconds, in (0, duration_s); unset: 0.15 duration_s.
+    std::optional<double> attack_s;
     GustEntry entry = GustEntry::Inflow;
     std::array<double, 2> regionStart_m{0.0, 0.0};  ///< Region: centre at start_s, world metres
     bool regionStartGiven = false;  ///< false: the solver puts it on the upwind side of the domain

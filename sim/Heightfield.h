@@ -48,19 +48,20 @@ enum class TerrainKind {
 const char* terrainKindName(TerrainKind kind);
 TerrainKind terrainKindFromName(const std::string& name);
 
-/// A procedural terrain. All lengths in metres; the grid covers [0, size] in x and y.
+/// A procedural terrain. All lengths in metres; the grid covers [0, size] in x and y. The defaults
+/// are the scene format's ([terrain], docs/scene-format.md): a 6 m knoll on a 40 m square.
 struct TerrainSpec {
     TerrainKind kind = TerrainKind::GaussianHill;
-    double sizeX_m = 200.0, sizeY_m = 200.0;  ///< extent of the terrain
-    double spacing_m = 2.0;                   ///< heightfield sample spacing
-    double height_m = 20.0;  ///< hill/ridge height, valley/crater depth, fractal amplitude
-    double radius_m = 50.0;  ///< hill sigma, ridge/valley half-width, crater/hemisphere radius
-    double centerX_m = 100.0, centerY_m = 100.0;  ///< feature centre
+    double sizeX_m = 40.0, sizeY_m = 40.0;  ///< extent of the terrain
+    double spacing_m = 0.25;                ///< heightfield sample spacing
+    double height_m = 6.0;  ///< hill/ridge height, valley/crater depth, fractal amplitude
+    double radius_m = 8.0;  ///< hill sigma, ridge/valley half-width, crater/hemisphere radius
+    double centerX_m = 20.0, centerY_m = 20.0;  ///< feature centre (the scene: size / 2)
     double axis_deg = 0.0;        ///< ridge/valley axis, degrees counter-clockwise from +x
     uint32_t seed = 1;            ///< fractal seed
     int octaves = 5;              ///< fractal octaves
     double roughness = 0.5;       ///< fractal amplitude ratio between octaves
-    double featureSize_m = 80.0;  ///< fractal largest wavelength
+    double featureSize_m = 20.0;  ///< fractal largest wavelength
 };
 
 /// Builds the heightfield of a procedural kind (not Heightmap, which the scene loads from an

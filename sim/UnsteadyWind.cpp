@@ -330,7 +330,8 @@ void UnsteadyWindSolver::applyForcing(double t0, double dt) {
     const GroundHeight ground = [&T](double x, double y) { return T.sample(x, y); };
     for (size_t n = 0; n < mSettings.whirlwinds.size(); ++n) {
         const Whirlwind& ww = mSettings.whirlwinds[n];
-        if (!ww.forced || !mSeeded[n] || t0 > ww.start_s + ww.lifetime_s) continue;
+        if (!ww.forced || !mSeeded[n] || (ww.lifetime_s && t0 > ww.start_s + *ww.lifetime_s))
+            continue;
         const double R = std::max(FORCING_RING_CORES * ww.coreRadius_m, 2.0 * mGrid.voxelSize_m);
         const double g0 = ground(mAxes[n][0], mAxes[n][1]);
         const double column = ww.height_m > 0 ? ww.height_m : mDomain.wsTop_m() - g0;

@@ -64,8 +64,8 @@ void Whirlwind::validate() const {
     if (!(updraft_mps >= 0.0) || updraft_mps > 1000.0)
         throw std::invalid_argument("whirlwind.updraft_mps must be in [0, 1000], got " +
                                     num(updraft_mps));
-    if (!(lifetime_s > 0.0))
-        throw std::invalid_argument("whirlwind.lifetime_s must be > 0, got " + num(lifetime_s));
+    if (lifetime_s && !(*lifetime_s > 0.0))
+        throw std::invalid_argument("whirlwind.lifetime_s must be > 0, got " + num(*lifetime_s));
     if (!std::isfinite(start_s)) throw std::invalid_argument("whirlwind.start_s must be finite");
     if (!(height_m >= 0.0) || !std::isfinite(height_m))
         throw std::invalid_argument("whirlwind.height_m must be >= 0, got " + num(height_m));

@@ -22,6 +22,7 @@
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,9 +45,10 @@ struct Whirlwind {
     VortexProfile profile = VortexProfile::LambOseen;
     double updraft_mps = 0.0;  ///< core updraft, m/s (>= 0)
     double start_s = 0.0;      ///< seeding time, seconds
-    double lifetime_s = 1e30;  ///< forcing (if forced) stops at start_s + lifetime_s, > 0
-    bool forced = false;       ///< relax the circulation back to the seeded one during the lifetime
-    double height_m = 0.0;     ///< column height above the ground, metres; 0: up to the top
+    /// Forcing (if forced) stops at start_s + lifetime_s, seconds, > 0; unset: never stops.
+    std::optional<double> lifetime_s;
+    bool forced = false;    ///< relax the circulation back to the seeded one during the lifetime
+    double height_m = 0.0;  ///< column height above the ground, metres; 0: up to the top
     double outerRadiusFactor = 4.0;  ///< seeded out to this many core radii (then tapered), >= 1
 
     /// Throws std::invalid_argument naming the field.

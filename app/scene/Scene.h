@@ -54,6 +54,27 @@ struct GrassSection {
 /// sim/UnsteadyWind, docs/unsteady.md).
 enum class WindKind { PointSource, Solved, Unsteady };
 
+/// wind.kind as written in a scene: "point_source", "solved", "unsteady".
+inline const char* windKindName(WindKind kind) {
+    switch (kind) {
+        case WindKind::Solved:
+            return "solved";
+        case WindKind::Unsteady:
+            return "unsteady";
+        default:
+            return "point_source";
+    }
+}
+
+/// [wind.gust] without keys: the attack-decay intensity curve (coupling::GustCurve::attackDecay).
+struct GustShape {
+    double period_s = 4.0;        ///< the curve repeats every period, seconds
+    double base = 0.1;            ///< calm intensity
+    double peak = 0.8;            ///< gust intensity
+    double attackFraction = 0.1;  ///< attack_s defaults to this fraction of period_s
+    double decayFraction = 0.4;   ///< decay_s defaults to this fraction of period_s
+};
+
 struct WindSection {
     WindKind kind = WindKind::PointSource;
     coupling::PointSourceSpec pointSource;
@@ -64,10 +85,12 @@ struct WindSection {
     // kind == Solved (the ambient wind is also what `gale solve` solves for, whatever the kind):
     sim::AmbientWind ambient;
     coupling::FieldWindSpec response;  ///< blade response and, without gusts, grouping
-    double sampleHeight_m = -1.0;  ///< field sampled this high above the ground; < 0: grass height
-    bool gusts = false;            ///< [wind.gust] given: travelling gusts over the steady field
-    int arrivalBands = 16;         ///< gust groups: arrival-time bands ...
-    int levels = 4;                ///< ... times steady-intensity levels
+    /// The field is sampled this high above the ground, metres; unset: at the grass height.
+    std::optional<double> sampleHeight_m;
+    bool gusts = false;     ///< [wind.gust] given: travelling gusts over the steady field
+    int arrivalBands = 16;  ///< gust groups: arrival-time bands ...
+    int levels = 4;         ///< ... times steady-intensity levels
+    GustShape gustShape;    ///< [wind.gust]'s curve when it gives no keys
 };
 
 /// [solver]: the air domain and the elliptic solve (docs/solver.md).

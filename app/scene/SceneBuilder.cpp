@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <glm/common.hpp>
+#include <memory>
 #include <stdexcept>
 
 #include "app/io/Errors.h"
@@ -132,18 +133,31 @@ std::string describeDomain(const sim::AirDomain& d) {
     return buf;
 }
 
+/// The scene's air domain over the built terrain, summarised in built.domainSummary; a bad
+/// [solver] value becomes a SceneError at its key.
+std::unique_ptr<sim::AirDomain> buildDomain(const Scene& scene, BuiltScene& built) {
+    std::unique_ptr<sim::AirDomain> domain;
+    try {
+        domain = std::make_unique<sim::AirDomain>(built.heightfield, scene.solver.domain);
+    } catch (const std::invalid_argument& e) {
+        rethrowAsSceneError(scene, "solver", e);
+    }
+    built.domainSummary = describeDomain(*domain);
+    return domain;
+}
+
+/// Metres above the ground where the grass reads the field: wind.sample_height_m, or the grass
+/// height when the scene leaves it out.
+double sampleHeightOf(const Scene& scene) {
+    return scene.wind.sampleHeight_m.value_or(double(scene.grass.params.height_m));
+}
+
 /// wind.kind = "solved": the steady mass-consistent field (docs/design.md 4.1) sampled at grass
 /// height, then either held (steady) or swept by travelling gusts (docs/design.md 4.2, kinematic
 /// mode).
 void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
     const auto start = Clock::now();
-    std::optional<sim::AirDomain> domain;
-    try {
-        domain.emplace(built.heightfield, scene.solver.domain);
-    } catch (const std::invalid_argument& e) {
-        rethrowAsSceneError(scene, "solver", e);
-    }
-    built.domainSummary = describeDomain(*domain);
+    const std::unique_ptr<sim::AirDomain> domain = buildDomain(scene, built);
     if (!options.solveWind) return;
     if (options.progress) options.progress("solving the steady wind: " + built.domainSummary);
     sim::SteadyModelResult result;
@@ -155,13 +169,10 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
         rethrowAsSceneError(scene, "wind", e);
     }
     built.solve = result.report;
-    const double sampleHeight_m = scene.wind.sampleHeight_m >= 0.0
-                                      ? scene.wind.sampleHeight_m
-                                      : double(scene.grass.params.height_m);
     // Kept alive in the wind source for views of the field (coupling/FieldOverlayBuilder).
     auto field = std::make_shared<const sim::WindField>(std::move(result.field));
     const std::vector<glm::vec3> velocity =
-        coupling::sampleAtGrass(*field, built.mesh, sampleHeight_m, nearGroundOf(scene));
+        coupling::sampleAtGrass(*field, built.mesh, sampleHeightOf(scene), nearGroundOf(scene));
     try {
         if (scene.wind.gusts) {
             coupling::SteadyGustSpec spec;
@@ -194,14 +205,7 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
 /// (docs/design.md 4.2).
 void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
     const auto start = Clock::now();
-    auto domain = std::make_unique<sim::AirDomain>([&]() -> sim::AirDomain {
-        try {
-            return sim::AirDomain(built.heightfield, scene.solver.domain);
-        } catch (const std::invalid_argument& e) {
-            rethrowAsSceneError(scene, "solver", e);
-        }
-    }());
-    built.domainSummary = describeDomain(*domain);
+    std::unique_ptr<sim::AirDomain> domain = buildDomain(scene, built);
     if (!options.solveWind) return;
     if (options.progress)
         options.progress("solving the steady wind (initial state): " + built.domainSummary);
@@ -213,13 +217,10 @@ void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltSce
         rethrowAsSceneError(scene, "wind", e);
     }
     built.solve = result.report;
-    const double sampleHeight_m = scene.wind.sampleHeight_m >= 0.0
-                                      ? scene.wind.sampleHeight_m
-                                      : double(scene.grass.params.height_m);
     try {
         built.wind = std::make_unique<coupling::UnsteadyFieldWind>(
             built.mesh, std::move(domain), result.field, scene.unsteady.settings,
-            scene.wind.ambient.speed_mps, scene.wind.response, sampleHeight_m);
+            scene.wind.ambient.speed_mps, scene.wind.response, sampleHeightOf(scene));
     } catch (const std::invalid_argument& e) {
         rethrowAsSceneError(scene, "unsteady", e);
     }

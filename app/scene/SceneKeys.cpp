@@ -25,14 +25,14 @@ std::string readDemKeys(Section& s, TerrainSection& t, bool isDem) {
 }
 
 void readFromDeg(Section& s, sim::AmbientWind& a) {
-    if (!s.take("from_deg")) return;
+    const std::optional<double> from_deg = s.optionalNumber("from_deg", anyFinite());
+    if (!from_deg) return;
     if (s.given("direction_deg"))
         s.failKey("from_deg",
                   "give either from_deg (meteorological: where the wind comes from, "
                   "clockwise from north) or direction_deg (where it blows, "
                   "counter-clockwise from +x), not both");
-    a.direction_deg =
-        sim::AmbientWind::towardsFromMeteorological_deg(s.number("from_deg", 0.0, anyFinite()));
+    a.direction_deg = sim::AmbientWind::towardsFromMeteorological_deg(*from_deg);
 }
 
 void noteAmbientWithoutKind(Context& ctx, Section& s) {

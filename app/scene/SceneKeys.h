@@ -19,6 +19,8 @@ inline constexpr double MAX_INTENSITY = 4.0;
 inline glm::vec3 toVec3(const std::array<double, 3>& a) {
     return glm::vec3(static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]));
 }
+/// A render-side vector as a scene's [x, y, z] (a struct's default handed to Section::vec).
+inline std::array<double, 3> fromVec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
 /// [terrain] keys of kind = "dem": `dem` (the raster, as written; the parser resolves it) and
 /// `crop_m` ([min x, min y, max x, max y] in the DEM's coordinates, metres). Fills t.crop;

@@ -39,8 +39,6 @@ constexpr double PNG_BYTES_PER_PIXEL = 2.0;
 /// Bytes per pixel held by GL and the frame loop: colour and depth buffers, read-back, encoding.
 constexpr double FRAME_BYTES_PER_PIXEL = 16.0;
 
-std::array<double, 3> fromVec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
-
 std::string resolveAgainst(const fs::path& folder, const std::string& p) {
     fs::path path(p);
     if (path.is_absolute() || folder.empty()) return path.lexically_normal().string();
@@ -65,7 +63,7 @@ void readTerrain(Context& ctx, Section s) {
     TerrainSection& t = ctx.scene->terrain;
     sim::TerrainSpec& spec = t.spec;
 
-    const std::string kindName = s.string("kind", "gaussian_hill");
+    const std::string kindName = s.string("kind", sim::terrainKindName(spec.kind));
     const bool isDem = kindName == "dem";  // loaded like a heightmap, through GDAL (Dem.h)
     try {
         spec.kind = isDem ? sim::TerrainKind::Heightmap : sim::terrainKindFromName(kindName);
@@ -77,26 +75,26 @@ void readTerrain(Context& ctx, Section s) {
     }
     const bool heightmap = spec.kind == sim::TerrainKind::Heightmap && !isDem;
 
-    const auto size = s.vec<2>("size_m", {40.0, 40.0}, above(0.0));
+    const auto size = s.vec<2>("size_m", {spec.sizeX_m, spec.sizeY_m}, above(0.0));
     spec.sizeX_m = size[0];
     spec.sizeY_m = size[1];
-    spec.spacing_m = s.number("spacing_m", 0.25, above(0.0));
-    spec.height_m = s.number("height_m", 6.0, closed(0.0, 1e5));
-    spec.radius_m = s.number("radius_m", 8.0, above(0.0));
+    spec.spacing_m = s.number("spacing_m", spec.spacing_m, above(0.0));
+    spec.height_m = s.number("height_m", spec.height_m, closed(0.0, 1e5));
+    spec.radius_m = s.number("radius_m", spec.radius_m, above(0.0));
     const auto center = s.vec<2>("center_m", {spec.sizeX_m / 2, spec.sizeY_m / 2}, anyFinite());
     spec.centerX_m = center[0];
     spec.centerY_m = center[1];
-    spec.axis_deg = s.number("axis_deg", 0.0, anyFinite());
-    spec.seed = static_cast<uint32_t>(s.integer("seed", 1, 0, 4294967295LL));
-    spec.octaves = static_cast<int>(s.integer("octaves", 5, 1, 16));
-    spec.roughness = s.number("roughness", 0.5, above(0.0, 1.0));
-    spec.featureSize_m = s.number("feature_size_m", 20.0, above(0.0));
+    spec.axis_deg = s.number("axis_deg", spec.axis_deg, anyFinite());
+    spec.seed = static_cast<uint32_t>(s.integer("seed", spec.seed, 0, 4294967295LL));
+    spec.octaves = static_cast<int>(s.integer("octaves", spec.octaves, 1, 16));
+    spec.roughness = s.number("roughness", spec.roughness, above(0.0, 1.0));
+    spec.featureSize_m = s.number("feature_size_m", spec.featureSize_m, above(0.0));
 
     const std::string image = s.string("image", "");
-    t.metresPerPixel = s.number("metres_per_pixel", 1.0, above(0.0));
-    t.heightScale_m = s.number("height_scale_m", 10.0, closed(-1e5, 1e5));
-    t.heightOffset_m = s.number("height_offset_m", 0.0, closed(-1e5, 1e5));
-    t.meshStride = static_cast<int>(s.integer("mesh_stride", 1, 1, 1024));
+    t.metresPerPixel = s.number("metres_per_pixel", t.metresPerPixel, above(0.0));
+    t.heightScale_m = s.number("height_scale_m", t.heightScale_m, closed(-1e5, 1e5));
+    t.heightOffset_m = s.number("height_offset_m", t.heightOffset_m, closed(-1e5, 1e5));
+    t.meshStride = static_cast<int>(s.integer("mesh_stride", t.meshStride, 1, 1024));
     const std::string demFile = readDemKeys(s, t, isDem);
     s.finish();
 
@@ -172,13 +170,16 @@ void readTerrain(Context& ctx, Section s) {
 
 void readGrass(Context& ctx, Section s) {
     GrassSection& g = ctx.scene->grass;
-    g.params.height_m = static_cast<float>(s.number("height_m", 0.5, above(0.0, 100.0)));
-    g.params.shells = static_cast<int>(s.integer("shells", 16, 1, MAX_SHELLS));
-    g.params.stiffness = static_cast<float>(s.number("stiffness", 1.0, above(0.0, 100.0)));
-    g.params.tile_m = static_cast<float>(s.number("tile_m", 3.0, above(0.0, 1e5)));
+    g.params.height_m =
+        static_cast<float>(s.number("height_m", g.params.height_m, above(0.0, 100.0)));
+    g.params.shells = static_cast<int>(s.integer("shells", g.params.shells, 1, MAX_SHELLS));
+    g.params.stiffness =
+        static_cast<float>(s.number("stiffness", g.params.stiffness, above(0.0, 100.0)));
+    g.params.tile_m = static_cast<float>(s.number("tile_m", g.params.tile_m, above(0.0, 1e5)));
     const std::string texture = s.string("texture", "generated");
-    g.params.aperiodic = s.boolean("aperiodic", false);
-    g.params.lodPixels = static_cast<float>(s.number("lod_pixels", 2.0, closed(0.0, 1000.0)));
+    g.params.aperiodic = s.boolean("aperiodic", g.params.aperiodic);
+    g.params.lodPixels =
+        static_cast<float>(s.number("lod_pixels", g.params.lodPixels, closed(0.0, 1000.0)));
     const std::string densityMap = s.string("density_map", "");
     if (s.given("density_map")) {
         if (densityMap.empty()) s.failKey("density_map", "expected an image path (got \"\")");
@@ -188,12 +189,12 @@ void readGrass(Context& ctx, Section s) {
 
     Section gen = s.table("generated");
     render::GrassTextureSpec& spec = g.generated;
-    const int64_t size = gen.integer("size", 256, 16, 4096);
+    const int64_t size = gen.integer("size", spec.size, 16, 4096);
     if ((size & (size - 1)) != 0)
         gen.failKey("size",
                     "must be a power of two in 16..4096 (got " + std::to_string(size) + ")");
     spec.size = static_cast<int>(size);
-    spec.seed = static_cast<uint32_t>(gen.integer("seed", 1, 0, 4294967295LL));
+    spec.seed = static_cast<uint32_t>(gen.integer("seed", spec.seed, 0, 4294967295LL));
     spec.density = static_cast<float>(gen.number("density", spec.density, above(0.0, 1.0)));
     spec.minHeight = static_cast<float>(gen.number("min_height", spec.minHeight, above(0.0, 1.0)));
     spec.groundColor = toVec3(gen.vec<3>("ground_color", fromVec3(spec.groundColor), closed(0, 1)));
@@ -216,12 +217,12 @@ void readGrass(Context& ctx, Section s) {
 
 void readSolver(Context& ctx, Section s) {
     SolverSection& v = ctx.scene->solver;
-    v.domain.voxelSize_m = s.number("voxel_size_m", 1.0, above(0.0, 1e5));
-    if (s.take("top_m")) v.domain.top_m = s.number("top_m", 0.0, anyFinite());
+    v.domain.voxelSize_m = s.number("voxel_size_m", v.domain.voxelSize_m, above(0.0, 1e5));
+    v.domain.top_m = s.optionalNumber("top_m", anyFinite());
     v.domain.memoryLimit_bytes =
-        s.number("memory_limit_mb", 4096.0, above(0.0, 1e9)) * 1024.0 * 1024.0;
-    v.weights.alphaH = s.number("alpha_h", 1.0, above(0.0, 1e6));
-    v.weights.alphaV = s.number("alpha_v", 1.0, above(0.0, 1e6));
+        s.number("memory_limit_mb", v.domain.memoryLimit_bytes / MIB, above(0.0, 1e9)) * MIB;
+    v.weights.alphaH = s.number("alpha_h", v.weights.alphaH, above(0.0, 1e6));
+    v.weights.alphaV = s.number("alpha_v", v.weights.alphaV, above(0.0, 1e6));
     const double ratio =
         (v.weights.alphaH / v.weights.alphaV) * (v.weights.alphaH / v.weights.alphaV);
     if (ratio < sim::SteadyWindSolver::MIN_VERTICAL_RATIO ||
@@ -232,19 +233,22 @@ void readSolver(Context& ctx, Section s) {
                       Limit::num(sim::SteadyWindSolver::MAX_VERTICAL_RATIO) +
                       "]: stronger anisotropy defeats the multigrid smoother (got " +
                       Limit::num(ratio) + ")");
-    v.settings.relativeTolerance = s.number("tolerance", 1e-6, above(0.0, 0.5));
-    v.settings.maxIterations = static_cast<int>(s.integer("max_iterations", 100, 1, 100000));
+    v.settings.relativeTolerance =
+        s.number("tolerance", v.settings.relativeTolerance, above(0.0, 0.5));
+    v.settings.maxIterations =
+        static_cast<int>(s.integer("max_iterations", v.settings.maxIterations, 1, 100000));
     // The steady model (docs/validation.md compares them); the momentum keys apply to it only.
-    const std::string model = s.string("model", "mass_consistent");
+    const std::string model = s.string("model", sim::steadyModelName(v.model));
     try {
         v.model = sim::steadyModelFromName(model);
     } catch (const std::invalid_argument& e) {
         s.failKey("model", e.what());
     }
     v.domain.momentumModel = v.model == sim::SteadyModel::Momentum;
-    v.momentum.displacementHeight_m = s.number("displacement_height_m", 0.0, closed(0.0, 1e4));
+    v.momentum.displacementHeight_m =
+        s.number("displacement_height_m", v.momentum.displacementHeight_m, closed(0.0, 1e4));
     v.momentum.maxIterations =
-        static_cast<int>(s.integer("momentum_max_iterations", 300, 1, 100000));
+        static_cast<int>(s.integer("momentum_max_iterations", v.momentum.maxIterations, 1, 100000));
     s.finish();
 }
 
@@ -252,34 +256,36 @@ void readSolver(Context& ctx, Section s) {
 void readUnsteady(Context& ctx, Section s) {
     UnsteadySection& u = ctx.scene->unsteady;
     sim::UnsteadySettings& v = u.settings;
-    u.duration_s = s.number("duration_s", 10.0, above(0.0, 1e7));
-    v.dt_s = s.number("dt_s", 0.0, above(0.0, 1e6));
-    if (!s.given("dt_s")) v.dt_s = 0.0;
-    v.cfl = s.number("cfl", 2.0, above(0.0, 1000.0));
+    u.duration_s = s.number("duration_s", u.duration_s, above(0.0, 1e7));
+    if (const auto dt_s = s.optionalNumber("dt_s", above(0.0, 1e6))) v.dt_s = *dt_s;
+    v.cfl = s.number("cfl", v.cfl, above(0.0, 1000.0));
     if (s.given("dt_s") && s.given("cfl"))
         s.failKey("cfl", "give either dt_s (fixed step) or cfl (adaptive), not both");
-    v.maxDt_s = s.number("max_dt_s", 1.0, above(0.0, 1e6));
-    const std::string adv = s.string("advection", "semi_lagrangian");
+    v.maxDt_s = s.number("max_dt_s", v.maxDt_s, above(0.0, 1e6));
+    const std::string adv = s.string("advection", sim::advectionSchemeName(v.advection));
     try {
         v.advection = sim::advectionSchemeFromName(adv);
     } catch (const std::invalid_argument& e) {
         s.failKey("advection", e.what());
     }
-    v.viscosity_m2ps = s.number("viscosity_m2ps", 0.0, closed(0.0, 1e6));
-    v.vorticityConfinement = s.number("vorticity_confinement", 0.0, closed(0.0, 100.0));
-    v.openTop = s.boolean("open_top", false);
+    v.viscosity_m2ps = s.number("viscosity_m2ps", v.viscosity_m2ps, closed(0.0, 1e6));
+    v.vorticityConfinement =
+        s.number("vorticity_confinement", v.vorticityConfinement, closed(0.0, 100.0));
+    v.openTop = s.boolean("open_top", v.openTop);
     // The momentum model's surface layer in each step (sim/MomentumTurbulence.h): the wind's
     // roughness at the wall, the mixing-length eddy viscosity, a log wind held in balance.
-    v.surfaceLayer.enabled = s.boolean("surface_layer", false);
+    v.surfaceLayer.enabled = s.boolean("surface_layer", v.surfaceLayer.enabled);
     const sim::AmbientWind& ambient = ctx.scene->wind.ambient;
     v.surfaceLayer.roughness_m = ambient.roughness_m;
     v.surfaceLayer.displacementHeight_m = ctx.scene->solver.momentum.displacementHeight_m;
     if (ambient.profile == sim::WindProfile::LogLaw) v.surfaceLayer.balanced = ambient;
-    v.projection.relativeTolerance = s.number("tolerance", 1e-5, above(0.0, 0.5));
-    v.projection.maxIterations = static_cast<int>(s.integer("max_iterations", 60, 1, 100000));
-    u.outputEvery_s = s.number("output_every_s", 1.0, above(0.0, 1e7));
-    u.maxFiles = s.integer("max_files", DEFAULT_MAX_SEQUENCE_FILES, 1, 100000000);
-    u.maxSteps = s.integer("max_steps", DEFAULT_MAX_UNSTEADY_STEPS, 1, 1000000000000);
+    v.projection.relativeTolerance =
+        s.number("tolerance", v.projection.relativeTolerance, above(0.0, 0.5));
+    v.projection.maxIterations =
+        static_cast<int>(s.integer("max_iterations", v.projection.maxIterations, 1, 100000));
+    u.outputEvery_s = s.number("output_every_s", u.outputEvery_s, above(0.0, 1e7));
+    u.maxFiles = s.integer("max_files", u.maxFiles, 1, 100000000);
+    u.maxSteps = s.integer("max_steps", u.maxSteps, 1, 1000000000000);
     s.finish();
     if (ctx.scene->wind.kind == WindKind::Unsteady) {
         // Bounds on work (docs/reliability.md): the files and steps this run plans, refused
@@ -303,10 +309,13 @@ void readUnsteady(Context& ctx, Section s) {
 
 void readLighting(Context& ctx, Section s) {
     render::Lighting& l = ctx.scene->lighting;
-    l.ambient = toVec3(s.vec<3>("ambient", {0.25, 0.25, 0.25}, closed(0.0, 1e3)));
-    l.specularPower = static_cast<float>(s.number("specular_power", 32.0, closed(1.0, 4096.0)));
-    l.specularStrength = static_cast<float>(s.number("specular_strength", 0.3, closed(0.0, 1e3)));
-    l.selfShadowMin = static_cast<float>(s.number("self_shadow_min", 0.25, closed(0.0, 1.0)));
+    l.ambient = toVec3(s.vec<3>("ambient", fromVec3(l.ambient), closed(0.0, 1e3)));
+    l.specularPower =
+        static_cast<float>(s.number("specular_power", l.specularPower, closed(1.0, 4096.0)));
+    l.specularStrength =
+        static_cast<float>(s.number("specular_strength", l.specularStrength, closed(0.0, 1e3)));
+    l.selfShadowMin =
+        static_cast<float>(s.number("self_shadow_min", l.selfShadowMin, closed(0.0, 1.0)));
     std::vector<Section> lights = s.tables("light");
     s.finish();
     if (static_cast<int>(lights.size()) > maxLights())
@@ -315,9 +324,10 @@ void readLighting(Context& ctx, Section s) {
     for (Section& ls : lights) {
         render::PointLight light;
         if (!ls.take("position_m")) ls.fail(ls.line(), "", "missing key position_m (required)");
-        light.wsPosition_m = toVec3(ls.vec<3>("position_m", {0, 0, 0}, anyFinite()));
-        light.color = toVec3(ls.vec<3>("color", {1, 1, 1}, closed(0.0, 1e6)));
-        const auto att = ls.vec<3>("attenuation", {1, 0, 0}, closed(0.0, 1e6));
+        light.wsPosition_m =
+            toVec3(ls.vec<3>("position_m", fromVec3(light.wsPosition_m), anyFinite()));
+        light.color = toVec3(ls.vec<3>("color", fromVec3(light.color), closed(0.0, 1e6)));
+        const auto att = ls.vec<3>("attenuation", fromVec3(light.attenuation), closed(0.0, 1e6));
         if (!(att[0] + att[1] + att[2] > 0.0))
             ls.failKey("attenuation", "k_c, k_l and k_q cannot all be 0 (got [0, 0, 0])");
         light.attenuation = toVec3(att);
@@ -332,9 +342,9 @@ void readCamera(Context& ctx, Section s) {
     ctx.scene->autoCameraTarget = !s.take("target_m");
     c.wsPosition_m = toVec3(s.vec<3>("position_m", fromVec3(c.wsPosition_m), anyFinite()));
     c.wsTarget_m = toVec3(s.vec<3>("target_m", fromVec3(c.wsTarget_m), anyFinite()));
-    c.fovY_deg = static_cast<float>(s.number("fov_deg", 45.0, closed(1.0, 179.0)));
-    c.near_m = static_cast<float>(s.number("near_m", 0.1, above(0.0, 1e6)));
-    c.far_m = static_cast<float>(s.number("far_m", 1000.0, above(0.0, 1e9)));
+    c.fovY_deg = static_cast<float>(s.number("fov_deg", c.fovY_deg, closed(1.0, 179.0)));
+    c.near_m = static_cast<float>(s.number("near_m", c.near_m, above(0.0, 1e6)));
+    c.far_m = static_cast<float>(s.number("far_m", c.far_m, above(0.0, 1e9)));
     s.finish();
     if (!(c.far_m > c.near_m))
         s.failKey("far_m", "must be greater than near_m = " + Limit::num(c.near_m) + " (got " +
@@ -348,16 +358,16 @@ void readCamera(Context& ctx, Section s) {
 
 void readOutput(Context& ctx, Section s) {
     OutputSection& o = ctx.scene->output;
-    o.width = static_cast<int>(s.integer("width", 640, 1, MAX_IMAGE_SIDE_PX));
-    o.height = static_cast<int>(s.integer("height", 480, 1, MAX_IMAGE_SIDE_PX));
-    o.frames = static_cast<int>(s.integer("frames", 48, 1, MAX_FRAMES));
-    o.fps = s.number("fps", 24.0, above(0.0, 1000.0));
-    o.startTime_s = s.number("start_time_s", 0.0, closed(-1e9, 1e9));
+    o.width = static_cast<int>(s.integer("width", o.width, 1, MAX_IMAGE_SIDE_PX));
+    o.height = static_cast<int>(s.integer("height", o.height, 1, MAX_IMAGE_SIDE_PX));
+    o.frames = static_cast<int>(s.integer("frames", o.frames, 1, MAX_FRAMES));
+    o.fps = s.number("fps", o.fps, above(0.0, 1000.0));
+    o.startTime_s = s.number("start_time_s", o.startTime_s, closed(-1e9, 1e9));
     o.folder = s.string("folder", "out/" + ctx.scene->name);
-    o.prefix = s.string("prefix", "frame");
-    o.contactSheet = s.boolean("contact_sheet", true);
-    o.gif = s.boolean("gif", true);
-    o.format = s.string("format", "png");
+    o.prefix = s.string("prefix", o.prefix);
+    o.contactSheet = s.boolean("contact_sheet", o.contactSheet);
+    o.gif = s.boolean("gif", o.gif);
+    o.format = s.string("format", o.format);
     s.finish();
     if (o.format != "png" && o.format != "exr")
         s.failKey("format", "must be \"png\" or \"exr\" (got \"" + o.format + "\")");
@@ -375,17 +385,17 @@ void readOutput(Context& ctx, Section s) {
 
 void readOverlay(Context& ctx, Section s) {
     coupling::OverlaySpec& o = ctx.scene->overlay;
-    o.arrows = s.boolean("arrows", false);
-    o.arrowSpacing_m = s.number("arrow_spacing_m", 0.0, closed(0.0, 1e6));
-    o.arrowHeight_m = s.number("arrow_height_m", -1.0, closed(-1.0, 1e6));
-    o.slice = s.boolean("slice", false);
-    o.sliceHeight_m = s.number("slice_height_m", 2.0, above(0.0, 1e6));
-    o.streamlines = s.boolean("streamlines", false);
-    o.streamlineCount = static_cast<int>(s.integer("streamline_count", 12, 1, 1000));
-    o.vortexCores = s.boolean("vortex_cores", false);
-    o.vortexQ_per_s2 = s.number("vortex_q_per_s2", 0.0, closed(0.0, 1e12));
-    o.legend = s.boolean("legend", true);
-    o.speedMax_mps = s.number("speed_max_mps", 0.0, closed(0.0, 1e6));
+    o.arrows = s.boolean("arrows", o.arrows);
+    o.arrowSpacing_m = s.optionalNumber("arrow_spacing_m", above(0.0, 1e6));
+    o.arrowHeight_m = s.optionalNumber("arrow_height_m", closed(0.0, 1e6));
+    o.slice = s.boolean("slice", o.slice);
+    o.sliceHeight_m = s.number("slice_height_m", o.sliceHeight_m, above(0.0, 1e6));
+    o.streamlines = s.boolean("streamlines", o.streamlines);
+    o.streamlineCount = static_cast<int>(s.integer("streamline_count", o.streamlineCount, 1, 1000));
+    o.vortexCores = s.boolean("vortex_cores", o.vortexCores);
+    o.vortexQ_per_s2 = s.optionalNumber("vortex_q_per_s2", above(0.0, 1e12));
+    o.legend = s.boolean("legend", o.legend);
+    o.speedMax_mps = s.optionalNumber("speed_max_mps", above(0.0, 1e6));
     s.finish();
 }
 
@@ -454,7 +464,11 @@ std::string formatBytes(double bytes) {
     return buf;
 }
 
-Scene parseSceneString(const std::string& text, const std::string& pathForMessages) {
+namespace {
+
+/// Parses `text`; with `defaults` set, also records every key's default there (Context).
+Scene parseScene(const std::string& text, const std::string& pathForMessages,
+                 std::map<std::string, std::string>* defaults) {
     Scene scene;
     scene.path = pathForMessages;
     scene.name = fs::path(pathForMessages).stem().string();
@@ -471,9 +485,9 @@ Scene parseSceneString(const std::string& text, const std::string& pathForMessag
                          std::to_string(begin.column) + ": " + reason);
     }
 
-    Context ctx{pathForMessages, fs::path(pathForMessages).parent_path(), &scene};
+    Context ctx{pathForMessages, fs::path(pathForMessages).parent_path(), &scene, defaults};
     Section top(ctx, &root, "", 1);
-    scene.description = top.string("description", "");
+    scene.description = top.string("description", scene.description);
     // Terrain first: later sections' defaults and checks may depend on it.
     readTerrain(ctx, top.table("terrain"));
     readGrass(ctx, top.table("grass"));
@@ -486,6 +500,39 @@ Scene parseSceneString(const std::string& text, const std::string& pathForMessag
     readOverlay(ctx, top.table("overlay"));
     top.finish();
     return scene;
+}
+
+}  // namespace
+
+Scene parseSceneString(const std::string& text, const std::string& pathForMessages) {
+    return parseScene(text, pathForMessages, nullptr);
+}
+
+std::map<std::string, std::string> sceneKeyDefaults() {
+    // The smallest scene that reaches every reader: entries of the arrays of tables are read one
+    // by one, so it names one gust, one whirlwind and one light, with only their required keys.
+    const std::string scene = R"(
+[[wind.gusts]]
+[[wind.whirlwinds]]
+position_m = [10, 10]
+peak_speed_mps = 3
+[[lighting.light]]
+position_m = [0, 0, 10]
+)";
+    std::map<std::string, std::string> indexed, out;
+    (void)parseScene(scene, "defaults.toml", &indexed);
+    for (const auto& [key, text] : indexed) {
+        std::string plain;  // "wind.gusts[0].start_s" -> "wind.gusts.start_s"
+        for (size_t i = 0; i < key.size(); ++i) {
+            if (key[i] != '[') {
+                plain += key[i];
+                continue;
+            }
+            while (i < key.size() && key[i] != ']') ++i;
+        }
+        out[plain] = text;
+    }
+    return out;
 }
 
 Scene parseSceneFile(const std::string& path) {

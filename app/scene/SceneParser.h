@@ -12,6 +12,7 @@
 /// @endcode
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -42,6 +43,14 @@ Scene parseSceneFile(const std::string& path);
 /// Parses scene text; `pathForMessages` names it in error messages and its folder anchors the
 /// relative paths inside (image files). Throws SceneError.
 Scene parseSceneString(const std::string& text, const std::string& pathForMessages);
+
+/// Every key the parser reads, dotted ("terrain.size_m", "wind.gusts.start_s": entries of arrays of
+/// tables without their index), with its default as TOML text ("[40.0, 40.0]") taken from the
+/// struct field the value goes to. Optional keys, whose absence has a meaning of its own (`top_m`,
+/// `sample_height_m`, ...), map to "" (no default); required keys carry a placeholder; tables
+/// appear as keys of their own ("wind.gust"). docs/scene-format.md lists the same defaults; a test
+/// holds the two together.
+std::map<std::string, std::string> sceneKeyDefaults();
 
 /// Estimated bytes of the heightfield (nx x ny samples) and its render mesh (every stride-th
 /// sample): positions, normals, texture coordinates, wind directions and groups, indices, and

@@ -13,6 +13,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -179,6 +181,9 @@ struct Context {
     std::string file;  ///< the scene path as the user gave it
     fs::path folder;   ///< folder relative paths resolve against
     Scene* scene;
+    /// When set, every getter records its key's default here as TOML text ("terrain.size_m" ->
+    /// "[40.0, 40.0]"), for sceneKeyDefaults (SceneParser.h).
+    std::map<std::string, std::string>* defaults = nullptr;
 };
 
 /// One TOML table being read: every getter records the key as known (so `finish` can tell typos
@@ -198,6 +203,7 @@ class Section {
     /// The node at `key`, or nullptr; marks the key as known and records its line.
     const toml::node* take(const std::string& key) {
         if (std::find(mKnown.begin(), mKnown.end(), key) == mKnown.end()) mKnown.push_back(key);
+        if (mCtx.defaults) mCtx.defaults->emplace(full(key), "");  // no default unless a getter's
         if (!mTable) return nullptr;
         auto it = mTable->find(key);
         if (it == mTable->end()) return nullptr;
@@ -225,17 +231,28 @@ class Section {
         fail(lineOfKey(key), key, reason);
     }
 
+    /// The getters below return the value written under `key`, checked, or `def` when the key is
+    /// absent. `def` is the default of the struct field the value goes to, never a second copy.
     double number(const std::string& key, double def, Limit limit) {
+        noteDefault(key, showNumber(def));
         const toml::node* n = take(key);
         return n ? toNumber(*n, key, limit) : def;
     }
 
+    /// An optional key (no default: its absence has a meaning of its own, documented with it).
+    std::optional<double> optionalNumber(const std::string& key, Limit limit) {
+        const toml::node* n = take(key);
+        return n ? std::optional<double>(toNumber(*n, key, limit)) : std::nullopt;
+    }
+
     int64_t integer(const std::string& key, int64_t def, int64_t lo, int64_t hi) {
+        noteDefault(key, std::to_string(def));
         const toml::node* n = take(key);
         return n ? toInteger(*n, key, lo, hi) : def;
     }
 
     std::string string(const std::string& key, const std::string& def) {
+        noteDefault(key, show(toml::value<std::string>(def)));
         const toml::node* n = take(key);
         if (!n) return def;
         if (!n->is_string()) failValue(*n, key, "expected a string, not " + typeName(n->type()));
@@ -243,6 +260,7 @@ class Section {
     }
 
     bool boolean(const std::string& key, bool def) {
+        noteDefault(key, def ? "true" : "false");
         const toml::node* n = take(key);
         if (!n) return def;
         if (!n->is_boolean())
@@ -252,6 +270,9 @@ class Section {
 
     template <size_t N>
     std::array<double, N> vec(const std::string& key, std::array<double, N> def, Limit limit) {
+        std::string text = "[";
+        for (size_t i = 0; i < N; ++i) text += (i ? ", " : "") + showNumber(def[i]);
+        noteDefault(key, text + "]");
         const toml::node* n = take(key);
         if (!n) return def;
         const toml::array* a = n->as_array();
@@ -336,6 +357,10 @@ class Section {
     }
 
   private:
+    void noteDefault(const std::string& key, const std::string& text) {
+        if (mCtx.defaults) (*mCtx.defaults)[full(key)] = text;
+    }
+
     Context& mCtx;
     const toml::table* mTable;
     std::string mName;

@@ -35,28 +35,27 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
     const bool unsteady = w.kind == WindKind::Unsteady;
     for (Section& gs : s.tables("gusts")) {
         sim::GustEvent g;
-        g.start_s = gs.number("start_s", 0.0, closed(0.0, 1e9));
+        g.start_s = gs.number("start_s", g.start_s, closed(0.0, 1e9));
         g.direction_deg = gs.number("direction_deg", w.ambient.direction_deg, anyFinite());
-        g.peak_mps = gs.number("peak_mps", 3.0, closed(-1000.0, 1000.0));
-        g.duration_s = gs.number("duration_s", 4.0, above(0.0, 1e9));
-        const std::string env = gs.string("envelope", "spline");
+        g.peak_mps = gs.number("peak_mps", g.peak_mps, closed(-1000.0, 1000.0));
+        g.duration_s = gs.number("duration_s", g.duration_s, above(0.0, 1e9));
+        const std::string env = gs.string("envelope", sim::gustEnvelopeName(g.envelope));
         try {
             g.envelope = sim::gustEnvelopeFromName(env);
         } catch (const std::invalid_argument& e) {
             gs.failKey("envelope", e.what());
         }
-        g.attack_s = gs.number("attack_s", -1.0, above(0.0, 1e9));
-        if (!gs.given("attack_s")) g.attack_s = -1.0;
-        const std::string entry = gs.string("entry", "inflow");
+        g.attack_s = gs.optionalNumber("attack_s", above(0.0, 1e9));
+        const std::string entry = gs.string("entry", sim::gustEntryName(g.entry));
         try {
             g.entry = sim::gustEntryFromName(entry);
         } catch (const std::invalid_argument& e) {
             gs.failKey("entry", e.what());
         }
         g.regionStartGiven = gs.take("region_start_m") != nullptr;
-        g.regionStart_m = gs.vec<2>("region_start_m", {0.0, 0.0}, anyFinite());
-        g.regionRadius_m = gs.number("region_radius_m", 10.0, above(0.0, 1e6));
-        g.regionSpeed_mps = gs.number("region_speed_mps", 0.0, closed(0.0, 1000.0));
+        g.regionStart_m = gs.vec<2>("region_start_m", g.regionStart_m, anyFinite());
+        g.regionRadius_m = gs.number("region_radius_m", g.regionRadius_m, above(0.0, 1e6));
+        g.regionSpeed_mps = gs.number("region_speed_mps", g.regionSpeed_mps, closed(0.0, 1000.0));
         gs.finish();
         for (const char* key : {"region_start_m", "region_radius_m", "region_speed_mps"})
             if (gs.given(key) && g.entry != sim::GustEntry::Region)
@@ -65,9 +64,9 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
         if (gs.given("attack_s") && g.envelope != sim::GustEnvelope::Spline)
             ctx.scene->notes.push_back(ctx.scene->where(gs.full("attack_s")) +
                                        ": only the spline envelope has an attack time (ignored)");
-        if (g.attack_s > 0.0 && !(g.attack_s < g.duration_s))
+        if (g.attack_s && !(*g.attack_s < g.duration_s))
             gs.failKey("attack_s", "must be shorter than duration_s = " + Limit::num(g.duration_s) +
-                                       " (got " + Limit::num(g.attack_s) + ")");
+                                       " (got " + Limit::num(*g.attack_s) + ")");
         u.gusts.push_back(g);
         if (!unsteady)
             ctx.scene->notes.push_back(ctx.file + ":" + std::to_string(gs.line()) + ": " +
@@ -78,12 +77,12 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
         sim::Whirlwind v;
         if (!ws.take("position_m"))
             ws.fail(ws.line(), "", "missing key position_m (required: [x, y] of the axis)");
-        v.wsPosition_m = ws.vec<2>("position_m", {0, 0}, anyFinite());
-        v.coreRadius_m = ws.number("core_radius_m", 3.0, above(0.0, 1e6));
+        v.wsPosition_m = ws.vec<2>("position_m", v.wsPosition_m, anyFinite());
+        v.coreRadius_m = ws.number("core_radius_m", v.coreRadius_m, above(0.0, 1e6));
         const bool hasGamma = ws.take("circulation_m2ps") != nullptr,
                    hasPeak = ws.take("peak_speed_mps") != nullptr;
-        v.circulation_m2ps = ws.number("circulation_m2ps", 0.0, closed(-1e7, 1e7));
-        v.peakSpeed_mps = ws.number("peak_speed_mps", 0.0, closed(-1000.0, 1000.0));
+        v.circulation_m2ps = ws.number("circulation_m2ps", v.circulation_m2ps, closed(-1e7, 1e7));
+        v.peakSpeed_mps = ws.number("peak_speed_mps", v.peakSpeed_mps, closed(-1000.0, 1000.0));
         if (hasGamma && hasPeak)
             ws.failKey("peak_speed_mps",
                        "give either circulation_m2ps or peak_speed_mps, not both");
@@ -93,17 +92,17 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
         if ((hasPeak && v.peakSpeed_mps == 0.0) || (hasGamma && v.circulation_m2ps == 0.0))
             ws.failKey(hasPeak ? "peak_speed_mps" : "circulation_m2ps",
                        "must not be 0 (the sign gives the sense of rotation)");
-        const std::string profile = ws.string("profile", "lamb_oseen");
+        const std::string profile = ws.string("profile", sim::vortexProfileName(v.profile));
         try {
             v.profile = sim::vortexProfileFromName(profile);
         } catch (const std::invalid_argument& e) {
             ws.failKey("profile", e.what());
         }
-        v.updraft_mps = ws.number("updraft_mps", 0.0, closed(0.0, 1000.0));
-        v.start_s = ws.number("start_s", 0.0, closed(0.0, 1e9));
-        v.lifetime_s = ws.number("lifetime_s", 1e30, above(0.0));
-        v.forced = ws.boolean("forced", false);
-        v.height_m = ws.number("height_m", 0.0, closed(0.0, 1e6));
+        v.updraft_mps = ws.number("updraft_mps", v.updraft_mps, closed(0.0, 1000.0));
+        v.start_s = ws.number("start_s", v.start_s, closed(0.0, 1e9));
+        v.lifetime_s = ws.optionalNumber("lifetime_s", above(0.0));
+        v.forced = ws.boolean("forced", v.forced);
+        v.height_m = ws.number("height_m", v.height_m, closed(0.0, 1e6));
         ws.finish();
         if (ws.given("lifetime_s") && !v.forced)
             ctx.scene->notes.push_back(
@@ -121,7 +120,7 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
 
 void readWind(Context& ctx, Section s) {
     WindSection& w = ctx.scene->wind;
-    const std::string kind = s.string("kind", "point_source");
+    const std::string kind = s.string("kind", windKindName(w.kind));
     if (kind == "point_source")
         w.kind = WindKind::PointSource;
     else if (kind == "solved")
@@ -133,11 +132,12 @@ void readWind(Context& ctx, Section s) {
                   "expected \"point_source\", \"solved\" or \"unsteady\" (got \"" + kind + "\")");
     coupling::PointSourceSpec& p = w.pointSource;
     w.autoSource = !s.take("source_m");
-    if (!w.autoSource) p.wsSource_m = toVec3(s.vec<3>("source_m", {0, 0, 0}, anyFinite()));
-    p.steps = static_cast<int>(s.integer("steps", 16, 1, 1024));
-    p.stepDelay_s = s.number("step_delay_s", 0.15, closed(0.0, 3600.0));
-    p.blowAway = s.boolean("blow_away", true);
-    p.blendGroups = s.boolean("blend_groups", true);
+    if (!w.autoSource)
+        p.wsSource_m = toVec3(s.vec<3>("source_m", fromVec3(p.wsSource_m), anyFinite()));
+    p.steps = static_cast<int>(s.integer("steps", p.steps, 1, 1024));
+    p.stepDelay_s = s.number("step_delay_s", p.stepDelay_s, closed(0.0, 3600.0));
+    p.blowAway = s.boolean("blow_away", p.blowAway);
+    p.blendGroups = s.boolean("blend_groups", p.blendGroups);
 
     // The ambient wind (first guess of the solve, docs/design.md 4.1): read whatever the kind,
     // since `gale solve` uses it for any scene.
@@ -147,7 +147,7 @@ void readWind(Context& ctx, Section s) {
     a.direction_deg = s.number("direction_deg", a.direction_deg, anyFinite());
     readFromDeg(s, a);
     noteAmbientWithoutKind(ctx, s);
-    const std::string profile = s.string("profile", "log");
+    const std::string profile = s.string("profile", sim::windProfileName(a.profile));
     try {
         a.profile = sim::windProfileFromName(profile);
     } catch (const std::invalid_argument& e) {
@@ -166,22 +166,22 @@ void readWind(Context& ctx, Section s) {
     // How the grass answers the solved field (coupling/FieldWind.h).
     coupling::FieldWindSpec& r = w.response;
     try {
-        r.response = coupling::bladeResponseFromName(s.string("response", "static"));
+        r.response = coupling::bladeResponseFromName(
+            s.string("response", coupling::bladeResponseName(r.response)));
         r.grouping = coupling::groupingFromName(s.string(
             "grouping", r.response == coupling::BladeResponse::Oscillator ? "tiles" : "levels"));
     } catch (const std::invalid_argument& e) {
         s.failKey(s.given("grouping") ? "grouping" : "response", e.what());
     }
-    r.groups = static_cast<int>(s.integer("groups", 64, 1, 4096));
+    r.groups = static_cast<int>(s.integer("groups", r.groups, 1, 4096));
     r.blendGroups = p.blendGroups;
     r.bendSpeed_mps = s.number("bend_speed_mps", r.bendSpeed_mps, above(0.0, 1e4));
     r.maxIntensity = s.number("max_intensity", r.maxIntensity, above(0.0, MAX_INTENSITY));
     r.frequency_hz = s.number("frequency_hz", r.frequency_hz, above(0.0, 1e3));
     r.dampingRatio = s.number("damping_ratio", r.dampingRatio, above(0.0, 100.0));
-    w.sampleHeight_m = s.number("sample_height_m", -1.0, atLeast(0.0, 1e4));
-    if (!s.given("sample_height_m")) w.sampleHeight_m = -1.0;
-    w.arrivalBands = static_cast<int>(s.integer("arrival_bands", 16, 1, 1024));
-    w.levels = static_cast<int>(s.integer("levels", 4, 1, 256));
+    w.sampleHeight_m = s.optionalNumber("sample_height_m", atLeast(0.0, 1e4));
+    w.arrivalBands = static_cast<int>(s.integer("arrival_bands", w.arrivalBands, 1, 1024));
+    w.levels = static_cast<int>(s.integer("levels", w.levels, 1, 256));
     try {
         coupling::validate(r);
     } catch (const std::invalid_argument& e) {
@@ -208,14 +208,15 @@ void readWind(Context& ctx, Section s) {
             ctx.scene->where("wind.gust") +
             ": the kinematic gust curve is not used by kind \"unsteady\" (its gusts are "
             "[[wind.gusts]]) (ignored)");
-    const double period_s = g.number("period_s", 4.0, above(0.0, 1e6));
+    const GustShape& shape = w.gustShape;
+    const double period_s = g.number("period_s", shape.period_s, above(0.0, 1e6));
     const toml::node* keys = g.take("keys");
     const bool shaped = g.take("base") || g.take("peak") || g.take("attack_s") || g.take("decay_s");
-    const double base = g.number("base", 0.1, closed(-MAX_INTENSITY, MAX_INTENSITY));
-    const double peak = g.number("peak", 0.8, closed(-MAX_INTENSITY, MAX_INTENSITY));
+    const double base = g.number("base", shape.base, closed(-MAX_INTENSITY, MAX_INTENSITY));
+    const double peak = g.number("peak", shape.peak, closed(-MAX_INTENSITY, MAX_INTENSITY));
     // Defaults scale with the period (0.4 s and 1.6 s at the default 4 s), so any period works.
-    const double attack_s = g.number("attack_s", 0.1 * period_s, above(0.0, 1e6));
-    const double decay_s = g.number("decay_s", 0.4 * period_s, above(0.0, 1e6));
+    const double attack_s = g.number("attack_s", shape.attackFraction * period_s, above(0.0, 1e6));
+    const double decay_s = g.number("decay_s", shape.decayFraction * period_s, above(0.0, 1e6));
     g.finish();
     s.finish();
 

@@ -47,6 +47,13 @@ TestRaster projectedWithBorder() {
     return r;
 }
 
+/// The whole raster at `path` (no crop window, stride 1).
+DemSpec demAt(const std::filesystem::path& path) {
+    DemSpec spec;
+    spec.path = path.string();
+    return spec;
+}
+
 std::string demError(const DemSpec& spec) {
     try {
         loadDem(spec);
@@ -69,7 +76,7 @@ void expectHeightsOnThePlane(const Dem& dem) {
 TEST(Dem, ProjectedGeoTiffWithNodataBorderGivesHeightsAtTheirCoordinates) {
     TempDir dir;
     ASSERT_EQ(test::writeTestRaster(dir / "dem.tif", projectedWithBorder()), "");
-    const Dem dem = loadDem({dir / "dem.tif"});
+    const Dem dem = loadDem(demAt(dir / "dem.tif"));
     EXPECT_EQ(dem.field.nx, COLS - 2 * BORDER);
     EXPECT_EQ(dem.field.ny, ROWS - 2 * BORDER);
     EXPECT_EQ(dem.trimmedColumns, 2 * BORDER);
@@ -102,7 +109,7 @@ TEST(Dem, AsciiGridWithItsPrjIsReadLikeAGeoTiff) {
         return plane_m(X0 + (col + 0.5) * PIXEL_M, Y0 - (row + 0.5) * PIXEL_M);
     };
     ASSERT_EQ(test::writeTestRaster(dir / "dem.asc", r, "AAIGrid"), "");
-    const Dem dem = loadDem({dir / "dem.asc"});
+    const Dem dem = loadDem(demAt(dir / "dem.asc"));
     EXPECT_EQ(dem.field.nx, COLS);
     EXPECT_EQ(dem.field.ny, ROWS);
     EXPECT_NEAR(dem.georef.originX_m, X0 + 0.5 * PIXEL_M, COORDINATE_TOLERANCE_M);
@@ -116,7 +123,7 @@ TEST(Dem, GeographicDemIsRefusedWithTheGdalwarpCommandForItsUtmZone) {
     std::copy(gt, gt + 6, r.gt);
     r.srs = "EPSG:4326";
     ASSERT_EQ(test::writeTestRaster(dir / "latlon.tif", r), "");
-    const std::string e = demError({dir / "latlon.tif"});
+    const std::string e = demError(demAt(dir / "latlon.tif"));
     EXPECT_NE(e.find(dir / "latlon.tif"), std::string::npos) << e;
     EXPECT_NE(e.find("geographic"), std::string::npos) << e;
     EXPECT_NE(e.find("gdalwarp -t_srs EPSG:32632"), std::string::npos) << e;
@@ -153,14 +160,15 @@ TEST(Dem, BadDemsAreRefusedNamingTheFileAndTheReason) {
         r.srs = c.srs;
         r.value = c.value;
         ASSERT_EQ(test::writeTestRaster(dir / c.name, r), "") << c.name;
-        const std::string e = demError({dir / c.name});
+        const std::string e = demError(demAt(dir / c.name));
         EXPECT_EQ(e.rfind(dir / c.name + ": ", 0), 0u) << e;
         EXPECT_NE(e.find(c.reason), std::string::npos) << e;
         EXPECT_EQ(e.find('\n'), std::string::npos) << e;
     }
-    EXPECT_NE(demError({dir / "missing.tif"}).find("no such file"), std::string::npos);
+    EXPECT_NE(demError(demAt(dir / "missing.tif")).find("no such file"), std::string::npos);
     test::writeFile(dir / "text.tif", "not a raster\n");
-    EXPECT_NE(demError({dir / "text.tif"}).find("not a raster GDAL can read"), std::string::npos);
+    EXPECT_NE(demError(demAt(dir / "text.tif")).find("not a raster GDAL can read"),
+              std::string::npos);
 }
 
 }  // namespace

@@ -136,7 +136,9 @@ TEST(Overlay, UniformWindArrowsAndSliceMatchReferenceImage) {
     spec.size = 64;
     spec.seed = 5;
     renderer.setGrass(grass, generateGrassTexture(spec));
-    renderer.setLighting(Lighting{});
+    Lighting lighting;
+    lighting.ambient = glm::vec3(0.15f);  // the light the reference image was made with
+    renderer.setLighting(lighting);
     FieldOverlay overlay(*context);
     UniformScene scene(/*withSlice=*/true);
     renderer.draw(scene.camera, GrassWind{});
