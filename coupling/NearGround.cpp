@@ -176,7 +176,8 @@ NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfiel
 // MIN_LOG_CENTRE_CELLS above the ground, Q' straight above P; T carried by the log law.
 NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t,
                           const glm::dvec3& p, const NearGround& nearGround) {
-    const double h = field.voxelSize_m(), zMin = field.wsMin_m()[2];
+    const double h = field.voxelSize_m();
+    const sim::GridLayout& g = field.layout();
     const double ground = t.sample(p.x, p.y), zP = std::max(0.0, p.z - ground);
     const glm::dvec3 n = normalAt(t, p.x, p.y, FRAME_DIFFERENCE_CELLS * h), up(0.0, 0.0, 1.0);
     const double z0 = nearGround.roughness_m, d = nearGround.displacement_m;
@@ -184,9 +185,9 @@ NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t
     if (sW < 0.0) return asItIs(p);
     const double lowest =
         std::max(MIN_LOG_CENTRE_CELLS * h, sim::surface::lowestLogHeight_m(z0, d));
-    const int first = int(std::clamp(std::ceil((p.z - zMin) / h - 0.5), 0.0, double(field.nz())));
+    const int first = int(std::clamp(std::ceil(g.isZFromWs(p.z) - 0.5), 0.0, double(field.nz())));
     for (int k = first; k <= first + NEAR_GROUND_SEARCH_CELLS && k < field.nz(); ++k) {
-        const glm::dvec3 q(p.x, p.y, zMin + (k + 0.5) * h);
+        const glm::dvec3 q(p.x, p.y, g.zCentre_m(k));
         const double zQ = q.z - ground;
         if (zQ < lowest || !solvedAt(field, q, UV)) continue;
         auto carry = [&](double z) { return sim::surface::logLawRescale_mps(1.0, z, zQ, z0, d); };

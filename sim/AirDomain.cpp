@@ -127,29 +127,29 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                                  " cells: raise solver.voxel_size_m, lower solver.top_m or raise "
                                  "the limit");
 
-    mNx = int(nxD), mNy = int(nyD), mNz = std::max(1, int(nzD));
-    mVoxelSize_m = h;
-    mWsMin_m = {hf.originX_m, hf.originY_m, zMin};
+    mLayout = GridLayout(int(nxD), int(nyD), std::max(1, int(nzD)), h,
+                         {hf.originX_m, hf.originY_m, zMin});
     mMemoryEstimate_bytes = size_t(estimate);
     mTerrain = std::make_shared<const Heightfield>(hf);
 
     // --- open fractions, column by column ------------------------------------------------
-    const int nx = mNx, ny = mNy, nz = mNz, S = FRACTION_SUBSAMPLES;
-    mOpenX.assign(size_t(nx + 1) * ny * nz, 0.f);
-    mOpenY.assign(size_t(nx) * (ny + 1) * nz, 0.f);
-    mOpenZ.assign(size_t(nx) * ny * (nz + 1), 0.f);
-    mAir.assign(size_t(nx) * ny * nz, 0);
+    const GridLayout& G = mLayout;
+    const int nx = G.nx, ny = G.ny, nz = G.nz, S = FRACTION_SUBSAMPLES;
+    const std::array<double, 3>& wsMin = G.wsMin_m;
+    mOpenX.assign(G.count(Placement::FaceX), 0.f);
+    mOpenY.assign(G.count(Placement::FaceY), 0.f);
+    mOpenZ.assign(G.count(Placement::FaceZ), 0.f);
+    mAir.assign(G.cellCount(), 0);
     const Heightfield& T = *mTerrain;
-    auto zAt = [&](int k) { return zMin + k * h; };
-    // Vertical face along a line of S+1 heights: open fraction of its cell k.
+    // Vertical face along a line of S+1 heights: open fraction of its cell k (thickness dz).
     auto verticalFace = [&](const double* line, int k, double lineMin, double lineMax) -> float {
-        const double z0 = zAt(k), z1 = z0 + h;
+        const double dz = G.dz_m(k), z0 = G.zFace_m(k), z1 = z0 + dz;
         if (z0 >= lineMax) return 1.f;
         if (z1 <= lineMin) return 0.f;
         double s = 0.0;
         for (int b = 0; b < S; ++b)
-            s += detail::meanClampedLinear(z1 - line[b], z1 - line[b + 1], h);
-        return detail::cleanFraction(s / (S * h), spec.cutCells);
+            s += detail::meanClampedLinear(z1 - line[b], z1 - line[b + 1], dz);
+        return detail::cleanFraction(s / (S * dz), spec.cutCells);
     };
     tbb::parallel_for(tbb::blocked_range<int>(0, ny), [&](const tbb::blocked_range<int>& rj) {
         std::vector<double> H(size_t(S + 1) * (S + 1)), line(S + 1), mid(S + 1);
@@ -159,8 +159,8 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                 double cMin = 1e300, cMax = -1e300;
                 for (int b = 0; b <= S; ++b)
                     for (int a = 0; a <= S; ++a) {
-                        const double v = T.sample(mWsMin_m[0] + (i + double(a) / S) * h,
-                                                  mWsMin_m[1] + (j + double(b) / S) * h);
+                        const double v = T.sample(wsMin[0] + (i + double(a) / S) * h,
+                                                  wsMin[1] + (j + double(b) / S) * h);
                         Hat(a, b) = v;
                         cMin = std::min(cMin, v), cMax = std::max(cMax, v);
                     }
@@ -172,23 +172,15 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                     }
                     for (int k = 0; k < nz; ++k) store(k, verticalFace(line.data(), k, lMin, lMax));
                 };
-                doLine(true, 0, [&](int k, float f) {
-                    mOpenX[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = f;
-                });
+                doLine(true, 0, [&](int k, float f) { mOpenX[G.faceXIndex(i, j, k)] = f; });
                 if (i == nx - 1)
-                    doLine(true, S, [&](int k, float f) {
-                        mOpenX[size_t(nx) + size_t(nx + 1) * (j + size_t(ny) * k)] = f;
-                    });
-                doLine(false, 0, [&](int k, float f) {
-                    mOpenY[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = f;
-                });
+                    doLine(true, S, [&](int k, float f) { mOpenX[G.faceXIndex(nx, j, k)] = f; });
+                doLine(false, 0, [&](int k, float f) { mOpenY[G.faceYIndex(i, j, k)] = f; });
                 if (j == ny - 1)
-                    doLine(false, S, [&](int k, float f) {
-                        mOpenY[size_t(i) + size_t(nx) * (ny + size_t(ny + 1) * k)] = f;
-                    });
+                    doLine(false, S, [&](int k, float f) { mOpenY[G.faceYIndex(i, ny, k)] = f; });
                 // Horizontal faces: area where h < z_face, S rows at the sub-row midpoints.
                 for (int k = 0; k <= nz; ++k) {
-                    const double zf = zAt(k);
+                    const double zf = G.zFace_m(k);
                     float f;
                     if (zf > cMax) {
                         f = 1.f;
@@ -203,7 +195,7 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                         }
                         f = detail::cleanFraction(s / (S * S), spec.cutCells);
                     }
-                    mOpenZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = f;
+                    mOpenZ[G.faceZIndex(i, j, k)] = f;
                 }
             }
     });
@@ -226,24 +218,24 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
         for (int j = 0; j < ny; ++j) {
             for (int i = 0; i <= nx; ++i)
                 if ((i > 0 && !air(i - 1, j, k)) || (i < nx && !air(i, j, k)))
-                    mOpenX[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = 0.f;
+                    mOpenX[G.faceXIndex(i, j, k)] = 0.f;
         }
     for (int k = 0; k < nz; ++k)
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i < nx; ++i)
                 if ((j > 0 && !air(i, j - 1, k)) || (j < ny && !air(i, j, k)))
-                    mOpenY[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = 0.f;
+                    mOpenY[G.faceYIndex(i, j, k)] = 0.f;
     for (int k = 0; k <= nz; ++k)
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i)
                 if (k == 0 || (k > 0 && !air(i, j, k - 1)) || (k < nz && !air(i, j, k)))
-                    mOpenZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = 0.f;
+                    mOpenZ[G.faceZIndex(i, j, k)] = 0.f;
 
     // --- the OpenVDB air mask ------------------------------------------------------------
     openvdb::initialize();
     mVdb = std::make_shared<Vdb>();
     mVdb->mask = openvdb::BoolGrid::create(false);
-    mVdb->mask->setTransform(detail::cellCentredTransform(h, mWsMin_m));
+    mVdb->mask->setTransform(detail::cellCentredTransform(h, wsMin));
     mVdb->mask->setName("air");
     {
         auto acc = mVdb->mask->getAccessor();

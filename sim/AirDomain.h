@@ -33,6 +33,7 @@
 #include <optional>
 #include <vector>
 
+#include "sim/GridLayout.h"
 #include "sim/Heightfield.h"
 
 namespace gale::sim {
@@ -68,16 +69,20 @@ class AirDomain {
     AirDomain(AirDomain&&) noexcept;
     AirDomain& operator=(AirDomain&&) noexcept;
 
-    int nx() const { return mNx; }
-    int ny() const { return mNy; }
-    int nz() const { return mNz; }
-    double voxelSize_m() const { return mVoxelSize_m; }
+    /// The box's layout (cells, faces, world <-> index): the one shared with the Poisson system,
+    /// the wind field and advection.
+    const GridLayout& layout() const { return mLayout; }
+    int nx() const { return mLayout.nx; }
+    int ny() const { return mLayout.ny; }
+    int nz() const { return mLayout.nz; }
+    /// Horizontal cell edge (and the layer thickness of a uniform layout), metres.
+    double voxelSize_m() const { return mLayout.voxelSize_m; }
     /// World position of the minimum corner of cell (0, 0, 0), metres.
-    std::array<double, 3> wsMin_m() const { return mWsMin_m; }
+    std::array<double, 3> wsMin_m() const { return mLayout.wsMin_m; }
     /// World z of the top boundary (after rounding to whole cells), metres.
-    double wsTop_m() const { return mWsMin_m[2] + mNz * mVoxelSize_m; }
+    double wsTop_m() const { return mLayout.wsTop_m(); }
 
-    size_t boxCellCount() const { return size_t(mNx) * mNy * mNz; }
+    size_t boxCellCount() const { return mLayout.cellCount(); }
     size_t activeCellCount() const { return mActiveCount; }
     /// Estimated peak bytes of a steady solve on this domain (made before allocating).
     size_t memoryEstimate_bytes() const { return mMemoryEstimate_bytes; }
@@ -91,17 +96,11 @@ class AirDomain {
     static double estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentum = false);
 
     /// Open fraction of the x-face between cells (i-1, j, k) and (i, j, k), i in [0, nx].
-    float openFractionX(int i, int j, int k) const {
-        return mOpenX[size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k)];
-    }
+    float openFractionX(int i, int j, int k) const { return mOpenX[mLayout.faceXIndex(i, j, k)]; }
     /// Open fraction of the y-face between cells (i, j-1, k) and (i, j, k), j in [0, ny].
-    float openFractionY(int i, int j, int k) const {
-        return mOpenY[size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k)];
-    }
+    float openFractionY(int i, int j, int k) const { return mOpenY[mLayout.faceYIndex(i, j, k)]; }
     /// Open fraction of the z-face between cells (i, j, k-1) and (i, j, k), k in [0, nz].
-    float openFractionZ(int i, int j, int k) const {
-        return mOpenZ[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)];
-    }
+    float openFractionZ(int i, int j, int k) const { return mOpenZ[mLayout.faceZIndex(i, j, k)]; }
     /// Face arrays in PoissonSystem's layout (PoissonSystem::faceXIndex etc.).
     const std::vector<float>& openFractionsX() const { return mOpenX; }
     const std::vector<float>& openFractionsY() const { return mOpenY; }
@@ -113,11 +112,10 @@ class AirDomain {
     /// divergence-free field. Inline: the solvers evaluate it per cell per step.
     double openOutflux(const std::vector<double>& U, const std::vector<double>& V,
                        const std::vector<double>& W, int i, int j, int k) const {
-        const size_t xm = size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k), xp = xm + 1;
-        const size_t ym = size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k),
-                     yp = ym + size_t(mNx);
-        const size_t zm = size_t(i) + size_t(mNx) * (j + size_t(mNy) * k),
-                     zp = zm + size_t(mNx) * mNy;
+        const GridLayout& g = mLayout;
+        const size_t xm = g.faceXIndex(i, j, k), xp = xm + 1;
+        const size_t ym = g.faceYIndex(i, j, k), yp = ym + size_t(g.nx);
+        const size_t zm = g.faceZIndex(i, j, k), zp = zm + size_t(g.nx) * size_t(g.ny);
         return mOpenX[xp] * U[xp] - mOpenX[xm] * U[xm] + mOpenY[yp] * V[yp] - mOpenY[ym] * V[ym] +
                mOpenZ[zp] * W[zp] - mOpenZ[zm] * W[zm];
     }
@@ -125,9 +123,7 @@ class AirDomain {
     /// True if cell (i, j, k) holds air (an unknown of the solve).
     bool isAir(int i, int j, int k) const { return mAir[cellIndex(i, j, k)] != 0; }
     const std::vector<uint8_t>& airFlags() const { return mAir; }
-    size_t cellIndex(int i, int j, int k) const {
-        return size_t(i) + size_t(mNx) * (j + size_t(mNy) * k);
-    }
+    size_t cellIndex(int i, int j, int k) const { return mLayout.cellIndex(i, j, k); }
 
     const Heightfield& terrain() const { return *mTerrain; }
     std::shared_ptr<const Heightfield> terrainShared() const { return mTerrain; }
@@ -136,9 +132,7 @@ class AirDomain {
     const Vdb& vdb() const { return *mVdb; }
 
   private:
-    int mNx = 0, mNy = 0, mNz = 0;
-    double mVoxelSize_m = 0;
-    std::array<double, 3> mWsMin_m{};
+    GridLayout mLayout;
     size_t mActiveCount = 0;
     size_t mMemoryEstimate_bytes = 0;
     std::vector<float> mOpenX, mOpenY, mOpenZ;

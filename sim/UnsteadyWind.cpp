@@ -79,8 +79,7 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
     mSettings.validate();
     if (mean.nx() != domain.nx() || mean.ny() != domain.ny() || mean.nz() != domain.nz())
         throw std::invalid_argument("UnsteadyWindSolver: the mean field does not match the domain");
-    mGrid = MacGrid{domain.nx(),          domain.ny(),      domain.nz(),
-                    domain.voxelSize_m(), domain.wsMin_m(), &domain.terrain()};
+    mGrid = MacGrid(domain.layout(), &domain.terrain());
     mMeanU = mean.u_mps(), mMeanV = mean.v_mps(), mMeanW = mean.w_mps();
     for (const auto* a : {&mMeanU, &mMeanV, &mMeanW})
         for (double x : *a) mMeanMax_mps = std::max(mMeanMax_mps, std::abs(x));

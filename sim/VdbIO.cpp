@@ -168,12 +168,10 @@ double readFaceVelocities(const std::string& path, WindField& field) {
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i <= nx; ++i) {
                 const openvdb::Vec3s v = acc.getValue(openvdb::Coord(i, j, k));
-                if (j < ny && k < nz)
-                    field.u_mps()[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = v.x();
-                if (i < nx && k < nz)
-                    field.v_mps()[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = v.y();
-                if (i < nx && j < ny)
-                    field.w_mps()[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = v.z();
+                const GridLayout& g = field.layout();
+                if (j < ny && k < nz) field.u_mps()[g.faceXIndex(i, j, k)] = v.x();
+                if (i < nx && k < nz) field.v_mps()[g.faceYIndex(i, j, k)] = v.y();
+                if (i < nx && j < ny) field.w_mps()[g.faceZIndex(i, j, k)] = v.z();
             }
     const auto time = grid->getMetadata<openvdb::DoubleMetadata>("time_s");
     return time ? time->value() : std::nan("");
@@ -240,7 +238,7 @@ void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata) c
                       "voxel_size"
                     : "cell-centred average of MAC face velocities; voxel (i,j,k) centre at "
                       "world wsMin + (i+0.5, j+0.5, k+0.5) * voxel_size"));
-        g->insertMeta("voxel_size_m", openvdb::DoubleMetadata(mH));
+        g->insertMeta("voxel_size_m", openvdb::DoubleMetadata(mLayout.voxelSize_m));
         for (const auto& [k, v] : metadata.strings) g->insertMeta(k, openvdb::StringMetadata(v));
         for (const auto& [k, v] : metadata.numbers) g->insertMeta(k, openvdb::DoubleMetadata(v));
     }
