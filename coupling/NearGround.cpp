@@ -88,12 +88,16 @@ bool solvedAt(const sim::WindField& field, const glm::dvec3& q, unsigned compone
            field.readsOnlySolvedFaces(q.x, q.y, q.z, components);
 }
 
-// The lowest s in [0, NEAR_GROUND_SEARCH_CELLS h], to an eighth of a cell, at which p + s dir reads
-// only solved faces for `components`; negative when there is none. Coarse steps of half a cell,
-// then two halvings back down (the stencils only gain solved faces as they rise, within a cell).
+// The lowest s in [0, NEAR_GROUND_SEARCH_CELLS cells], to an eighth of a cell, at which p + s dir
+// reads only solved faces for `components`; negative when there is none. Coarse steps of half a
+// cell, then two halvings back down (the stencils only gain solved faces as they rise, within a
+// cell).
 double lowestSolved(const sim::WindField& field, const glm::dvec3& p, const glm::dvec3& dir,
                     unsigned components) {
-    const double h = field.voxelSize_m();
+    // The cell here: the voxel size, or on stretched layers the (thinner) layer at p.
+    const sim::GridLayout& g = field.layout();
+    const int layer = int(std::clamp(std::floor(g.isZFromWs(p.z)), 0.0, double(g.nz - 1)));
+    const double h = std::min(field.voxelSize_m(), g.dz_m(layer));
     if (solvedAt(field, p, components)) return 0.0;
     for (int step = 1; step <= 2 * NEAR_GROUND_SEARCH_CELLS; ++step) {
         double s = 0.5 * step * h;

@@ -73,6 +73,27 @@ double AirDomain::estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentu
                     0.5 + 16.0 + 13.0 + (momentum ? MOMENTUM_EXTRA_BYTES_PER_CELL : 0.0));
 }
 
+double AirDomain::estimateSolveMemory_bytes(const GridLayout& g, bool momentum) {
+    double bytes = estimateSolveMemory_bytes(1, 1, 1, momentum) * double(g.nx) * g.ny * g.nz;
+    if (!g.uniformZ())
+        bytes += RESAMPLE_BYTES_PER_VOXEL * double(g.nx) * g.ny *
+                 std::ceil((g.wsTop_m() - g.wsMin_m[2]) / g.voxelSize_m - 1e-9);
+    return bytes;
+}
+
+std::vector<double> AirDomain::stretchedLevels_m(double z0, double top, double first, double ratio,
+                                                 double maxCell) {
+    std::vector<double> z{z0};
+    double dz = first;
+    // Each level adds at least `first` > 0, so this ends; the caller bounds the count.
+    while (z.back() < top - 1e-9 * first) {
+        z.push_back(z.back() + dz);
+        dz = std::min(dz * ratio, maxCell);
+    }
+    if (z.size() < 2) z.push_back(z0 + first);
+    return z;
+}
+
 AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
     using detail::num;
     // --- validate everything before allocating anything ------------------------------------
@@ -106,7 +127,31 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                              "must not exceed the terrain (" + num(hf.sizeX_m()) + " x " +
                                  num(hf.sizeY_m()) + " m)");
     const double minH = hf.minHeight_m(), maxH = hf.maxHeight_m();
-    const double zMin = std::floor(minH / h) * h;
+    // Stretched layers: validated here, their levels made below once the top is known.
+    const bool stretched = spec.firstCell_m.has_value();
+    const double first = stretched ? *spec.firstCell_m : h;
+    const double maxCell = spec.maxCell_m ? *spec.maxCell_m : MAX_LAYER_THICKENING * h;
+    if (stretched) {
+        if (!(first >= h / MAX_FIRST_CELL_THINNING * (1 - 1e-12) && first <= h * (1 + 1e-12)))
+            throw ParameterError("solver.first_cell_m", num(first),
+                                 "must be in [voxel_size_m / 5, voxel_size_m] = [" +
+                                     num(h / MAX_FIRST_CELL_THINNING) + ", " + num(h) + "] m");
+        if (!(spec.stretchRatio >= 1.0 && spec.stretchRatio <= MAX_STRETCH_RATIO))
+            throw ParameterError("solver.stretch_ratio", num(spec.stretchRatio),
+                                 "must be in [1, " + num(MAX_STRETCH_RATIO) + "]");
+        if (!(maxCell >= first && maxCell <= MAX_LAYER_THICKENING * h * (1 + 1e-12)))
+            throw ParameterError("solver.max_cell_m", num(maxCell),
+                                 "must be in [solver.first_cell_m, 2 voxel_size_m] = [" +
+                                     num(first) + ", " + num(MAX_LAYER_THICKENING * h) + "] m");
+        if (spec.momentumModel)
+            throw ParameterError("solver.first_cell_m", num(first),
+                                 "is not supported by solver.model = \"momentum\" (it needs cubic "
+                                 "cells): remove solver.first_cell_m");
+    } else if (spec.maxCell_m) {
+        throw ParameterError("solver.max_cell_m", num(maxCell),
+                             "applies to stretched layers only: give solver.first_cell_m too");
+    }
+    const double zMin = std::floor(minH / first) * first;
     double top = 0.0;
     if (spec.top_m) {
         top = *spec.top_m;
@@ -117,9 +162,17 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
     } else {
         top = maxH + std::max(AUTO_TOP_RELIEF_FACTOR * (maxH - minH), AUTO_TOP_MIN_CELLS * h);
     }
-    const double nzD = std::ceil((top - zMin) / h - 1e-9);
+    std::vector<double> levels;
+    constexpr double MAX_LAYERS = 1e7;  // far above any box the memory limit lets through
+    if (stretched && (top - zMin) / maxCell > MAX_LAYERS)
+        throw ParameterError("solver.top_m", num(top),
+                             "gives more than " + num(MAX_LAYERS) + " layers: lower it");
+    if (stretched) levels = stretchedLevels_m(zMin, top, first, spec.stretchRatio, maxCell);
+    const double nzD = stretched ? double(levels.size() - 1) : std::ceil((top - zMin) / h - 1e-9);
+    const double resampleD = stretched ? std::ceil((levels.back() - zMin) / h - 1e-9) : 0.0;
     const double estimate =
-        estimateSolveMemory_bytes(1, 1, 1, spec.momentumModel) * nxD * nyD * nzD;
+        estimateSolveMemory_bytes(1, 1, 1, spec.momentumModel) * nxD * nyD * nzD +
+        RESAMPLE_BYTES_PER_VOXEL * nxD * nyD * resampleD;
     if (nxD * nyD * nzD > 2.0e9 || estimate > spec.memoryLimit_bytes)
         throw ParameterError("solver.memory_limit_mb", formatG(spec.memoryLimit_bytes / MIB, 4),
                              "is below the estimated memory of " + formatG(estimate / MIB, 4) +
@@ -127,8 +180,10 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                                  " cells: raise solver.voxel_size_m, lower solver.top_m or raise "
                                  "the limit");
 
-    mLayout = GridLayout(int(nxD), int(nyD), std::max(1, int(nzD)), h,
-                         {hf.originX_m, hf.originY_m, zMin});
+    mLayout = stretched ? GridLayout(int(nxD), int(nyD), h, {hf.originX_m, hf.originY_m, zMin},
+                                     std::move(levels))
+                        : GridLayout(int(nxD), int(nyD), std::max(1, int(nzD)), h,
+                                     {hf.originX_m, hf.originY_m, zMin});
     mMemoryEstimate_bytes = size_t(estimate);
     mTerrain = std::make_shared<const Heightfield>(hf);
 

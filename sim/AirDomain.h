@@ -9,6 +9,11 @@
 ///   max height + max(AUTO_TOP_RELIEF_FACTOR * relief, AUTO_TOP_MIN_CELLS * h),
 /// rounded up to whole cells.
 ///
+/// Stretched layers (DomainSpec::firstCell_m set): the horizontal cells keep their edge h, the
+/// layers (shared by every column, a tensor-product grid) start firstCell_m thick at
+/// wsMin.z = floor(min height / firstCell_m) * firstCell_m and grow by stretchRatio per layer up to
+/// maxCell_m; the top is rounded up to the next level (GridLayout holds the level heights).
+///
 /// Cut cells (Batty, Bertails, Bridson 2007; Ng, Min, Gibou 2009). Every cell face carries an open
 /// fraction in [0, 1], the fraction of its area above the terrain h(x, y) (the Heightfield's
 /// bilinear surface). Vertical faces: the exact integral of clamp(z_top - h, 0, dz) along the face
@@ -47,6 +52,14 @@ struct DomainSpec {
     bool cutCells = true;
     /// true: the estimate also counts the momentum model's arrays (sim/MomentumWind.h).
     bool momentumModel = false;
+    /// Stretched layers (docs/solver.md, "Stretched layers"): thickness of the lowest layer,
+    /// metres, in [voxelSize_m / 5, voxelSize_m]. Unset: cubic cells.
+    std::optional<double> firstCell_m{};
+    /// Stretched layers: each layer is this many times thicker than the one below, [1, 1.2].
+    double stretchRatio = 1.2;
+    /// Stretched layers: the largest layer thickness, metres, in [firstCell_m, 2 voxelSize_m].
+    /// Unset: AirDomain::MAX_LAYER_THICKENING voxelSize_m.
+    std::optional<double> maxCell_m{};
 };
 
 class AirDomain {
@@ -59,11 +72,23 @@ class AirDomain {
     static constexpr int FRACTION_SUBSAMPLES = 8;
     /// Open fractions below this are closed.
     static constexpr float MIN_OPEN_FRACTION = 1e-3f;
+    /// Stretched layers: the thinnest first layer is voxelSize_m / MAX_FIRST_CELL_THINNING (the
+    /// z-line smoother keeps the iterations flat there, docs/solver.md).
+    static constexpr double MAX_FIRST_CELL_THINNING = 5.0;
+    /// Stretched layers: the thickest layer is MAX_LAYER_THICKENING voxelSize_m. Thicker layers
+    /// make the horizontal couplings dominate, which z-lines do not smooth: at 4 voxels the
+    /// hemisphere's iterations grew 9, 16, 23 as the cells halved; at 2 they stay 9, 11, 11.
+    static constexpr double MAX_LAYER_THICKENING = 2.0;
+    /// Stretched layers: the largest growth ratio from one layer to the next.
+    static constexpr double MAX_STRETCH_RATIO = 1.2;
 
     /// Builds the domain. Throws std::invalid_argument naming the parameter when the terrain has a
     /// NaN/Inf height or a bad size/spacing, voxelSize_m is not > 0 and finite or is larger than
     /// the terrain, top_m is not above the highest point (no air), memoryLimit_bytes is not > 0,
-    /// or the memory estimate exceeds memoryLimit_bytes (checked before allocating).
+    /// or the memory estimate exceeds memoryLimit_bytes (checked before allocating); throws
+    /// gale::ParameterError naming solver.first_cell_m, solver.stretch_ratio or
+    /// solver.max_cell_m when they are outside their ranges, and solver.first_cell_m when the
+    /// momentum model is asked for on stretched layers (it needs cubic cells).
     AirDomain(const Heightfield& terrain, const DomainSpec& spec);
     ~AirDomain();
     AirDomain(AirDomain&&) noexcept;
@@ -94,6 +119,18 @@ class AirDomain {
     /// Estimated peak bytes of a steady solve on a box of nx * ny * nz cells (momentum: of the
     /// momentum model, which adds MOMENTUM_EXTRA_BYTES_PER_CELL).
     static double estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentum = false);
+    /// Estimated peak bytes of a steady solve on `layout`: estimateSolveMemory_bytes over its
+    /// cells, plus, for stretched layers, the cubic resample of the standard .vdb grids (nx * ny
+    /// cells of voxelSize_m up to the top, RESAMPLE_BYTES_PER_VOXEL each; docs/solver.md).
+    static double estimateSolveMemory_bytes(const GridLayout& layout, bool momentum = false);
+    /// Bytes per voxel of the cubic resample written for stretched layers: the velocity (12 B)
+    /// and speed (4 B) grids, as for cubic cells.
+    static constexpr double RESAMPLE_BYTES_PER_VOXEL = 16.0;
+    /// Level heights (world z, metres) of stretched layers from z0: the first layer firstCell_m
+    /// thick, each next one ratio times the one below, capped at maxCell_m, up to the first level
+    /// at or above top_m. Arguments as validated by the constructor.
+    static std::vector<double> stretchedLevels_m(double z0_m, double top_m, double firstCell_m,
+                                                 double ratio, double maxCell_m);
 
     /// Open fraction of the x-face between cells (i-1, j, k) and (i, j, k), i in [0, nx].
     float openFractionX(int i, int j, int k) const { return mOpenX[mLayout.faceXIndex(i, j, k)]; }
@@ -106,9 +143,10 @@ class AirDomain {
     const std::vector<float>& openFractionsY() const { return mOpenY; }
     const std::vector<float>& openFractionsZ() const { return mOpenZ; }
 
-    /// Net flux out of cell (i, j, k) through its open faces, per unit face area, m/s: the sum of
-    /// open fraction x face velocity, outward positive, of face arrays U, V, W in this layout
-    /// (WindField's). Times h^2 it is the cell's volume outflow; zero for a discretely
+    /// Net flux out of cell (i, j, k) through its open faces divided by h^2 (h = voxelSize_m),
+    /// m/s: the sum of open fraction x face velocity x face area / h^2, outward positive, of face
+    /// arrays U, V, W in this layout (WindField's); side faces have area h dz_k (h^2 for cubic
+    /// cells), z-faces h^2. Times h^2 it is the cell's volume outflow; zero for a discretely
     /// divergence-free field. Inline: the solvers evaluate it per cell per step.
     double openOutflux(const std::vector<double>& U, const std::vector<double>& V,
                        const std::vector<double>& W, int i, int j, int k) const {
@@ -116,8 +154,10 @@ class AirDomain {
         const size_t xm = g.faceXIndex(i, j, k), xp = xm + 1;
         const size_t ym = g.faceYIndex(i, j, k), yp = ym + size_t(g.nx);
         const size_t zm = g.faceZIndex(i, j, k), zp = zm + size_t(g.nx) * size_t(g.ny);
-        return mOpenX[xp] * U[xp] - mOpenX[xm] * U[xm] + mOpenY[yp] * V[yp] - mOpenY[ym] * V[ym] +
-               mOpenZ[zp] * W[zp] - mOpenZ[zm] * W[zm];
+        const double side =
+            mOpenX[xp] * U[xp] - mOpenX[xm] * U[xm] + mOpenY[yp] * V[yp] - mOpenY[ym] * V[ym];
+        return (g.uniformZ() ? side : side * (g.dz_m(k) / g.voxelSize_m)) + mOpenZ[zp] * W[zp] -
+               mOpenZ[zm] * W[zm];
     }
 
     /// True if cell (i, j, k) holds air (an unknown of the solve).

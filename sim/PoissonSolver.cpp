@@ -55,9 +55,10 @@ struct PoissonSolver::Impl {
             return;
         }
         // Pre-smoothing V(n, .) in red-black order; the last sweep also forms the residual.
+        const auto sweep = L.zLines ? multigrid::lineSweep : multigrid::fusedSweep;
         for (int s = 0; s < sweeps; ++s)
-            multigrid::fusedSweep(L, x, b, /*first=*/0, /*fromZero=*/s == 0,
-                                  /*residualOut=*/s + 1 == sweeps ? scratch : nullptr);
+            sweep(L, x, b, /*first=*/0, /*fromZero=*/s == 0,
+                  /*residualOut=*/s + 1 == sweeps ? scratch : nullptr, nullptr, nullptr, nullptr);
         Level& C = levels[l + 1];
         multigrid::restrictTo(L, scratch, C);
         vcycle(l + 1, C.b.data(), C.x.data(), C.r.data());
@@ -65,9 +66,8 @@ struct PoissonSolver::Impl {
         // symmetric preconditioner as CG requires. The first post-sweep adds the coarse
         // correction as it goes; the last one sums b . x.
         for (int s = 0; s < sweeps; ++s)
-            multigrid::fusedSweep(L, x, b, /*first=*/1, /*fromZero=*/false, nullptr,
-                                  s == 0 ? &C : nullptr, s == 0 ? C.x.data() : nullptr,
-                                  s + 1 == sweeps ? dotOut : nullptr);
+            sweep(L, x, b, /*first=*/1, /*fromZero=*/false, nullptr, s == 0 ? &C : nullptr,
+                  s == 0 ? C.x.data() : nullptr, s + 1 == sweeps ? dotOut : nullptr);
     }
 };
 

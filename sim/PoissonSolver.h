@@ -55,6 +55,10 @@ struct PoissonSystem : GridIndex {
     std::vector<float> weightY;
     /// Weights of the z-faces (GridIndex::faceZIndex).
     std::vector<float> weightZ;
+    /// Smooth with z-line Gauss-Seidel (a tridiagonal solve per column, columns in red-black
+    /// order) instead of point Gauss-Seidel: for operators whose z-couplings are much stronger
+    /// than the horizontal ones (thin stretched layers), where point smoothing stalls.
+    bool zLineSmoothing = false;
 
     /// All weights 1 (the plain Laplacian scaled by h), all sides Dirichlet.
     static PoissonSystem uniformBox(int nx, int ny, int nz);

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "sim/FaceExtrapolation.h"
 #include "sim/Format.h"
 #include "sim/SteadyWind.h"
@@ -35,6 +36,11 @@ constexpr double FORCING_RING_CORES = 2.0;
 
 /// The steady solve's operator with A = I; the top closed by a lid unless it is open.
 PoissonSystem projectionSystem(const AirDomain& domain, bool openTop) {
+    // Advection traces and the viscosity operator assume cubic cells (docs/unsteady.md).
+    if (!domain.layout().uniformZ())
+        throw ParameterError("solver.first_cell_m", num(domain.layout().dz_m(0)),
+                             "stretched layers are not supported by the unsteady solver yet "
+                             "(wind.kind = \"unsteady\"): remove solver.first_cell_m");
     PoissonSystem s = SteadyWindSolver::makeSystem(domain, /*verticalRatio=*/1.0);
     if (!openTop) s.sides[SIDE_ZMAX] = BoundaryKind::Neumann;
     return s;

@@ -121,7 +121,9 @@ class WindField {
     /// voxel (i, j, k) is cell (i, j, k), its centre at world wsMin + (i+1/2, j+1/2, k+1/2) h),
     /// a float grid "speed" (|velocity|, m/s), both active on air cells only, and a staggered
     /// Vec3s grid "velocity_faces" (the face velocities themselves, GRID_STAGGERED; OpenVDB's
-    /// StaggeredBoxSampler reads it as velocityAt_mps does; see VdbIO.h). Atomic: written to a
+    /// StaggeredBoxSampler reads it as velocityAt_mps does; see VdbIO.h). Stretched layers: a
+    /// cubic resample for the first two and "velocity_layers" with "z_levels_m" metadata instead
+    /// of "velocity_faces" (VdbIO.h). Atomic: written to a
     /// temporary name in the same folder, then renamed. Throws std::runtime_error on I/O failure.
     void writeVdb(const std::string& path, const VdbMetadata& metadata = {}) const;
 

@@ -218,6 +218,14 @@ void readSolver(Context& ctx, Section s) {
     SolverSection& v = ctx.scene->solver;
     v.domain.voxelSize_m = s.number("voxel_size_m", 1.0, above(0.0, 1e5));
     if (s.take("top_m")) v.domain.top_m = s.number("top_m", 0.0, anyFinite());
+    // Stretched layers (docs/solver.md): AirDomain checks the ranges against voxel_size_m.
+    if (s.take("first_cell_m"))
+        v.domain.firstCell_m = s.number("first_cell_m", 0.0, above(0.0, 1e5));
+    v.domain.stretchRatio = s.number("stretch_ratio", v.domain.stretchRatio, closed(1.0, 1.2));
+    if (s.take("max_cell_m")) v.domain.maxCell_m = s.number("max_cell_m", 0.0, above(0.0, 1e5));
+    for (const char* key : {"stretch_ratio", "max_cell_m"})
+        if (s.given(key) && !v.domain.firstCell_m)
+            s.failKey(key, "applies to stretched layers only: give solver.first_cell_m too");
     v.domain.memoryLimit_bytes =
         s.number("memory_limit_mb", 4096.0, above(0.0, 1e9)) * 1024.0 * 1024.0;
     v.weights.alphaH = s.number("alpha_h", 1.0, above(0.0, 1e6));
