@@ -226,6 +226,10 @@ void readSolver(Context& ctx, Section s) {
     for (const char* key : {"stretch_ratio", "max_cell_m"})
         if (s.given(key) && !v.domain.firstCell_m)
             s.failKey(key, "applies to stretched layers only: give solver.first_cell_m too");
+    if (v.domain.firstCell_m && ctx.scene->wind.kind == WindKind::Unsteady)
+        s.failKey("first_cell_m",
+                  "stretched layers are not supported by the unsteady solver yet (wind.kind = "
+                  "\"unsteady\"): remove it");
     v.domain.memoryLimit_bytes =
         s.number("memory_limit_mb", 4096.0, above(0.0, 1e9)) * 1024.0 * 1024.0;
     v.weights.alphaH = s.number("alpha_h", 1.0, above(0.0, 1e6));
