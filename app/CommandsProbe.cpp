@@ -225,8 +225,7 @@ int runProbe(const ProbeOptions& o) {
                       "name,x,y,z_m,height_agl_m,u_mps,v_mps,w_mps,speed_mps,from_deg,speedup\n";
     if (!o.vdbPaths.empty()) {
         for (const std::string& path : o.vdbPaths) {
-            sim::WindField field(domain->nx(), domain->ny(), domain->nz(), domain->voxelSize_m(),
-                                 domain->wsMin_m(), domain->terrainShared(), domain->airFlags());
+            sim::WindField field(domain->layout(), domain->terrainShared(), domain->airFlags());
             double t_s;
             try {
                 t_s = sim::readFaceVelocities(path, field);

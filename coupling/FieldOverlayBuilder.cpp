@@ -210,10 +210,8 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
     if (spec.vortexCores) {
         const int nx = field.nx(), ny = field.ny(), nz = field.nz();
         const double h = field.voxelSize_m();
-        const auto idx = [&](int i, int j, int k) {
-            return size_t(i) + size_t(nx) * (j + size_t(ny) * k);
-        };
-        std::vector<double> q(size_t(nx) * ny * nz, -1e300);
+        const auto idx = [&](int i, int j, int k) { return field.layout().cellIndex(i, j, k); };
+        std::vector<double> q(field.layout().cellCount(), -1e300);
         double qMax = 0.0, uMax = 0.0;
         for (int k = 1; k + 1 < nz; ++k)
             for (int j = 1; j + 1 < ny; ++j)

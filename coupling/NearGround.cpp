@@ -88,12 +88,16 @@ bool solvedAt(const sim::WindField& field, const glm::dvec3& q, unsigned compone
            field.readsOnlySolvedFaces(q.x, q.y, q.z, components);
 }
 
-// The lowest s in [0, NEAR_GROUND_SEARCH_CELLS h], to an eighth of a cell, at which p + s dir reads
-// only solved faces for `components`; negative when there is none. Coarse steps of half a cell,
-// then two halvings back down (the stencils only gain solved faces as they rise, within a cell).
+// The lowest s in [0, NEAR_GROUND_SEARCH_CELLS cells], to an eighth of a cell, at which p + s dir
+// reads only solved faces for `components`; negative when there is none. Coarse steps of half a
+// cell, then two halvings back down (the stencils only gain solved faces as they rise, within a
+// cell).
 double lowestSolved(const sim::WindField& field, const glm::dvec3& p, const glm::dvec3& dir,
                     unsigned components) {
-    const double h = field.voxelSize_m();
+    // The cell here: the voxel size, or on stretched layers the (thinner) layer at p.
+    const sim::GridLayout& g = field.layout();
+    const int layer = int(std::clamp(std::floor(g.isZFromWs(p.z)), 0.0, double(g.nz - 1)));
+    const double h = std::min(field.voxelSize_m(), g.dz_m(layer));
     if (solvedAt(field, p, components)) return 0.0;
     for (int step = 1; step <= 2 * NEAR_GROUND_SEARCH_CELLS; ++step) {
         double s = 0.5 * step * h;
@@ -176,7 +180,8 @@ NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfiel
 // MIN_LOG_CENTRE_CELLS above the ground, Q' straight above P; T carried by the log law.
 NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t,
                           const glm::dvec3& p, const NearGround& nearGround) {
-    const double h = field.voxelSize_m(), zMin = field.wsMin_m()[2];
+    const double h = field.voxelSize_m();
+    const sim::GridLayout& g = field.layout();
     const double ground = t.sample(p.x, p.y), zP = std::max(0.0, p.z - ground);
     const glm::dvec3 n = normalAt(t, p.x, p.y, FRAME_DIFFERENCE_CELLS * h), up(0.0, 0.0, 1.0);
     const double z0 = nearGround.roughness_m, d = nearGround.displacement_m;
@@ -184,9 +189,9 @@ NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t
     if (sW < 0.0) return asItIs(p);
     const double lowest =
         std::max(MIN_LOG_CENTRE_CELLS * h, sim::surface::lowestLogHeight_m(z0, d));
-    const int first = int(std::clamp(std::ceil((p.z - zMin) / h - 0.5), 0.0, double(field.nz())));
+    const int first = int(std::clamp(std::ceil(g.isZFromWs(p.z) - 0.5), 0.0, double(field.nz())));
     for (int k = first; k <= first + NEAR_GROUND_SEARCH_CELLS && k < field.nz(); ++k) {
-        const glm::dvec3 q(p.x, p.y, zMin + (k + 0.5) * h);
+        const glm::dvec3 q(p.x, p.y, g.zCentre_m(k));
         const double zQ = q.z - ground;
         if (zQ < lowest || !solvedAt(field, q, UV)) continue;
         auto carry = [&](double z) { return sim::surface::logLawRescale_mps(1.0, z, zQ, z0, d); };

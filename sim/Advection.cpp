@@ -37,41 +37,11 @@ namespace {
 /// axis and at half cells across it.
 constexpr double offset(Placement p, int axis) { return int(p) == axis ? 0.0 : 0.5; }
 
-/// Trilinear interpolation between the 8 values c[x + 2 y + 4 z] around a sample at fractions
-/// t (lerp along x, then y, then z); if lo/hi are given they receive the min/max of the 8 (the
-/// MacCormack and BFECC limiter's bounds, Selle et al. 2008). The one blend of sampleAt and
-/// IndexSampler, so both keep the same arithmetic.
-inline double blendCorners(const double (&c)[8], const double* t, double* lo, double* hi) {
-    if (lo) *lo = std::min({c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]});
-    if (hi) *hi = std::max({c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]});
-    const double c00 = c[0] + (c[1] - c[0]) * t[0], c10 = c[2] + (c[3] - c[2]) * t[0];
-    const double c01 = c[4] + (c[5] - c[4]) * t[0], c11 = c[6] + (c[7] - c[6]) * t[0];
-    const double c0 = c00 + (c10 - c00) * t[1], c1 = c01 + (c11 - c01) * t[1];
-    return c0 + (c1 - c0) * t[2];
-}
-
 }  // namespace
 
 double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, const Vec3d& ws,
                 double* lo, double* hi) {
-    const auto n = g.dims(p);
-    const Vec3d is = g.isFromWs(ws);
-    int i0[3];
-    double t[3];
-    for (int a = 0; a < 3; ++a) {
-        const double f = std::clamp(is[a] - offset(p, a), 0.0, double(n[a] - 1));
-        i0[a] = std::min(int(f), std::max(n[a] - 2, 0));
-        t[a] = n[a] > 1 ? f - i0[a] : 0.0;
-    }
-    const int i1 = std::min(i0[0] + 1, n[0] - 1), j1 = std::min(i0[1] + 1, n[1] - 1),
-              k1 = std::min(i0[2] + 1, n[2] - 1);
-    auto at = [&](int x, int y, int z) {
-        return q[size_t(x) + size_t(n[0]) * (y + size_t(n[1]) * z)];
-    };
-    const double c[8] = {at(i0[0], i0[1], i0[2]), at(i1, i0[1], i0[2]), at(i0[0], j1, i0[2]),
-                         at(i1, j1, i0[2]),       at(i0[0], i0[1], k1), at(i1, i0[1], k1),
-                         at(i0[0], j1, k1),       at(i1, j1, k1)};
-    return blendCorners(c, t, lo, hi);
+    return g.sample(p, q.data(), g.isFromWs(ws), lo, hi);
 }
 
 Vec3d velocityAt(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& ws) {
@@ -82,33 +52,16 @@ Vec3d velocityAt(const MacGrid& g, const MacVelocity& vel, const FarField& far, 
 
 namespace {
 
-/// Trilinear sampling of one placement in index space with its sizes and offsets hoisted out of
-/// the per-sample work (the hot loop of the advection); same arithmetic as sampleAt.
+/// One placement's samples read in index space through the layout's sampler (the hot loop of the
+/// advection).
 struct IndexSampler {
+    const GridLayout& g;
+    Placement p;
     const double* a;
-    int n[3];
-    double off[3];
-    IndexSampler(const MacGrid& g, Placement p, const std::vector<double>& q) : a(q.data()) {
-        const auto d = g.dims(p);
-        for (int k = 0; k < 3; ++k) n[k] = d[k], off[k] = offset(p, k);
-    }
+    IndexSampler(const MacGrid& grid, Placement placement, const std::vector<double>& q)
+        : g(grid), p(placement), a(q.data()) {}
     double operator()(const double* is, double* lo = nullptr, double* hi = nullptr) const {
-        int i0[3];
-        double t[3];
-        for (int k = 0; k < 3; ++k) {
-            double f = is[k] - off[k];
-            f = f < 0.0 ? 0.0 : (f > n[k] - 1 ? double(n[k] - 1) : f);
-            int i = int(f);
-            if (i > n[k] - 2) i = n[k] > 1 ? n[k] - 2 : 0;
-            i0[k] = i;
-            t[k] = n[k] > 1 ? f - i : 0.0;
-        }
-        const size_t sx = n[0] > 1 ? 1 : 0, sy = n[1] > 1 ? size_t(n[0]) : 0,
-                     sz = n[2] > 1 ? size_t(n[0]) * n[1] : 0;
-        const double* p = a + size_t(i0[0]) + size_t(n[0]) * (i0[1] + size_t(n[1]) * i0[2]);
-        const double c[8] = {p[0],  p[sx],      p[sy],      p[sx + sy],
-                             p[sz], p[sx + sz], p[sy + sz], p[sx + sy + sz]};
-        return blendCorners(c, t, lo, hi);
+        return g.sample(p, a, {is[0], is[1], is[2]}, lo, hi);
     }
 };
 

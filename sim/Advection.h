@@ -2,12 +2,11 @@
 /// \file Advection.h
 /// Advection on the staggered (MAC) grid of the wind solvers (docs/unsteady.md, "Method").
 ///
-/// Layout. A MacGrid is the AirDomain's box: nx * ny * nz cubic cells of edge h, cell (0, 0, 0)
-/// with its minimum corner at wsMin. Values live at four placements (Placement): u on x-faces at
-/// wsMin + (i, j + 1/2, k + 1/2) h, v on y-faces, w on z-faces, scalars at cell centres; arrays in
-/// PoissonSystem's layout (i fastest). Index space: cell (i, j, k) spans [i, i+1] x [j, j+1] x
-/// [k, k+1]. The conversion world metres -> index cells happens in one place only,
-/// MacGrid::isFromWs (so a trace moves by u dt metres = u dt / h cells, never by u dt cells).
+/// Layout. A MacGrid is the AirDomain's GridLayout (GridLayout.h: cells, the four placements of
+/// MAC values, index space, the one staggered sampler) plus the terrain traces stop at. The
+/// conversion world metres -> index cells happens in one place only, GridLayout::isFromWs (so a
+/// trace moves by u dt metres = u dt / h cells, never by u dt cells). Advection needs cubic cells
+/// (GridLayout::uniformZ): the unsteady solver refuses stretched layouts.
 ///
 /// Schemes (AdvectionScheme):
 ///  - SemiLagrangian: Stam 1999 ("Stable fluids"), with a second-order (explicit midpoint, RK2)
@@ -40,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/GridLayout.h"
 #include "sim/Heightfield.h"
 
 namespace gale::sim {
@@ -51,50 +51,23 @@ enum class AdvectionScheme { SemiLagrangian, MacCormack, Bfecc };
 const char* advectionSchemeName(AdvectionScheme scheme);
 AdvectionScheme advectionSchemeFromName(const std::string& name);
 
-/// Where on the cell a value lives.
-enum class Placement { FaceX = 0, FaceY = 1, FaceZ = 2, Cell = 3 };
-
-using Vec3d = std::array<double, 3>;
-
 /// Longest substep of a trace, in cells of travel (issue: at most 1-2 cells per substep).
 constexpr double MAX_TRACE_CELLS_PER_SUBSTEP = 2.0;
 
-struct MacGrid {
-    int nx = 0, ny = 0, nz = 0;
-    double voxelSize_m = 1.0;  ///< h, metres
-    Vec3d wsMin_m{};           ///< world position of the minimum corner of cell (0, 0, 0)
+struct MacGrid : GridLayout {
     /// The terrain surface traces stop at (world metres, not owned; must outlive the grid's
     /// users). nullptr: no terrain, traces run their full time.
     const Heightfield* terrain = nullptr;
 
-    /// A length in metres as a length in cells: l / h. The only metres-to-cells conversion;
-    /// isFromWs and the advection's traces go through it.
-    double cellsFromMetres(double l_m) const { return l_m / voxelSize_m; }
-    /// World metres -> index space (cells): (ws - wsMin) / h.
-    Vec3d isFromWs(const Vec3d& ws) const {
-        return {cellsFromMetres(ws[0] - wsMin_m[0]), cellsFromMetres(ws[1] - wsMin_m[1]),
-                cellsFromMetres(ws[2] - wsMin_m[2])};
-    }
-    /// Index space -> world metres.
-    Vec3d wsFromIs(const Vec3d& is) const {
-        return {wsMin_m[0] + is[0] * voxelSize_m, wsMin_m[1] + is[1] * voxelSize_m,
-                wsMin_m[2] + is[2] * voxelSize_m};
-    }
-    /// Samples along x, y, z of a placement (faces: one more along their axis).
-    std::array<int, 3> dims(Placement p) const {
-        return {nx + (p == Placement::FaceX), ny + (p == Placement::FaceY),
-                nz + (p == Placement::FaceZ)};
-    }
-    size_t count(Placement p) const {
-        const auto d = dims(p);
-        return size_t(d[0]) * d[1] * d[2];
-    }
-    /// World position of sample (i, j, k) of placement p, metres.
-    Vec3d wsPosition(Placement p, int i, int j, int k) const {
-        return wsFromIs({i + (p == Placement::FaceX ? 0.0 : 0.5),
-                         j + (p == Placement::FaceY ? 0.0 : 0.5),
-                         k + (p == Placement::FaceZ ? 0.0 : 0.5)});
-    }
+    MacGrid() = default;
+    /// nx * ny * nz cubic cells of edge voxelSize (metres), cell (0, 0, 0) with its minimum
+    /// corner at wsMin.
+    MacGrid(int nxCells, int nyCells, int nzCells, double voxelSize, const Vec3d& wsMin,
+            const Heightfield* ground = nullptr)
+        : GridLayout(nxCells, nyCells, nzCells, voxelSize, wsMin), terrain(ground) {}
+    MacGrid(const GridLayout& layout, const Heightfield* ground)
+        : GridLayout(layout), terrain(ground) {}
+
     /// True if a world point lies outside the box through an x or y side or the top (the bottom
     /// lies under the terrain and clamps instead).
     bool outside(const Vec3d& ws) const {

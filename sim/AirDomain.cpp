@@ -73,6 +73,27 @@ double AirDomain::estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentu
                     0.5 + 16.0 + 13.0 + (momentum ? MOMENTUM_EXTRA_BYTES_PER_CELL : 0.0));
 }
 
+double AirDomain::estimateSolveMemory_bytes(const GridLayout& g, bool momentum) {
+    double bytes = estimateSolveMemory_bytes(1, 1, 1, momentum) * double(g.nx) * g.ny * g.nz;
+    if (!g.uniformZ())
+        bytes += RESAMPLE_BYTES_PER_VOXEL * double(g.nx) * g.ny *
+                 std::ceil((g.wsTop_m() - g.wsMin_m[2]) / g.voxelSize_m - 1e-9);
+    return bytes;
+}
+
+std::vector<double> AirDomain::stretchedLevels_m(double z0, double top, double first, double ratio,
+                                                 double maxCell) {
+    std::vector<double> z{z0};
+    double dz = first;
+    // Each level adds at least `first` > 0, so this ends; the caller bounds the count.
+    while (z.back() < top - 1e-9 * first) {
+        z.push_back(z.back() + dz);
+        dz = std::min(dz * ratio, maxCell);
+    }
+    if (z.size() < 2) z.push_back(z0 + first);
+    return z;
+}
+
 AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
     using detail::num;
     // --- validate everything before allocating anything ------------------------------------
@@ -106,7 +127,31 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                              "must not exceed the terrain (" + num(hf.sizeX_m()) + " x " +
                                  num(hf.sizeY_m()) + " m)");
     const double minH = hf.minHeight_m(), maxH = hf.maxHeight_m();
-    const double zMin = std::floor(minH / h) * h;
+    // Stretched layers: validated here, their levels made below once the top is known.
+    const bool stretched = spec.firstCell_m.has_value();
+    const double first = stretched ? *spec.firstCell_m : h;
+    const double maxCell = spec.maxCell_m ? *spec.maxCell_m : MAX_LAYER_THICKENING * h;
+    if (stretched) {
+        if (!(first >= h / MAX_FIRST_CELL_THINNING * (1 - 1e-12) && first <= h * (1 + 1e-12)))
+            throw ParameterError("solver.first_cell_m", num(first),
+                                 "must be in [voxel_size_m / 5, voxel_size_m] = [" +
+                                     num(h / MAX_FIRST_CELL_THINNING) + ", " + num(h) + "] m");
+        if (!(spec.stretchRatio >= 1.0 && spec.stretchRatio <= MAX_STRETCH_RATIO))
+            throw ParameterError("solver.stretch_ratio", num(spec.stretchRatio),
+                                 "must be in [1, " + num(MAX_STRETCH_RATIO) + "]");
+        if (!(maxCell >= first && maxCell <= MAX_LAYER_THICKENING * h * (1 + 1e-12)))
+            throw ParameterError("solver.max_cell_m", num(maxCell),
+                                 "must be in [solver.first_cell_m, 2 voxel_size_m] = [" +
+                                     num(first) + ", " + num(MAX_LAYER_THICKENING * h) + "] m");
+        if (spec.momentumModel)
+            throw ParameterError("solver.first_cell_m", num(first),
+                                 "is not supported by solver.model = \"momentum\" (it needs cubic "
+                                 "cells): remove solver.first_cell_m");
+    } else if (spec.maxCell_m) {
+        throw ParameterError("solver.max_cell_m", num(maxCell),
+                             "applies to stretched layers only: give solver.first_cell_m too");
+    }
+    const double zMin = std::floor(minH / first) * first;
     double top = 0.0;
     if (spec.top_m) {
         top = *spec.top_m;
@@ -117,9 +162,17 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
     } else {
         top = maxH + std::max(AUTO_TOP_RELIEF_FACTOR * (maxH - minH), AUTO_TOP_MIN_CELLS * h);
     }
-    const double nzD = std::ceil((top - zMin) / h - 1e-9);
+    std::vector<double> levels;
+    constexpr double MAX_LAYERS = 1e7;  // far above any box the memory limit lets through
+    if (stretched && (top - zMin) / maxCell > MAX_LAYERS)
+        throw ParameterError("solver.top_m", num(top),
+                             "gives more than " + num(MAX_LAYERS) + " layers: lower it");
+    if (stretched) levels = stretchedLevels_m(zMin, top, first, spec.stretchRatio, maxCell);
+    const double nzD = stretched ? double(levels.size() - 1) : std::ceil((top - zMin) / h - 1e-9);
+    const double resampleD = stretched ? std::ceil((levels.back() - zMin) / h - 1e-9) : 0.0;
     const double estimate =
-        estimateSolveMemory_bytes(1, 1, 1, spec.momentumModel) * nxD * nyD * nzD;
+        estimateSolveMemory_bytes(1, 1, 1, spec.momentumModel) * nxD * nyD * nzD +
+        RESAMPLE_BYTES_PER_VOXEL * nxD * nyD * resampleD;
     if (nxD * nyD * nzD > 2.0e9 || estimate > spec.memoryLimit_bytes)
         throw ParameterError("solver.memory_limit_mb", formatG(spec.memoryLimit_bytes / MIB, 4),
                              "is below the estimated memory of " + formatG(estimate / MIB, 4) +
@@ -127,29 +180,31 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                                  " cells: raise solver.voxel_size_m, lower solver.top_m or raise "
                                  "the limit");
 
-    mNx = int(nxD), mNy = int(nyD), mNz = std::max(1, int(nzD));
-    mVoxelSize_m = h;
-    mWsMin_m = {hf.originX_m, hf.originY_m, zMin};
+    mLayout = stretched ? GridLayout(int(nxD), int(nyD), h, {hf.originX_m, hf.originY_m, zMin},
+                                     std::move(levels))
+                        : GridLayout(int(nxD), int(nyD), std::max(1, int(nzD)), h,
+                                     {hf.originX_m, hf.originY_m, zMin});
     mMemoryEstimate_bytes = size_t(estimate);
     mTerrain = std::make_shared<const Heightfield>(hf);
 
     // --- open fractions, column by column ------------------------------------------------
-    const int nx = mNx, ny = mNy, nz = mNz, S = FRACTION_SUBSAMPLES;
-    mOpenX.assign(size_t(nx + 1) * ny * nz, 0.f);
-    mOpenY.assign(size_t(nx) * (ny + 1) * nz, 0.f);
-    mOpenZ.assign(size_t(nx) * ny * (nz + 1), 0.f);
-    mAir.assign(size_t(nx) * ny * nz, 0);
+    const GridLayout& G = mLayout;
+    const int nx = G.nx, ny = G.ny, nz = G.nz, S = FRACTION_SUBSAMPLES;
+    const std::array<double, 3>& wsMin = G.wsMin_m;
+    mOpenX.assign(G.count(Placement::FaceX), 0.f);
+    mOpenY.assign(G.count(Placement::FaceY), 0.f);
+    mOpenZ.assign(G.count(Placement::FaceZ), 0.f);
+    mAir.assign(G.cellCount(), 0);
     const Heightfield& T = *mTerrain;
-    auto zAt = [&](int k) { return zMin + k * h; };
-    // Vertical face along a line of S+1 heights: open fraction of its cell k.
+    // Vertical face along a line of S+1 heights: open fraction of its cell k (thickness dz).
     auto verticalFace = [&](const double* line, int k, double lineMin, double lineMax) -> float {
-        const double z0 = zAt(k), z1 = z0 + h;
+        const double dz = G.dz_m(k), z0 = G.zFace_m(k), z1 = z0 + dz;
         if (z0 >= lineMax) return 1.f;
         if (z1 <= lineMin) return 0.f;
         double s = 0.0;
         for (int b = 0; b < S; ++b)
-            s += detail::meanClampedLinear(z1 - line[b], z1 - line[b + 1], h);
-        return detail::cleanFraction(s / (S * h), spec.cutCells);
+            s += detail::meanClampedLinear(z1 - line[b], z1 - line[b + 1], dz);
+        return detail::cleanFraction(s / (S * dz), spec.cutCells);
     };
     tbb::parallel_for(tbb::blocked_range<int>(0, ny), [&](const tbb::blocked_range<int>& rj) {
         std::vector<double> H(size_t(S + 1) * (S + 1)), line(S + 1), mid(S + 1);
@@ -159,8 +214,8 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                 double cMin = 1e300, cMax = -1e300;
                 for (int b = 0; b <= S; ++b)
                     for (int a = 0; a <= S; ++a) {
-                        const double v = T.sample(mWsMin_m[0] + (i + double(a) / S) * h,
-                                                  mWsMin_m[1] + (j + double(b) / S) * h);
+                        const double v = T.sample(wsMin[0] + (i + double(a) / S) * h,
+                                                  wsMin[1] + (j + double(b) / S) * h);
                         Hat(a, b) = v;
                         cMin = std::min(cMin, v), cMax = std::max(cMax, v);
                     }
@@ -172,23 +227,15 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                     }
                     for (int k = 0; k < nz; ++k) store(k, verticalFace(line.data(), k, lMin, lMax));
                 };
-                doLine(true, 0, [&](int k, float f) {
-                    mOpenX[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = f;
-                });
+                doLine(true, 0, [&](int k, float f) { mOpenX[G.faceXIndex(i, j, k)] = f; });
                 if (i == nx - 1)
-                    doLine(true, S, [&](int k, float f) {
-                        mOpenX[size_t(nx) + size_t(nx + 1) * (j + size_t(ny) * k)] = f;
-                    });
-                doLine(false, 0, [&](int k, float f) {
-                    mOpenY[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = f;
-                });
+                    doLine(true, S, [&](int k, float f) { mOpenX[G.faceXIndex(nx, j, k)] = f; });
+                doLine(false, 0, [&](int k, float f) { mOpenY[G.faceYIndex(i, j, k)] = f; });
                 if (j == ny - 1)
-                    doLine(false, S, [&](int k, float f) {
-                        mOpenY[size_t(i) + size_t(nx) * (ny + size_t(ny + 1) * k)] = f;
-                    });
+                    doLine(false, S, [&](int k, float f) { mOpenY[G.faceYIndex(i, ny, k)] = f; });
                 // Horizontal faces: area where h < z_face, S rows at the sub-row midpoints.
                 for (int k = 0; k <= nz; ++k) {
-                    const double zf = zAt(k);
+                    const double zf = G.zFace_m(k);
                     float f;
                     if (zf > cMax) {
                         f = 1.f;
@@ -203,7 +250,7 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
                         }
                         f = detail::cleanFraction(s / (S * S), spec.cutCells);
                     }
-                    mOpenZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = f;
+                    mOpenZ[G.faceZIndex(i, j, k)] = f;
                 }
             }
     });
@@ -226,24 +273,24 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
         for (int j = 0; j < ny; ++j) {
             for (int i = 0; i <= nx; ++i)
                 if ((i > 0 && !air(i - 1, j, k)) || (i < nx && !air(i, j, k)))
-                    mOpenX[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = 0.f;
+                    mOpenX[G.faceXIndex(i, j, k)] = 0.f;
         }
     for (int k = 0; k < nz; ++k)
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i < nx; ++i)
                 if ((j > 0 && !air(i, j - 1, k)) || (j < ny && !air(i, j, k)))
-                    mOpenY[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = 0.f;
+                    mOpenY[G.faceYIndex(i, j, k)] = 0.f;
     for (int k = 0; k <= nz; ++k)
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i)
                 if (k == 0 || (k > 0 && !air(i, j, k - 1)) || (k < nz && !air(i, j, k)))
-                    mOpenZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = 0.f;
+                    mOpenZ[G.faceZIndex(i, j, k)] = 0.f;
 
     // --- the OpenVDB air mask ------------------------------------------------------------
     openvdb::initialize();
     mVdb = std::make_shared<Vdb>();
     mVdb->mask = openvdb::BoolGrid::create(false);
-    mVdb->mask->setTransform(detail::cellCentredTransform(h, mWsMin_m));
+    mVdb->mask->setTransform(detail::cellCentredTransform(h, wsMin));
     mVdb->mask->setName("air");
     {
         auto acc = mVdb->mask->getAccessor();

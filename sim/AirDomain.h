@@ -9,6 +9,11 @@
 ///   max height + max(AUTO_TOP_RELIEF_FACTOR * relief, AUTO_TOP_MIN_CELLS * h),
 /// rounded up to whole cells.
 ///
+/// Stretched layers (DomainSpec::firstCell_m set): the horizontal cells keep their edge h, the
+/// layers (shared by every column, a tensor-product grid) start firstCell_m thick at
+/// wsMin.z = floor(min height / firstCell_m) * firstCell_m and grow by stretchRatio per layer up to
+/// maxCell_m; the top is rounded up to the next level (GridLayout holds the level heights).
+///
 /// Cut cells (Batty, Bertails, Bridson 2007; Ng, Min, Gibou 2009). Every cell face carries an open
 /// fraction in [0, 1], the fraction of its area above the terrain h(x, y) (the Heightfield's
 /// bilinear surface). Vertical faces: the exact integral of clamp(z_top - h, 0, dz) along the face
@@ -33,6 +38,7 @@
 #include <optional>
 #include <vector>
 
+#include "sim/GridLayout.h"
 #include "sim/Heightfield.h"
 
 namespace gale::sim {
@@ -47,6 +53,14 @@ struct DomainSpec {
     bool cutCells = true;
     /// true: the estimate also counts the momentum model's arrays (sim/MomentumWind.h).
     bool momentumModel = false;
+    /// Stretched layers (docs/solver.md, "Stretched layers"): thickness of the lowest layer,
+    /// metres, in [voxelSize_m / 5, voxelSize_m]. Unset: cubic cells.
+    std::optional<double> firstCell_m{};
+    /// Stretched layers: each layer is this many times thicker than the one below, [1, 1.2].
+    double stretchRatio = 1.2;
+    /// Stretched layers: the largest layer thickness, metres, in [firstCell_m, 2 voxelSize_m].
+    /// Unset: AirDomain::MAX_LAYER_THICKENING voxelSize_m.
+    std::optional<double> maxCell_m{};
 };
 
 class AirDomain {
@@ -59,26 +73,42 @@ class AirDomain {
     static constexpr int FRACTION_SUBSAMPLES = 8;
     /// Open fractions below this are closed.
     static constexpr float MIN_OPEN_FRACTION = 1e-3f;
+    /// Stretched layers: the thinnest first layer is voxelSize_m / MAX_FIRST_CELL_THINNING (the
+    /// z-line smoother keeps the iterations flat there, docs/solver.md).
+    static constexpr double MAX_FIRST_CELL_THINNING = 5.0;
+    /// Stretched layers: the thickest layer is MAX_LAYER_THICKENING voxelSize_m. Thicker layers
+    /// make the horizontal couplings dominate, which z-lines do not smooth: at 4 voxels the
+    /// hemisphere's iterations grew 9, 16, 23 as the cells halved; at 2 they stay 9, 11, 11.
+    static constexpr double MAX_LAYER_THICKENING = 2.0;
+    /// Stretched layers: the largest growth ratio from one layer to the next.
+    static constexpr double MAX_STRETCH_RATIO = 1.2;
 
     /// Builds the domain. Throws std::invalid_argument naming the parameter when the terrain has a
     /// NaN/Inf height or a bad size/spacing, voxelSize_m is not > 0 and finite or is larger than
     /// the terrain, top_m is not above the highest point (no air), memoryLimit_bytes is not > 0,
-    /// or the memory estimate exceeds memoryLimit_bytes (checked before allocating).
+    /// or the memory estimate exceeds memoryLimit_bytes (checked before allocating); throws
+    /// gale::ParameterError naming solver.first_cell_m, solver.stretch_ratio or
+    /// solver.max_cell_m when they are outside their ranges, and solver.first_cell_m when the
+    /// momentum model is asked for on stretched layers (it needs cubic cells).
     AirDomain(const Heightfield& terrain, const DomainSpec& spec);
     ~AirDomain();
     AirDomain(AirDomain&&) noexcept;
     AirDomain& operator=(AirDomain&&) noexcept;
 
-    int nx() const { return mNx; }
-    int ny() const { return mNy; }
-    int nz() const { return mNz; }
-    double voxelSize_m() const { return mVoxelSize_m; }
+    /// The box's layout (cells, faces, world <-> index): the one shared with the Poisson system,
+    /// the wind field and advection.
+    const GridLayout& layout() const { return mLayout; }
+    int nx() const { return mLayout.nx; }
+    int ny() const { return mLayout.ny; }
+    int nz() const { return mLayout.nz; }
+    /// Horizontal cell edge (and the layer thickness of a uniform layout), metres.
+    double voxelSize_m() const { return mLayout.voxelSize_m; }
     /// World position of the minimum corner of cell (0, 0, 0), metres.
-    std::array<double, 3> wsMin_m() const { return mWsMin_m; }
+    std::array<double, 3> wsMin_m() const { return mLayout.wsMin_m; }
     /// World z of the top boundary (after rounding to whole cells), metres.
-    double wsTop_m() const { return mWsMin_m[2] + mNz * mVoxelSize_m; }
+    double wsTop_m() const { return mLayout.wsTop_m(); }
 
-    size_t boxCellCount() const { return size_t(mNx) * mNy * mNz; }
+    size_t boxCellCount() const { return mLayout.cellCount(); }
     size_t activeCellCount() const { return mActiveCount; }
     /// Estimated peak bytes of a steady solve on this domain (made before allocating).
     size_t memoryEstimate_bytes() const { return mMemoryEstimate_bytes; }
@@ -90,45 +120,51 @@ class AirDomain {
     /// Estimated peak bytes of a steady solve on a box of nx * ny * nz cells (momentum: of the
     /// momentum model, which adds MOMENTUM_EXTRA_BYTES_PER_CELL).
     static double estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentum = false);
+    /// Estimated peak bytes of a steady solve on `layout`: estimateSolveMemory_bytes over its
+    /// cells, plus, for stretched layers, the cubic resample of the standard .vdb grids (nx * ny
+    /// cells of voxelSize_m up to the top, RESAMPLE_BYTES_PER_VOXEL each; docs/solver.md).
+    static double estimateSolveMemory_bytes(const GridLayout& layout, bool momentum = false);
+    /// Bytes per voxel of the cubic resample written for stretched layers: the velocity (12 B)
+    /// and speed (4 B) grids, as for cubic cells.
+    static constexpr double RESAMPLE_BYTES_PER_VOXEL = 16.0;
+    /// Level heights (world z, metres) of stretched layers from z0: the first layer firstCell_m
+    /// thick, each next one ratio times the one below, capped at maxCell_m, up to the first level
+    /// at or above top_m. Arguments as validated by the constructor.
+    static std::vector<double> stretchedLevels_m(double z0_m, double top_m, double firstCell_m,
+                                                 double ratio, double maxCell_m);
 
     /// Open fraction of the x-face between cells (i-1, j, k) and (i, j, k), i in [0, nx].
-    float openFractionX(int i, int j, int k) const {
-        return mOpenX[size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k)];
-    }
+    float openFractionX(int i, int j, int k) const { return mOpenX[mLayout.faceXIndex(i, j, k)]; }
     /// Open fraction of the y-face between cells (i, j-1, k) and (i, j, k), j in [0, ny].
-    float openFractionY(int i, int j, int k) const {
-        return mOpenY[size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k)];
-    }
+    float openFractionY(int i, int j, int k) const { return mOpenY[mLayout.faceYIndex(i, j, k)]; }
     /// Open fraction of the z-face between cells (i, j, k-1) and (i, j, k), k in [0, nz].
-    float openFractionZ(int i, int j, int k) const {
-        return mOpenZ[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)];
-    }
+    float openFractionZ(int i, int j, int k) const { return mOpenZ[mLayout.faceZIndex(i, j, k)]; }
     /// Face arrays in PoissonSystem's layout (PoissonSystem::faceXIndex etc.).
     const std::vector<float>& openFractionsX() const { return mOpenX; }
     const std::vector<float>& openFractionsY() const { return mOpenY; }
     const std::vector<float>& openFractionsZ() const { return mOpenZ; }
 
-    /// Net flux out of cell (i, j, k) through its open faces, per unit face area, m/s: the sum of
-    /// open fraction x face velocity, outward positive, of face arrays U, V, W in this layout
-    /// (WindField's). Times h^2 it is the cell's volume outflow; zero for a discretely
+    /// Net flux out of cell (i, j, k) through its open faces divided by h^2 (h = voxelSize_m),
+    /// m/s: the sum of open fraction x face velocity x face area / h^2, outward positive, of face
+    /// arrays U, V, W in this layout (WindField's); side faces have area h dz_k (h^2 for cubic
+    /// cells), z-faces h^2. Times h^2 it is the cell's volume outflow; zero for a discretely
     /// divergence-free field. Inline: the solvers evaluate it per cell per step.
     double openOutflux(const std::vector<double>& U, const std::vector<double>& V,
                        const std::vector<double>& W, int i, int j, int k) const {
-        const size_t xm = size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k), xp = xm + 1;
-        const size_t ym = size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k),
-                     yp = ym + size_t(mNx);
-        const size_t zm = size_t(i) + size_t(mNx) * (j + size_t(mNy) * k),
-                     zp = zm + size_t(mNx) * mNy;
-        return mOpenX[xp] * U[xp] - mOpenX[xm] * U[xm] + mOpenY[yp] * V[yp] - mOpenY[ym] * V[ym] +
-               mOpenZ[zp] * W[zp] - mOpenZ[zm] * W[zm];
+        const GridLayout& g = mLayout;
+        const size_t xm = g.faceXIndex(i, j, k), xp = xm + 1;
+        const size_t ym = g.faceYIndex(i, j, k), yp = ym + size_t(g.nx);
+        const size_t zm = g.faceZIndex(i, j, k), zp = zm + size_t(g.nx) * size_t(g.ny);
+        const double side =
+            mOpenX[xp] * U[xp] - mOpenX[xm] * U[xm] + mOpenY[yp] * V[yp] - mOpenY[ym] * V[ym];
+        return (g.uniformZ() ? side : side * (g.dz_m(k) / g.voxelSize_m)) + mOpenZ[zp] * W[zp] -
+               mOpenZ[zm] * W[zm];
     }
 
     /// True if cell (i, j, k) holds air (an unknown of the solve).
     bool isAir(int i, int j, int k) const { return mAir[cellIndex(i, j, k)] != 0; }
     const std::vector<uint8_t>& airFlags() const { return mAir; }
-    size_t cellIndex(int i, int j, int k) const {
-        return size_t(i) + size_t(mNx) * (j + size_t(mNy) * k);
-    }
+    size_t cellIndex(int i, int j, int k) const { return mLayout.cellIndex(i, j, k); }
 
     const Heightfield& terrain() const { return *mTerrain; }
     std::shared_ptr<const Heightfield> terrainShared() const { return mTerrain; }
@@ -137,9 +173,7 @@ class AirDomain {
     const Vdb& vdb() const { return *mVdb; }
 
   private:
-    int mNx = 0, mNy = 0, mNz = 0;
-    double mVoxelSize_m = 0;
-    std::array<double, 3> mWsMin_m{};
+    GridLayout mLayout;
     size_t mActiveCount = 0;
     size_t mMemoryEstimate_bytes = 0;
     std::vector<float> mOpenX, mOpenY, mOpenZ;

@@ -60,6 +60,7 @@ struct Level {
     std::vector<uint32_t> rowRuns;  // runs of row (j, k) are runs[rowRuns[r] .. rowRuns[r+1])
     std::vector<std::array<int, 2>> runs;  // [i0, i1)
     size_t uniformCells = 0;
+    bool zLines = false;         // smooth with lineSweep instead of fusedSweep
     int cx = 1, cy = 1, cz = 1;  // coarsening factors to the next level
     Transfer1D tx, ty, tz;       // transfers to the next level
     /// Fine cells next to an inactive coarse cell or a Neumann side: the trilinear weight those
@@ -211,6 +212,15 @@ double uniformApply(const double* __restrict x, const double* __restrict b, doub
 void fusedSweep(const Level& L, double* x, const double* b, int first, bool fromZero,
                 double* residualOut, const Level* C = nullptr, const double* xc = nullptr,
                 double* dotOut = nullptr);
+
+/// The same contract as fusedSweep with z-line Gauss-Seidel: colour `first` of the columns
+/// ((i + j) % 2 == first) first, each column solved exactly for its z-couplings (Thomas
+/// algorithm) with the horizontal neighbours' current values, then the other colour. Not
+/// pipelined; optional coarse correction P xc added before, residual and b . x formed after
+/// (PoissonLineSmoothing.cpp).
+void lineSweep(const Level& L, double* x, const double* b, int first, bool fromZero,
+               double* residualOut, const Level* C = nullptr, const double* xc = nullptr,
+               double* dotOut = nullptr);
 
 // --- transfers (PoissonTransfer.cpp) -----------------------------------------------------------
 

@@ -38,6 +38,22 @@ void buildCoarse(const Level& F, Level& C) {
     C.resize((F.nx + F.cx - 1) / F.cx, (F.ny + F.cy - 1) / F.cy, (F.nz + F.cz - 1) / F.cz);
     // Coarse face weight = sum of the fine face weights covering it / coarsening factor along
     // the face normal: the conductance of the averaged open fraction at the coarse spacing.
+    std::array<std::vector<float>, 3> layerFull;  // per fine layer (z-faces: per face k)
+    if (F.zLines) {
+        // Interior faces only, as the level's bx, by, bz (boundary faces carry the factor 2).
+        for (auto& v : layerFull) v.assign(size_t(F.nz) + 1, 0.f);
+        for (int k = 0; k < F.nz; ++k)
+            for (int j = 0; j < F.ny; ++j)
+                for (int i = 0; i < F.nx; ++i) {
+                    const size_t p = F.at(i, j, k);
+                    const size_t kk = size_t(k);
+                    if (i > 0) layerFull[0][kk] = std::max(layerFull[0][kk], F.wx[p]);
+                    if (j > 0) layerFull[1][kk] = std::max(layerFull[1][kk], F.wy[p]);
+                    if (k > 0) layerFull[2][kk] = std::max(layerFull[2][kk], F.wz[p]);
+                }
+        layerFull[2][0] = layerFull[2][1 % F.nz];
+        layerFull[2][size_t(F.nz)] = layerFull[2][size_t(F.nz) - 1];
+    }
     auto sumFaces = [&](int axis, int I, int J, int K) {
         const int c[3] = {F.cx, F.cy, F.cz};
         const int n[3] = {F.nx, F.ny, F.nz};
@@ -48,16 +64,19 @@ void buildCoarse(const Level& F, Level& C) {
         for (int d = 0; d < 3; ++d)
             if (d != axis) hi[d] = std::min(hi[d], n[d]);
         const std::vector<float>& w = axis == 0 ? F.wx : axis == 1 ? F.wy : F.wz;
-        const double small = COARSE_MIN_OPEN_FRACTION * (axis == 0   ? F.bx
-                                                         : axis == 1 ? F.by
-                                                                     : F.bz);
+        const double full = axis == 0 ? F.bx : axis == 1 ? F.by : F.bz;
         double s = 0.0;
-        for (int k = lo[2]; k < hi[2]; ++k)
+        for (int k = lo[2]; k < hi[2]; ++k) {
+            // Stretched layers: a full-open face's weight depends on its layer, so the sliver
+            // floor is a fraction of the layer's own largest weight.
+            const double small =
+                COARSE_MIN_OPEN_FRACTION * (F.zLines ? layerFull[size_t(axis)][size_t(k)] : full);
             for (int j = lo[1]; j < hi[1]; ++j)
                 for (int i = lo[0]; i < hi[0]; ++i) {
                     const double v = w[F.at(i, j, k)];
                     s += (v > 0.0 && v < small) ? small : v;
                 }
+        }
         return float(s / c[axis]);
     };
     tbb::parallel_for(0, C.nz + 1, [&](int K) {
@@ -129,6 +148,7 @@ size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels) {
     Level& L = levels[0];
     size_t activeCells = 0;
     L.resize(sys.nx, sys.ny, sys.nz);
+    L.zLines = sys.zLineSmoothing;
     // Boundary faces: Dirichlet data sits on the face, half a cell from the centre (weight x 2);
     // Neumann faces carry no flux (weight 0).
     auto boundaryScale = [&](int side) {
@@ -192,6 +212,7 @@ size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels) {
         F.cz = F.nz > 1 ? 2 : 1;
         if (F.cx == 1 && F.cy == 1 && F.cz == 1) break;
         Level C;
+        C.zLines = F.zLines;
         buildCoarse(F, C);
         C.markActive();
         // A coarse face over full-open fine faces: (number of fine faces) * base / factor, exact

@@ -55,9 +55,10 @@ struct PoissonSolver::Impl {
             return;
         }
         // Pre-smoothing V(n, .) in red-black order; the last sweep also forms the residual.
+        const auto sweep = L.zLines ? multigrid::lineSweep : multigrid::fusedSweep;
         for (int s = 0; s < sweeps; ++s)
-            multigrid::fusedSweep(L, x, b, /*first=*/0, /*fromZero=*/s == 0,
-                                  /*residualOut=*/s + 1 == sweeps ? scratch : nullptr);
+            sweep(L, x, b, /*first=*/0, /*fromZero=*/s == 0,
+                  /*residualOut=*/s + 1 == sweeps ? scratch : nullptr, nullptr, nullptr, nullptr);
         Level& C = levels[l + 1];
         multigrid::restrictTo(L, scratch, C);
         vcycle(l + 1, C.b.data(), C.x.data(), C.r.data());
@@ -65,18 +66,17 @@ struct PoissonSolver::Impl {
         // symmetric preconditioner as CG requires. The first post-sweep adds the coarse
         // correction as it goes; the last one sums b . x.
         for (int s = 0; s < sweeps; ++s)
-            multigrid::fusedSweep(L, x, b, /*first=*/1, /*fromZero=*/false, nullptr,
-                                  s == 0 ? &C : nullptr, s == 0 ? C.x.data() : nullptr,
-                                  s + 1 == sweeps ? dotOut : nullptr);
+            sweep(L, x, b, /*first=*/1, /*fromZero=*/false, nullptr, s == 0 ? &C : nullptr,
+                  s == 0 ? C.x.data() : nullptr, s + 1 == sweeps ? dotOut : nullptr);
     }
 };
 
 PoissonSystem PoissonSystem::uniformBox(int nx, int ny, int nz) {
     PoissonSystem s;
     s.nx = nx, s.ny = ny, s.nz = nz;
-    s.weightX.assign(size_t(nx + 1) * ny * nz, 1.f);
-    s.weightY.assign(size_t(nx) * (ny + 1) * nz, 1.f);
-    s.weightZ.assign(size_t(nx) * ny * (nz + 1), 1.f);
+    s.weightX.assign(s.count(Placement::FaceX), 1.f);
+    s.weightY.assign(s.count(Placement::FaceY), 1.f);
+    s.weightZ.assign(s.count(Placement::FaceZ), 1.f);
     return s;
 }
 
@@ -86,9 +86,8 @@ PoissonSolver::PoissonSolver(const PoissonSystem& sys) : mImpl(std::make_unique<
         throw std::invalid_argument("PoissonSystem: nx, ny, nz must be >= 1, got " +
                                     std::to_string(sys.nx) + ", " + std::to_string(sys.ny) + ", " +
                                     std::to_string(sys.nz));
-    const size_t nxF = size_t(sys.nx + 1) * sys.ny * sys.nz,
-                 nyF = size_t(sys.nx) * (sys.ny + 1) * sys.nz,
-                 nzF = size_t(sys.nx) * sys.ny * (sys.nz + 1);
+    const size_t nxF = sys.count(Placement::FaceX), nyF = sys.count(Placement::FaceY),
+                 nzF = sys.count(Placement::FaceZ);
     auto checkWeights = [](const std::vector<float>& w, size_t n, const char* name) {
         if (w.size() != n)
             throw std::invalid_argument(std::string("PoissonSystem.") + name + " must have " +

@@ -34,6 +34,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/GridLayout.h"
+
 namespace gale::sim {
 
 enum class BoundaryKind { Dirichlet, Neumann };
@@ -43,32 +45,20 @@ enum BoxSide : int { SIDE_XMIN = 0, SIDE_XMAX, SIDE_YMIN, SIDE_YMAX, SIDE_ZMIN, 
 
 /// The operator: box size, boundary kinds and face weights (dimensionless conductances, the
 /// open fraction of the face times the operator's coefficient in that direction).
-struct PoissonSystem {
-    int nx = 0, ny = 0, nz = 0;  ///< cells along x, y, z (each >= 1)
+struct PoissonSystem : GridIndex {
     std::array<BoundaryKind, 6> sides{BoundaryKind::Dirichlet, BoundaryKind::Dirichlet,
                                       BoundaryKind::Dirichlet, BoundaryKind::Dirichlet,
                                       BoundaryKind::Dirichlet, BoundaryKind::Dirichlet};
-    /// x-faces: face i sits between cells i-1 and i (i in [0, nx]); index i + (nx+1)*(j + ny*k).
+    /// Weights of the x-faces (GridIndex::faceXIndex: face i between cells i-1 and i).
     std::vector<float> weightX;
-    /// y-faces: face j between cells j-1 and j (j in [0, ny]); index i + nx*(j + (ny+1)*k).
+    /// Weights of the y-faces (GridIndex::faceYIndex).
     std::vector<float> weightY;
-    /// z-faces: face k between cells k-1 and k (k in [0, nz]); index i + nx*(j + ny*k).
+    /// Weights of the z-faces (GridIndex::faceZIndex).
     std::vector<float> weightZ;
-
-    size_t cellCount() const { return size_t(nx) * ny * nz; }
-    /// Index of cell (i, j, k) in solution and right-hand-side vectors: i fastest.
-    size_t cellIndex(int i, int j, int k) const {
-        return size_t(i) + size_t(nx) * (j + size_t(ny) * k);
-    }
-    size_t faceXIndex(int i, int j, int k) const {
-        return size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k);
-    }
-    size_t faceYIndex(int i, int j, int k) const {
-        return size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k);
-    }
-    size_t faceZIndex(int i, int j, int k) const {
-        return size_t(i) + size_t(nx) * (j + size_t(ny) * k);
-    }
+    /// Smooth with z-line Gauss-Seidel (a tridiagonal solve per column, columns in red-black
+    /// order) instead of point Gauss-Seidel: for operators whose z-couplings are much stronger
+    /// than the horizontal ones (thin stretched layers), where point smoothing stalls.
+    bool zLineSmoothing = false;
 
     /// All weights 1 (the plain Laplacian scaled by h), all sides Dirichlet.
     static PoissonSystem uniformBox(int nx, int ny, int nz);

@@ -18,6 +18,16 @@ namespace {
 
 using detail::num;
 
+/// Distance between the centres z-face k separates, metres: h for cubic cells; on stretched
+/// layers the mean of the two layers, and at the bottom and top the end layer's thickness (the
+/// top's Dirichlet value sits on the face, half of it away: the factor 2 of boundary faces).
+double centreGap_m(const GridLayout& g, int k) {
+    if (g.uniformZ()) return g.voxelSize_m;
+    if (k <= 0) return g.dz_m(0);
+    if (k >= g.nz) return g.dz_m(g.nz - 1);
+    return 0.5 * (g.dz_m(k - 1) + g.dz_m(k));
+}
+
 double checkedRatio(const MassConsistentWeights& w) {
     if (!(w.alphaH > 0.0) || !std::isfinite(w.alphaH))
         throw std::invalid_argument("MassConsistentWeights.alphaH must be > 0 and finite, got " +
@@ -46,6 +56,28 @@ PoissonSystem SteadyWindSolver::makeSystem(const AirDomain& d, double r) {
     s.weightX = d.openFractionsX();
     s.weightY = d.openFractionsY();
     s.weightZ = d.openFractionsZ();
+    const GridLayout& g = d.layout();
+    if (!g.uniformZ()) {
+        s.zLineSmoothing = true;  // thin layers: point smoothing stalls (PoissonLineSmoothing.cpp)
+        // Finite volumes on stretched layers, divided by h: a side face conducts
+        // theta (h dz_k) / h / h = theta dz_k / h, a z-face theta h^2 / d_k / h = theta h / d_k
+        // with d_k the distance between the centres it separates (the top face: dz of the last
+        // layer, the solver doubles boundary weights for the half distance).
+        const double h = g.voxelSize_m;
+        const size_t plane = size_t(g.nx) * g.ny;
+        for (int k = 0; k < g.nz; ++k) {
+            const float side = float(g.dz_m(k) / h);
+            for (size_t f = g.faceXIndex(0, 0, k); f < g.faceXIndex(0, 0, k + 1); ++f)
+                s.weightX[f] *= side;
+            for (size_t f = g.faceYIndex(0, 0, k); f < g.faceYIndex(0, 0, k + 1); ++f)
+                s.weightY[f] *= side;
+        }
+        for (int k = 0; k <= g.nz; ++k) {
+            const float up = float(h / centreGap_m(g, k));
+            const size_t f0 = g.faceZIndex(0, 0, k);
+            for (size_t f = f0; f < f0 + plane; ++f) s.weightZ[f] *= up;
+        }
+    }
     if (r != 1.0)
         for (float& w : s.weightZ) w = float(w * r);
     return s;
@@ -76,8 +108,11 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
     const auto o = D.wsMin_m();
     const Heightfield& T = D.terrain();
 
+    const GridLayout& G = D.layout();
     SteadyWindResult res;
-    res.field = WindField(nx, ny, nz, h, o, D.terrainShared(), D.airFlags());
+    res.field = WindField(G, D.terrainShared(), D.airFlags());
+    const std::vector<float>&thX = D.openFractionsX(), &thY = D.openFractionsY(),
+          &thZ = D.openFractionsZ();
     std::vector<double>& U = res.field.u_mps();
     std::vector<double>& V = res.field.v_mps();
     std::vector<double>& W = res.field.w_mps();
@@ -88,30 +123,29 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
     const auto dir = ambient.velocityAt_mps(ambient.referenceHeight_m);
     const double sref = ambient.speed_mps > 0 ? ambient.speed_mps : 1.0;
     const double ex = dir[0] / sref, ey = dir[1] / sref;  // unit direction (times speed/sref)
-    auto speedAt = [&](double x, double y, double zTop, double theta) {
+    auto speedAt = [&](double x, double y, double zTop, double dz, double theta) {
         if (uniform) return ambient.speed_mps;
-        const double zc = zTop - 0.5 * std::max(double(theta), 1e-3) * h;
+        const double zc = zTop - 0.5 * std::max(double(theta), 1e-3) * dz;
         return ambient.speedAt_mps(zc - T.sample(x, y));
     };
     tbb::parallel_for(0, nz, [&](int k) {
-        const double zTop = o[2] + (k + 1) * h;
+        const double dz = G.dz_m(k), zTop = G.zFace_m(k) + dz;
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i <= nx; ++i) {
                 const size_t f = S.faceXIndex(i, j, k);
-                U[f] = ex * speedAt(o[0] + i * h, o[1] + (j + 0.5) * h, zTop, S.weightX[f]);
+                U[f] = ex * speedAt(o[0] + i * h, o[1] + (j + 0.5) * h, zTop, dz, thX[f]);
             }
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 const size_t f = S.faceYIndex(i, j, k);
-                V[f] = ey * speedAt(o[0] + (i + 0.5) * h, o[1] + j * h, zTop, S.weightY[f]);
+                V[f] = ey * speedAt(o[0] + (i + 0.5) * h, o[1] + j * h, zTop, dz, thY[f]);
             }
     });
     // W stays 0: the ambient wind is horizontal.
 
     // --- right-hand side: h * outward open flux of u0, plus Dirichlet data on the open sides.
-    // Boundary weights carry the factor 2 of a face half a cell from the centre.
-    const std::vector<float>&thX = D.openFractionsX(), &thY = D.openFractionsY(),
-          &thZ = D.openFractionsZ();
+    // Boundary weights carry the factor 2 of a face half a cell from the centre; on stretched
+    // layers side faces conduct dz_k / h and the top dz_top / h times as much as cubic ones.
     auto g = [&](double x, double y, double z) { return boundary ? boundary(x, y, z) : 0.0; };
     std::vector<double> rhs(S.cellCount(), 0.0);
     tbb::parallel_for(0, nz, [&](int k) {
@@ -124,12 +158,13 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
                 double b = h * D.openOutflux(U, V, W, i, j, k);
                 if (boundary) {
                     const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h,
-                                 zc = o[2] + (k + 0.5) * h;
-                    if (i == 0) b += 2.0 * thX[xm] * g(o[0], yc, zc);
-                    if (i == nx - 1) b += 2.0 * thX[xp] * g(o[0] + nx * h, yc, zc);
-                    if (j == 0) b += 2.0 * thY[ym] * g(xc, o[1], zc);
-                    if (j == ny - 1) b += 2.0 * thY[yp] * g(xc, o[1] + ny * h, zc);
-                    if (k == nz - 1) b += 2.0 * r * thZ[zp] * g(xc, yc, o[2] + nz * h);
+                                 zc = G.zCentre_m(k), side = G.dz_m(k) / h;
+                    if (i == 0) b += 2.0 * side * thX[xm] * g(o[0], yc, zc);
+                    if (i == nx - 1) b += 2.0 * side * thX[xp] * g(o[0] + nx * h, yc, zc);
+                    if (j == 0) b += 2.0 * side * thY[ym] * g(xc, o[1], zc);
+                    if (j == ny - 1) b += 2.0 * side * thY[yp] * g(xc, o[1] + ny * h, zc);
+                    if (k == nz - 1)
+                        b += 2.0 * r * (h / G.dz_m(k)) * thZ[zp] * g(xc, yc, G.wsTop_m());
                 }
                 rhs[S.cellIndex(i, j, k)] = b;
             }
@@ -148,7 +183,7 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
     auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
     auto air = [&](int i, int j, int k) { return D.isAir(i, j, k); };
     tbb::parallel_for(0, nz, [&](int k) {
-        const double zc = o[2] + (k + 0.5) * h;
+        const double zc = G.zCentre_m(k);
         for (int j = 0; j < ny; ++j) {
             const double yc = o[1] + (j + 0.5) * h;
             for (int i = 0; i <= nx; ++i) {
@@ -176,14 +211,15 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
             }
     });
     tbb::parallel_for(0, nz + 1, [&](int k) {
+        const double gap = centreGap_m(G, k);
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 const size_t f = S.faceZIndex(i, j, k);
                 if (k > 0 && k < nz && air(i, j, k - 1) && air(i, j, k)) {
-                    W[f] += r * (P(i, j, k) - P(i, j, k - 1)) / h, okZ[f] = 1;
+                    W[f] += r * (P(i, j, k) - P(i, j, k - 1)) / gap, okZ[f] = 1;
                 } else if (k == nz && air(i, j, nz - 1)) {
                     const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h;
-                    W[f] += 2.0 * r * (g(xc, yc, o[2] + nz * h) - P(i, j, nz - 1)) / h, okZ[f] = 1;
+                    W[f] += 2.0 * r * (g(xc, yc, G.wsTop_m()) - P(i, j, nz - 1)) / gap, okZ[f] = 1;
                 }
             }
     });

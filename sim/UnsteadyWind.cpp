@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "sim/FaceExtrapolation.h"
 #include "sim/Format.h"
 #include "sim/SteadyWind.h"
@@ -35,6 +36,11 @@ constexpr double FORCING_RING_CORES = 2.0;
 
 /// The steady solve's operator with A = I; the top closed by a lid unless it is open.
 PoissonSystem projectionSystem(const AirDomain& domain, bool openTop) {
+    // Advection traces and the viscosity operator assume cubic cells (docs/unsteady.md).
+    if (!domain.layout().uniformZ())
+        throw ParameterError("solver.first_cell_m", num(domain.layout().dz_m(0)),
+                             "stretched layers are not supported by the unsteady solver yet "
+                             "(wind.kind = \"unsteady\"): remove solver.first_cell_m");
     PoissonSystem s = SteadyWindSolver::makeSystem(domain, /*verticalRatio=*/1.0);
     if (!openTop) s.sides[SIDE_ZMAX] = BoundaryKind::Neumann;
     return s;
@@ -79,8 +85,7 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
     mSettings.validate();
     if (mean.nx() != domain.nx() || mean.ny() != domain.ny() || mean.nz() != domain.nz())
         throw std::invalid_argument("UnsteadyWindSolver: the mean field does not match the domain");
-    mGrid = MacGrid{domain.nx(),          domain.ny(),      domain.nz(),
-                    domain.voxelSize_m(), domain.wsMin_m(), &domain.terrain()};
+    mGrid = MacGrid(domain.layout(), &domain.terrain());
     mMeanU = mean.u_mps(), mMeanV = mean.v_mps(), mMeanW = mean.w_mps();
     for (const auto* a : {&mMeanU, &mMeanV, &mMeanW})
         for (double x : *a) mMeanMax_mps = std::max(mMeanMax_mps, std::abs(x));

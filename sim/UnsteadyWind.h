@@ -106,7 +106,8 @@ class UnsteadyWindSolver {
     /// domain must outlive the solver. meanFlow: the steady field on this domain (its arrays give
     /// the initial state and the far field). referenceSpeed_mps: U of the divergence scaling
     /// (the ambient speed; 0 means 1 m/s). Throws std::invalid_argument on bad settings or a field
-    /// that does not match the domain.
+    /// that does not match the domain, and gale::ParameterError (solver.first_cell_m) on a domain
+    /// of stretched layers, which it does not support yet.
     UnsteadyWindSolver(const AirDomain& domain, const WindField& meanFlow,
                        const UnsteadySettings& settings, double referenceSpeed_mps);
 

@@ -5,12 +5,15 @@
 #include <openvdb/tools/SignedFloodFill.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string>
 
 namespace gale::sim {
 
@@ -24,6 +27,9 @@ openvdb::math::Transform::Ptr cellCentredTransform(double h, const std::array<do
 }  // namespace detail
 
 namespace {
+constexpr const char* CUBIC_FACES_GRID = "velocity_faces";
+constexpr const char* STRETCHED_FACES_GRID = "velocity_layers";
+
 // An empty world-space velocity grid (m/s) on the field's cells.
 openvdb::Vec3SGrid::Ptr emptyVelocityGrid(const WindField& f, const char* name,
                                           openvdb::GridClass gridClass) {
@@ -36,14 +42,47 @@ openvdb::Vec3SGrid::Ptr emptyVelocityGrid(const WindField& f, const char* name,
     grid->setIsInWorldSpace(true);
     return grid;
 }
-// Calls f(coord, cell-centred velocity) for every air cell, in the order the grids are filled.
+// Cubic voxels of edge h from the box bottom to its top: the cells themselves, or for stretched
+// layers the voxels of their cubic resample.
+int cubicLayers(const WindField& field) {
+    const GridLayout& g = field.layout();
+    if (g.uniformZ()) return g.nz;
+    return std::max(1, int(std::ceil((g.wsTop_m() - g.wsMin_m[2]) / g.voxelSize_m - 1e-9)));
+}
+
+// Calls f(coord, velocity) for every air voxel of the standard grids, in the order the grids are
+// filled: cubic cells give each air cell's cell-centred velocity; stretched layers give the
+// velocity sampled (velocityAt_mps) at the centre of each voxel of the cubic resample whose
+// centre lies above the terrain.
 template <class F>
 void forEachAirCell(const WindField& field, F&& f) {
+    const GridLayout& g = field.layout();
+    const int nzOut = cubicLayers(field);
+    const double h = g.voxelSize_m;
     for (int j = 0; j < field.ny(); ++j)
         for (int i = 0; i < field.nx(); ++i)
-            for (int k = 0; k < field.nz(); ++k)
-                if (field.isAir(i, j, k))
-                    f(openvdb::Coord(i, j, k), field.cellVelocity_mps(i, j, k));
+            for (int k = 0; k < nzOut; ++k) {
+                if (g.uniformZ()) {
+                    if (field.isAir(i, j, k))
+                        f(openvdb::Coord(i, j, k), field.cellVelocity_mps(i, j, k));
+                    continue;
+                }
+                const double x = g.wsMin_m[0] + (i + 0.5) * h, y = g.wsMin_m[1] + (j + 0.5) * h,
+                             z = g.wsMin_m[2] + (k + 0.5) * h;
+                if (z <= g.wsTop_m() && !field.belowTerrain(x, y, z))
+                    f(openvdb::Coord(i, j, k), field.velocityAboveTerrainAt_mps(x, y, z));
+            }
+}
+
+// The level heights as metadata text: world z of z-face k, metres, space-separated.
+std::string levelsText(const GridLayout& g) {
+    std::string out;
+    char buf[32];
+    for (double z : g.zLevels_m()) {
+        std::snprintf(buf, sizeof buf, "%.17g", z);
+        out += (out.empty() ? "" : " ") + std::string(buf);
+    }
+    return out;
 }
 
 /// Writes `grids` to `path` through a temporary file in the same folder, renamed when complete.
@@ -88,7 +127,10 @@ openvdb::Vec3SGrid::Ptr velocityGrid(const WindField& f) {
 }
 
 openvdb::Vec3SGrid::Ptr staggeredVelocityGrid(const WindField& f) {
-    auto grid = emptyVelocityGrid(f, "velocity_faces", openvdb::GRID_STAGGERED);
+    const bool stretched = !f.layout().uniformZ();
+    auto grid = emptyVelocityGrid(f, stretched ? STRETCHED_FACES_GRID : CUBIC_FACES_GRID,
+                                  openvdb::GRID_STAGGERED);
+    if (stretched) grid->insertMeta("z_levels_m", openvdb::StringMetadata(levelsText(f.layout())));
     auto acc = grid->getAccessor();
     // Voxel (i, j, k) holds the three faces on cell (i, j, k)'s low sides, as OpenVDB's staggered
     // samplers expect; the layer i = nx (j = ny, k = nz) holds the high-side faces of the box.
@@ -130,15 +172,19 @@ openvdb::FloatGrid::Ptr speedGrid(const WindField& f) {
 
 double readFaceVelocities(const std::string& path, WindField& field) {
     openvdb::initialize();
+    const bool stretched = !field.layout().uniformZ();
+    const char* facesName = stretched ? STRETCHED_FACES_GRID : CUBIC_FACES_GRID;
     openvdb::GridBase::Ptr base;
     try {
         openvdb::io::File file(path);
         file.open();
-        if (!file.hasGrid("velocity_faces")) {
+        if (!file.hasGrid(facesName)) {
             file.close();
-            throw std::runtime_error("has no grid 'velocity_faces' (write it with gale solve)");
+            throw std::runtime_error(std::string("has no grid '") + facesName +
+                                     "' (write it with gale solve" +
+                                     (stretched ? ", stretched layers" : "") + ")");
         }
-        base = file.readGrid("velocity_faces");
+        base = file.readGrid(facesName);
         file.close();
     } catch (const std::runtime_error& e) {
         throw std::runtime_error(path + ": " + e.what());
@@ -146,7 +192,14 @@ double readFaceVelocities(const std::string& path, WindField& field) {
         throw std::runtime_error(path + ": not a readable .vdb (" + e.what() + ")");
     }
     auto grid = openvdb::gridPtrCast<openvdb::Vec3SGrid>(base);
-    if (!grid) throw std::runtime_error(path + ": grid 'velocity_faces' is not a Vec3s grid");
+    if (!grid) throw std::runtime_error(path + ": grid '" + facesName + "' is not a Vec3s grid");
+    if (stretched) {
+        const auto levels = grid->getMetadata<openvdb::StringMetadata>("z_levels_m");
+        if (!levels || levels->value() != levelsText(field.layout()))
+            throw std::runtime_error(path +
+                                     ": solved on other layers (z_levels_m) than the "
+                                     "scene's stretched layers");
+    }
     const double h = field.voxelSize_m();
     const auto o = field.wsMin_m();
     const openvdb::Vec3d centre = grid->transform().indexToWorld(openvdb::Vec3d(0.0));
@@ -168,12 +221,10 @@ double readFaceVelocities(const std::string& path, WindField& field) {
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i <= nx; ++i) {
                 const openvdb::Vec3s v = acc.getValue(openvdb::Coord(i, j, k));
-                if (j < ny && k < nz)
-                    field.u_mps()[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] = v.x();
-                if (i < nx && k < nz)
-                    field.v_mps()[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] = v.y();
-                if (i < nx && j < ny)
-                    field.w_mps()[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = v.z();
+                const GridLayout& g = field.layout();
+                if (j < ny && k < nz) field.u_mps()[g.faceXIndex(i, j, k)] = v.x();
+                if (i < nx && k < nz) field.v_mps()[g.faceYIndex(i, j, k)] = v.y();
+                if (i < nx && j < ny) field.w_mps()[g.faceZIndex(i, j, k)] = v.z();
             }
     const auto time = grid->getMetadata<openvdb::DoubleMetadata>("time_s");
     return time ? time->value() : std::nan("");
@@ -203,11 +254,12 @@ void writeHoudiniVdb(const std::string& path, const WindField& f, const Heightfi
     sdf->setTransform(xform->copy());
     sdf->setGridClass(openvdb::GRID_LEVEL_SET);
     auto sacc = sdf->getAccessor();
+    const int nzOut = cubicLayers(f);
     for (int j = 0; j < f.ny(); ++j)
         for (int i = 0; i < f.nx(); ++i) {
             const double x = o[0] + (i + 0.5) * h, y = o[1] + (j + 0.5) * h;
             const double ground = terrain.sample(x, y);
-            for (int k = 0; k < f.nz(); ++k) {
+            for (int k = 0; k < nzOut; ++k) {
                 const double d = o[2] + (k + 0.5) * h - ground;
                 if (std::abs(d) < band) sacc.setValueOn(openvdb::Coord(i, k, -j - 1), float(d));
             }
@@ -230,17 +282,26 @@ void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata) c
          {static_cast<openvdb::GridBase*>(vel.get()), static_cast<openvdb::GridBase*>(speed.get()),
           static_cast<openvdb::GridBase*>(faces.get())}) {
         g->insertMeta("units", openvdb::StringMetadata("m/s"));
+        const bool stretched = !mLayout.uniformZ();
         g->insertMeta(
             "cell_placement",
             openvdb::StringMetadata(
                 g == faces.get()
-                    ? "MAC face velocities, staggered: voxel (i,j,k) holds u, v, w on the low x, "
-                      "y, z faces "
-                      "of the cell whose centre is at world wsMin + (i+0.5, j+0.5, k+0.5) * "
-                      "voxel_size"
-                    : "cell-centred average of MAC face velocities; voxel (i,j,k) centre at "
-                      "world wsMin + (i+0.5, j+0.5, k+0.5) * voxel_size"));
-        g->insertMeta("voxel_size_m", openvdb::DoubleMetadata(mH));
+                    ? (stretched
+                           ? "MAC face velocities on stretched layers, staggered: voxel (i,j,k) "
+                             "holds u, v, w on the low x, y, z faces of cell (i,j,k); its x, y "
+                             "as the transform says, its z-faces at world z = z_levels_m[k] (the "
+                             "transform's z is the layer index, not world z)"
+                           : "MAC face velocities, staggered: voxel (i,j,k) holds u, v, w on the "
+                             "low x, y, z faces of the cell whose centre is at world wsMin + "
+                             "(i+0.5, j+0.5, k+0.5) * voxel_size")
+                    : (stretched ? "velocity sampled at the voxel centre from the MAC faces of "
+                                   "stretched layers (cubic resample); voxel (i,j,k) centre at "
+                                   "world wsMin + (i+0.5, j+0.5, k+0.5) * voxel_size"
+                                 : "cell-centred average of MAC face velocities; voxel (i,j,k) "
+                                   "centre at world wsMin + (i+0.5, j+0.5, k+0.5) * voxel_size")));
+        if (stretched) g->insertMeta("z_levels_m", openvdb::StringMetadata(levelsText(mLayout)));
+        g->insertMeta("voxel_size_m", openvdb::DoubleMetadata(mLayout.voxelSize_m));
         for (const auto& [k, v] : metadata.strings) g->insertMeta(k, openvdb::StringMetadata(v));
         for (const auto& [k, v] : metadata.numbers) g->insertMeta(k, openvdb::DoubleMetadata(v));
     }

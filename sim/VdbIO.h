@@ -6,6 +6,14 @@
 /// Transform of every grid gale writes: uniform scale h (the voxel size), translated so that
 /// index-space voxel (i, j, k) is cell (i, j, k) and its centre sits at world
 /// wsMin + ((i + 1/2) h, (j + 1/2) h, (k + 1/2) h). Values are cell-centred.
+///
+/// Stretched layers (GridLayout with level heights): a VDB transform is affine, so it cannot
+/// place layers of varying thickness. The standard grids ("velocity", "speed", Houdini's "vel"
+/// and "surface") are then a cubic resample at the horizontal spacing h with the transform above
+/// (voxel centres sampled through WindField::velocityAt_mps), so every VDB tool reads them as
+/// for cubic cells; the native face values go to "velocity_layers" (not "velocity_faces", so no
+/// tool mistakes them for a cubic staggered grid), whose voxel k is layer k, with the level
+/// heights in the metadata "z_levels_m" (world z of z-face k, metres, space-separated).
 
 #include <openvdb/openvdb.h>
 
@@ -26,17 +34,20 @@ openvdb::math::Transform::Ptr cellCentredTransform(double voxelSize_m,
 openvdb::BoolGrid::ConstPtr airMaskGrid(const AirDomain& domain);
 
 /// "velocity": cell-centred averages of the MAC face velocities, m/s, world axes, active on air
-/// cells; GRID_UNKNOWN, VEC_CONTRAVARIANT_RELATIVE, isInWorldSpace = true.
+/// cells (stretched layers: the cubic resample, active where the voxel centre is above the
+/// terrain); GRID_UNKNOWN, VEC_CONTRAVARIANT_RELATIVE, isInWorldSpace = true.
 openvdb::Vec3SGrid::Ptr velocityGrid(const WindField& field);
 /// "velocity_faces": the MAC face velocities themselves, m/s, as a staggered grid (GRID_STAGGERED):
 /// voxel (i, j, k) holds (u, v, w) on cell (i, j, k)'s low x, y and z faces, so
 /// openvdb::tools::StaggeredBoxSampler reads it as WindField::velocityAt_mps does inside the box.
 /// Values in all (nx+1) x (ny+1) x (nz+1) voxels (the samplers read inactive ones too); active
-/// where a face belongs to an air cell. Float, so 1e-7 relative off the doubles.
+/// where a face belongs to an air cell. Float, so 1e-7 relative off the doubles. On stretched
+/// layers the grid is "velocity_layers" with metadata "z_levels_m" (file comment).
 openvdb::Vec3SGrid::Ptr staggeredVelocityGrid(const WindField& field);
 /// Reads the "velocity_faces" grid of a .vdb that gale wrote into `field`'s face velocities
 /// (m/s). `field` gives the geometry (from the same scene's AirDomain); the file's voxel size and
-/// origin must match it to 1e-6 of a voxel. Returns the file's "time_s" metadata (unsteady
+/// origin must match it to 1e-6 of a voxel (stretched layers: "velocity_layers", whose
+/// z_levels_m must equal the field's levels). Returns the file's "time_s" metadata (unsteady
 /// sequences), or NaN when it has none. Throws std::runtime_error naming the file when it cannot
 /// be read, has no velocity_faces grid, or was solved on another grid (both geometries named).
 double readFaceVelocities(const std::string& path, WindField& field);

@@ -200,17 +200,16 @@ void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, 
     const int nx = g.nx, ny = g.ny, nz = g.nz;
     const double h = g.voxelSize_m;
     const size_t N = size_t(nx) * ny * nz;
-    auto cell = [&](int i, int j, int k) { return size_t(i) + size_t(nx) * (j + size_t(ny) * k); };
+    auto cell = [&](int i, int j, int k) { return g.cellIndex(i, j, k); };
     // Cell-centred velocity, then vorticity by central differences over air neighbours.
     std::vector<Vec3d> uc(N);
     tbb::parallel_for(0, nz, [&](int k) {
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
-                const size_t fx = size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k);
-                const size_t fy = size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k);
-                const size_t fz = cell(i, j, k);
+                const size_t fx = g.faceXIndex(i, j, k), fy = g.faceYIndex(i, j, k);
+                const size_t fz = g.faceZIndex(i, j, k);
                 uc[cell(i, j, k)] = {0.5 * (u[fx] + u[fx + 1]), 0.5 * (v[fy] + v[fy + nx]),
-                                     0.5 * (w[fz] + w[fz + size_t(nx) * ny])};
+                                     0.5 * (w[fz] + w[g.faceZIndex(i, j, k + 1)])};
             }
     });
     auto d = [&](int i, int j, int k, int axis, int comp) {
@@ -266,11 +265,9 @@ void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, 
                 const size_t c = cell(i, j, k);
                 if (!air[c]) continue;
                 if (i > 0 && air[c - 1])
-                    u[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)] +=
-                        dt * 0.5 * (f[c][0] + f[c - 1][0]);
+                    u[g.faceXIndex(i, j, k)] += dt * 0.5 * (f[c][0] + f[c - 1][0]);
                 if (j > 0 && air[c - nx])
-                    v[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)] +=
-                        dt * 0.5 * (f[c][1] + f[c - nx][1]);
+                    v[g.faceYIndex(i, j, k)] += dt * 0.5 * (f[c][1] + f[c - nx][1]);
                 if (k > 0 && air[c - size_t(nx) * ny])
                     w[c] += dt * 0.5 * (f[c][2] + f[c - size_t(nx) * ny][2]);
             }

@@ -6,53 +6,17 @@
 
 namespace gale::sim {
 
+WindField::WindField(const GridLayout& layout, std::shared_ptr<const Heightfield> terrain,
+                     std::vector<uint8_t> air)
+    : mLayout(layout), mTerrain(std::move(terrain)), mAir(std::move(air)) {
+    mU.assign(mLayout.count(Placement::FaceX), 0.0);
+    mV.assign(mLayout.count(Placement::FaceY), 0.0);
+    mW.assign(mLayout.count(Placement::FaceZ), 0.0);
+}
+
 WindField::WindField(int nx, int ny, int nz, double voxelSize_m, std::array<double, 3> wsMin_m,
                      std::shared_ptr<const Heightfield> terrain, std::vector<uint8_t> air)
-    : mNx(nx),
-      mNy(ny),
-      mNz(nz),
-      mH(voxelSize_m),
-      mWsMin(wsMin_m),
-      mTerrain(std::move(terrain)),
-      mAir(std::move(air)) {
-    mU.assign(size_t(nx + 1) * ny * nz, 0.0);
-    mV.assign(size_t(nx) * (ny + 1) * nz, 0.0);
-    mW.assign(size_t(nx) * ny * (nz + 1), 0.0);
-}
-
-namespace {
-
-// One axis of a trilinear stencil on a lattice of n samples: the lower sample, the upper one and
-// the weight of the upper, for a fractional index coordinate f clamped to the lattice.
-struct AxisWeights {
-    size_t i0, i1;
-    double t;
-};
-
-AxisWeights axisWeights(double f, int n) {
-    f = std::clamp(f, 0.0, double(n - 1));
-    const int i = std::min(static_cast<int>(f), std::max(n - 2, 0));
-    return {size_t(i), size_t(std::min(i + 1, n - 1)), n > 1 ? f - i : 0.0};
-}
-
-// Trilinear interpolation of a grid of n0 x n1 x n2 samples (index 0 fastest).
-double trilinear(const std::vector<double>& a, size_t n0, size_t n1, const AxisWeights& x,
-                 const AxisWeights& y, const AxisWeights& z) {
-    const double* lo = a.data() + n0 * n1 * z.i0;
-    const double* hi = a.data() + n0 * n1 * z.i1;
-    auto lerpX = [&](const double* plane, size_t j) {
-        const double* row = plane + n0 * j;
-        return row[x.i0] + (row[x.i1] - row[x.i0]) * x.t;
-    };
-    auto lerpXY = [&](const double* plane) {
-        const double r0 = lerpX(plane, y.i0), r1 = lerpX(plane, y.i1);
-        return r0 + (r1 - r0) * y.t;
-    };
-    const double c0 = lerpXY(lo), c1 = lerpXY(hi);
-    return c0 + (c1 - c0) * z.t;
-}
-
-}  // namespace
+    : WindField(GridLayout(nx, ny, nz, voxelSize_m, wsMin_m), std::move(terrain), std::move(air)) {}
 
 bool WindField::belowTerrain(double x, double y, double z) const {
     return mTerrain && z < mTerrain->sample(x, y);
@@ -64,49 +28,26 @@ std::array<double, 3> WindField::velocityAt_mps(double x, double y, double z) co
 }
 
 std::array<double, 3> WindField::velocityAboveTerrainAt_mps(double x, double y, double z) const {
-    if (mNx == 0) return {0, 0, 0};
-    const double X = (x - mWsMin[0]) / mH, Y = (y - mWsMin[1]) / mH, Z = (z - mWsMin[2]) / mH;
-    if (!(X >= 0.0 && X <= mNx && Y >= 0.0 && Y <= mNy && Z >= 0.0 && Z <= mNz)) return {0, 0, 0};
-    // Each component lives on its own faces: along its own axis on the face lattice (index X),
-    // along the other two on the cell-centre lattice (index X - 1/2). Six axis stencils serve
-    // the three components.
-    const AxisWeights faceX = axisWeights(X, mNx + 1), centreX = axisWeights(X - 0.5, mNx);
-    const AxisWeights faceY = axisWeights(Y, mNy + 1), centreY = axisWeights(Y - 0.5, mNy);
-    const AxisWeights faceZ = axisWeights(Z, mNz + 1), centreZ = axisWeights(Z - 0.5, mNz);
-    const size_t nx = size_t(mNx), ny = size_t(mNy);
-    return {trilinear(mU, nx + 1, ny, faceX, centreY, centreZ),
-            trilinear(mV, nx, ny + 1, centreX, faceY, centreZ),
-            trilinear(mW, nx, ny, centreX, centreY, faceZ)};
+    const GridLayout& g = mLayout;
+    if (g.nx == 0) return {0, 0, 0};
+    const Vec3d is = g.isFromWs({x, y, z});
+    if (!g.containsIs(is)) return {0, 0, 0};
+    return g.sampleFaces(mU.data(), mV.data(), mW.data(), is);
 }
 
 std::array<double, 3> WindField::velocityComponentsAt_mps(
     const std::array<double, 3>& wsUV_m, const std::array<double, 3>& wsW_m) const {
     std::array<double, 3> out{0, 0, 0};
-    if (mNx == 0) return out;
-    const size_t nx = size_t(mNx), ny = size_t(mNy);
-    const double X = (wsUV_m[0] - mWsMin[0]) / mH, Y = (wsUV_m[1] - mWsMin[1]) / mH,
-                 Z = (wsUV_m[2] - mWsMin[2]) / mH;
-    const bool uvInBox = X >= 0.0 && X <= mNx && Y >= 0.0 && Y <= mNy && Z >= 0.0 && Z <= mNz;
-    const AxisWeights centreX = axisWeights(X - 0.5, mNx), centreY = axisWeights(Y - 0.5, mNy);
-    if (uvInBox) {
-        const AxisWeights centreZ = axisWeights(Z - 0.5, mNz);
-        out[0] = trilinear(mU, nx + 1, ny, axisWeights(X, mNx + 1), centreY, centreZ);
-        out[1] = trilinear(mV, nx, ny + 1, centreX, axisWeights(Y, mNy + 1), centreZ);
+    const GridLayout& g = mLayout;
+    if (g.nx == 0) return out;
+    const Vec3d is = g.isFromWs(wsUV_m);
+    if (g.containsIs(is)) {
+        out[0] = g.sample(Placement::FaceX, mU.data(), is);
+        out[1] = g.sample(Placement::FaceY, mV.data(), is);
     }
-    // w's point usually lies straight above (the log law; the normal over level ground): its
-    // horizontal stencils are u's and v's.
-    if (wsW_m[0] == wsUV_m[0] && wsW_m[1] == wsUV_m[1]) {
-        const double Zw = (wsW_m[2] - mWsMin[2]) / mH;
-        if (uvInBox || (X >= 0.0 && X <= mNx && Y >= 0.0 && Y <= mNy))
-            if (Zw >= 0.0 && Zw <= mNz)
-                out[2] = trilinear(mW, nx, ny, centreX, centreY, axisWeights(Zw, mNz + 1));
-        return out;
-    }
-    const double Xw = (wsW_m[0] - mWsMin[0]) / mH, Yw = (wsW_m[1] - mWsMin[1]) / mH,
-                 Zw = (wsW_m[2] - mWsMin[2]) / mH;
-    if (Xw >= 0.0 && Xw <= mNx && Yw >= 0.0 && Yw <= mNy && Zw >= 0.0 && Zw <= mNz)
-        out[2] = trilinear(mW, nx, ny, axisWeights(Xw - 0.5, mNx), axisWeights(Yw - 0.5, mNy),
-                           axisWeights(Zw, mNz + 1));
+    // w's point usually lies straight above (the log law; the normal over level ground).
+    const Vec3d isW = g.isFromWs(wsW_m);
+    if (g.containsIs(isW)) out[2] = g.sample(Placement::FaceZ, mW.data(), isW);
     return out;
 }
 
@@ -115,7 +56,7 @@ bool WindField::isFlowFace(int axis, int i, int j, int k) const {
     // flow face when the cells on both sides that exist are air; the box bottom never is (it lies
     // under the terrain), the other box sides are when their one cell is.
     int c[3] = {i, j, k};
-    const int n = axis == 0 ? mNx : axis == 1 ? mNy : mNz;
+    const int n = axis == 0 ? mLayout.nx : axis == 1 ? mLayout.ny : mLayout.nz;
     const int face = c[axis];
     if (axis == 2 && face == 0) return false;
     if (face > 0) {
@@ -132,33 +73,28 @@ bool WindField::isFlowFace(int axis, int i, int j, int k) const {
 bool WindField::isSolvedFace(int axis, int i, int j, int k) const {
     if (!isFlowFace(axis, i, j, k)) return false;
     if (!mTerrain) return true;
-    double c[3] = {mWsMin[0] + (i + 0.5) * mH, mWsMin[1] + (j + 0.5) * mH,
-                   mWsMin[2] + (k + 0.5) * mH};
-    c[axis] -= 0.5 * mH;
+    const Vec3d c = mLayout.wsPosition(Placement(axis), i, j, k);
     return c[2] > mTerrain->sample(c[0], c[1]);
 }
 
 bool WindField::readsOnlySolvedFaces(double x, double y, double z, unsigned components) const {
-    if (mNx == 0) return false;
-    const double X = (x - mWsMin[0]) / mH, Y = (y - mWsMin[1]) / mH, Z = (z - mWsMin[2]) / mH;
-    if (!(X >= 0.0 && X <= mNx && Y >= 0.0 && Y <= mNy && Z >= 0.0 && Z <= mNz)) return false;
+    const GridLayout& g = mLayout;
+    if (g.nx == 0) return false;
+    const Vec3d is = g.isFromWs({x, y, z});
+    if (!g.containsIs(is)) return false;
     // u and v sit on the cell-centre lattice vertically: below the lowest centre (above the
     // highest) their interpolation holds that layer's value instead of interpolating.
-    if ((components & (COMPONENT_U | COMPONENT_V)) && !(Z >= 0.5 && Z <= mNz - 0.5)) return false;
-    const AxisWeights faceX = axisWeights(X, mNx + 1), centreX = axisWeights(X - 0.5, mNx);
-    const AxisWeights faceY = axisWeights(Y, mNy + 1), centreY = axisWeights(Y - 0.5, mNy);
-    const AxisWeights faceZ = axisWeights(Z, mNz + 1), centreZ = axisWeights(Z - 0.5, mNz);
-    const AxisWeights* stencil[3][3] = {
-        {&faceX, &centreY, &centreZ}, {&centreX, &faceY, &centreZ}, {&centreX, &centreY, &faceZ}};
+    if ((components & (COMPONENT_U | COMPONENT_V)) && !(is[2] >= 0.5 && is[2] <= g.nz - 0.5))
+        return false;
     for (int axis = 0; axis < 3; ++axis) {
         if (!(components & (1u << axis))) continue;
-        const AxisWeights& a = *stencil[axis][0];
-        const AxisWeights& b = *stencil[axis][1];
-        const AxisWeights& c = *stencil[axis][2];
-        for (size_t k : {c.i0, c.i1})
-            for (size_t j : {b.i0, b.i1})
-                for (size_t i : {a.i0, a.i1})
-                    if (!isSolvedFace(axis, int(i), int(j), int(k))) return false;
+        const AxisStencil a = g.stencil(0, axis == 0, is[0]);
+        const AxisStencil b = g.stencil(1, axis == 1, is[1]);
+        const AxisStencil c = g.stencil(2, axis == 2, is[2]);
+        for (int k : {c.i0, c.i1})
+            for (int j : {b.i0, b.i1})
+                for (int i : {a.i0, a.i1})
+                    if (!isSolvedFace(axis, i, j, k)) return false;
     }
     return true;
 }

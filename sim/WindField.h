@@ -1,8 +1,9 @@
 #pragma once
 /// \file WindField.h
 /// A wind field on a staggered (MAC) grid over an AirDomain's box: u on x-faces, v on y-faces,
-/// w on z-faces, world axes, m/s. Face layouts are PoissonSystem's (faceXIndex etc.); the x-face i
-/// of row (j, k) sits at world (wsMin.x + i h, wsMin.y + (j + 1/2) h, wsMin.z + (k + 1/2) h).
+/// w on z-faces, world axes, m/s. Layout, indices and sampling are the GridLayout's (GridLayout.h);
+/// the x-face i of row (j, k) sits at world (wsMin.x + i h, wsMin.y + (j + 1/2) h, z_k + dz_k / 2)
+/// (z_k = wsMin.z + k h for cubic cells).
 ///
 /// Faces closed by the terrain hold extrapolated values (SteadyWind documents how), so sampling
 /// near the ground interpolates smoothly; they carry no flux. No OpenVDB here: writeVdb is
@@ -15,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "sim/GridLayout.h"
 #include "sim/Heightfield.h"
 
 namespace gale::sim {
@@ -28,16 +30,22 @@ struct VdbMetadata {
 class WindField {
   public:
     WindField() = default;
-    /// An all-zero field over nx * ny * nz cells of edge voxelSize_m whose cell (0, 0, 0) has its
-    /// minimum corner at wsMin_m. `air` (nx*ny*nz flags, i fastest) marks the cells with air.
+    /// An all-zero field over the cells of `layout`. `air` (cellCount() flags, i fastest) marks
+    /// the cells with air.
+    WindField(const GridLayout& layout, std::shared_ptr<const Heightfield> terrain,
+              std::vector<uint8_t> air);
+    /// The same over nx * ny * nz cubic cells of edge voxelSize_m whose cell (0, 0, 0) has its
+    /// minimum corner at wsMin_m.
     WindField(int nx, int ny, int nz, double voxelSize_m, std::array<double, 3> wsMin_m,
               std::shared_ptr<const Heightfield> terrain, std::vector<uint8_t> air);
 
-    int nx() const { return mNx; }
-    int ny() const { return mNy; }
-    int nz() const { return mNz; }
-    double voxelSize_m() const { return mH; }
-    std::array<double, 3> wsMin_m() const { return mWsMin; }
+    const GridLayout& layout() const { return mLayout; }
+    int nx() const { return mLayout.nx; }
+    int ny() const { return mLayout.ny; }
+    int nz() const { return mLayout.nz; }
+    /// Horizontal cell edge (and the layer thickness of a uniform layout), metres.
+    double voxelSize_m() const { return mLayout.voxelSize_m; }
+    std::array<double, 3> wsMin_m() const { return mLayout.wsMin_m; }
 
     /// Face velocities, m/s (sizes (nx+1)*ny*nz, nx*(ny+1)*nz, nx*ny*(nz+1)).
     std::vector<double>& u_mps() { return mU; }
@@ -46,24 +54,16 @@ class WindField {
     const std::vector<double>& u_mps() const { return mU; }
     const std::vector<double>& v_mps() const { return mV; }
     const std::vector<double>& w_mps() const { return mW; }
-    double u(int i, int j, int k) const {
-        return mU[size_t(i) + size_t(mNx + 1) * (j + size_t(mNy) * k)];
-    }
-    double v(int i, int j, int k) const {
-        return mV[size_t(i) + size_t(mNx) * (j + size_t(mNy + 1) * k)];
-    }
-    double w(int i, int j, int k) const {
-        return mW[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)];
-    }
-    bool isAir(int i, int j, int k) const {
-        return mAir[size_t(i) + size_t(mNx) * (j + size_t(mNy) * k)] != 0;
-    }
+    double u(int i, int j, int k) const { return mU[mLayout.faceXIndex(i, j, k)]; }
+    double v(int i, int j, int k) const { return mV[mLayout.faceYIndex(i, j, k)]; }
+    double w(int i, int j, int k) const { return mW[mLayout.faceZIndex(i, j, k)]; }
+    bool isAir(int i, int j, int k) const { return mAir[mLayout.cellIndex(i, j, k)] != 0; }
 
     /// Velocity at a world position (metres), m/s: each component trilinearly interpolated from
-    /// its own staggered faces (index coordinates clamped to the face grid, so within half a cell
-    /// of the box sides the nearest face layer is used). Returns {0, 0, 0} outside the box and
-    /// below the terrain surface (the Heightfield's bilinear h(x, y)). Const and lock-free: safe
-    /// for any number of concurrent readers.
+    /// its own staggered faces by GridLayout::sampleFaces (index coordinates clamped to the face
+    /// grid, so within half a cell of the box sides the nearest face layer is used). Returns {0, 0,
+    /// 0} outside the box and below the terrain surface (the Heightfield's bilinear h(x, y)). Const
+    /// and lock-free: safe for any number of concurrent readers.
     std::array<double, 3> velocityAt_mps(double wsX_m, double wsY_m, double wsZ_m) const;
     /// velocityAt_mps without the terrain test, for a caller that has made it once for points it
     /// samples in many fields of the same geometry (coupling's grass sampler). Zero outside the
@@ -101,17 +101,14 @@ class WindField {
     /// What a point's place in the field depends on: cells, box and terrain. Two fields with equal
     /// geometries answer belowTerrain alike and share every interpolation stencil.
     struct Geometry {
-        int nx = 0, ny = 0, nz = 0;
-        double voxelSize_m = 0.0;
-        std::array<double, 3> wsMin_m{};
+        GridLayout layout;
         const Heightfield* terrain = nullptr;
         bool operator==(const Geometry& o) const {
-            return nx == o.nx && ny == o.ny && nz == o.nz && voxelSize_m == o.voxelSize_m &&
-                   wsMin_m == o.wsMin_m && terrain == o.terrain;
+            return layout == o.layout && terrain == o.terrain;
         }
         bool operator!=(const Geometry& o) const { return !(*this == o); }
     };
-    Geometry geometry() const { return {mNx, mNy, mNz, mH, mWsMin, mTerrain.get()}; }
+    Geometry geometry() const { return {mLayout, mTerrain.get()}; }
 
     /// Cell-centred velocity: the average of the two faces of each component, m/s.
     std::array<double, 3> cellVelocity_mps(int i, int j, int k) const {
@@ -124,14 +121,14 @@ class WindField {
     /// voxel (i, j, k) is cell (i, j, k), its centre at world wsMin + (i+1/2, j+1/2, k+1/2) h),
     /// a float grid "speed" (|velocity|, m/s), both active on air cells only, and a staggered
     /// Vec3s grid "velocity_faces" (the face velocities themselves, GRID_STAGGERED; OpenVDB's
-    /// StaggeredBoxSampler reads it as velocityAt_mps does; see VdbIO.h). Atomic: written to a
+    /// StaggeredBoxSampler reads it as velocityAt_mps does; see VdbIO.h). Stretched layers: a
+    /// cubic resample for the first two and "velocity_layers" with "z_levels_m" metadata instead
+    /// of "velocity_faces" (VdbIO.h). Atomic: written to a
     /// temporary name in the same folder, then renamed. Throws std::runtime_error on I/O failure.
     void writeVdb(const std::string& path, const VdbMetadata& metadata = {}) const;
 
   private:
-    int mNx = 0, mNy = 0, mNz = 0;
-    double mH = 1.0;
-    std::array<double, 3> mWsMin{};
+    GridLayout mLayout;
     std::shared_ptr<const Heightfield> mTerrain;
     std::vector<uint8_t> mAir;
     std::vector<double> mU, mV, mW;

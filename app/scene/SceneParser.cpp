@@ -219,6 +219,17 @@ void readSolver(Context& ctx, Section s) {
     SolverSection& v = ctx.scene->solver;
     v.domain.voxelSize_m = s.number("voxel_size_m", v.domain.voxelSize_m, above(0.0, 1e5));
     v.domain.top_m = s.optionalNumber("top_m", anyFinite());
+    // Stretched layers (docs/solver.md): AirDomain checks the ranges against voxel_size_m.
+    v.domain.firstCell_m = s.optionalNumber("first_cell_m", above(0.0, 1e5));
+    v.domain.stretchRatio = s.number("stretch_ratio", v.domain.stretchRatio, closed(1.0, 1.2));
+    v.domain.maxCell_m = s.optionalNumber("max_cell_m", above(0.0, 1e5));
+    for (const char* key : {"stretch_ratio", "max_cell_m"})
+        if (s.given(key) && !v.domain.firstCell_m)
+            s.failKey(key, "applies to stretched layers only: give solver.first_cell_m too");
+    if (v.domain.firstCell_m && ctx.scene->wind.kind == WindKind::Unsteady)
+        s.failKey("first_cell_m",
+                  "stretched layers are not supported by the unsteady solver yet (wind.kind = "
+                  "\"unsteady\"): remove it");
     v.domain.memoryLimit_bytes =
         s.number("memory_limit_mb", v.domain.memoryLimit_bytes / MIB, above(0.0, 1e9)) * MIB;
     v.weights.alphaH = s.number("alpha_h", v.weights.alphaH, above(0.0, 1e6));

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <vector>
 
 #include "sim/AirDomain.h"
@@ -33,18 +34,22 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
     return s;
 }
 
-/// The fractal terrain of the symmetry tests: 64 m square, 1 m cells, 5 multigrid levels.
-AirDomain symmetryDomain() {
+/// The fractal terrain of the symmetry tests: 64 m square, 1 m cells, 5 multigrid levels; with
+/// firstCell_m, stretched layers from that thickness (smoothed by z-lines).
+AirDomain symmetryDomain(std::optional<double> firstCell_m = {}) {
     static const Heightfield terrain = makeRoughTerrain(RoughTerrainKind::Fractal, /*size_m=*/64.0,
                                                         /*spacing_m=*/1.0, /*relief_m=*/16.0);
     DomainSpec spec;
     spec.voxelSize_m = 1.0;
+    spec.firstCell_m = firstCell_m;
     return AirDomain(terrain, spec);
 }
 
-void expectSymmetric(int sweeps) {
-    const AirDomain domain = symmetryDomain();
-    PoissonSolver solver(SteadyWindSolver::makeSystem(domain, /*verticalRatio=*/1.0));
+void expectSymmetric(int sweeps, std::optional<double> firstCell_m = {}) {
+    const AirDomain domain = symmetryDomain(firstCell_m);
+    const PoissonSystem system = SteadyWindSolver::makeSystem(domain, /*verticalRatio=*/1.0);
+    ASSERT_EQ(system.zLineSmoothing, firstCell_m.has_value());
+    PoissonSolver solver(system);
     ASSERT_GE(solver.levelCount(), 4);
     const size_t n = domain.boxCellCount();
     std::vector<double> a = randomVector(n, 11), b = randomVector(n, 29), ma, mb;
@@ -72,6 +77,12 @@ void expectSymmetric(int sweeps) {
 TEST(PoissonTerrain, VCycleIsSymmetricOnFractalTerrainWithOneSweep) { expectSymmetric(1); }
 TEST(PoissonTerrain, VCycleIsSymmetricOnFractalTerrainWithTwoSweeps) { expectSymmetric(2); }
 TEST(PoissonTerrain, VCycleIsSymmetricOnFractalTerrainWithThreeSweeps) { expectSymmetric(3); }
+TEST(PoissonTerrain, ZLineVCycleIsSymmetricOnStretchedLayersWithOneSweep) {
+    expectSymmetric(1, /*firstCell_m=*/0.25);
+}
+TEST(PoissonTerrain, ZLineVCycleIsSymmetricOnStretchedLayersWithTwoSweeps) {
+    expectSymmetric(2, /*firstCell_m=*/0.25);
+}
 
 TEST(PoissonTerrain, CgWithTheVCycleReachesTheToleranceOnFractalTerrain) {
     const AirDomain domain = symmetryDomain();

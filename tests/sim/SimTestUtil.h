@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "sim/AmbientWind.h"
+#include "sim/Heightfield.h"
 #include "sim/PoissonSolver.h"
 
 namespace gale::sim::test {
@@ -29,6 +30,20 @@ inline AmbientWind uniformWind(double speed_mps, double direction_deg = 0.0) {
     a.speed_mps = speed_mps;
     a.direction_deg = direction_deg;
     return a;
+}
+
+/// A Gaussian hill of height_m and Gaussian sigma radius_m (metres) in the middle of a square of
+/// size_m with samples every spacing_m.
+inline Heightfield centredGaussianHill(double size_m, double spacing_m, double height_m,
+                                       double radius_m) {
+    TerrainSpec s;
+    s.kind = TerrainKind::GaussianHill;
+    s.sizeX_m = s.sizeY_m = size_m;
+    s.spacing_m = spacing_m;
+    s.height_m = height_m;
+    s.radius_m = radius_m;
+    s.centerX_m = s.centerY_m = 0.5 * size_m;
+    return makeTerrain(s);
 }
 
 /// Steady solve to 1e-9 relative residual in at most 200 iterations (the defaults are 1e-6 and

@@ -223,14 +223,7 @@ TEST(SteadyWind, WarmStartFromTheExactSolutionConvergesInAtMostOneIteration) {
 TEST(SteadyWind, IterationsOnCutCellTerrainStayNearlyFlatAsTheCellSizeHalves) {
     // MGPCG on cut cells: 8 and 9 iterations measured at h = 4 and 2 m (docs/solver.md).
     constexpr int MAX_GROWTH = 3;
-    TerrainSpec s;
-    s.kind = TerrainKind::GaussianHill;
-    s.sizeX_m = s.sizeY_m = 200.0;
-    s.spacing_m = 1.0;
-    s.height_m = 30.0;
-    s.radius_m = 25.0;
-    s.centerX_m = s.centerY_m = 100.0;
-    const Heightfield hill = makeTerrain(s);
+    const Heightfield hill = test::centredGaussianHill(200.0, 1.0, 30.0, 25.0);
     int its[2] = {0, 0};
     const double voxels[2] = {4.0, 2.0};
     for (int n = 0; n < 2; ++n) {
