@@ -147,7 +147,7 @@ int runBenchView(const BenchViewOptions& options) {
     for (size_t k = 0; k < files.size(); ++k) {
         const auto sceneStart = Clock::now();
         ViewBenchScene scene =
-            options.loader(files[k], options.width, options.height, options.shells);
+            options.loader(files[k], options.width, options.height, options.shells, options.quick);
         rows.push_back(measure(*context, scene, warmup, frames));
         progress.step(int(k) + 1, msSince(sceneStart));
     }

@@ -30,10 +30,11 @@ struct ViewBenchScene {
     double build_ms = 0.0;          ///< wall time of building it (solves included)
 };
 
-/// Builds the scene at `path` for a width x height view with `shells` shells. Throws InputError
-/// (bad scene) or std::runtime_error as building the scene does.
-using ViewSceneLoader =
-    std::function<ViewBenchScene(const std::string& path, int width, int height, int shells)>;
+/// Builds the scene at `path` for a width x height view with `shells` shells; `quick` (a smoke
+/// run) may cut a long solve short (the frames are then not the scene's converged wind). Throws
+/// InputError (bad scene) or std::runtime_error as building the scene does.
+using ViewSceneLoader = std::function<ViewBenchScene(const std::string& path, int width, int height,
+                                                     int shells, bool quick)>;
 
 struct BenchViewOptions {
     /// Scene files, or folders whose *.toml files are all taken (sorted by name).
