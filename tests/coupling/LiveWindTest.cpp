@@ -112,13 +112,13 @@ TEST(LiveWind, BadSourcesAreParameterErrors) {
     Calm c;
     LiveSource s;
     s.speed_mps = std::nan("");
-    EXPECT_THROW(addLiveSource(*c.solver, s), ParameterError);
+    EXPECT_THROW((void)addLiveSource(*c.solver, s), ParameterError);
     s.speed_mps = 6.0;
     s.radius_m = 0.0;
-    EXPECT_THROW(addLiveSource(*c.solver, s), ParameterError);
+    EXPECT_THROW((void)addLiveSource(*c.solver, s), ParameterError);
     s.radius_m = 3.0;
     s.wsAt_m[0] = INFINITY;
-    EXPECT_THROW(addLiveSource(*c.solver, s), ParameterError);
+    EXPECT_THROW((void)addLiveSource(*c.solver, s), ParameterError);
 }
 
 // A pick lands within this much of the exact intersection: the bisection's 30 halvings of half a
