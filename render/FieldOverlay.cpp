@@ -238,14 +238,28 @@ void FieldOverlay::Impl::pushLegend(const FieldOverlayData& data) {
         labelWidth = std::max(labelWidth, textWidth_px(tickLabel(t, step), scale));
     const int margin = LEGEND_MARGIN_PX * scale, barWidth = LEGEND_BAR_WIDTH_PX * scale;
     const int textHeight = kGlyphHeight_px * scale;
-    const int lineHeight = textHeight + 2 * scale;
-    // The heading: the quantity and where it is measured, one line each, above the unit.
+    // The heading: the quantity and where it is measured, above the unit; "a, b" parts of a line
+    // on lines of their own, and at text scale 1 when scale 2 would take over a quarter of the
+    // frame's width.
     std::vector<std::string> heading;
-    for (const std::string* line : {&data.quantity, &data.where})
-        if (!line->empty()) heading.push_back(*line);
-    int headingWidth = 0;
-    for (const std::string& line : heading)
-        headingWidth = std::max(headingWidth, textWidth_px(line, scale));
+    for (const std::string* text : {&data.quantity, &data.where}) {
+        size_t from = 0;
+        while (from < text->size()) {
+            const size_t comma = text->find(", ", from);
+            const size_t to = comma == std::string::npos ? text->size() : comma + 1;
+            heading.push_back(text->substr(from, to - from));
+            from = comma == std::string::npos ? to : comma + 2;
+        }
+    }
+    int headingScale = scale, headingWidth = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+        headingWidth = 0;
+        for (const std::string& line : heading)
+            headingWidth = std::max(headingWidth, textWidth_px(line, headingScale));
+        if (headingWidth <= context.width() / 4 || headingScale == 1) break;
+        headingScale = 1;
+    }
+    const int lineHeight = (kGlyphHeight_px + 2) * headingScale;
     const int boxWidth = std::max(margin + barWidth + margin / 2 + 2 * scale + labelWidth + margin,
                                   headingWidth + 2 * margin);
     const int headingHeight = int(heading.size()) * lineHeight;
@@ -256,7 +270,7 @@ void FieldOverlay::Impl::pushLegend(const FieldOverlayData& data) {
              glm::vec4(0.0f, 0.0f, 0.0f, BACKDROP_ALPHA));
     const glm::vec4 white(1.0f);
     for (size_t k = 0; k < heading.size(); ++k)
-        pushText(heading[k], x0 + margin, y0 + margin + int(k) * lineHeight, scale, white);
+        pushText(heading[k], x0 + margin, y0 + margin + int(k) * lineHeight, headingScale, white);
     pushText(data.unit, x0 + boxWidth - margin - textWidth_px(data.unit, scale),
              y0 + margin + headingHeight, scale, white);
     // The bar: bottom = 0, top = speedMax.
