@@ -11,14 +11,15 @@
 
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
+#include "sim/Format.h"
 #include "sim/Vortices.h"
 
 namespace gale::coupling {
 namespace {
 
+/// 0 below edge0, 1 above edge1, sim's Hermite smoothstep between.
 double smoothstep(double edge0, double edge1, double x) {
-    const double t = std::clamp((x - edge0) / (edge1 - edge0), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
+    return sim::detail::smoothstep((x - edge0) / (edge1 - edge0));
 }
 
 /// Full below full_m above the ground, zero above full_m + taper_m, smooth between; zero under
