@@ -44,6 +44,10 @@ constexpr double MAX_INTERACTIVE_FPS = 60.0;
 /// The heads-up line reports the wind as behind when the step drawn is older than the previous
 /// frame's request and lags the clock by more than this many output frame intervals.
 constexpr double BEHIND_FRAMES = 1.5;
+/// The clock runs at most this many output frames ahead of the wind drawn. A wind that cannot keep
+/// up (an unsteady solver on a loaded machine) then plays in slow motion instead of taking ever
+/// longer updates to catch up, during which wind dropped into the flow would wait its turn.
+constexpr double MAX_WIND_AHEAD_FRAMES = 2.0;
 constexpr double MIN_SPEED = 1.0 / 16.0, MAX_SPEED = 16.0;
 
 /// Overlay modes the O key cycles through.
@@ -324,6 +328,9 @@ int runView(const ViewOptions& options) {
             simClock_s = out.startTime_s + frames / out.fps;
         } else if (playing) {
             simClock_s += speed * std::chrono::duration<double>(frameStart - last).count();
+            if (view.shown().serial > 0)
+                simClock_s =
+                    std::min(simClock_s, view.shown().t_s + MAX_WIND_AHEAD_FRAMES / out.fps);
         }
         last = frameStart;
         const coupling::OverlaySpec overlaySpec = overlayFor(overlayMode, scene.overlay);
