@@ -52,7 +52,16 @@ struct ViewOptions {
     /// Key presses to replay, one per frame from the first ('>' right arrow, ' ' space, '.' none,
     /// letters and + - [ ] as on the keyboard): for tests and demos without a person at the keys.
     std::string keys;
+    /// Mouse actions and live-wind keys to replay: "FRAME:ACTION:X,Y[,X2,Y2];..."
+    /// (app/ViewInput.h).
+    std::string input;
 };
+/// The view's (and `gale bench view`'s) change to an unsteady scene: an adaptive time step of
+/// at most one output frame (1 / output.fps), so that wind dropped into the flow shows in the
+/// grass at the next frame instead of after a long step (calm air steps up to max_dt_s). A fixed
+/// unsteady.dt_s is kept. Other scenes are left as they are.
+void limitUnsteadyStepToAFrame(Scene& scene);
+
 /// Opens the window, runs until closed (or --frames), returns 0. Throws std::runtime_error
 /// "no display: ..." when there is no display (exit 1).
 int runView(const ViewOptions& options);

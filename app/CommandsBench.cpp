@@ -3,8 +3,10 @@
 /// EXIT_UNMET when a full run misses its stated target; a bad option (std::invalid_argument from
 /// the benchmark) is bad input, exit 2.
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -13,12 +15,17 @@
 #include <vector>
 
 #include "app/Cli.h"
+#include "app/Commands.h"
 #include "app/bench/BenchCoupling.h"
 #include "app/bench/BenchRender.h"
 #include "app/bench/BenchRough.h"
 #include "app/bench/BenchSolve.h"
 #include "app/bench/BenchUnsteady.h"
+#include "app/bench/BenchView.h"
 #include "app/io/Errors.h"
+#include "app/io/Timing.h"
+#include "app/scene/LoadScene.h"
+#include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
 
 namespace gale::app {
@@ -150,6 +157,86 @@ void addUnsteady(CLI::App& bench, VerbTable& verbs) {
         ->capture_default_str();
 }
 
+/// `gale bench view --quick`: momentum solves stop after this many pseudo-time steps.
+constexpr int QUICK_MOMENTUM_ITERATIONS = 5;
+
+/// A scene as `gale view` builds it, for the view benchmark (which cannot read scenes itself:
+/// app/bench sits beside app/scene).
+ViewBenchScene loadViewScene(const std::string& path, int width, int height, int shells,
+                             bool quick) {
+    struct Owned {
+        Scene scene;
+        BuiltScene built;
+    };
+    const auto start = Clock::now();
+    SceneRunOptions run;
+    run.scenePath = path;
+    run.width = width;
+    run.height = height;
+    auto owned = std::make_shared<Owned>();
+    owned->scene = loadScene(run);
+    owned->scene.grass.params.shells = shells;
+    limitUnsteadyStepToAFrame(owned->scene);  // as gale view does
+    // A smoke run times the frame loop, not the solve: the momentum model's pseudo-time stepping
+    // (hundreds of iterations) is cut to a few.
+    if (quick)
+        owned->scene.solver.momentum.maxIterations =
+            std::min(owned->scene.solver.momentum.maxIterations, QUICK_MOMENTUM_ITERATIONS);
+    BuildOptions build;
+    build.progress = [](const std::string& text) {
+        std::fprintf(stderr, "gale: %s\n", text.c_str());
+    };
+    owned->built = buildScene(owned->scene, build);
+
+    ViewBenchScene v;
+    v.name = std::filesystem::path(path).stem().string();
+    v.inputs.mesh = &owned->built.mesh;
+    v.inputs.grass = &owned->scene.grass.params;
+    v.inputs.texture = &owned->built.texture;
+    v.inputs.densityMap = &owned->built.densityMap;
+    v.inputs.lighting = &owned->scene.lighting;
+    v.inputs.wind = owned->built.wind.get();
+    v.camera = owned->built.camera;
+    v.overlay = owned->scene.overlay;
+    v.startTime_s = owned->scene.output.startTime_s;
+    v.fps = owned->scene.output.fps;
+    v.owner = owned;
+    v.build_ms = msSince(start);
+    return v;
+}
+
+void addView(CLI::App& bench, VerbTable& verbs) {
+    auto o = std::make_shared<BenchViewOptions>();
+    CLI::App* verb = bench.add_subcommand(
+        "view",
+        "Frame rate of each scene through gale view's frame loop (headless by default), each "
+        "frame split into wind, upload, draw and present (target: 30 fps at 640x480, 17 shells)");
+    verb->add_option("scenes", o->scenes, "Scene files or folders of them")
+        ->default_str("examples");
+    verb->add_option("--frames", o->frames, "Timed frames per scene")
+        ->capture_default_str()
+        ->check(CLI::Range(1, MAX_FRAMES));
+    verb->add_option("--width", o->width, "Frame width in pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
+    verb->add_option("--height", o->height, "Frame height in pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
+    verb->add_option("--shells", o->shells, "Shells for every scene")->capture_default_str();
+    verb->add_flag("--window", o->window,
+                   "Draw in a GLFW window (needs a display), so present is the copy to the screen");
+    verb->add_flag(
+        "--quick", o->quick,
+        "3 frames per scene after 1 warm-up, momentum solves cut to 5 steps: a smoke run "
+        "(targets printed, not judged)");
+    verb->add_option("--json", o->jsonPath, "Also write the table as JSON here");
+    verb->footer(EXIT_CODES_FOOTER);
+    verbs.add(verb, [o] {
+        o->loader = loadViewScene;
+        return runBench([o] { return runBenchView(*o); });
+    });
+}
+
 }  // namespace
 
 void addBenchVerbs(CLI::App& app, VerbTable& verbs) {
@@ -163,6 +250,7 @@ void addBenchVerbs(CLI::App& app, VerbTable& verbs) {
     addRough(*bench, verbs);
     addStability(*bench, verbs);
     addUnsteady(*bench, verbs);
+    addView(*bench, verbs);
 }
 
 }  // namespace gale::app

@@ -292,7 +292,13 @@ int runCheck(const SceneRunOptions& options) {
              "no wind solver: point-source wind (Bakay et al. 2002), no velocity field");
     }
     line("", "no window: headless (OSMesa)");
-    if (l.lights.empty()) line("", "no lights: ambient only");
+    if (scene.defaultSun)
+        line("", "no [[lighting.light]]: a default sun (from the south-west, 40 deg up)" +
+                     std::string(l.ambient == glm::vec3(DEFAULT_SKY_AMBIENT_RGB[0],
+                                                        DEFAULT_SKY_AMBIENT_RGB[1],
+                                                        DEFAULT_SKY_AMBIENT_RGB[2])
+                                     ? " and a sky ambient"
+                                     : ""));
     for (const std::string& note : scene.notes) line("note", note);
     std::printf("ok: %s is valid (CPU side built in %.0f ms)\n", scene.path.c_str(),
                 built.build_ms);

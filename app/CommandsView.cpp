@@ -4,18 +4,12 @@
 /// heads-up line. The wind runs on a worker thread and hands the renderer snapshots, so the window
 /// stays responsive while a step computes; when the wind falls behind, the heads-up line says so.
 
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>  // key codes only: the window itself is render::GlfwWindow
-
 #include <algorithm>
-#include <atomic>
-#include <cctype>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <cstdio>
+#include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -24,11 +18,16 @@
 
 #include "app/Cli.h"
 #include "app/Commands.h"
+#include "app/ViewInput.h"
 #include "app/io/Errors.h"
 #include "app/io/Timing.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
 #include "coupling/FieldOverlayBuilder.h"
+#include "coupling/LiveWind.h"
+#include "coupling/UnsteadyFieldWind.h"
+#include "coupling/ViewPipeline.h"
+#include "render/CameraMath.h"
 #include "render/FieldOverlay.h"
 #include "render/GlfwWindow.h"
 #include "render/ImageIO.h"
@@ -45,6 +44,10 @@ constexpr double MAX_INTERACTIVE_FPS = 60.0;
 /// The heads-up line reports the wind as behind when the step drawn is older than the previous
 /// frame's request and lags the clock by more than this many output frame intervals.
 constexpr double BEHIND_FRAMES = 1.5;
+/// The clock runs at most this many output frames ahead of the wind drawn. A wind that cannot keep
+/// up (an unsteady solver on a loaded machine) then plays in slow motion instead of taking ever
+/// longer updates to catch up, during which wind dropped into the flow would wait its turn.
+constexpr double MAX_WIND_AHEAD_FRAMES = 2.0;
 constexpr double MIN_SPEED = 1.0 / 16.0, MAX_SPEED = 16.0;
 
 /// Overlay modes the O key cycles through.
@@ -93,169 +96,36 @@ coupling::OverlaySpec overlayFor(OverlayMode m, const coupling::OverlaySpec& sce
     return s;
 }
 
-/// What the wind worker hands the renderer: the grass wind at sim time t_s and its overlays.
-struct Snapshot {
-    double t_s = -1.0;
-    render::GrassWind wind;
-    render::FieldOverlayData overlay;
-    double step_ms = 0.0;  ///< wall time of the wind update (and overlay build) for t_s
-    std::string report;    ///< the source's stepReport() after that update
-    uint64_t serial = 0;   ///< increments with every snapshot
+/// A live source posted to the wind worker whose effect the grass does not show yet.
+struct LivePending {
+    bool active = false;
+    coupling::LiveSourceKind kind = coupling::LiveSourceKind::Whirlwind;
+    Clock::time_point posted{};
+    uint64_t work = 0;  ///< WindWorker::post's number
 };
 
-/// The wind on its own thread. The main thread asks for a time (request), the worker brings the
-/// source there and publishes a snapshot; the main thread copies the latest one (take) without
-/// ever waiting for a step, unless it asks to (waitFor, used by --frames for exact frames).
-class WindWorker {
-  public:
-    WindWorker(coupling::WindSource& source, const render::TerrainMesh& mesh, double grassHeight_m)
-        : mSource(source), mMesh(mesh), mGrassHeight_m(grassHeight_m), mThread([this] { run(); }) {}
-    ~WindWorker() {
-        {
-            std::lock_guard<std::mutex> lock(mMutex);
-            mStop = true;
-        }
-        mWake.notify_all();
-        mThread.join();
+/// The live source a gesture asks for, placed on the terrain under its pixels; nothing when the
+/// cursor is off the terrain. Sizes: a 3 m core / half-width / radius and 6 m/s, a little above
+/// a breeze, so the grass visibly answers in any of the examples.
+std::optional<coupling::LiveSource> placeLiveSource(const LiveRequest& request,
+                                                    const render::Camera& camera, int width_px,
+                                                    int height_px,
+                                                    const render::TerrainMesh& mesh) {
+    auto pick = [&](double x_px, double y_px) {
+        const render::WorldRay ray = render::pixelRay(camera, width_px, height_px, x_px, y_px);
+        return coupling::pickTerrain(mesh, ray.wsOrigin_m, ray.wsDirection);
+    };
+    const std::optional<glm::vec3> at = pick(request.x_px, request.y_px);
+    if (!at) return std::nullopt;
+    coupling::LiveSource source;
+    source.kind = request.kind;
+    source.wsAt_m = {at->x, at->y};
+    source.wsTo_m = source.wsAt_m;
+    if (request.kind == coupling::LiveSourceKind::GustFront) {
+        if (const std::optional<glm::vec3> to = pick(request.x2_px, request.y2_px))
+            source.wsTo_m = {to->x, to->y};
     }
-
-    void request(double t_s, const coupling::OverlaySpec& overlay) {
-        {
-            std::lock_guard<std::mutex> lock(mMutex);
-            mRequested_s = t_s;
-            mOverlay = overlay;
-        }
-        mWake.notify_all();
-    }
-    /// Copies the latest snapshot into `out` if it is newer than out.serial (the per-vertex wind
-    /// is shared, not copied: GrassWind::vertex). Returns true if it copied.
-    bool take(Snapshot& out) {
-        std::lock_guard<std::mutex> lock(mMutex);
-        return copyLocked(out);
-    }
-    /// Waits until the snapshot for exactly t_s is there, then takes it.
-    void waitFor(double t_s, Snapshot& out) {
-        std::unique_lock<std::mutex> lock(mMutex);
-        mDone.wait(lock, [&] { return mError || (mLatest.t_s == t_s && mLatest.serial > 0); });
-        rethrowLocked();
-        copyLocked(out);
-    }
-    /// Rethrows a failure of the worker on the calling (main) thread.
-    void rethrowIfFailed() {
-        std::lock_guard<std::mutex> lock(mMutex);
-        rethrowLocked();
-    }
-
-  private:
-    bool copyLocked(Snapshot& out) {
-        if (mLatest.serial == out.serial) return false;
-        out.wind = mLatest.wind;
-        out.overlay = mLatest.overlay;
-        out.t_s = mLatest.t_s;
-        out.step_ms = mLatest.step_ms;
-        out.report = mLatest.report;
-        out.serial = mLatest.serial;
-        return true;
-    }
-    void rethrowLocked() {
-        if (mError) std::rethrow_exception(mError);
-    }
-
-    void run() {
-        render::GrassWind wind;  // the worker's own, brought forward step by step
-        coupling::OverlayScaleKeeper overlayScale;  // the automatic colour scale only grows
-        double done_s = std::nan("");
-        coupling::OverlaySpec doneOverlay;
-        bool doneOverlaySet = false;
-        for (;;) {
-            double t_s;
-            coupling::OverlaySpec overlay;
-            {
-                std::unique_lock<std::mutex> lock(mMutex);
-                mWake.wait(lock, [&] {
-                    return mStop ||
-                           (mRequested_s && (!(*mRequested_s == done_s) || !doneOverlaySet ||
-                                             !sameOverlay(mOverlay, doneOverlay)));
-                });
-                if (mStop) return;
-                t_s = *mRequested_s;
-                overlay = mOverlay;
-            }
-            try {
-                const auto start = Clock::now();
-                mSource.update(t_s, wind);
-                render::FieldOverlayData data = coupling::buildOverlay(
-                    mSource, wind, mMesh, overlayScale.frame(overlay), mGrassHeight_m);
-                overlayScale.seen(data);
-                const double step_ms = msSince(start);
-                std::lock_guard<std::mutex> lock(mMutex);
-                mLatest.wind = wind;
-                mLatest.overlay = std::move(data);
-                mLatest.t_s = t_s;
-                mLatest.step_ms = step_ms;
-                mLatest.report = mSource.stepReport();
-                ++mLatest.serial;
-            } catch (...) {
-                std::lock_guard<std::mutex> lock(mMutex);
-                mError = std::current_exception();
-                mDone.notify_all();
-                return;
-            }
-            done_s = t_s;
-            doneOverlay = overlay;
-            doneOverlaySet = true;
-            mDone.notify_all();
-        }
-    }
-    static bool sameOverlay(const coupling::OverlaySpec& a, const coupling::OverlaySpec& b) {
-        return a.arrows == b.arrows && a.slice == b.slice && a.streamlines == b.streamlines &&
-               a.vortexCores == b.vortexCores;
-    }
-
-    coupling::WindSource& mSource;
-    const render::TerrainMesh& mMesh;
-    double mGrassHeight_m;
-    std::mutex mMutex;
-    std::condition_variable mWake, mDone;
-    std::optional<double> mRequested_s;
-    coupling::OverlaySpec mOverlay;
-    Snapshot mLatest;
-    std::exception_ptr mError;
-    bool mStop = false;
-    std::thread mThread;  // last: starts after everything above is constructed
-};
-
-/// --keys: one character per frame stands for a key press ('>' the right arrow, ' ' space).
-render::InputEvent scriptedKey(char c) {
-    render::InputEvent e;
-    e.kind = render::InputEvent::Kind::Key;
-    switch (c) {
-        case '>':
-            e.key = GLFW_KEY_RIGHT;
-            break;
-        case ' ':
-            e.key = GLFW_KEY_SPACE;
-            break;
-        case '+':
-            e.key = GLFW_KEY_EQUAL;
-            break;
-        case '-':
-            e.key = GLFW_KEY_MINUS;
-            break;
-        case '[':
-            e.key = GLFW_KEY_LEFT_BRACKET;
-            break;
-        case ']':
-            e.key = GLFW_KEY_RIGHT_BRACKET;
-            break;
-        case '.':
-            e.key = GLFW_KEY_UNKNOWN;
-            break;  // no key this frame
-        default:
-            e.key = std::toupper(static_cast<unsigned char>(c));
-            break;  // GLFW_KEY_A.. = 'A'..
-    }
-    return e;
+    return source;
 }
 
 std::string fmt(const char* format, double v) {
@@ -266,13 +136,23 @@ std::string fmt(const char* format, double v) {
 
 }  // namespace
 
+void limitUnsteadyStepToAFrame(Scene& scene) {
+    sim::UnsteadySettings& u = scene.unsteady.settings;
+    if (scene.wind.kind == WindKind::Unsteady && !(u.dt_s > 0.0))
+        u.maxDt_s = std::min(u.maxDt_s, 1.0 / scene.output.fps);
+}
+
 int runView(const ViewOptions& options) {
     SceneRunOptions sceneOptions;
     sceneOptions.scenePath = options.scenePath;
     sceneOptions.width = options.width;
     sceneOptions.height = options.height;
     Scene scene = loadScene(sceneOptions);
+    limitUnsteadyStepToAFrame(scene);
     const OutputSection& out = scene.output;
+    // Bad --input is bad input, found before the window opens or anything is solved.
+    const std::map<int, std::vector<render::InputEvent>> inputScript =
+        parseInputScript(options.input);
 
     // The window first: without a display there is no point in building (or solving) anything.
     std::unique_ptr<render::GlfwWindow> window;
@@ -299,13 +179,21 @@ int runView(const ViewOptions& options) {
     }
 
     window->makeCurrent();
-    render::ShellRenderer renderer(*window);
-    renderer.setTerrain(built.mesh);
-    renderer.setGrass(scene.grass.params, built.texture);
-    renderer.setDensityMap(built.densityMap);
-    renderer.setLighting(scene.lighting);
-    render::FieldOverlay overlay(*window);
+    coupling::ViewInputs inputs;
+    inputs.mesh = &built.mesh;
+    inputs.grass = &scene.grass.params;
+    inputs.texture = &built.texture;
+    inputs.densityMap = &built.densityMap;
+    inputs.lighting = &scene.lighting;
+    inputs.wind = built.wind.get();
+    coupling::ViewPipeline view(*window, inputs);
+    render::ShellRenderer& renderer = view.renderer();
+    render::FieldOverlay& overlay = view.overlay();
     render::OrbitCamera orbit(built.camera);
+    // Live wind needs a flow to drop it into: the unsteady solver (only its worker touches it).
+    const bool liveWind = dynamic_cast<coupling::UnsteadyFieldWind*>(built.wind.get()) != nullptr;
+    LiveGestures gestures;
+    LivePending livePending;  // the last live source, until the grass has it
 
     const bool scripted = options.frames.has_value();  // --frames: exact frames, then exit
     const int frameLimit = options.frames.value_or(0);
@@ -316,9 +204,6 @@ int runView(const ViewOptions& options) {
     double simClock_s = out.startTime_s;  // the time the viewer wants to show
     int screenshotCount = 0;
 
-    WindWorker worker(*built.wind, built.mesh, scene.grass.params.height_m);
-    worker.request(simClock_s, overlayFor(overlayMode, scene.overlay));
-    Snapshot shown;
     render::Image image;
     double frame_ms = 0.0, fpsSmoothed = 0.0;
     auto last = Clock::now();
@@ -338,7 +223,8 @@ int runView(const ViewOptions& options) {
     std::fprintf(stderr,
                  "gale: viewing %s (%s); space play/pause, right arrow step, +/- speed, R reset "
                  "camera, G grass, T terrain, O overlays, [ ] shells, S screenshot, H heads-up, "
-                 "Esc/Q quit; mouse: left drag orbit, right drag pan, scroll zoom\n",
+                 "Esc/Q quit; mouse: left drag orbit, right drag pan, scroll zoom; live wind: "
+                 "click whirlwind, shift-drag gust front, W/B/D whirlwind/blast/downwash\n",
                  scene.path.c_str(), window->description().c_str());
 
     while (!window->closeRequested()) {
@@ -347,9 +233,32 @@ int runView(const ViewOptions& options) {
         std::vector<render::InputEvent> events = window->pollEvents();
         if (size_t(frames) < options.keys.size())
             events.push_back(scriptedKey(options.keys[frames]));
+        if (auto it = inputScript.find(frames); it != inputScript.end())
+            events.insert(events.end(), it->second.begin(), it->second.end());
         for (const render::InputEvent& e : events) {
             using K = render::InputEvent::Kind;
             if (e.kind == K::Close) quit = true;
+            bool consumed = false;
+            if (const std::optional<LiveRequest> request = gestures.handle(e, consumed)) {
+                if (!liveWind) {
+                    note("live wind needs an unsteady scene (wind.kind = \"unsteady\")");
+                } else if (const std::optional<coupling::LiveSource> source = placeLiveSource(
+                               *request, orbit.camera(), out.width, out.height, built.mesh)) {
+                    const coupling::LiveSource placed = *source;
+                    const uint64_t number =
+                        view.worker().post([placed](coupling::WindSource& wind) {
+                            auto& unsteady = static_cast<coupling::UnsteadyFieldWind&>(wind);
+                            (void)coupling::addLiveSource(unsteady.solver(), placed);
+                        });
+                    livePending = LivePending{true, placed.kind, Clock::now(), number};
+                    note(std::string(coupling::liveSourceName(placed.kind)) + " at (" +
+                         fmt("%.1f", placed.wsAt_m[0]) + ", " + fmt("%.1f", placed.wsAt_m[1]) +
+                         ") m");
+                } else {
+                    note("no terrain under the cursor");
+                }
+            }
+            if (consumed) continue;
             if (e.kind == K::MouseDrag) {
                 if (e.button == 0) orbit.orbit(e.dx, e.dy);
                 if (e.button == 1 || e.button == 2) orbit.pan(e.dx, e.dy, out.height);
@@ -357,50 +266,50 @@ int runView(const ViewOptions& options) {
             if (e.kind == K::Scroll) orbit.zoom(e.dy);
             if (e.kind != K::Key) continue;
             switch (e.key) {
-                case GLFW_KEY_ESCAPE:
-                case GLFW_KEY_Q:
+                case render::Key::Escape:
+                case render::Key::Q:
                     quit = true;
                     break;
-                case GLFW_KEY_SPACE:
+                case render::Key::Space:
                     playing = !playing;
                     break;
-                case GLFW_KEY_RIGHT:
+                case render::Key::Right:
                     playing = false;
                     simClock_s += 1.0 / out.fps;
                     break;
-                case GLFW_KEY_EQUAL:
-                case GLFW_KEY_KP_ADD:
+                case render::Key::Equal:
+                case render::Key::KeypadAdd:
                     speed = std::min(MAX_SPEED, speed * 2.0);
                     break;
-                case GLFW_KEY_MINUS:
-                case GLFW_KEY_KP_SUBTRACT:
+                case render::Key::Minus:
+                case render::Key::KeypadSubtract:
                     speed = std::max(MIN_SPEED, speed / 2.0);
                     break;
-                case GLFW_KEY_R:
+                case render::Key::R:
                     orbit.reset();
                     break;
-                case GLFW_KEY_G:
+                case render::Key::G:
                     drawOptions.grass = !drawOptions.grass;
                     break;
-                case GLFW_KEY_T:
+                case render::Key::T:
                     drawOptions.terrain = !drawOptions.terrain;
                     break;
-                case GLFW_KEY_H:
+                case render::Key::H:
                     showHud = !showHud;
                     break;
-                case GLFW_KEY_O:
+                case render::Key::O:
                     overlayMode = OverlayMode((int(overlayMode) + 1) % int(OverlayMode::Count));
                     if (overlayMode == OverlayMode::Scene && !scene.overlay.any())
                         overlayMode = OverlayMode::None;
                     note(overlayModeName(overlayMode));
                     break;
-                case GLFW_KEY_LEFT_BRACKET:
+                case render::Key::LeftBracket:
                     renderer.setShellCount(std::max(0, renderer.shellCount() - 1));
                     break;
-                case GLFW_KEY_RIGHT_BRACKET:
+                case render::Key::RightBracket:
                     renderer.setShellCount(std::min(render::kMaxShells, renderer.shellCount() + 1));
                     break;
-                case GLFW_KEY_S: {
+                case render::Key::S: {
                     const std::string path =
                         "gale_view_" + std::to_string(screenshotCount++) + ".png";
                     window->readPixels(image);  // the last frame, with its heads-up line
@@ -419,22 +328,21 @@ int runView(const ViewOptions& options) {
             simClock_s = out.startTime_s + frames / out.fps;
         } else if (playing) {
             simClock_s += speed * std::chrono::duration<double>(frameStart - last).count();
+            if (view.shown().serial > 0)
+                simClock_s =
+                    std::min(simClock_s, view.shown().t_s + MAX_WIND_AHEAD_FRAMES / out.fps);
         }
         last = frameStart;
         const coupling::OverlaySpec overlaySpec = overlayFor(overlayMode, scene.overlay);
-        worker.request(simClock_s, overlaySpec);
-        if (scripted)
-            worker.waitFor(simClock_s, shown);
-        else
-            worker.take(shown);
-        worker.rethrowIfFailed();
-
         const render::Camera camera = orbit.camera();
-        if (shown.serial > 0) {
-            renderer.draw(camera, shown.wind, drawOptions);
-            if (overlaySpec.any()) overlay.draw(camera, shown.overlay);
-        } else {
-            renderer.draw(camera, render::GrassWind{}, drawOptions);  // the wind's first step
+        view.draw(camera, simClock_s, overlaySpec, drawOptions, /*exact=*/scripted);
+        const coupling::WindSnapshot& shown = view.shown();
+        if (livePending.active && shown.workDone >= livePending.work) {
+            // The first snapshot updated after the source went in: the grass has it.
+            std::fprintf(stderr, "gale: %s answered in %.0f ms (wall), at sim t %.3f s\n",
+                         coupling::liveSourceName(livePending.kind), msSince(livePending.posted),
+                         shown.t_s);
+            livePending.active = false;
         }
         const bool lastFrame = scripted && frames + 1 >= frameLimit;
         if (lastFrame && !options.screenshotPath.empty()) {
@@ -469,7 +377,7 @@ int runView(const ViewOptions& options) {
             overlay.drawText(hud, 6 * scale, out.height - 26 * scale, scale, glm::vec3(1.0f));
             overlay.drawText(hud2, 6 * scale, out.height - 13 * scale, scale, glm::vec3(1.0f));
         }
-        window->present();
+        view.present();
         window->setTitle("gale view " + scene.name + "  " + hud + "  " + hud2);
 
         ++frames;
@@ -510,6 +418,10 @@ void addViewVerb(CLI::App& app, VerbTable& verbs) {
     verb->add_option("--keys", options->keys,
                      "Replay key presses, one character per frame ('>' right arrow, ' ' space, "
                      "'.' none): for tests and demos");
+    verb->add_option("--input", options->input,
+                     "Replay mouse actions, 'FRAME:ACTION:X,Y[,X2,Y2];...' in window pixels, "
+                     "ACTION click, gust (a shift-drag to X2,Y2), whirlwind, blast, downwash: for "
+                     "tests and demos");
     verb->add_option("--width", options->width, "Window width in pixels (default output.width)")
         ->check(CLI::Range(1, MAX_IMAGE_SIDE_PX));
     verb->add_option("--height", options->height, "Window height in pixels (default output.height)")
@@ -517,7 +429,10 @@ void addViewVerb(CLI::App& app, VerbTable& verbs) {
     verb->footer(std::string("\nKeys: space play/pause, right arrow step, +/- speed, R reset "
                              "camera, G grass, T terrain, O overlays, [ ] shells, S screenshot, "
                              "H heads-up, Esc/Q quit. Mouse: left drag orbit, right drag pan, "
-                             "scroll zoom. Without a display: exit 1, use 'gale render'.") +
+                             "scroll zoom.\nLive wind (unsteady scenes): left click drops a "
+                             "whirlwind, shift + left drag launches a gust front along the drag, "
+                             "W / B / D drop a whirlwind / a blast / a downwash at the cursor.\n"
+                             "Without a display: exit 1, use 'gale render'.") +
                  EXIT_CODES_FOOTER);
     verbs.add(verb, [options] { return runView(*options); });
 }

@@ -144,6 +144,22 @@ float niceSpeedMax(float maxSpeed) {
     return step * std::ceil(maxSpeed / step - 1e-6f);
 }
 
+namespace {
+
+/// The legend's "where" line: the heights above the ground of what is coloured, metres.
+std::string legendHeights(const OverlaySpec& spec, double arrowHeight_m) {
+    const std::string slice = formatG(spec.sliceHeight_m, 3) + " m";
+    const std::string arrows = formatG(arrowHeight_m, 3) + " m";
+    const bool sheet = spec.slice || spec.streamlines;
+    if (spec.arrows && sheet && slice != arrows)
+        return "slice " + slice + ", arrows " + arrows + " above ground";
+    if (spec.arrows) return arrows + " above ground";
+    if (sheet) return slice + " above ground";
+    return "";
+}
+
+}  // namespace
+
 render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
                                            const render::TerrainMesh& mesh, const OverlaySpec& spec,
                                            double grassHeight_m) {
@@ -156,6 +172,8 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
     const double arrowHeight = spec.arrowHeight_m.value_or(ARROW_ABOVE_GRASS * grassHeight_m);
     render::FieldOverlayData data;
     data.legend = spec.legend;
+    data.quantity = "wind speed";
+    data.where = legendHeights(spec, arrowHeight);
     float maxSpeed = 0.0f;
 
     std::vector<glm::dvec3> arrowVelocity;
@@ -300,6 +318,8 @@ render::FieldOverlayData buildGrassWindOverlay(const render::GrassWind& wind,
     render::FieldOverlayData data;
     data.legend = spec.legend;
     data.unit = "intensity";
+    data.quantity = "grass bend intensity";
+    data.where = "per blade group";
     data.speedMax = float(spec.speedMax_mps.value_or(1.0));
     const std::vector<glm::vec3>& direction = wind.wsDirection();
     const std::vector<uint32_t>& group = wind.group();

@@ -56,6 +56,9 @@ class UnsteadyFieldWind : public WindSource {
     std::string stepReport() const override;
 
     const sim::UnsteadyWindSolver& solver() const { return *mSolver; }
+    /// The solver itself, for sources dropped into the running flow (coupling/LiveWind.h); only
+    /// from the thread that calls update().
+    sim::UnsteadyWindSolver& solver() { return *mSolver; }
     const UnsteadyRunStats& stats() const { return mStats; }
 
   private:

@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 #include <stdexcept>
 #include <string>
@@ -57,6 +59,23 @@ glm::mat4 clipFromCamera(const Camera& camera, float aspect) {
 
 glm::mat4 clipFromWorld(const Camera& camera, float aspect) {
     return clipFromCamera(camera, aspect) * cameraFromWorld(camera);
+}
+
+WorldRay pixelRay(const Camera& camera, int width_px, int height_px, double x_px, double y_px) {
+    if (width_px < 1 || height_px < 1)
+        throw std::invalid_argument("pixelRay: the view must be at least 1 x 1 pixels, got " +
+                                    std::to_string(width_px) + " x " + std::to_string(height_px));
+    const glm::mat4 worldFromClip =
+        glm::inverse(clipFromWorld(camera, float(width_px) / float(height_px)));
+    // Normalised device coordinates: x right, y up, z -1 on the near plane and +1 on the far one.
+    const float xNdc = float(2.0 * x_px / width_px - 1.0);
+    const float yNdc = float(1.0 - 2.0 * y_px / height_px);
+    const glm::vec4 nearH = worldFromClip * glm::vec4(xNdc, yNdc, -1.0f, 1.0f);
+    const glm::vec4 farH = worldFromClip * glm::vec4(xNdc, yNdc, 1.0f, 1.0f);
+    WorldRay ray;
+    ray.wsOrigin_m = glm::vec3(nearH) / nearH.w;
+    ray.wsDirection = glm::normalize(glm::vec3(farH) / farH.w - ray.wsOrigin_m);
+    return ray;
 }
 
 }  // namespace gale::render

@@ -21,4 +21,16 @@ glm::mat4 clipFromCamera(const Camera& camera, float aspect);
 /// clipFromCamera * cameraFromWorld.
 glm::mat4 clipFromWorld(const Camera& camera, float aspect);
 
+/// A ray in world space (metres): wsOrigin_m + s wsDirection, s >= 0, wsDirection unit length.
+struct WorldRay {
+    glm::vec3 wsOrigin_m{0.0f};
+    glm::vec3 wsDirection{0.0f, 0.0f, -1.0f};
+};
+
+/// The ray through window point (x_px, y_px) (pixels, origin at the top-left corner, as input
+/// events give it; a pixel's centre is at +0.5) of a width_px x height_px view, from the near plane
+/// away from the camera. Throws std::invalid_argument as clipFromWorld does, and on a size below 1
+/// pixel.
+WorldRay pixelRay(const Camera& camera, int width_px, int height_px, double x_px, double y_px);
+
 }  // namespace gale::render

@@ -26,8 +26,10 @@ using gale::PI;
 constexpr float ARROW_HEAD_LENGTH = 0.38f;
 constexpr float ARROW_HEAD_HALF_WIDTH = 0.22f;
 constexpr float ARROW_SHAFT_HALF_WIDTH = 0.07f;
-/// Arrow outlines: near black, one pixel.
+/// Arrow outlines: near black, one pixel; white over a slice (whose dark blues and purples a
+/// black outline would vanish into).
 constexpr float ARROW_OUTLINE_GREY = 0.05f;
+constexpr float ARROW_OUTLINE_OVER_SLICE_GREY = 1.0f;
 // Streamline ribbons and marker rings are this many pixels wide, whatever their distance.
 constexpr float LINE_WIDTH_PX = 2.0f;
 constexpr int MARKER_SEGMENTS = 16;
@@ -86,7 +88,7 @@ void pushArrow(std::vector<Vertex>& out, const OverlayArrow& a, const glm::vec4&
 
 /// The arrow's outline as line segments, so an arrow shows against a slice or grass of its own
 /// colour.
-void pushArrowOutline(std::vector<Vertex>& out, const OverlayArrow& a) {
+void pushArrowOutline(std::vector<Vertex>& out, const OverlayArrow& a, float grey) {
     const float length = glm::length(a.wsVector_m);
     if (!(length > 0.0f)) return;
     const glm::vec3 d = a.wsVector_m / length;
@@ -99,7 +101,7 @@ void pushArrowOutline(std::vector<Vertex>& out, const OverlayArrow& a) {
     const glm::vec3 h = side * (ARROW_HEAD_HALF_WIDTH * length);
     const glm::vec3 loop[7] = {a.wsBase_m - s, a.wsBase_m + s, neck + s, neck + h, tip,
                                neck - h,       neck - s};
-    const glm::vec4 color(ARROW_OUTLINE_GREY, ARROW_OUTLINE_GREY, ARROW_OUTLINE_GREY, 1.0f);
+    const glm::vec4 color(grey, grey, grey, 1.0f);
     for (int k = 0; k < 7; ++k) {
         pushVertex(out, loop[k], color);
         pushVertex(out, loop[(k + 1) % 7], color);
@@ -113,6 +115,15 @@ struct ScreenScale {
         return std::max(1e-6f, glm::length(p - wsEye)) * metresPerPixelPerMetre;
     }
 };
+
+/// `a` lengthened to kMinArrowLength_px on screen (at its base's distance) if it is shorter; a
+/// zero arrow stays zero (no direction to draw).
+OverlayArrow atLeastMinimumSize(OverlayArrow a, const ScreenScale& screen) {
+    const float length = glm::length(a.wsVector_m);
+    const float min_m = kMinArrowLength_px * screen.at(a.wsBase_m);
+    if (length > 0.0f && length < min_m) a.wsVector_m *= min_m / length;
+    return a;
+}
 
 /// A camera-facing ribbon along the polyline, LINE_WIDTH_PX wide on screen.
 void pushRibbon(std::vector<Vertex>& out, const OverlayPolyline& line, float speedMax,
@@ -227,16 +238,43 @@ void FieldOverlay::Impl::pushLegend(const FieldOverlayData& data) {
         labelWidth = std::max(labelWidth, textWidth_px(tickLabel(t, step), scale));
     const int margin = LEGEND_MARGIN_PX * scale, barWidth = LEGEND_BAR_WIDTH_PX * scale;
     const int textHeight = kGlyphHeight_px * scale;
-    const int boxWidth = margin + barWidth + margin / 2 + 2 * scale + labelWidth + margin;
-    const int boxHeight = std::max(4 * textHeight, int(0.5f * float(context.height())));
+    // The heading: the quantity and where it is measured, above the unit; "a, b" parts of a line
+    // on lines of their own, and at text scale 1 when scale 2 would take over a quarter of the
+    // frame's width.
+    std::vector<std::string> heading;
+    for (const std::string* text : {&data.quantity, &data.where}) {
+        size_t from = 0;
+        while (from < text->size()) {
+            const size_t comma = text->find(", ", from);
+            const size_t to = comma == std::string::npos ? text->size() : comma + 1;
+            heading.push_back(text->substr(from, to - from));
+            from = comma == std::string::npos ? to : comma + 2;
+        }
+    }
+    int headingScale = scale, headingWidth = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+        headingWidth = 0;
+        for (const std::string& line : heading)
+            headingWidth = std::max(headingWidth, textWidth_px(line, headingScale));
+        if (headingWidth <= context.width() / 4 || headingScale == 1) break;
+        headingScale = 1;
+    }
+    const int lineHeight = (kGlyphHeight_px + 2) * headingScale;
+    const int boxWidth = std::max(margin + barWidth + margin / 2 + 2 * scale + labelWidth + margin,
+                                  headingWidth + 2 * margin);
+    const int headingHeight = int(heading.size()) * lineHeight;
+    const int boxHeight =
+        std::max(4 * textHeight, int(0.5f * float(context.height()))) + headingHeight;
     const int x0 = context.width() - boxWidth - margin, y0 = margin;
     pushRect(float(x0), float(y0), float(x0 + boxWidth), float(y0 + boxHeight),
              glm::vec4(0.0f, 0.0f, 0.0f, BACKDROP_ALPHA));
     const glm::vec4 white(1.0f);
-    pushText(data.unit, x0 + boxWidth - margin - textWidth_px(data.unit, scale), y0 + margin, scale,
-             white);
+    for (size_t k = 0; k < heading.size(); ++k)
+        pushText(heading[k], x0 + margin, y0 + margin + int(k) * lineHeight, headingScale, white);
+    pushText(data.unit, x0 + boxWidth - margin - textWidth_px(data.unit, scale),
+             y0 + margin + headingHeight, scale, white);
     // The bar: bottom = 0, top = speedMax.
-    const float barTop = float(y0 + 2 * margin + textHeight);
+    const float barTop = float(y0 + headingHeight + 2 * margin + textHeight);
     const float barBottom = float(y0 + boxHeight - margin - textHeight / 2);
     const float bx0 = float(x0 + margin), bx1 = bx0 + float(barWidth);
     for (int s = 0; s < LEGEND_BAR_STEPS; ++s) {
@@ -332,15 +370,18 @@ void FieldOverlay::draw(const Camera& camera, const FieldOverlayData& data) {
     glDepthMask(GL_TRUE);
 
     m.world.clear();
-    for (const OverlayArrow& a : data.arrows)
-        pushArrow(m.world, a, speedColor(a.speed, data.speedMax));
+    std::vector<OverlayArrow> arrows;
+    arrows.reserve(data.arrows.size());
+    for (const OverlayArrow& a : data.arrows) arrows.push_back(atLeastMinimumSize(a, screen));
+    for (const OverlayArrow& a : arrows) pushArrow(m.world, a, speedColor(a.speed, data.speedMax));
     for (const OverlayPolyline& line : data.streamlines)
         pushRibbon(m.world, line, data.speedMax, screen);
     for (const OverlayMarker& marker : data.vortexCores)
         if (finite3(marker.wsPosition_m)) pushMarker(m.world, marker, camera, screen);
     m.drawBatch(m.world, clipFromWorldM);
     m.world.clear();
-    for (const OverlayArrow& a : data.arrows) pushArrowOutline(m.world, a);
+    const float outline = slice.nx != 0 ? ARROW_OUTLINE_OVER_SLICE_GREY : ARROW_OUTLINE_GREY;
+    for (const OverlayArrow& a : arrows) pushArrowOutline(m.world, a, outline);
     m.drawBatch(m.world, clipFromWorldM, GL_LINES);
 
     glDisable(GL_DEPTH_TEST);

@@ -58,11 +58,18 @@ struct FieldOverlayData {
     OverlaySlice slice;  ///< nx == 0: no slice
     std::vector<OverlayPolyline> streamlines;
     std::vector<OverlayMarker> vortexCores;
-    float speedMax = 1.0f;      ///< speed at the top of the colour map (> 0); 0 maps to the bottom
-    std::string unit = "m/s";   ///< label of the legend
+    float speedMax = 1.0f;     ///< speed at the top of the colour map (> 0); 0 maps to the bottom
+    std::string unit = "m/s";  ///< label of the legend's colour bar
+    /// The legend's heading, one line each above the bar: the quantity coloured ("wind speed")
+    /// and where it is measured ("2 m above ground"). Empty lines are left out.
+    std::string quantity;
+    std::string where;
     bool legend = true;         ///< draw the legend bar (only when something is coloured)
     float sliceOpacity = 0.7f;  ///< alpha of the slice, [0, 1]
 };
+
+/// The shortest arrow drawn, in pixels on screen: a slow wind's arrows stay visible.
+inline constexpr float kMinArrowLength_px = 12.0f;
 
 /// Colour of the vortex-core markers: red, which viridis never uses.
 inline constexpr float kVortexMarkerColor[3] = {0.93f, 0.16f, 0.16f};
@@ -78,6 +85,10 @@ class FieldOverlay {
 
     /// Draws `data` over the current framebuffer without clearing it: world geometry depth-tested
     /// against what is there (the terrain hides what lies behind it), then the legend on top.
+    /// The slice goes first and writes no depth, so arrows, streamlines and markers draw over
+    /// it; an arrow shorter on screen than kMinArrowLength_px is drawn that long (same base and
+    /// direction), and over a slice arrows are outlined in white so their colour never merges
+    /// with the slice's.
     /// Throws std::invalid_argument on a non-finite position, speedMax <= 0, or a slice or
     /// polyline whose arrays differ in size. Ends with glFinish.
     void draw(const Camera& camera, const FieldOverlayData& data);

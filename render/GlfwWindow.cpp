@@ -25,6 +25,57 @@ std::string lastGlfwError() {
 
 GLFWwindow* handle(void* w) { return static_cast<GLFWwindow*>(w); }
 
+Key keyFromGlfw(int key) {
+    if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) return Key(int(Key::A) + (key - GLFW_KEY_A));
+    switch (key) {
+        case GLFW_KEY_SPACE:
+            return Key::Space;
+        case GLFW_KEY_ESCAPE:
+            return Key::Escape;
+        case GLFW_KEY_RIGHT:
+            return Key::Right;
+        case GLFW_KEY_LEFT:
+            return Key::Left;
+        case GLFW_KEY_UP:
+            return Key::Up;
+        case GLFW_KEY_DOWN:
+            return Key::Down;
+        case GLFW_KEY_EQUAL:
+            return Key::Equal;
+        case GLFW_KEY_MINUS:
+            return Key::Minus;
+        case GLFW_KEY_KP_ADD:
+            return Key::KeypadAdd;
+        case GLFW_KEY_KP_SUBTRACT:
+            return Key::KeypadSubtract;
+        case GLFW_KEY_LEFT_BRACKET:
+            return Key::LeftBracket;
+        case GLFW_KEY_RIGHT_BRACKET:
+            return Key::RightBracket;
+        default:
+            return Key::Unknown;
+    }
+}
+
+int modsFromGlfw(int mods) {
+    return ((mods & GLFW_MOD_SHIFT) ? MOD_SHIFT : 0) |
+           ((mods & GLFW_MOD_CONTROL) ? MOD_CONTROL : 0) | ((mods & GLFW_MOD_ALT) ? MOD_ALT : 0);
+}
+
+int heldMods(GLFWwindow* w) {
+    int mods = 0;
+    if (glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+        glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS)
+        mods |= MOD_SHIFT;
+    if (glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+        glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS)
+        mods |= MOD_CONTROL;
+    if (glfwGetKey(w, GLFW_KEY_LEFT_ALT) == GLFW_PRESS ||
+        glfwGetKey(w, GLFW_KEY_RIGHT_ALT) == GLFW_PRESS)
+        mods |= MOD_ALT;
+    return mods;
+}
+
 // GLFW is process-global: initialise once, terminate at exit.
 void initGlfwOnce() {
     static std::once_flag once;
@@ -57,9 +108,18 @@ struct GlfwWindow::Callbacks {
         if (action == GLFW_RELEASE) return;
         InputEvent e;
         e.kind = InputEvent::Kind::Key;
-        e.key = key;
-        e.mods = mods;
-        self(w)->mPending.push_back(e);
+        e.key = keyFromGlfw(key);
+        e.mods = modsFromGlfw(mods);
+        self(w)->push(e);
+    }
+    static void button(GLFWwindow* w, int button, int action, int mods) {
+        if (button > 2) return;
+        InputEvent e;
+        e.kind = InputEvent::Kind::MouseButton;
+        e.button = button;
+        e.pressed = action == GLFW_PRESS;
+        e.mods = modsFromGlfw(mods);
+        self(w)->push(e);
     }
     static void cursor(GLFWwindow* w, double x, double y) {
         GlfwWindow* s = self(w);
@@ -69,8 +129,11 @@ struct GlfwWindow::Callbacks {
                     InputEvent e;
                     e.kind = InputEvent::Kind::MouseDrag;
                     e.button = button;
+                    e.mods = heldMods(w);
                     e.dx = x - s->mLastX;
                     e.dy = y - s->mLastY;
+                    e.x_px = x;
+                    e.y_px = y;
                     s->mPending.push_back(e);
                     break;
                 }
@@ -85,12 +148,12 @@ struct GlfwWindow::Callbacks {
         e.kind = InputEvent::Kind::Scroll;
         e.dx = dx;
         e.dy = dy;
-        self(w)->mPending.push_back(e);
+        self(w)->push(e);
     }
     static void close(GLFWwindow* w) {
         InputEvent e;
         e.kind = InputEvent::Kind::Close;
-        self(w)->mPending.push_back(e);
+        self(w)->push(e);
     }
 };
 
@@ -116,11 +179,24 @@ std::unique_ptr<GlfwWindow> GlfwWindow::open(int width, int height, const std::s
     glfwSetWindowUserPointer(w, window.get());
     glfwSetKeyCallback(w, &Callbacks::key);
     glfwSetCursorPosCallback(w, &Callbacks::cursor);
+    glfwSetMouseButtonCallback(w, &Callbacks::button);
     glfwSetScrollCallback(w, &Callbacks::scroll);
     glfwSetWindowCloseCallback(w, &Callbacks::close);
     window->makeCurrent();
     glfwSwapInterval(0);
     return window;
+}
+
+Key letterKey(char c) {
+    if (c >= 'a' && c <= 'z') return Key(int(Key::A) + (c - 'a'));
+    if (c >= 'A' && c <= 'Z') return Key(int(Key::A) + (c - 'A'));
+    return Key::Unknown;
+}
+
+void GlfwWindow::push(InputEvent e) {
+    e.x_px = mLastX;
+    e.y_px = mLastY;
+    mPending.push_back(e);
 }
 
 GlfwWindow::GlfwWindow(void* window, int width, int height)

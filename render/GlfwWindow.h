@@ -21,13 +21,66 @@ class NoDisplayError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// The keys the viewer answers, the window's own names for them (GLFW's codes stay inside
+/// GlfwWindow.cpp). Letters A..Z are contiguous, so Key(int(Key::A) + (c - 'A')) names letter c.
+enum class Key {
+    Unknown,
+    A,
+    B,
+    C,
+    D,
+    E,
+    F,
+    G,
+    H,
+    I,
+    J,
+    K,
+    L,
+    M,
+    N,
+    O,
+    P,
+    Q,
+    R,
+    S,
+    T,
+    U,
+    V,
+    W,
+    X,
+    Y,
+    Z,
+    Space,
+    Escape,
+    Right,
+    Left,
+    Up,
+    Down,
+    Equal,  ///< '=' (with '+' on the same key on most layouts)
+    Minus,
+    KeypadAdd,
+    KeypadSubtract,
+    LeftBracket,
+    RightBracket,
+};
+
+/// The letter key for 'A'..'Z' or 'a'..'z'; Key::Unknown for any other character.
+Key letterKey(char c);
+
+/// Modifier bits of an InputEvent.
+enum KeyMods : int { MOD_NONE = 0, MOD_SHIFT = 1, MOD_CONTROL = 2, MOD_ALT = 4 };
+
 /// One input event, in window pixels (origin top-left).
 struct InputEvent {
-    enum class Kind { Key, MouseDrag, Scroll, Close };
+    enum class Kind { Key, MouseButton, MouseDrag, Scroll, Close };
     Kind kind = Kind::Key;
-    int key = 0;      ///< GLFW key code (Kind::Key, on press and repeat)
-    int mods = 0;     ///< GLFW modifier bits
-    int button = 0;   ///< mouse button held while dragging (0 left, 1 right, 2 middle)
+    Key key = Key::Unknown;  ///< Kind::Key, on press and repeat
+    int mods = MOD_NONE;     ///< KeyMods bits held (Key, MouseButton, MouseDrag)
+    int button = 0;          ///< mouse button (0 left, 1 right, 2 middle): MouseButton, MouseDrag
+    bool pressed = false;    ///< MouseButton: true on press, false on release
+    double x_px = 0.0;       ///< cursor position when the event happened (every kind)
+    double y_px = 0.0;
     double dx = 0.0;  ///< drag delta x in pixels, or scroll x offset
     double dy = 0.0;  ///< drag delta y in pixels, or scroll y offset
 };
@@ -56,6 +109,7 @@ class GlfwWindow : public GlContext {
   private:
     GlfwWindow(void* window, int width, int height);
     struct Callbacks;
+    void push(InputEvent e);  ///< queues e at the last cursor position
     void* mWindow;  // GLFWwindow*, kept out of this header so GLFW stays private to render/
     int mWidth, mHeight;
     std::vector<InputEvent> mPending;

@@ -119,6 +119,9 @@ class UnsteadyWindSolver {
     [[nodiscard]] std::vector<StepReport> advanceTo(double t_s);
 
     const WindField& field() const { return mField; }
+    /// The field for edits from outside the step (sources the viewer drops in, tests' seeding);
+    /// call project() after editing.
+    WindField& editField() { return mField; }
     double time_s() const { return mTime_s; }
     const MacGrid& grid() const { return mGrid; }
     const UnsteadySettings& settings() const { return mSettings; }

@@ -135,6 +135,9 @@ struct Scene {
     SolverSection solver;
     UnsteadySection unsteady;
     render::Lighting lighting;
+    /// No [[lighting.light]] given: `lighting` holds the default sun (and sky ambient unless
+    /// lighting.ambient was given), SceneParser.h.
+    bool defaultSun = false;
     render::Camera camera;
     OutputSection output;
     coupling::OverlaySpec overlay;  ///< [overlay]: views of the field drawn over the grass

@@ -32,6 +32,14 @@ using gale::PI;
 constexpr int MAX_TEXTURE_SIDE_PX = 4096;
 /// Default view: elevation of the camera above the horizontal, seen from the target.
 constexpr double DEFAULT_ELEVATION_DEG = 28.0;
+/// A default camera that would frame the terrain too far to show blades stands closer, at this
+/// elevation: low enough to see across the terrain beyond the target.
+constexpr double CLOSE_ELEVATION_DEG = 15.0;
+/// ...with the nearest ground at this fraction of the distance where a blade is one pixel wide
+/// (some room for relief and for texels narrower than a blade).
+constexpr double BLADE_VISIBLE_MARGIN = 0.8;
+/// The default camera stays at least this high over the ground under it (a person's eyes).
+constexpr double MIN_EYE_HEIGHT_M = 1.7;
 
 [[noreturn]] void failAt(const Scene& scene, const std::string& key, const std::string& reason) {
     throw SceneError(scene.where(key) + ": " + reason);
@@ -257,28 +265,50 @@ SceneTerrain buildTerrain(const Scene& scene) {
 
 sim::Heightfield buildHeightfield(const Scene& scene) { return buildTerrain(scene).field; }
 
+double bladeVisibleDistance_m(float texel_m, int height_px, float fovY_deg) {
+    return texel_m * height_px / (2.0 * std::tan(0.5 * fovY_deg * PI / 180.0));
+}
+
 render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera& base,
-                             bool keepPosition, bool keepTarget) {
+                             bool keepPosition, bool keepTarget, double bladeVisible_m) {
     render::Camera camera = base;
     const double minZ = field.minHeight_m(), maxZ = field.maxHeight_m();
     const double cx = field.originX_m + 0.5 * field.sizeX_m();
     const double cy = field.originY_m + 0.5 * field.sizeY_m();
     if (!keepTarget) camera.wsTarget_m = glm::vec3(cx, cy, field.sample(cx, cy) * 0.5 + minZ * 0.5);
-    if (!keepPosition) {
-        // Frame a sphere around the terrain: distance = radius / sin(fov / 2).
-        const double radius =
-            0.5 * std::sqrt(field.sizeX_m() * field.sizeX_m() + field.sizeY_m() * field.sizeY_m() +
-                            (maxZ - minZ) * (maxZ - minZ));
-        const double distance =
-            std::max(1.0, 0.8 * radius / std::sin(0.5 * camera.fovY_deg * PI / 180.0));
-        const double elevation = DEFAULT_ELEVATION_DEG * PI / 180.0;
-        const double azimuth = 235.0 * PI / 180.0;  // from the south-west
+    if (keepPosition) return camera;
+    const double halfFov = 0.5 * camera.fovY_deg * PI / 180.0;
+    const double azimuth = 235.0 * PI / 180.0;  // from the south-west
+    auto place = [&](double distance, double elevation) {
         const glm::dvec3 target(camera.wsTarget_m);
         camera.wsPosition_m =
             glm::vec3(target + distance * glm::dvec3(std::cos(elevation) * std::cos(azimuth),
                                                      std::cos(elevation) * std::sin(azimuth),
                                                      std::sin(elevation)));
+    };
+    // Frame a sphere around the terrain: distance = radius / sin(fov / 2).
+    const double radius =
+        0.5 * std::sqrt(field.sizeX_m() * field.sizeX_m() + field.sizeY_m() * field.sizeY_m() +
+                        (maxZ - minZ) * (maxZ - minZ));
+    double distance = std::max(1.0, 0.8 * radius / std::sin(halfFov));
+    double elevation = DEFAULT_ELEVATION_DEG * PI / 180.0;
+    // The frame's bottom edge meets ground at the target's height at the slant distance
+    // h / sin(elevation + fov / 2), h = distance sin(elevation) the camera's height above it.
+    auto nearestGround_m = [&] {
+        return distance * std::sin(elevation) / std::sin(elevation + halfFov);
+    };
+    if (nearestGround_m() > BLADE_VISIBLE_MARGIN * bladeVisible_m) {
+        // Too far to show a blade: stand closer and lower, looking at the ground at the centre,
+        // so the near grass at the bottom of the frame has blades wider than a pixel.
+        if (!keepTarget) camera.wsTarget_m.z = float(field.sample(cx, cy));
+        elevation = CLOSE_ELEVATION_DEG * PI / 180.0;
+        distance = BLADE_VISIBLE_MARGIN * bladeVisible_m * std::sin(elevation + halfFov) /
+                   std::sin(elevation);
     }
+    place(distance, elevation);
+    // Never inside a hill between the camera and the target.
+    const float ground = float(field.sample(camera.wsPosition_m.x, camera.wsPosition_m.y));
+    camera.wsPosition_m.z = std::max(camera.wsPosition_m.z, ground + float(MIN_EYE_HEIGHT_M));
     return camera;
 }
 
@@ -319,8 +349,11 @@ BuiltScene buildScene(const Scene& scene, const BuildOptions& options) {
         }
     }
 
+    const float texel_m =
+        scene.grass.params.tile_m / float(std::max(1, built.texture.levels.at(0).width));
     built.camera =
-        defaultCamera(field, scene.camera, !scene.autoCameraPosition, !scene.autoCameraTarget);
+        defaultCamera(field, scene.camera, !scene.autoCameraPosition, !scene.autoCameraTarget,
+                      bladeVisibleDistance_m(texel_m, scene.output.height, scene.camera.fovY_deg));
     const glm::vec3 d = built.camera.wsTarget_m - built.camera.wsPosition_m;
     if (!(d.x * d.x + d.y * d.y + d.z * d.z > 1e-12f))
         failAt(scene, scene.autoCameraTarget ? "camera.position_m" : "camera.target_m",

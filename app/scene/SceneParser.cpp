@@ -18,6 +18,7 @@
 #include "app/io/Errors.h"
 #include "app/scene/SceneKeys.h"
 #include "app/scene/SceneSection.h"
+#include "base/Numbers.h"
 #include "render/GrassInput.h"
 #include "render/RenderLimits.h"
 
@@ -318,8 +319,21 @@ void readUnsteady(Context& ctx, Section s) {
                                    ": used by wind.kind = \"unsteady\" only (ignored)");
 }
 
+/// The sun of a scene without lights (SceneParser.h): warm white, not attenuated.
+render::PointLight defaultSun() {
+    const double az = radiansFromDegrees(DEFAULT_SUN_AZIMUTH_DEG);
+    const double el = radiansFromDegrees(DEFAULT_SUN_ELEVATION_DEG);
+    render::PointLight sun;
+    sun.wsPosition_m = glm::vec3(DEFAULT_SUN_DISTANCE_M * std::cos(el) * std::cos(az),
+                                 DEFAULT_SUN_DISTANCE_M * std::cos(el) * std::sin(az),
+                                 DEFAULT_SUN_DISTANCE_M * std::sin(el));
+    sun.color = glm::vec3(1.0f, 0.95f, 0.85f);
+    return sun;
+}
+
 void readLighting(Context& ctx, Section s) {
     render::Lighting& l = ctx.scene->lighting;
+    const bool ambientGiven = s.take("ambient") != nullptr;
     l.ambient = toVec3(s.vec<3>("ambient", fromVec3(l.ambient), closed(0.0, 1e3)));
     l.specularPower =
         static_cast<float>(s.number("specular_power", l.specularPower, closed(1.0, 4096.0)));
@@ -344,6 +358,15 @@ void readLighting(Context& ctx, Section s) {
         light.attenuation = toVec3(att);
         ls.finish();
         l.lights.push_back(light);
+    }
+    if (lights.empty()) {
+        // A scene without lights gets daylight instead of ambient alone (near black): a sun far
+        // enough away to be a direction for any terrain, and (unless ambient is given) a sky.
+        l.lights.push_back(defaultSun());
+        if (!ambientGiven)
+            l.ambient = glm::vec3(DEFAULT_SKY_AMBIENT_RGB[0], DEFAULT_SKY_AMBIENT_RGB[1],
+                                  DEFAULT_SKY_AMBIENT_RGB[2]);
+        ctx.scene->defaultSun = true;
     }
 }
 

@@ -24,6 +24,15 @@ namespace gale::app {
 inline constexpr int MAX_SHELLS = 256;           ///< render::kMaxShells
 inline constexpr int MAX_IMAGE_SIDE_PX = 16384;  ///< output width and height
 inline constexpr int MAX_FRAMES = 100000;
+
+/// The ambient of a scene that gives neither lights nor `lighting.ambient`: a blue-grey sky.
+inline constexpr float DEFAULT_SKY_AMBIENT_RGB[3] = {0.30f, 0.34f, 0.40f};
+/// Where the default sun stands: from the south-west (azimuth 225 deg counter-clockwise from +x,
+/// behind the default camera), 40 deg above the horizon, DEFAULT_SUN_DISTANCE_M away from the
+/// origin, so its direction is the same over any terrain gale can hold.
+inline constexpr double DEFAULT_SUN_AZIMUTH_DEG = 225.0;
+inline constexpr double DEFAULT_SUN_ELEVATION_DEG = 40.0;
+inline constexpr double DEFAULT_SUN_DISTANCE_M = 1.0e6;
 /// Bounds on an unsteady run's work unless [unsteady] max_files / max_steps raise them.
 inline constexpr int64_t DEFAULT_MAX_SEQUENCE_FILES = 10000;
 inline constexpr int64_t DEFAULT_MAX_UNSTEADY_STEPS = 1000000;

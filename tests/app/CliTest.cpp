@@ -133,12 +133,16 @@ TEST(Cli, CheckOnKnollSucceedsAndSaysWhatItLeavesOut) {
     EXPECT_FALSE(test::fs::exists(dir / "o"));  // check creates nothing
 }
 
-TEST(Cli, CheckSaysAmbientOnlyWhenThereAreNoLights) {
+TEST(Cli, CheckNamesTheDefaultSunAndSkyWhenTheSceneHasNoLights) {
     TempDir dir;
     test::writeFile(dir / "dark.toml", "[terrain]\nkind = \"flat\"\n");
     const RunResult r = runGale({"check", dir / "dark.toml", "-o", dir / "o"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.out.find("no lights: ambient only"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("1 point light"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("no [[lighting.light]]: a default sun (from the south-west, 40 deg up) "
+                         "and a sky ambient"),
+              std::string::npos)
+        << r.out;
 }
 
 TEST(Cli, TinyRenderWritesThreeDistinctFramesAndAReport) {

@@ -83,8 +83,16 @@ TEST(SceneParser, EmptySceneTakesTheDocumentedDefaults) {
     EXPECT_DOUBLE_EQ(s.wind.pointSource.stepDelay_s, 0.15);
     ASSERT_TRUE(s.wind.curve.has_value());
     EXPECT_DOUBLE_EQ(s.wind.curve->period_s(), 4.0);
-    EXPECT_TRUE(s.lighting.lights.empty());
-    EXPECT_FLOAT_EQ(s.lighting.ambient.x, 0.25f);
+    // No lights given: the documented sun, from the south-west and 40 deg up, and a sky.
+    ASSERT_EQ(s.lighting.lights.size(), 1u);
+    const glm::vec3 sun = s.lighting.lights[0].wsPosition_m;
+    const float sunDistance_m = std::sqrt(sun.x * sun.x + sun.y * sun.y + sun.z * sun.z);
+    constexpr float kDirectionTolerance = 1e-5f;  // float positions 1e6 m away
+    EXPECT_NEAR(sun.z / sunDistance_m, std::sin(40.0f * float(M_PI) / 180.0f), kDirectionTolerance);
+    EXPECT_NEAR(sun.x, sun.y, kDirectionTolerance * sunDistance_m);  // azimuth 225 deg
+    EXPECT_LT(sun.x, 0.0f);
+    EXPECT_FLOAT_EQ(s.lighting.ambient.x, 0.30f);
+    EXPECT_FLOAT_EQ(s.lighting.ambient.z, 0.40f);
     EXPECT_TRUE(s.autoCameraPosition);
     EXPECT_TRUE(s.autoCameraTarget);
     EXPECT_FLOAT_EQ(s.camera.fovY_deg, 45.0f);

@@ -68,6 +68,24 @@ TEST(FieldOverlayBuilder, UniformWindOverFlatGroundGivesIdenticalArrows) {
 
 // The automatic colour scale of a run only grows: a calmer frame after a windy one keeps the
 // windy top (and the arrows shrink with it); a fixed speed_max_mps is never touched.
+TEST(FieldOverlayBuilder, TheLegendNamesTheQuantityAndItsHeightsAboveTheGround) {
+    Uniform s;
+    coupling::OverlaySpec spec;
+    spec.arrows = true;
+    spec.slice = true;
+    spec.sliceHeight_m = 2.0;
+    // Arrows at their default, 1.25 x the grass height of 0.5 m.
+    render::FieldOverlayData data = coupling::buildFieldOverlay(s.field, s.mesh, spec, 0.5);
+    EXPECT_EQ(data.quantity, "wind speed");
+    EXPECT_EQ(data.where, "slice 2 m, arrows 0.625 m above ground");
+    spec.arrows = false;
+    EXPECT_EQ(coupling::buildFieldOverlay(s.field, s.mesh, spec, 0.5).where, "2 m above ground");
+    spec.arrows = true;
+    spec.slice = false;
+    spec.arrowHeight_m = 1.5;
+    EXPECT_EQ(coupling::buildFieldOverlay(s.field, s.mesh, spec, 0.5).where, "1.5 m above ground");
+}
+
 TEST(FieldOverlayBuilder, AutomaticScaleHoldsItsLargestTopOverARun) {
     Uniform windy, calm;
     for (double& u : calm.field.u_mps()) u *= 0.25;

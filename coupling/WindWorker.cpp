@@ -1,0 +1,136 @@
+/// \file WindWorker.cpp
+/// The wind on its own thread (see WindWorker.h).
+
+#include "coupling/WindWorker.h"
+
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+namespace gale::coupling {
+namespace {
+
+bool sameOverlay(const OverlaySpec& a, const OverlaySpec& b) {
+    return a.arrows == b.arrows && a.slice == b.slice && a.streamlines == b.streamlines &&
+           a.vortexCores == b.vortexCores;
+}
+
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+}  // namespace
+
+WindWorker::WindWorker(WindSource& source, const render::TerrainMesh& mesh, double grassHeight_m)
+    : mSource(source), mMesh(mesh), mGrassHeight_m(grassHeight_m), mThread([this] { run(); }) {}
+
+WindWorker::~WindWorker() {
+    {
+        std::lock_guard<std::mutex> lock(mMutex);
+        mStop = true;
+    }
+    mWake.notify_all();
+    mThread.join();
+}
+
+void WindWorker::request(double t_s, const OverlaySpec& overlay) {
+    {
+        std::lock_guard<std::mutex> lock(mMutex);
+        mRequested_s = t_s;
+        mOverlay = overlay;
+    }
+    mWake.notify_all();
+}
+
+uint64_t WindWorker::post(std::function<void(WindSource&)> work) {
+    uint64_t number = 0;
+    {
+        std::lock_guard<std::mutex> lock(mMutex);
+        mPosted.push_back(std::move(work));
+        number = ++mPostedCount;
+    }
+    mWake.notify_all();
+    return number;
+}
+
+bool WindWorker::take(WindSnapshot& out) {
+    std::lock_guard<std::mutex> lock(mMutex);
+    return copyLocked(out);
+}
+
+void WindWorker::waitFor(double t_s, WindSnapshot& out) {
+    std::unique_lock<std::mutex> lock(mMutex);
+    mDone.wait(lock, [&] { return mError || (mLatest.t_s == t_s && mLatest.serial > 0); });
+    if (mError) std::rethrow_exception(mError);
+    copyLocked(out);
+}
+
+void WindWorker::rethrowIfFailed() {
+    std::lock_guard<std::mutex> lock(mMutex);
+    if (mError) std::rethrow_exception(mError);
+}
+
+bool WindWorker::copyLocked(WindSnapshot& out) const {
+    if (mLatest.serial == out.serial) return false;
+    out = mLatest;
+    return true;
+}
+
+void WindWorker::run() {
+    render::GrassWind wind;           // the worker's own, brought forward step by step
+    OverlayScaleKeeper overlayScale;  // the automatic colour scale only grows
+    double done_s = std::nan("");     // NaN: nothing done yet (NaN equals nothing)
+    uint64_t donePosted = 0;
+    OverlaySpec doneOverlay;
+    bool doneOverlaySet = false;
+    for (;;) {
+        double t_s = 0.0;
+        OverlaySpec overlay;
+        std::vector<std::function<void(WindSource&)>> work;
+        uint64_t posted = 0;
+        {
+            std::unique_lock<std::mutex> lock(mMutex);
+            mWake.wait(lock, [&] {
+                return mStop || (mRequested_s && (!(*mRequested_s == done_s) || !doneOverlaySet ||
+                                                  !sameOverlay(mOverlay, doneOverlay) ||
+                                                  mPostedCount != donePosted));
+            });
+            if (mStop) return;
+            t_s = *mRequested_s;
+            overlay = mOverlay;
+            work.swap(mPosted);
+            posted = mPostedCount;
+        }
+        try {
+            const auto start = std::chrono::steady_clock::now();
+            for (auto& w : work) w(mSource);
+            mSource.update(t_s, wind);
+            render::FieldOverlayData data =
+                buildOverlay(mSource, wind, mMesh, overlayScale.frame(overlay), mGrassHeight_m);
+            overlayScale.seen(data);
+            const double step_ms = msSince(start);
+            std::string report = mSource.stepReport();
+            std::lock_guard<std::mutex> lock(mMutex);
+            mLatest.wind = wind;
+            mLatest.overlay = std::move(data);
+            mLatest.t_s = t_s;
+            mLatest.step_ms = step_ms;
+            mLatest.report = std::move(report);
+            mLatest.workDone = posted;
+            ++mLatest.serial;
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(mMutex);
+            mError = std::current_exception();
+            mDone.notify_all();
+            return;
+        }
+        done_s = t_s;
+        donePosted = posted;
+        doneOverlay = overlay;
+        doneOverlaySet = true;
+        mDone.notify_all();
+    }
+}
+
+}  // namespace gale::coupling
