@@ -245,6 +245,7 @@ void readSolver(Context& ctx, Section s) {
     v.momentum.displacementHeight_m = s.number("displacement_height_m", 0.0, closed(0.0, 1e4));
     v.momentum.maxIterations =
         static_cast<int>(s.integer("momentum_max_iterations", 300, 1, 100000));
+    v.momentum.coarseLevels = static_cast<int>(s.integer("momentum_coarse_levels", 3, 0, 8));
     s.finish();
 }
 
