@@ -75,10 +75,28 @@ void MomentumSettings::validate() const {
 
 namespace {
 
-/// Velocity of the coarse field at each face centre of the fine domain (component by component,
-/// the point clamped into the coarse box so that a fine box a little longer than the coarse one
-/// reads its edge): the start of a fine level.
-WindField prolong(const WindField& coarse, const WindField& fine) {
+/// What one level leaves for the next: its steady field and its mass-consistent start.
+struct LevelResult {
+    WindField field, start;
+};
+
+/// The coarse level's correction to its mass-consistent field, coarse.field - coarse.start,
+/// sampled at each face centre of the fine domain (component by component, the point clamped into
+/// the coarse box so that a fine box a little longer than the coarse one reads its edge), added
+/// to the fine level's own mass-consistent field: the start of a fine level. Prolonging the
+/// correction rather than the field keeps what the fine grid resolves better (the log profile in
+/// its first cells) and carries over what the coarse level learnt (the wake, the crest's
+/// speed-up); over flat ground, where the correction is zero, the fine level starts on its fixed
+/// point.
+WindField prolong(const LevelResult& coarseLevel, const WindField& fine) {
+    WindField coarse = coarseLevel.field;
+    for (int c = 0; c < 3; ++c) {
+        std::vector<double>& a = c == 0 ? coarse.u_mps() : c == 1 ? coarse.v_mps() : coarse.w_mps();
+        const std::vector<double>& b = c == 0   ? coarseLevel.start.u_mps()
+                                       : c == 1 ? coarseLevel.start.v_mps()
+                                                : coarseLevel.start.w_mps();
+        for (size_t f = 0; f < a.size(); ++f) a[f] -= b[f];
+    }
     WindField out = fine;
     const double h = fine.voxelSize_m();
     const auto o = fine.wsMin_m(), co = coarse.wsMin_m();
@@ -98,7 +116,7 @@ WindField prolong(const WindField& coarse, const WindField& fine) {
                                    o[2] + (k + (c == 2 ? 0.0 : 0.5)) * h};
                     for (int e = 0; e < 3; ++e)
                         p[e] = std::clamp(p[e], co[e] + 1e-9 * ch, hi[e] - 1e-9 * ch);
-                    a[size_t(i) + size_t(n0) * (j + size_t(n1) * k)] =
+                    a[size_t(i) + size_t(n0) * (j + size_t(n1) * k)] +=
                         coarse.velocityAboveTerrainAt_mps(p[0], p[1], p[2])[size_t(c)];
                 }
         });
@@ -108,9 +126,9 @@ WindField prolong(const WindField& coarse, const WindField& fine) {
 
 /// The pseudo-time iteration on one level: from `initial` (nullptr: the mass-consistent field),
 /// with the mass-consistent field as the far field. Appends to rep's history (tagged with level).
-WindField iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
-                       const MomentumSettings& settings, const WindField* initial, int level,
-                       MomentumReport& rep) {
+LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
+                         const MomentumSettings& settings, const LevelResult* initial, int level,
+                         MomentumReport& rep) {
     const auto t0 = Clock::now();
     MomentumLevel lv;
     lv.level = level;
@@ -138,7 +156,9 @@ WindField iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
     us.surfaceLayer.balanced = ambient;
     UnsteadyWindSolver solver(domain, start.field, us, uRef);
     if (initial) solver.resetState(prolong(*initial, start.field));
-    start = SteadyWindResult{};  // the solver holds its own copy
+    LevelResult out;
+    if (level > 0) out.start = std::move(start.field);  // the next level's prolongation needs it
+    start = SteadyWindResult{};                         // the solver holds its own copy
 
     const double scale = h / (uRef * uRef * lv.dt_s);
     if (initial) {
@@ -209,7 +229,8 @@ WindField iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
     }
     lv.seconds = since(t0);
     rep.levels.push_back(lv);
-    return solver.field();
+    out.field = solver.field();
+    return out;
 }
 
 /// Levels below the finest (each doubles the cell edge): while the coarser grid keeps at least
@@ -242,7 +263,7 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
     // Coarse-grid start: solve on 2^n h first (coarsest first), each level started from the
     // prolonged solution of the one below it. The coarse domains cover the same terrain and top.
     const int levels = coarseLevelCount(domain, settings.coarseLevels);
-    WindField previous;
+    LevelResult previous;
     for (int l = levels; l >= 1; --l) {
         DomainSpec spec;
         spec.voxelSize_m = domain.voxelSize_m() * double(1 << l);
@@ -255,7 +276,8 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
     }
     // A coarse level that went non-finite is no start: the finest level then starts afresh.
     const bool fromCoarse = levels > 0 && rep.levels.back().finite;
-    res.field = iterateLevel(domain, ambient, settings, fromCoarse ? &previous : nullptr, 0, rep);
+    res.field =
+        iterateLevel(domain, ambient, settings, fromCoarse ? &previous : nullptr, 0, rep).field;
     const MomentumLevel& fine = rep.levels.back();
     rep.iterations = 0;
     for (const MomentumLevel& lv : rep.levels) rep.iterations += lv.iterations;

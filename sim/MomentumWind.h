@@ -10,7 +10,12 @@
 /// implicit stress step, projection warm-started from the last potential with PoissonSolver) with
 /// one fixed step dt = cfl h / U_max until the field stops changing. A fixed dt makes a fixed point
 /// of the step a steady solution: the projection's potential is then -dt times the pressure (up to
-/// the splitting error of the advection, O(dt), which the report's dt lets a reader judge).
+/// the splitting error of the advection, O(dt), which the report's dt lets a reader judge;
+/// docs/validation.md derives it: a streamwise numerical viscosity of about cfl U h / 2).
+/// Coarse-grid start (MomentumSettings::coarseLevels): the same iteration on boxes of 2h, 4h, ...
+/// cells first, where a step costs 1/8, 1/64, ... and the wind's first crossing of the box is
+/// made; each finer level starts from the coarser level's correction to the mass-consistent
+/// field, prolonged, and needs only to converge (docs/validation.md, "Run time").
 /// Boundaries: the start field is the inflow wherever air enters the box (it carries the log
 /// profile over the sides), outflow is zero-gradient (the advection reads the box), the top is
 /// open (p = 0) with the ambient profile's shear stress, the ground has the wall function.
@@ -60,7 +65,8 @@ struct MomentumSettings {
     SolverSettings finalProjection{/*relativeTolerance=*/1e-6, /*maxIterations=*/100};
     SolverSettings start;  ///< the mass-consistent start solve (on every level)
     /// Coarse-grid start: at most this many coarser levels (cells 2h, 4h, ...) are solved first,
-    /// coarsest first, each started from the prolonged solution of the next coarser one; a level
+    /// coarsest first; each finer level starts from its own mass-consistent field plus the
+    /// prolonged correction (steady minus mass-consistent) of the next coarser one; a level
     /// exists only while its grid keeps COARSE_MIN_CELLS_XY cells along its longer side, one
     /// across and COARSE_MIN_CELLS_Z up. 0: the finest level alone, from the mass-consistent
     /// field. >= 0.
@@ -132,10 +138,11 @@ struct MomentumWindResult {
 /// Extra bytes per cell of the box a momentum solve holds beyond the mass-consistent solve
 /// (AirDomain's memory estimate adds it when DomainSpec::momentumModel is set): the unsteady
 /// solver's mean field, step copies and masks, the previous iterate, the stress step's arrays,
-/// and the coarse start's prolonged field (24 B per coarse cell, one eighth of a cell's; the
-/// coarse levels' own solves, at most 1/7 of the finest level's, are freed before it starts).
+/// and the coarse start's two kept fields, its steady field and its mass-consistent start (24 B
+/// per coarse cell each, an eighth of a cell's; the coarse levels' own solves, at most 1/7 of the
+/// finest level's, are freed before it starts).
 inline constexpr double MOMENTUM_EXTRA_BYTES_PER_CELL =
-    24.0 * 5 + 3.0 + TurbulentStress::BYTES_PER_CELL + 24.0 / 8;
+    24.0 * 5 + 3.0 + TurbulentStress::BYTES_PER_CELL + 2 * 24.0 / 8;
 
 /// Solves the momentum model for an ambient wind with a log profile (its roughness_m is z0).
 /// Build the domain with DomainSpec::momentumModel set, so that its memory check (made before
