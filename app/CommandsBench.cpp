@@ -120,7 +120,7 @@ void addModels(CLI::App& bench, VerbTable& verbs) {
         "models",
         "Error against run time of both steady models: the hemisphere's potential flow "
         "(mass-consistent), the flat log law (momentum) and the steep ridge of Cao and Tamura "
-        "(2006) (both), at three resolutions");
+        "(2006) (both), at two or three resolutions");
     verb->add_option("--out", o->outputFolder, "Folder for models.csv and models.svg")
         ->capture_default_str();
     verb->add_flag("--quick", o->quick, "The coarsest resolution of each case (a CI smoke run)");

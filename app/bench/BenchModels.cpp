@@ -37,7 +37,7 @@ struct Measured {
 
 std::vector<Measured> readValidation(const std::string& path) {
     std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot read the validation data");
+    if (!in) throw InputError("--data: " + path + ": cannot read the validation data");
     std::string line;
     std::getline(in, line);  // header
     std::vector<Measured> out;
@@ -51,11 +51,11 @@ std::vector<Measured> readValidation(const std::string& path) {
         try {
             out.push_back({std::stod(f[0]), std::stod(f[2]), std::stod(f[5])});
         } catch (const std::exception&) {
-            throw std::runtime_error(path + ":" + std::to_string(lineNo) +
-                                     ": expected numbers in x_over_H, dz_over_H, speedup");
+            throw InputError(path + ":" + std::to_string(lineNo) +
+                             ": expected numbers in x_over_H, dz_over_H, speedup");
         }
     }
-    if (out.empty()) throw std::runtime_error(path + ": no measured speed-ups");
+    if (out.empty()) throw InputError(path + ": no measured speed-ups");
     return out;
 }
 

@@ -25,8 +25,9 @@ struct BenchModelsOptions {
 };
 
 /// Runs the study. Returns EXIT_OK when every momentum solve converged and stayed finite,
-/// EXIT_UNMET otherwise (the table is written either way). Throws std::runtime_error when the
-/// validation data cannot be read or an output cannot be written.
+/// EXIT_UNMET otherwise (the table is written either way). Throws InputError (exit 2) when the
+/// validation data cannot be read or parsed, std::runtime_error when an output cannot be
+/// written.
 int runBenchModels(const BenchModelsOptions& options);
 
 }  // namespace gale::app
