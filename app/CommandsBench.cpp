@@ -17,6 +17,7 @@
 #include "app/Cli.h"
 #include "app/Commands.h"
 #include "app/bench/BenchCoupling.h"
+#include "app/bench/BenchModels.h"
 #include "app/bench/BenchRender.h"
 #include "app/bench/BenchRough.h"
 #include "app/bench/BenchSolve.h"
@@ -123,6 +124,24 @@ void addCoupling(CLI::App& bench, VerbTable& verbs) {
         [](BenchCouplingOptions& options) { return runBenchCoupling(options); });
     verb->add_option("--out", o->outputFolder, "Folder for coupling.csv and coupling.svg")
         ->capture_default_str();
+}
+
+void addModels(CLI::App& bench, VerbTable& verbs) {
+    auto o = std::make_shared<BenchModelsOptions>();
+    CLI::App* verb = bench.add_subcommand(
+        "models",
+        "Error against run time of both steady models: the hemisphere's potential flow "
+        "(mass-consistent), the flat log law (momentum) and the steep ridge of Cao and Tamura "
+        "(2006) (both), at two or three resolutions");
+    verb->add_option("--out", o->outputFolder, "Folder for models.csv and models.svg")
+        ->capture_default_str();
+    verb->add_flag("--quick", o->quick, "The coarsest resolution of each case (a CI smoke run)");
+    verb->add_option("--data", o->validationCsv,
+                     "The validation data (default: tests/data/validation/"
+                     "cao-tamura-2006-ridge.csv in the source tree)");
+    verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
+    verb->footer(EXIT_CODES_FOOTER);
+    verbs.add(verb, [o] { return runBench([o] { return runBenchModels(*o); }); });
 }
 
 void addRough(CLI::App& bench, VerbTable& verbs) {
@@ -248,6 +267,7 @@ void addBenchVerbs(CLI::App& app, VerbTable& verbs) {
     addSolve(*bench, verbs);
     addCoupling(*bench, verbs);
     addRough(*bench, verbs);
+    addModels(*bench, verbs);
     addStability(*bench, verbs);
     addUnsteady(*bench, verbs);
     addView(*bench, verbs);

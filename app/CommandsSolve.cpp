@@ -18,6 +18,7 @@
 #include "app/Cli.h"
 #include "app/Commands.h"
 #include "app/SolveRun.h"
+#include "app/MomentumJson.h"
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/io/Interrupt.h"
@@ -79,40 +80,6 @@ void writeStagedText(StagedFiles& staged, const std::string& path, const std::st
     staged.seal(path);
 }
 
-namespace {
-
-/// The momentum model's settings, result and convergence history (one entry per pseudo-time step).
-nlohmann::json momentumJson(const sim::MomentumReport& m, const sim::MomentumSettings& s) {
-    nlohmann::json history = nlohmann::json::array();
-    for (const sim::MomentumIteration& it : m.history)
-        history.push_back({{"iteration", it.iteration},
-                           {"momentum_residual", it.momentumResidual},
-                           {"max_momentum_residual", it.maxMomentumResidual},
-                           {"max_div_u_h_over_U", it.maxDivergenceScaled},
-                           {"projection_iterations", it.projectionIterations},
-                           {"projection_converged", it.projectionConverged},
-                           {"step_s", it.seconds}});
-    return {{"converged", m.converged},
-            {"finite", m.finite},
-            {"iterations", m.iterations},
-            {"momentum_residual", m.momentumResidual},
-            {"residual_definition",
-             "open-fraction weighted RMS over faces of |u(n+1) - u(n)| / dt * h / U^2"},
-            {"tolerance", s.residualTolerance},
-            {"max_div_u_h_over_U", m.maxDivergenceScaled},
-            {"pseudo_dt_s", m.dt_s},
-            {"cfl", s.cfl},
-            {"mixing_length_max_m", s.mixingLengthMax_m},
-            {"displacement_height_m", s.displacementHeight_m},
-            {"max_eddy_viscosity_m2ps", m.maxEddyViscosity_m2ps},
-            {"max_friction_velocity_mps", m.maxFrictionVelocity_mps},
-            {"start_iterations", m.start.iterations},
-            {"message", m.message},
-            {"seconds", m.seconds},
-            {"history", history}};
-}
-
-}  // namespace
 
 int runSolve(const SolveRequest& req) {
     if (req.unsteady) return runUnsteadySolve(req);

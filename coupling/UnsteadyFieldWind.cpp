@@ -7,13 +7,21 @@
 
 namespace gale::coupling {
 
+NearGround nearGroundOf(const sim::UnsteadySettings& settings) {
+    if (!settings.surfaceLayer.enabled) return {NearGroundModel::Tangential};
+    return {NearGroundModel::LogLaw, settings.surfaceLayer.roughness_m,
+            settings.surfaceLayer.displacementHeight_m};
+}
+
 UnsteadyFieldWind::UnsteadyFieldWind(const render::TerrainMesh& mesh,
                                      std::unique_ptr<sim::AirDomain> domain,
                                      const sim::WindField& steady,
                                      const sim::UnsteadySettings& settings,
                                      double referenceSpeed_mps, const FieldWindSpec& response,
                                      double sampleHeight_m)
-    : mDomain(std::move(domain)), mWind(mesh, response), mSampler(mesh, sampleHeight_m) {
+    : mDomain(std::move(domain)),
+      mWind(mesh, response),
+      mSampler(mesh, sampleHeight_m, nearGroundOf(settings)) {
     mSolver =
         std::make_unique<sim::UnsteadyWindSolver>(*mDomain, steady, settings, referenceSpeed_mps);
     mWind.addFieldStep(0.0, mSampler.sample(mSolver->field()));

@@ -37,6 +37,12 @@ struct UnsteadyRunStats {
     double sampling_s = 0;  ///< wall time sampling at grass height
 };
 
+/// How the grass reads an unsteady field below its solved faces (coupling/NearGround.h): with the
+/// surface layer's wall stress (UnsteadySettings::surfaceLayer) the log law with its z0 and d, as
+/// for the steady momentum model; without it the free-slip tangential law of the mass-consistent
+/// start (no wall stress slows the air there).
+NearGround nearGroundOf(const sim::UnsteadySettings& settings);
+
 class UnsteadyFieldWind : public WindSource {
   public:
     /// Takes the domain and the steady field (the initial state and mean flow). sampleHeight_m:
@@ -60,6 +66,8 @@ class UnsteadyFieldWind : public WindSource {
     /// from the thread that calls update().
     sim::UnsteadyWindSolver& solver() { return *mSolver; }
     const UnsteadyRunStats& stats() const { return mStats; }
+    /// The sampler the grass reads the field through (its near-ground law: nearGroundOf).
+    GrassSampler& sampler() { return mSampler; }
 
   private:
     void advanceTo(double t_s);

@@ -25,25 +25,43 @@ using detail::num;
 constexpr double MIN_WALL_HEIGHT_CELLS = 0.05;
 constexpr double MAX_WALL_HEIGHT_CELLS = 1.5;
 
-/// Solves the tridiagonal system sub[k] x[k-1] + diag[k] x[k] + sup[k] x[k+1] = rhs[k], k in
-/// [0, n), by the Thomas algorithm (stable without pivoting for the diagonally dominant systems
-/// of the stress step). Overwrites sup and rhs; the solution lands in rhs.
-void solveTridiagonal(int n, const double* sub, const double* diag, double* sup, double* rhs) {
-    double beta = diag[0];
-    rhs[0] /= beta;
-    for (int k = 1; k < n; ++k) {
-        sup[k - 1] /= beta;
-        beta = diag[k] - sub[k] * sup[k - 1];
-        rhs[k] = (rhs[k] - sub[k] * rhs[k - 1]) / beta;
+/// Solves `count` tridiagonal systems at once, sub[e] x[e - count] + diag[e] x[e] + sup[e]
+/// x[e + count] = rhs[e] with e = k count + i for system i in [0, count) and row k in [0, n), by
+/// the Thomas algorithm (stable without pivoting for the diagonally dominant systems of the
+/// stress step), level by level so that the inner loop runs along contiguous memory. Overwrites
+/// sup and rhs; the solutions land in rhs.
+void solveTridiagonalRows(int count, int n, const double* sub, const double* diag, double* sup,
+                          double* rhs) {
+    const size_t m = size_t(count);
+    for (size_t i = 0; i < m; ++i) {
+        rhs[i] /= diag[i];
+        sup[i] /= diag[i];
     }
-    for (int k = n - 2; k >= 0; --k) rhs[k] -= sup[k] * rhs[k + 1];
+    for (size_t k = 1; k < size_t(n); ++k)
+        for (size_t i = 0; i < m; ++i) {
+            const size_t e = k * m + i;
+            const double beta = diag[e] - sub[e] * sup[e - m];
+            sup[e] /= beta;
+            rhs[e] = (rhs[e] - sub[e] * rhs[e - m]) / beta;
+        }
+    for (size_t k = size_t(n) - 1; k-- > 0;)
+        for (size_t i = 0; i < m; ++i) rhs[k * m + i] -= sup[k * m + i] * rhs[(k + 1) * m + i];
 }
 
-/// Per-thread scratch of one column.
-struct ColumnScratch {
-    std::vector<double> sub, diag, sup, rhs;
-    explicit ColumnScratch(int n)
-        : sub(size_t(n)), diag(size_t(n)), sup(size_t(n)), rhs(size_t(n)) {}
+/// Per-thread scratch of one row of columns: the systems' coefficients (level-major) and each
+/// column's unknown range and wall coefficients.
+struct RowScratch {
+    std::vector<double> sub, diag, sup, rhs, wallH, wallC;
+    std::vector<int> kl, kt;
+    RowScratch(int n0, int n2)
+        : sub(size_t(n0) * n2),
+          diag(size_t(n0) * n2),
+          sup(size_t(n0) * n2),
+          rhs(size_t(n0) * n2),
+          wallH(size_t(n0)),
+          wallC(size_t(n0)),
+          kl(size_t(n0)),
+          kt(size_t(n0)) {}
 };
 
 }  // namespace
@@ -356,18 +374,21 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
             cellsBeside(i, j, ia, ja, ib, jb);
             return 0.5 * (nuZ(ia, ja, k) + nuZ(ib, jb, k));
         };
+        // One row of columns (fixed j) at a time, all its tridiagonal systems eliminated together
+        // level by level (k outer, i inner), so every array is read along its contiguous i. Faces
+        // outside a column's unknowns are identity rows (they keep their value).
         tbb::parallel_for(tbb::blocked_range<int>(0, n1), [&](const tbb::blocked_range<int>& rows) {
-            ColumnScratch s(n2);
-            for (int j = rows.begin(); j != rows.end(); ++j)
+            RowScratch s(n0, n2);
+            for (int j = rows.begin(); j != rows.end(); ++j) {
                 for (int i = 0; i < n0; ++i) {
                     const size_t col = size_t(i) + size_t(n0) * j;
                     const int kl = low[col];
-                    if (kl < 0) continue;
-                    int kt = kl;  // last unknown face of the column
-                    while (kt + 1 < n2 && ok[idx(i, j, kt + 1)]) ++kt;
-                    const int n = kt - kl + 1;
+                    int kt = kl - 1;  // last unknown face of the column (none: kl - 1)
+                    if (kl >= 0)
+                        for (kt = kl; kt + 1 < n2 && ok[idx(i, j, kt + 1)];) ++kt;
+                    s.kl[size_t(i)] = kl, s.kt[size_t(i)] = kt;
                     double wallH = h, wallC = 0.0;
-                    if (c < 2) {
+                    if (c < 2 && kl >= 0) {
                         const double g = (c == 0 ? mGroundX : mGroundY)[col];
                         wallH = std::clamp(o[2] + (kl + 1) * h - g, MIN_WALL_HEIGHT_CELLS * h,
                                            MAX_WALL_HEIGHT_CELLS * h);
@@ -378,26 +399,33 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                         // below the log law's range and reports the clamp, not the flow).
                         if (wallH >= 0.5 * h) (c == 0 ? frictionX : frictionY)[col] = cw * speed;
                     }
-                    for (int m = 0; m < n; ++m) {
-                        const int k = kl + m;
-                        const size_t f = idx(i, j, k);
-                        const double delta = (c < 2 && m == 0) ? wallH : h;
+                    s.wallH[size_t(i)] = wallH, s.wallC[size_t(i)] = wallC;
+                }
+                for (int k = 0; k < n2; ++k)
+                    for (int i = 0; i < n0; ++i) {
+                        const size_t f = idx(i, j, k), e0 = size_t(k) * n0 + size_t(i);
+                        const int kl = s.kl[size_t(i)], kt = s.kt[size_t(i)];
+                        s.sub[e0] = s.sup[e0] = 0.0;
+                        if (k < kl || k > kt) {
+                            s.diag[e0] = 1.0, s.rhs[e0] = mOld[f];
+                            continue;
+                        }
+                        const double delta = (c < 2 && k == kl) ? s.wallH[size_t(i)] : h;
                         const double a = dt / delta;
                         double diag = 1.0, rhs = mOld[f];
-                        s.sub[size_t(m)] = s.sup[size_t(m)] = 0.0;
                         // Below: the wall function (x, y) or the edge to the face below.
-                        if (m == 0) {
-                            diag += a * wallC;
+                        if (k == kl) {
+                            diag += a * s.wallC[size_t(i)];
                         } else {
                             const double e = a * nuBelow(i, j, k) / h;
-                            diag += e, s.sub[size_t(m)] = -e;
+                            diag += e, s.sub[e0] = -e;
                         }
                         // Above: the edge to the face above, or the top stress.
-                        if (m + 1 < n) {
+                        if (k < kt) {
                             const double e = a * nuBelow(i, j, k + 1) / h;
-                            diag += e, s.sup[size_t(m)] = -e;
+                            diag += e, s.sup[e0] = -e;
                         } else if (c < 2 && k == nz - 1) {
-                            rhs += a * (c == 0 ? mTopX : mTopY)[col];
+                            rhs += a * (c == 0 ? mTopX : mTopY)[size_t(i) + size_t(n0) * j];
                         }
                         // Horizontal neighbours, point-implicit.
                         const double nuSelf = nuFace(i, j, k);
@@ -410,11 +438,13 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                         };
                         nb(i - 1, j), nb(i + 1, j), nb(i, j - 1), nb(i, j + 1);
                         if (c < 2) rhs += dt * (c == 0 ? mForceX : mForceY)[f];
-                        s.diag[size_t(m)] = diag, s.rhs[size_t(m)] = rhs;
+                        s.diag[e0] = diag, s.rhs[e0] = rhs;
                     }
-                    solveTridiagonal(n, s.sub.data(), s.diag.data(), s.sup.data(), s.rhs.data());
-                    for (int m = 0; m < n; ++m) q[idx(i, j, kl + m)] = s.rhs[size_t(m)];
-                }
+                solveTridiagonalRows(n0, n2, s.sub.data(), s.diag.data(), s.sup.data(),
+                                     s.rhs.data());
+                for (int k = 0; k < n2; ++k)
+                    for (int i = 0; i < n0; ++i) q[idx(i, j, k)] = s.rhs[size_t(k) * n0 + i];
+            }
         });
     }
     for (double f : frictionX)

@@ -3,6 +3,7 @@
 #include "sim/MomentumWind.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -57,13 +58,194 @@ void MomentumSettings::validate() const {
     if (!(cfl > 0.0) || !std::isfinite(cfl))
         throw std::invalid_argument("solver.cfl must be > 0 and finite, got " + num(cfl));
     if (maxIterations < 1)
-        throw std::invalid_argument("solver.max_iterations must be >= 1, got " +
+        throw std::invalid_argument("solver.momentum_max_iterations must be >= 1, got " +
                                     std::to_string(maxIterations));
+    if (coarseLevels < 0)
+        throw std::invalid_argument("MomentumSettings::coarseLevels must be >= 0, got " +
+                                    std::to_string(coarseLevels));
+    if (minIterationsAfterProlongation < 1)
+        throw std::invalid_argument(
+            "MomentumSettings::minIterationsAfterProlongation must be >= 1, got " +
+            std::to_string(minIterationsAfterProlongation));
     if (!(residualTolerance > 0.0) || !std::isfinite(residualTolerance))
         throw std::invalid_argument("solver.momentum_tolerance must be > 0, got " +
                                     num(residualTolerance));
     validateWallAndMixing(displacementHeight_m, mixingLengthMax_m);
 }
+
+namespace {
+
+/// What one level leaves for the next: its steady field and its mass-consistent start.
+struct LevelResult {
+    WindField field, start;
+};
+
+/// The coarse level's correction to its mass-consistent field, coarse.field - coarse.start,
+/// sampled at each face centre of the fine domain (component by component, the point clamped into
+/// the coarse box so that a fine box a little longer than the coarse one reads its edge), added
+/// to the fine level's own mass-consistent field: the start of a fine level. Prolonging the
+/// correction rather than the field keeps what the fine grid resolves better (the log profile in
+/// its first cells) and carries over what the coarse level learnt (the wake, the crest's
+/// speed-up); over flat ground, where the correction is zero, the fine level starts on its fixed
+/// point.
+WindField prolong(const LevelResult& coarseLevel, const WindField& fine) {
+    WindField coarse = coarseLevel.field;
+    for (int c = 0; c < 3; ++c) {
+        std::vector<double>& a = c == 0 ? coarse.u_mps() : c == 1 ? coarse.v_mps() : coarse.w_mps();
+        const std::vector<double>& b = c == 0   ? coarseLevel.start.u_mps()
+                                       : c == 1 ? coarseLevel.start.v_mps()
+                                                : coarseLevel.start.w_mps();
+        for (size_t f = 0; f < a.size(); ++f) a[f] -= b[f];
+    }
+    WindField out = fine;
+    const double h = fine.voxelSize_m();
+    const auto o = fine.wsMin_m(), co = coarse.wsMin_m();
+    const double ch = coarse.voxelSize_m();
+    const double hi[3] = {co[0] + coarse.nx() * ch, co[1] + coarse.ny() * ch,
+                          co[2] + coarse.nz() * ch};
+    const int nx = fine.nx(), ny = fine.ny(), nz = fine.nz();
+    std::vector<double>* comp[3] = {&out.u_mps(), &out.v_mps(), &out.w_mps()};
+    for (int c = 0; c < 3; ++c) {
+        const int n0 = nx + (c == 0), n1 = ny + (c == 1), n2 = nz + (c == 2);
+        std::vector<double>& a = *comp[c];
+        tbb::parallel_for(0, n2, [&](int k) {
+            for (int j = 0; j < n1; ++j)
+                for (int i = 0; i < n0; ++i) {
+                    double p[3] = {o[0] + (i + (c == 0 ? 0.0 : 0.5)) * h,
+                                   o[1] + (j + (c == 1 ? 0.0 : 0.5)) * h,
+                                   o[2] + (k + (c == 2 ? 0.0 : 0.5)) * h};
+                    for (int e = 0; e < 3; ++e)
+                        p[e] = std::clamp(p[e], co[e] + 1e-9 * ch, hi[e] - 1e-9 * ch);
+                    a[size_t(i) + size_t(n0) * (j + size_t(n1) * k)] +=
+                        coarse.velocityAboveTerrainAt_mps(p[0], p[1], p[2])[size_t(c)];
+                }
+        });
+    }
+    return out;
+}
+
+/// The pseudo-time iteration on one level: from `initial` (nullptr: the mass-consistent field),
+/// with the mass-consistent field as the far field. Appends to rep's history (tagged with level).
+LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
+                         const MomentumSettings& settings, const LevelResult* initial, int level,
+                         MomentumReport& rep) {
+    const auto t0 = Clock::now();
+    MomentumLevel lv;
+    lv.level = level;
+    lv.voxelSize_m = domain.voxelSize_m();
+    lv.cells = {domain.nx(), domain.ny(), domain.nz()};
+    SteadyWindResult start =
+        solveSteadyWind(domain, ambient, MassConsistentWeights{}, settings.start);
+    if (level == 0) rep.start = start.report;
+    const double uRef = ambient.speed_mps > 0.0 ? ambient.speed_mps : 1.0;
+    double uMax = ambient.speed_mps;
+    for (const auto* a : {&start.field.u_mps(), &start.field.v_mps(), &start.field.w_mps()})
+        for (double x : *a) uMax = std::max(uMax, std::abs(x));
+    if (!(uMax > 0.0) || !std::isfinite(uMax)) uMax = uRef;
+    const double h = domain.voxelSize_m();
+    lv.dt_s = settings.cfl * h / uMax;
+
+    UnsteadySettings us;
+    us.dt_s = lv.dt_s;
+    us.openTop = true;
+    us.projection = settings.projection;
+    us.surfaceLayer.enabled = true;
+    us.surfaceLayer.roughness_m = ambient.roughness_m;
+    us.surfaceLayer.displacementHeight_m = settings.displacementHeight_m;
+    us.surfaceLayer.mixingLengthMax_m = settings.mixingLengthMax_m;
+    us.surfaceLayer.balanced = ambient;
+    UnsteadyWindSolver solver(domain, start.field, us, uRef);
+    if (initial) solver.resetState(prolong(*initial, start.field));
+    LevelResult out;
+    if (level > 0) out.start = std::move(start.field);  // the next level's prolongation needs it
+    start = SteadyWindResult{};                         // the solver holds its own copy
+
+    const double scale = h / (uRef * uRef * lv.dt_s);
+    if (initial) {
+        // Started from a coarser level's steady state, whose wake has already crossed the box.
+        lv.minIterations = settings.minIterationsAfterProlongation;
+    } else {
+        // No convergence before the inflow has crossed the box once at the ambient speed: a small
+        // disturbance (a low hill) changes the field little per step from the start, so the
+        // residual alone would stop before the wake has formed. A calm wind has nothing to carry.
+        const double dirRad = ambient.direction_deg * gale::PI / 180.0;
+        const double crossing_m = std::abs(std::cos(dirRad)) * domain.nx() * h +
+                                  std::abs(std::sin(dirRad)) * domain.ny() * h;
+        lv.minIterations = ambient.speed_mps > 0.0
+                               ? int(std::ceil(crossing_m / (ambient.speed_mps * lv.dt_s)))
+                               : 1;
+    }
+    std::vector<double> prevU, prevV, prevW;
+    for (int it = 1; it <= settings.maxIterations; ++it) {
+        prevU = solver.field().u_mps(), prevV = solver.field().v_mps(),
+        prevW = solver.field().w_mps();
+        const StepReport sr = solver.step(lv.dt_s);
+        const WindField& F = solver.field();
+        Change c = changeOver(F.u_mps(), prevU, domain.openFractionsX());
+        const Change cv = changeOver(F.v_mps(), prevV, domain.openFractionsY());
+        const Change cw = changeOver(F.w_mps(), prevW, domain.openFractionsZ());
+        c.sumSq += cv.sumSq + cw.sumSq, c.weight += cv.weight + cw.weight;
+        c.max = std::max({c.max, cv.max, cw.max});
+        MomentumIteration m;
+        m.level = level;
+        m.iteration = it;
+        m.momentumResidual = c.weight > 0.0 ? std::sqrt(c.sumSq / c.weight) * scale : 0.0;
+        m.maxMomentumResidual = c.max * scale;
+        m.maxDivergenceScaled = sr.maxDivergenceScaled;
+        m.projectionIterations = sr.projection.iterations;
+        m.projectionConverged = sr.projection.converged;
+        m.seconds = sr.total_s;
+        m.advection_s = sr.advection_s, m.stress_s = sr.viscosity_s,
+        m.projection_s = sr.projection_s;
+        rep.history.push_back(m);
+        lv.iterations = it;
+        lv.momentumResidual = m.momentumResidual;
+        if (level == 0) {
+            rep.maxDivergenceScaled = m.maxDivergenceScaled;
+            rep.maxEddyViscosity_m2ps = sr.turbulence.maxEddyViscosity_m2ps;
+            rep.maxFrictionVelocity_mps = sr.turbulence.maxFrictionVelocity_mps;
+        }
+        if (!sr.finite || !std::isfinite(m.maxMomentumResidual)) {
+            lv.finite = false;
+            lv.message = "the field became non-finite at iteration " + std::to_string(it);
+            break;
+        }
+        if (m.momentumResidual <= settings.residualTolerance && m.projectionConverged &&
+            it >= lv.minIterations) {
+            lv.converged = true;
+            lv.message = "momentum residual " + num(m.momentumResidual) +
+                         " <= " + num(settings.residualTolerance) + " after " + std::to_string(it) +
+                         " iterations";
+            break;
+        }
+    }
+    if (lv.message.empty())
+        lv.message = "not converged: momentum residual " + num(lv.momentumResidual) + " > " +
+                     num(settings.residualTolerance) + " after " + std::to_string(lv.iterations) +
+                     " iterations (raise solver.momentum_max_iterations)";
+    if (level == 0 && lv.finite) {
+        rep.finalProjection = solver.project(settings.finalProjection);
+        rep.maxDivergenceScaled = solver.maxDivergenceScaled();
+    }
+    lv.seconds = since(t0);
+    rep.levels.push_back(lv);
+    out.field = solver.field();
+    return out;
+}
+
+/// Levels below the finest (each doubles the cell edge): while the coarser grid keeps at least
+/// COARSE_MIN_CELLS_XY cells along its longer side, COARSE_MIN_CELLS_Z up and one across (a
+/// two-dimensional case a few cells wide coarsens to one cell across), at most maxLevels.
+int coarseLevelCount(const AirDomain& d, int maxLevels) {
+    int n = 0;
+    int nx = d.nx(), ny = d.ny(), nz = d.nz();
+    while (n < maxLevels && std::max(nx, ny) / 2 >= MomentumSettings::COARSE_MIN_CELLS_XY &&
+           std::min(nx, ny) / 2 >= 1 && nz / 2 >= MomentumSettings::COARSE_MIN_CELLS_Z)
+        nx /= 2, ny /= 2, nz /= 2, ++n;
+    return n;
+}
+
+}  // namespace
 
 MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind& ambient,
                                      const MomentumSettings& settings) {
@@ -78,91 +260,39 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
     MomentumWindResult res;
     MomentumReport& rep = res.report;
 
-    SteadyWindResult start =
-        solveSteadyWind(domain, ambient, MassConsistentWeights{}, settings.start);
-    rep.start = start.report;
-    const double uRef = ambient.speed_mps > 0.0 ? ambient.speed_mps : 1.0;
-    double uMax = ambient.speed_mps;
-    for (const auto* a : {&start.field.u_mps(), &start.field.v_mps(), &start.field.w_mps()})
-        for (double x : *a) uMax = std::max(uMax, std::abs(x));
-    if (!(uMax > 0.0) || !std::isfinite(uMax)) uMax = uRef;
-    const double h = domain.voxelSize_m();
-    rep.dt_s = settings.cfl * h / uMax;
-
-    UnsteadySettings us;
-    us.dt_s = rep.dt_s;
-    us.openTop = true;
-    us.projection = settings.projection;
-    us.surfaceLayer.enabled = true;
-    us.surfaceLayer.roughness_m = ambient.roughness_m;
-    us.surfaceLayer.displacementHeight_m = settings.displacementHeight_m;
-    us.surfaceLayer.mixingLengthMax_m = settings.mixingLengthMax_m;
-    us.surfaceLayer.balanced = ambient;
-    UnsteadyWindSolver solver(domain, start.field, us, uRef);
-    start = SteadyWindResult{};  // the solver holds its own copy
-
-    const double scale = h / (uRef * uRef * rep.dt_s);
-    // No convergence before the inflow has crossed the box once at the ambient speed: a small
-    // disturbance (a low hill) changes the field little per step from the start, so the residual
-    // alone would stop before the wake has formed. A calm wind (speed 0) has nothing to carry.
-    const double dirRad = ambient.direction_deg * gale::PI / 180.0;
-    const double crossing_m =
-        std::abs(std::cos(dirRad)) * domain.nx() * h + std::abs(std::sin(dirRad)) * domain.ny() * h;
-    rep.minIterations =
-        ambient.speed_mps > 0.0 ? int(std::ceil(crossing_m / (ambient.speed_mps * rep.dt_s))) : 1;
-    std::vector<double> prevU, prevV, prevW;
-    for (int it = 1; it <= settings.maxIterations; ++it) {
-        prevU = solver.field().u_mps(), prevV = solver.field().v_mps(),
-        prevW = solver.field().w_mps();
-        const StepReport sr = solver.step(rep.dt_s);
-        const WindField& F = solver.field();
-        Change c = changeOver(F.u_mps(), prevU, domain.openFractionsX());
-        const Change cv = changeOver(F.v_mps(), prevV, domain.openFractionsY());
-        const Change cw = changeOver(F.w_mps(), prevW, domain.openFractionsZ());
-        c.sumSq += cv.sumSq + cw.sumSq, c.weight += cv.weight + cw.weight;
-        c.max = std::max({c.max, cv.max, cw.max});
-        MomentumIteration m;
-        m.iteration = it;
-        m.momentumResidual = c.weight > 0.0 ? std::sqrt(c.sumSq / c.weight) * scale : 0.0;
-        m.maxMomentumResidual = c.max * scale;
-        m.maxDivergenceScaled = sr.maxDivergenceScaled;
-        m.projectionIterations = sr.projection.iterations;
-        m.projectionConverged = sr.projection.converged;
-        m.seconds = sr.total_s;
-        rep.history.push_back(m);
-        rep.iterations = it;
-        rep.momentumResidual = m.momentumResidual;
-        rep.maxDivergenceScaled = m.maxDivergenceScaled;
-        rep.maxEddyViscosity_m2ps = sr.turbulence.maxEddyViscosity_m2ps;
-        rep.maxFrictionVelocity_mps = sr.turbulence.maxFrictionVelocity_mps;
-        if (!sr.finite || !std::isfinite(m.maxMomentumResidual)) {
-            rep.finite = false;
-            rep.message = "the field became non-finite at iteration " + std::to_string(it);
-            break;
-        }
-        if (m.momentumResidual <= settings.residualTolerance && m.projectionConverged &&
-            it >= rep.minIterations) {
-            rep.converged = true;
-            rep.message = "momentum residual " + num(m.momentumResidual) +
-                          " <= " + num(settings.residualTolerance) + " after " +
-                          std::to_string(it) + " iterations";
-            break;
-        }
+    // Coarse-grid start: solve on 2^n h first (coarsest first), each level started from the
+    // prolonged solution of the one below it. The coarse domains cover the same terrain and top.
+    const int levels = coarseLevelCount(domain, settings.coarseLevels);
+    LevelResult previous;
+    for (int l = levels; l >= 1; --l) {
+        DomainSpec spec;
+        spec.voxelSize_m = domain.voxelSize_m() * double(1 << l);
+        spec.top_m = domain.wsTop_m();
+        spec.memoryLimit_bytes = 1e18;  // 1/8 of the finest level's arrays per level: counted there
+        const AirDomain coarse(domain.terrain(), spec);
+        previous =
+            iterateLevel(coarse, ambient, settings, l == levels ? nullptr : &previous, l, rep);
+        if (!rep.levels.back().finite) break;
     }
-    if (rep.message.empty())
-        rep.message = "not converged: momentum residual " + num(rep.momentumResidual) + " > " +
-                      num(settings.residualTolerance) + " after " + std::to_string(rep.iterations) +
-                      " iterations (raise solver.max_iterations or the tolerance)";
-    if (rep.finite) {
-        rep.finalProjection = solver.project(settings.finalProjection);
-        rep.maxDivergenceScaled = solver.maxDivergenceScaled();
-        if (!rep.finalProjection.converged) {
-            rep.converged = false;
-            rep.message +=
-                "; the final projection did not converge: " + rep.finalProjection.message;
-        }
+    // A coarse level that went non-finite is no start: the finest level then starts afresh.
+    const bool fromCoarse = levels > 0 && rep.levels.back().finite;
+    res.field =
+        iterateLevel(domain, ambient, settings, fromCoarse ? &previous : nullptr, 0, rep).field;
+    const MomentumLevel& fine = rep.levels.back();
+    rep.iterations = 0;
+    for (const MomentumLevel& lv : rep.levels) rep.iterations += lv.iterations;
+    rep.fineIterations = fine.iterations;
+    rep.minIterations = fine.minIterations;
+    rep.momentumResidual = fine.momentumResidual;
+    rep.dt_s = fine.dt_s;
+    rep.finite = fine.finite;
+    rep.converged = fine.converged;
+    rep.message = fine.message;
+    if (levels > 0 && !fromCoarse) rep.message += " (a coarse level became non-finite)";
+    if (rep.finite && !rep.finalProjection.converged) {
+        rep.converged = false;
+        rep.message += "; the final projection did not converge: " + rep.finalProjection.message;
     }
-    res.field = solver.field();
     rep.seconds = since(t0);
     return res;
 }

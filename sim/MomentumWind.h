@@ -10,7 +10,12 @@
 /// implicit stress step, projection warm-started from the last potential with PoissonSolver) with
 /// one fixed step dt = cfl h / U_max until the field stops changing. A fixed dt makes a fixed point
 /// of the step a steady solution: the projection's potential is then -dt times the pressure (up to
-/// the splitting error of the advection, O(dt), which the report's dt lets a reader judge).
+/// the splitting error of the advection, O(dt), which the report's dt lets a reader judge;
+/// docs/validation.md derives it: a streamwise numerical viscosity of about cfl U h / 2).
+/// Coarse-grid start (MomentumSettings::coarseLevels): the same iteration on boxes of 2h, 4h, ...
+/// cells first, where a step costs 1/8, 1/64, ... and the wind's first crossing of the box is
+/// made; each finer level starts from the coarser level's correction to the mass-consistent
+/// field, prolonged, and needs only to converge (docs/validation.md, "Run time").
 /// Boundaries: the start field is the inflow wherever air enters the box (it carries the log
 /// profile over the sides), outflow is zero-gradient (the advection reads the box), the top is
 /// open (p = 0) with the ambient profile's shear stress, the ground has the wall function.
@@ -31,6 +36,7 @@
 ///   for (const auto& it : res.report.history) plot(it.iteration, it.momentumResidual);
 /// @endcode
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -57,7 +63,19 @@ struct MomentumSettings {
     /// The projection of the converged field, once: its tolerance is the divergence the result
     /// keeps (max |div u| h / U <= relativeTolerance times the last step's).
     SolverSettings finalProjection{/*relativeTolerance=*/1e-6, /*maxIterations=*/100};
-    SolverSettings start;  ///< the mass-consistent start solve
+    SolverSettings start;  ///< the mass-consistent start solve (on every level)
+    /// Coarse-grid start: at most this many coarser levels (cells 2h, 4h, ...) are solved first,
+    /// coarsest first; each finer level starts from its own mass-consistent field plus the
+    /// prolonged correction (steady minus mass-consistent) of the next coarser one; a level
+    /// exists only while its grid keeps COARSE_MIN_CELLS_XY cells along its longer side, one
+    /// across and COARSE_MIN_CELLS_Z up. 0: the finest level alone, from the mass-consistent
+    /// field. >= 0.
+    int coarseLevels = 3;
+    /// A level started from a coarser level's steady state need not wait for the wind to cross
+    /// its box (the coarse level did), only for this many steps, >= 1.
+    int minIterationsAfterProlongation = 10;
+    static constexpr int COARSE_MIN_CELLS_XY = 16;
+    static constexpr int COARSE_MIN_CELLS_Z = 8;
 
     /// Throws std::invalid_argument naming the scene key (solver.cfl, ...).
     void validate() const;
@@ -65,30 +83,51 @@ struct MomentumSettings {
 
 /// One pseudo-time step of the history.
 struct MomentumIteration {
-    int iteration = 0;
+    int level = 0;      ///< 0: the domain's own cells; n: cells 2^n times larger (coarse start)
+    int iteration = 0;  ///< 1, 2, ... within its level
     double momentumResidual = 0;  ///< open-fraction weighted RMS over faces of |du| / dt * h / U^2
     double maxMomentumResidual = 0;  ///< max over faces of theta |du| / dt * h / U^2
     double maxDivergenceScaled = 0;  ///< max over air cells |div u| h / U after the projection
     int projectionIterations = 0;
     bool projectionConverged = false;
-    double seconds = 0;  ///< wall time of the step
+    double seconds = 0;                                      ///< wall time of the step
+    double advection_s = 0, stress_s = 0, projection_s = 0;  ///< its parts' wall times
+};
+
+/// What one level of the coarse-grid start (or the finest level) did.
+struct MomentumLevel {
+    int level = 0;               ///< 0: the domain's cells; n: 2^n times larger
+    double voxelSize_m = 0;      ///< its cell edge, metres
+    std::array<int, 3> cells{};  ///< nx, ny, nz
+    double dt_s = 0;             ///< its pseudo-time step (cfl h / U_max on its own h)
+    int iterations = 0;
+    /// Steps it had to take at least: the ambient wind's crossing of the box for a level started
+    /// from the mass-consistent field, MomentumSettings::minIterationsAfterProlongation otherwise.
+    int minIterations = 0;
+    double momentumResidual = 0;  ///< of its last iteration (RMS)
+    bool converged = false;
+    bool finite = true;
+    double seconds = 0;  ///< wall time, its mass-consistent solve included
+    std::string message;
 };
 
 struct [[nodiscard]] MomentumReport {
-    bool converged = false;
-    bool finite = true;  ///< no NaN/Inf in the field
-    int iterations = 0;
-    int minIterations = 0;               ///< steps for the ambient wind to cross the box once
-    double momentumResidual = 0;         ///< of the last iteration (RMS)
+    bool converged = false;       ///< the finest level converged (coarse levels are only a start)
+    bool finite = true;           ///< no NaN/Inf in the field
+    int iterations = 0;           ///< pseudo-time steps over all levels
+    int fineIterations = 0;       ///< of them, steps on the domain's own cells
+    int minIterations = 0;        ///< the finest level's (MomentumLevel::minIterations)
+    double momentumResidual = 0;  ///< of the last iteration (RMS)
     double maxDivergenceScaled = 0;      ///< max |div u| h / U after the final projection
     SolveReport finalProjection;         ///< the final projection's solve
-    double dt_s = 0;                     ///< the pseudo-time step
+    double dt_s = 0;                     ///< the finest level's pseudo-time step
     double maxEddyViscosity_m2ps = 0;    ///< of the last iteration
     double maxFrictionVelocity_mps = 0;  ///< of the last iteration
     double seconds = 0;                  ///< wall time including the start solve
     std::string message;                 ///< why it stopped, in words
-    SolveReport start;                   ///< the mass-consistent start solve
-    std::vector<MomentumIteration> history;
+    SolveReport start;                   ///< the mass-consistent solve on the domain's own cells
+    std::vector<MomentumLevel> levels;   ///< coarsest first, the domain's own cells last
+    std::vector<MomentumIteration> history;  ///< every step of every level, in order
 };
 
 struct MomentumWindResult {
@@ -98,9 +137,12 @@ struct MomentumWindResult {
 
 /// Extra bytes per cell of the box a momentum solve holds beyond the mass-consistent solve
 /// (AirDomain's memory estimate adds it when DomainSpec::momentumModel is set): the unsteady
-/// solver's mean field, step copies and masks, the previous iterate, the stress step's arrays.
+/// solver's mean field, step copies and masks, the previous iterate, the stress step's arrays,
+/// and the coarse start's two kept fields, its steady field and its mass-consistent start (24 B
+/// per coarse cell each, an eighth of a cell's; the coarse levels' own solves, at most 1/7 of the
+/// finest level's, are freed before it starts).
 inline constexpr double MOMENTUM_EXTRA_BYTES_PER_CELL =
-    24.0 * 5 + 3.0 + TurbulentStress::BYTES_PER_CELL;
+    24.0 * 5 + 3.0 + TurbulentStress::BYTES_PER_CELL + 2 * 24.0 / 8;
 
 /// Solves the momentum model for an ambient wind with a log profile (its roughness_m is z0).
 /// Build the domain with DomainSpec::momentumModel set, so that its memory check (made before

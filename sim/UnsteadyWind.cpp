@@ -202,6 +202,17 @@ void UnsteadyWindSolver::extrapolateClosedFaces() {
                              EXTRAPOLATION_LAYERS);
 }
 
+void UnsteadyWindSolver::resetState(const WindField& state) {
+    if (state.u_mps().size() != mField.u_mps().size() ||
+        state.v_mps().size() != mField.v_mps().size() ||
+        state.w_mps().size() != mField.w_mps().size())
+        throw std::invalid_argument(
+            "UnsteadyWindSolver::resetState: the field does not match the "
+            "domain");
+    mField.u_mps() = state.u_mps(), mField.v_mps() = state.v_mps(), mField.w_mps() = state.w_mps();
+    extrapolateClosedFaces();
+}
+
 SolveReport UnsteadyWindSolver::project() { return project(mSettings.projection); }
 
 SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {

@@ -139,6 +139,12 @@ class UnsteadyWindSolver {
     double maxDivergenceScaled() const;
     /// The MAC arrays of the field, for sampling helpers.
     MacVelocity velocity() const { return {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()}; }
+    /// Replaces the current face velocities (m/s, the domain's WindField layout) with those of
+    /// `state`, keeping the mean flow as the far field and time() unchanged: the steady momentum
+    /// model starts a fine level from a coarser level's solution this way. Faces outside the air
+    /// are refilled by extrapolation as after a projection; the next step projects. Throws
+    /// std::invalid_argument when the arrays do not match the domain.
+    void resetState(const WindField& state);
     /// Projects the current field (after external edits, e.g. seeding in tests).
     SolveReport project();
     /// The same with other criteria (the steady momentum model's final, tighter projection).

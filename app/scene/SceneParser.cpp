@@ -261,6 +261,8 @@ void readSolver(Context& ctx, Section s) {
         s.number("displacement_height_m", v.momentum.displacementHeight_m, closed(0.0, 1e4));
     v.momentum.maxIterations =
         static_cast<int>(s.integer("momentum_max_iterations", v.momentum.maxIterations, 1, 100000));
+    v.momentum.coarseLevels =
+        static_cast<int>(s.integer("momentum_coarse_levels", v.momentum.coarseLevels, 0, 8));
     s.finish();
 }
 

@@ -1,0 +1,360 @@
+/// \file BenchModels.cpp
+/// `gale bench models` (BenchModels.h).
+#include "app/bench/BenchModels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "app/bench/ExactSolutions.h"
+#include "app/bench/SvgPlot.h"
+#include "app/io/AtomicFile.h"
+#include "app/io/Errors.h"
+#include "app/io/Timing.h"
+#include "base/Numbers.h"
+#include "sim/MomentumWind.h"
+#include "sim/SteadyWind.h"
+
+#ifndef GALE_VALIDATION_CSV
+#define GALE_VALIDATION_CSV ""
+#endif
+
+namespace gale::app {
+namespace {
+
+using gale::PI;
+
+/// One measured point of the validation line (tests/data/validation/README.md).
+struct Measured {
+    double xOverH = 0, dzOverH = 0, speedup = 0;
+};
+
+std::vector<Measured> readValidation(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError("--data: " + path + ": cannot read the validation data");
+    std::string line;
+    std::getline(in, line);  // header
+    std::vector<Measured> out;
+    int lineNo = 1;
+    while (std::getline(in, line)) {
+        ++lineNo;
+        std::vector<std::string> f;
+        std::stringstream ss(line);
+        for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+        if (f.size() < 6 || f[5].empty()) continue;  // no reference below the lowest foot point
+        try {
+            out.push_back({std::stod(f[0]), std::stod(f[2]), std::stod(f[5])});
+        } catch (const std::exception&) {
+            throw InputError(path + ":" + std::to_string(lineNo) +
+                             ": expected numbers in x_over_H, dz_over_H, speedup");
+        }
+    }
+    if (out.empty()) throw InputError(path + ": no measured speed-ups");
+    return out;
+}
+
+/// One row of the table.
+struct Row {
+    std::string model, testCase, resolution;
+    int nx = 0, ny = 0, nz = 0;
+    int iterations = 0;
+    bool converged = false;
+    double seconds = 0;
+    double error = 0;           ///< the case's error measure (see errorName)
+    std::string errorName;      ///< what error is
+    double crestSpeedup = NAN;  ///< ridge only: model's speed-up at the crest, dz = 0.25 H
+    double leeSpeedup = NAN;    ///< ridge only: at the lee foot (2.5 H), dz = 1.0 H
+    double cfl = NAN;           ///< momentum only: the pseudo-time step's cfl
+};
+
+// ---- the ridge of Cao and Tamura (2006), scaled to H = 40 m ------------------------------------
+
+constexpr double RIDGE_H_M = 40.0;
+constexpr double RIDGE_B_M = 2.5 * RIDGE_H_M;  ///< half-width at the base
+constexpr double RIDGE_UPWIND_M = 10 * RIDGE_H_M, RIDGE_DOWNWIND_M = 20 * RIDGE_H_M;
+/// z0 of the least-squares log fit to the measured windward-foot profile (docs/validation.md).
+constexpr double RIDGE_Z0_M = 0.65;
+constexpr double MEASURED_CREST_SPEEDUP = 1.33;      ///< at dz = 0.25 H (the data)
+constexpr double MEASURED_LEE_FOOT_SPEEDUP = -0.32;  ///< at x = 2.5 H, dz = 1.0 H (the data)
+
+double ridgeHeight_m(double xFromCrest_m) {
+    if (std::abs(xFromCrest_m) > RIDGE_B_M) return 0.0;
+    const double c = std::cos(PI * xFromCrest_m / (2 * RIDGE_B_M));
+    return RIDGE_H_M * c * c;
+}
+
+/// Runs one model on the ridge at H / h = cellsPerH (momentum: pseudo-time step cfl), compares
+/// with the measured line.
+Row runRidge(bool momentum, int cellsPerH, const std::vector<Measured>& data, int maxIterations,
+             double cfl = 2.0) {
+    const double h = RIDGE_H_M / cellsPerH;
+    const double spacing = h / 2, length = RIDGE_UPWIND_M + RIDGE_DOWNWIND_M;
+    const int nx = int(std::lround(length / spacing)) + 1, ny = 7;  // 3 cells across
+    std::vector<float> z(size_t(nx) * ny);
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i)
+            z[size_t(j) * nx + i] = float(ridgeHeight_m(i * spacing - RIDGE_UPWIND_M));
+    const sim::Heightfield terrain = sim::makeHeightfield(nx, ny, spacing, std::move(z));
+    sim::DomainSpec spec;
+    spec.voxelSize_m = h;
+    spec.top_m = 6 * RIDGE_H_M;
+    spec.momentumModel = momentum;
+    sim::AmbientWind wind;
+    wind.profile = sim::WindProfile::LogLaw;
+    wind.speed_mps = 10.0;
+    wind.referenceHeight_m = RIDGE_H_M;
+    wind.roughness_m = RIDGE_Z0_M;
+    const auto t0 = Clock::now();
+    const sim::AirDomain domain(terrain, spec);
+    sim::SolverSettings start;
+    start.maxIterations = 200;
+    sim::MomentumSettings ms;
+    ms.cfl = cfl;
+    ms.maxIterations = maxIterations;
+    const sim::SteadyModelResult res = sim::solveSteadyModel(
+        domain, wind, momentum ? sim::SteadyModel::Momentum : sim::SteadyModel::MassConsistent,
+        sim::MassConsistentWeights{}, start, ms);
+    Row r;
+    r.seconds = secondsSince(t0);
+    r.model = momentum ? "momentum" : "mass_consistent";
+    r.testCase = "ridge (Cao, Tamura 2006)";
+    r.resolution = "H/h=" + std::to_string(cellsPerH);
+    r.nx = domain.nx(), r.ny = domain.ny(), r.nz = domain.nz();
+    r.iterations = res.report.iterations;
+    r.converged = res.report.converged;
+    if (momentum) r.cfl = cfl;
+    if (res.momentum)
+        for (const sim::MomentumLevel& l : res.momentum->levels)
+            std::fprintf(stderr, "  level %d (%g m): %d steps, residual %.2e, %s\n", l.level,
+                         l.voxelSize_m, l.iterations, l.momentumResidual,
+                         l.converged ? "converged" : "not converged");
+    const double y = terrain.sizeY_m() / 2;
+    auto u = [&](double xOverH, double dzOverH) {
+        const double x = xOverH * RIDGE_H_M;
+        return res.field.velocityAt_mps(x + RIDGE_UPWIND_M, y,
+                                        ridgeHeight_m(x) + dzOverH * RIDGE_H_M)[0];
+    };
+    double sum2 = 0;
+    int n = 0;
+    double crestDz = 1e9, leeDz = 1e9;
+    for (const Measured& m : data) {
+        if (m.xOverH <= -2.5 + 1e-9) continue;  // the reference itself
+        const double model = u(m.xOverH, m.dzOverH) / u(-2.5, m.dzOverH) - 1.0;
+        sum2 += (model - m.speedup) * (model - m.speedup), ++n;
+        if (std::abs(m.xOverH) < 1e-9 && std::abs(m.dzOverH - 0.25) < std::abs(crestDz - 0.25))
+            crestDz = m.dzOverH, r.crestSpeedup = model;
+        if (std::abs(m.xOverH - 2.5) < 1e-9 && std::abs(m.dzOverH - 1.0) < std::abs(leeDz - 1.0))
+            leeDz = m.dzOverH, r.leeSpeedup = model;
+    }
+    r.error = std::sqrt(sum2 / std::max(n, 1));
+    r.errorName = "RMS speed-up error, " + std::to_string(n) + " points";
+    return r;
+}
+
+// ---- flat rough ground: the log law (momentum) --------------------------------------------------
+
+Row runFlat(double h) {
+    const double z0 = 0.03, uRef = 5.0, zRef = 10.0;
+    sim::TerrainSpec t;
+    t.kind = sim::TerrainKind::Flat;
+    t.sizeX_m = 120, t.sizeY_m = 4 * h, t.spacing_m = h / 2;
+    const sim::Heightfield terrain = sim::makeTerrain(t);
+    sim::DomainSpec spec;
+    spec.voxelSize_m = h;
+    spec.top_m = 60.0;
+    spec.momentumModel = true;
+    sim::AmbientWind wind;
+    wind.profile = sim::WindProfile::LogLaw;
+    wind.speed_mps = uRef, wind.referenceHeight_m = zRef, wind.roughness_m = z0;
+    const auto t0 = Clock::now();
+    const sim::AirDomain domain(terrain, spec);
+    const sim::MomentumWindResult res = sim::solveMomentumWind(domain, wind, {});
+    Row r;
+    r.seconds = secondsSince(t0);
+    r.model = "momentum", r.testCase = "flat log law";
+    r.resolution = "h=" + formatG(h, 3) + " m";
+    r.nx = domain.nx(), r.ny = domain.ny(), r.nz = domain.nz();
+    r.iterations = res.report.iterations, r.converged = res.report.converged;
+    const double uStar = sim::surface::frictionVelocity_mps(uRef, zRef, z0);
+    const double x = terrain.sizeX_m() / 2, y = terrain.sizeY_m() / 2;
+    for (int k = 0; k < domain.nz(); ++k) {
+        const double zc = (k + 0.5) * h;  // the x-faces' height: exact, no interpolation
+        if (zc < 1.0 || zc > 50.0) continue;
+        const double exact = sim::surface::logLawSpeed_mps(uStar, zc, z0);
+        r.error =
+            std::max(r.error, std::abs(res.field.velocityAt_mps(x, y, zc)[0] - exact) / exact);
+    }
+    r.errorName = "max |u - log law| / log law, 1-50 m";
+    return r;
+}
+
+// ---- hemisphere: exact potential flow (mass-consistent) -----------------------------------------
+
+Row runHemisphere(int cellsPerRadius) {
+    const exact::HemisphereFlow flow{1.0, 1.0, 3.0, 3.0};
+    sim::TerrainSpec ts;
+    ts.kind = sim::TerrainKind::Hemisphere;
+    ts.sizeX_m = ts.sizeY_m = 6.0;
+    ts.spacing_m = flow.R_m / 128;
+    ts.radius_m = flow.R_m;
+    ts.centerX_m = ts.centerY_m = 3.0;
+    const sim::Heightfield hf = sim::makeTerrain(ts);
+    sim::AmbientWind ambient;
+    ambient.profile = sim::WindProfile::Uniform;
+    ambient.speed_mps = flow.U_mps;
+    const sim::BoundaryPotential farField = [&](double x, double y, double z) {
+        return flow.phi(x, y, z);
+    };
+    const auto t0 = Clock::now();
+    const sim::AirDomain domain(hf, sim::DomainSpec{flow.R_m / cellsPerRadius, /*top_m=*/3.0});
+    sim::SteadyWindSolver solver(domain);
+    sim::SolverSettings set;
+    set.maxIterations = 200;
+    const sim::SteadyWindResult res = solver.solve(ambient, set, farField);
+    Row r;
+    r.seconds = secondsSince(t0);
+    r.model = "mass_consistent", r.testCase = "hemisphere potential flow";
+    r.resolution = "R/h=" + std::to_string(cellsPerRadius);
+    r.nx = domain.nx(), r.ny = domain.ny(), r.nz = domain.nz();
+    r.iterations = res.report.iterations, r.converged = res.report.converged;
+    double e2 = 0, n2 = 0;
+    for (const auto& p : flow.nearPoints()) {
+        const auto u = res.field.velocityAt_mps(p[0], p[1], p[2]);
+        const auto ue = flow.velocity(p[0], p[1], p[2]);
+        for (int q = 0; q < 3; ++q) e2 += (u[q] - ue[q]) * (u[q] - ue[q]), n2 += ue[q] * ue[q];
+    }
+    r.error = std::sqrt(e2 / n2);
+    r.errorName = "near-surface L2 / |u|, 193 points 0.1 R up";
+    return r;
+}
+
+}  // namespace
+
+int runBenchModels(const BenchModelsOptions& opt) {
+    const std::string csvPath =
+        opt.validationCsv.empty() ? std::string(GALE_VALIDATION_CSV) : opt.validationCsv;
+    const std::vector<Measured> data = readValidation(csvPath);
+    const std::vector<int> ridgeRes = opt.quick ? std::vector<int>{5} : std::vector<int>{5, 10};
+    // Pseudo-time steps per level at most: the quick run is a smoke test of the table.
+    const int ridgeIterations = opt.quick ? 300 : 1000;
+    const std::vector<int> hemiRes = opt.quick ? std::vector<int>{4} : std::vector<int>{4, 8, 16};
+    const std::vector<double> flatRes =
+        opt.quick ? std::vector<double>{4.0} : std::vector<double>{4.0, 2.0, 1.0};
+
+    std::vector<Row> rows;
+    auto add = [&](Row r) {
+        std::fprintf(stderr, "bench models: %s, %s, %s: %d iterations, %.2f s, error %.3g\n",
+                     r.model.c_str(), r.testCase.c_str(), r.resolution.c_str(), r.iterations,
+                     r.seconds, r.error);
+        rows.push_back(std::move(r));
+    };
+    for (int n : hemiRes) add(runHemisphere(n));
+    for (double h : flatRes) add(runFlat(h));
+    for (int n : ridgeRes) {
+        add(runRidge(false, n, data, ridgeIterations));
+        add(runRidge(true, n, data, ridgeIterations));
+    }
+
+    std::printf("Both steady models: error against run time (docs/validation.md).\n");
+    std::printf("%-16s %-26s %-9s %14s %6s %5s %9s %10s %6s %6s  %s\n", "model", "case", "res.",
+                "cells", "iters", "conv", "seconds", "error", "crest", "lee", "error measure");
+    bool ok = true;
+    std::ostringstream csv;
+    csv << "model,case,resolution,nx,ny,nz,iterations,converged,seconds,error,error_measure,"
+           "crest_speedup\n";
+    nlohmann::json jrows = nlohmann::json::array();
+    for (const Row& r : rows) {
+        if (r.model == "momentum" && (!r.converged || !std::isfinite(r.error))) ok = false;
+        char cells[48];
+        std::snprintf(cells, sizeof cells, "%dx%dx%d", r.nx, r.ny, r.nz);
+        const std::string crest = std::isnan(r.crestSpeedup) ? "" : formatFixed(r.crestSpeedup, 2);
+        const std::string lee = std::isnan(r.leeSpeedup) ? "" : formatFixed(r.leeSpeedup, 2);
+        std::printf("%-16s %-26s %-9s %14s %6d %5s %9.2f %10.3e %6s %6s  %s\n", r.model.c_str(),
+                    r.testCase.c_str(), r.resolution.c_str(), cells, r.iterations,
+                    r.converged ? "yes" : "NO", r.seconds, r.error, crest.c_str(), lee.c_str(),
+                    r.errorName.c_str());
+        csv << r.model << ',' << r.testCase << ',' << r.resolution << ',' << r.nx << ',' << r.ny
+            << ',' << r.nz << ',' << r.iterations << ',' << (r.converged ? 1 : 0) << ','
+            << r.seconds << ',' << r.error << ",\"" << r.errorName << "\"," << crest << '\n';
+        jrows.push_back(
+            {{"model", r.model},
+             {"case", r.testCase},
+             {"resolution", r.resolution},
+             {"cells", {r.nx, r.ny, r.nz}},
+             {"iterations", r.iterations},
+             {"converged", r.converged},
+             {"seconds", r.seconds},
+             {"error", r.error},
+             {"error_measure", r.errorName},
+             {"crest_speedup", std::isnan(r.crestSpeedup) ? nlohmann::json(nullptr)
+                                                          : nlohmann::json(r.crestSpeedup)}});
+    }
+    std::printf("measured crest speed-up at 0.25 H: %.2f\n", MEASURED_CREST_SPEEDUP);
+
+    // The pseudo-time step's effect on the momentum model's steady state (docs/validation.md):
+    // a semi-Lagrangian fixed point carries a streamwise numerical viscosity of about
+    // cfl U h / 2, so the state depends on cfl at fixed h and the dependence shrinks with h.
+    nlohmann::json jcfl = nlohmann::json::array();
+    if (!opt.quick) {
+        std::printf("\nMomentum model on the ridge: the pseudo-time step's cfl at two grids\n");
+        std::printf("%-9s %5s %6s %5s %9s %8s %8s %10s\n", "res.", "cfl", "iters", "conv",
+                    "seconds", "crest", "lee foot", "RMS error");
+        for (int n : {5, 10})
+            for (double cfl : {1.0, 2.0, 4.0}) {
+                const Row r = runRidge(true, n, data, ridgeIterations, cfl);
+                std::fprintf(stderr, "bench models: ridge H/h=%d cfl %.0f: %d iterations\n", n, cfl,
+                             r.iterations);
+                std::printf("%-9s %5.1f %6d %5s %9.2f %8.2f %8.2f %10.3e\n", r.resolution.c_str(),
+                            cfl, r.iterations, r.converged ? "yes" : "NO", r.seconds,
+                            r.crestSpeedup, r.leeSpeedup, r.error);
+                jcfl.push_back({{"resolution", r.resolution},
+                                {"cfl", cfl},
+                                {"iterations", r.iterations},
+                                {"converged", r.converged},
+                                {"seconds", r.seconds},
+                                {"crest_speedup", r.crestSpeedup},
+                                {"lee_foot_speedup", r.leeSpeedup},
+                                {"rms_error", r.error}});
+            }
+        std::printf("measured: crest %.2f, lee foot (2.5 H, 1.0 H) %.2f\n", MEASURED_CREST_SPEEDUP,
+                    MEASURED_LEE_FOOT_SPEEDUP);
+    }
+
+    // One series per model and case: error against seconds.
+    std::vector<Series> series;
+    const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"};
+    for (const Row& r : rows) {
+        const std::string name = r.model + ": " + r.testCase;
+        auto it = std::find_if(series.begin(), series.end(),
+                               [&](const Series& s) { return s.name == name; });
+        if (it == series.end()) {
+            series.push_back(
+                {name, colours[series.size() % 5], r.model == "mass_consistent", {}, {}});
+            it = series.end() - 1;
+        }
+        it->xy.push_back({r.seconds, r.error});
+        it->labels.push_back(r.resolution);
+    }
+    const std::string svg = logLogSvg("Steady models: error against wall time", "wall time, s",
+                                      "error (each case's own measure)", series);
+    std::filesystem::create_directories(opt.outputFolder);
+    writeTextAtomic(opt.outputFolder + "/models.csv", csv.str());
+    writeTextAtomic(opt.outputFolder + "/models.svg", svg);
+    std::printf("wrote %s/models.csv and %s/models.svg\n", opt.outputFolder.c_str(),
+                opt.outputFolder.c_str());
+    if (!opt.jsonPath.empty())
+        writeTextAtomic(
+            opt.jsonPath,
+            nlohmann::json{{"rows", jrows}, {"cfl_study", jcfl}, {"all_momentum_converged", ok}}
+                    .dump(2) +
+                "\n");
+    return ok ? EXIT_OK : EXIT_UNMET;
+}
+
+}  // namespace gale::app

@@ -1,0 +1,33 @@
+#pragma once
+/// \file BenchModels.h
+/// `gale bench models`: error against run time of both steady models (docs/validation.md,
+/// "Error against run time"). Each model is measured where an exact or measured answer exists:
+///   - mass-consistent: the hemisphere's exact potential flow (near-surface L2 error at the 193
+///     fixed points 0.1 R up of app/bench/ExactSolutions.h);
+///   - momentum: the neutral log law over flat rough ground (largest relative error of u from 1 m
+///     to 50 m against u*/kappa ln(z / z0));
+///   - both: the steep ridge of Cao and Tamura (2006) (tests/data/validation), RMS of the
+///     fractional speed-up over the measured points off the windward foot, and the crest's
+///     speed-up at 0.25 H against the measured 1.33;
+/// each at two or three resolutions, with iterations and wall time. Table to stdout, CSV and a
+/// log-log SVG (error against seconds) to the output folder, progress lines to stderr.
+
+#include <string>
+
+namespace gale::app {
+
+struct BenchModelsOptions {
+    std::string outputFolder = ".";  ///< models.csv and models.svg go here
+    std::string jsonPath;            ///< if set, the table as JSON (atomically)
+    bool quick = false;              ///< the coarsest resolution of each case: a CI smoke run
+    /// The validation data (cao-tamura-2006-ridge.csv); empty: the copy in the source tree.
+    std::string validationCsv;
+};
+
+/// Runs the study. Returns EXIT_OK when every momentum solve converged and stayed finite,
+/// EXIT_UNMET otherwise (the table is written either way). Throws InputError (exit 2) when the
+/// validation data cannot be read or parsed, std::runtime_error when an output cannot be
+/// written.
+int runBenchModels(const BenchModelsOptions& options);
+
+}  // namespace gale::app
