@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "sim/Heightfield.h"
+#include "sim/MemoryEstimate.h"
 
 namespace gale::sim {
 
@@ -46,6 +47,9 @@ struct DomainSpec {
     bool cutCells = true;
     /// true: the estimate also counts the momentum model's arrays (sim/MomentumWind.h).
     bool momentumModel = false;
+    /// The rest of the run the estimate and limit count: an unsteady run's arrays and the
+    /// process's resident bytes before the domain (sim/MemoryEstimate.h).
+    RunMemory run = {};
 };
 
 class AirDomain {
@@ -79,15 +83,17 @@ class AirDomain {
 
     size_t boxCellCount() const { return size_t(mNx) * mNy * mNz; }
     size_t activeCellCount() const { return mActiveCount; }
-    /// Estimated peak bytes of a steady solve on this domain (made before allocating).
+    /// Estimated peak resident bytes of the run on this domain (made before allocating): the
+    /// process's baseline plus every array of the solve (DomainSpec::run, sim/MemoryEstimate.h).
     size_t memoryEstimate_bytes() const { return mMemoryEstimate_bytes; }
     /// Bytes this object holds (open fractions, flags, OpenVDB mask).
     size_t memory_bytes() const;
     /// Bytes of the OpenVDB air mask alone (Grid::memUsage).
     size_t vdbMemory_bytes() const;
 
-    /// Estimated peak bytes of a steady solve on a box of nx * ny * nz cells (momentum: of the
-    /// momentum model, which adds MOMENTUM_EXTRA_BYTES_PER_CELL).
+    /// Estimated peak bytes of the arrays of a steady solve on a box of nx * ny * nz cells
+    /// (momentum: of the momentum model, which adds MOMENTUM_EXTRA_BYTES_PER_CELL), without the
+    /// terrain copy or the process baseline (sim/MemoryEstimate.h).
     static double estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentum = false);
 
     /// Open fraction of the x-face between cells (i-1, j, k) and (i, j, k), i in [0, nx].
