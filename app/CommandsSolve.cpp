@@ -22,6 +22,7 @@
 #include "app/io/Interrupt.h"
 #include "app/io/OutputFolder.h"
 #include "app/io/OutputLock.h"
+#include "app/io/ProcessMemory.h"
 #include "app/io/Progress.h"
 #include "app/io/Timing.h"
 #include "app/scene/SceneBuilder.h"
@@ -43,6 +44,9 @@ struct UnsteadySolveRequest {
     sim::UnsteadySettings settings;
     double duration_s = 10.0;    ///< simulated time, seconds
     double outputEvery_s = 1.0;  ///< a .vdb at t = 0, every this many seconds, and at duration_s
+    UnsteadySection limits;      ///< the scene's bounds on work (max_output_gib for the sequence)
+    std::string
+        outputEveryWhere;  ///< FILE:LINE: unsteady.output_every_s, blamed for too many bytes
 };
 
 struct SolveRequest {
@@ -308,6 +312,7 @@ int runSolve(const SolveRequest& req) {
         for (const std::string& p : paths) std::printf("solve: wrote %s\n", p.c_str());
     }
     j["total_s"] = secondsSince(t0);
+    j["domain"]["peak_resident_bytes"] = peakResidentBytes();  // beside the estimate
     if (!req.reportPath.empty()) writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
     staged.commit();
     std::printf(
@@ -344,9 +349,12 @@ int runUnsteadySolve(const SolveRequest& req) {
     req.ambient.validate();
     u.settings.validate();
     InterruptScope interrupt("while building the air domain: nothing written");
-    std::fprintf(stderr, "solve: building the air domain (voxel %.3g m)...\n",
-                 req.domain.voxelSize_m);
+    // No progress line before the domain and the sequence's size are checked: bad input gets one
+    // line only.
     const sim::AirDomain domain(req.terrain, req.domain);
+    if (!req.vdbPath.empty())
+        if (auto problem = sequenceBytesProblem(u.limits, double(domain.boxCellCount())))
+            throw InputError(u.outputEveryWhere + ": " + *problem);
     std::fprintf(
         stderr,
         "solve: %d x %d x %d cells, %zu air; steady solve (initial state and mean flow)...\n",
@@ -367,7 +375,9 @@ int runUnsteadySolve(const SolveRequest& req) {
         "initial state and mean flow: the steady mass-consistent field (Sherman 1978)";
     j["domain"] = {{"cells", {domain.nx(), domain.ny(), domain.nz()}},
                    {"voxel_size_m", domain.voxelSize_m()},
-                   {"air_cells", domain.activeCellCount()}};
+                   {"air_cells", domain.activeCellCount()},
+                   {"memory_estimate_bytes", domain.memoryEstimate_bytes()},
+                   {"memory_limit_bytes", req.domain.memoryLimit_bytes}};
     j["steady"] = {{"converged", steady.report.converged},
                    {"iterations", steady.report.iterations},
                    {"max_div_u_h_over_U", steady.report.maxDivergenceScaled}};
@@ -456,6 +466,7 @@ int runUnsteadySolve(const SolveRequest& req) {
         j["stopped_at_t_s"] = solver.time_s();
     }
     j["steps"] = steps;
+    j["domain"]["peak_resident_bytes"] = peakResidentBytes();  // beside the estimate
     j["outputs"] = {{"vdb_sequence", frames},
                     {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
                     {"placement", "cell-centred averages of the MAC face velocities"}};
@@ -523,7 +534,8 @@ int runSolveVerb(const SolveVerbOptions& options) {
     request.sceneName = scene.name;
     if (scene.wind.kind == WindKind::Unsteady)
         request.unsteady = UnsteadySolveRequest{scene.unsteady.settings, scene.unsteady.duration_s,
-                                                scene.unsteady.outputEvery_s};
+                                                scene.unsteady.outputEvery_s, scene.unsteady,
+                                                scene.where("unsteady.output_every_s")};
     request.vdbPath =
         options.vdbPath.empty()
             ? (fs::path(scene.output.folder) / (scene.output.prefix + "_wind.vdb")).string()

@@ -133,7 +133,7 @@ void readWind(Context& ctx, Section s) {
                   "expected \"point_source\", \"solved\" or \"unsteady\" (got \"" + kind + "\")");
     coupling::PointSourceSpec& p = w.pointSource;
     w.autoSource = !s.take("source_m");
-    if (!w.autoSource) p.wsSource_m = toVec3(s.vec<3>("source_m", {0, 0, 0}, anyFinite()));
+    if (!w.autoSource) p.wsSource_m = toVec3(s.vec<3>("source_m", {0, 0, 0}, floatPosition()));
     p.steps = static_cast<int>(s.integer("steps", 16, 1, 1024));
     p.stepDelay_s = s.number("step_delay_s", 0.15, closed(0.0, 3600.0));
     p.blowAway = s.boolean("blow_away", true);
