@@ -1,8 +1,8 @@
 /// \file CommandsSolve.cpp
 /// `gale solve SCENE [-o FILE.vdb]`: the scene's steady wind as a .vdb field and a JSON report
 /// (docs/solver.md); for wind.kind = "unsteady" a .vdb sequence <stem>_0000.vdb ... with per-step
-/// reports (docs/unsteady.md). runSolveVerb builds a SolveRequest from the scene; runSolve does
-/// the work.
+/// reports (docs/unsteady.md, run by app/CommandsSolveUnsteady.cpp). runSolveVerb builds a
+/// SolveRequest from the scene; runSolve does the work.
 
 #include <unistd.h>
 
@@ -17,6 +17,7 @@
 
 #include "app/Cli.h"
 #include "app/Commands.h"
+#include "app/SolveRun.h"
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/io/Interrupt.h"
@@ -39,69 +40,17 @@
 
 namespace gale::app {
 
-/// wind.kind = "unsteady": the time stepping after the steady solve (docs/unsteady.md).
-struct UnsteadySolveRequest {
-    sim::UnsteadySettings settings;
-    double duration_s = 10.0;    ///< simulated time, seconds
-    double outputEvery_s = 1.0;  ///< a .vdb at t = 0, every this many seconds, and at duration_s
-    UnsteadySection limits;      ///< the scene's bounds on work (max_output_gib for the sequence)
-    std::string
-        outputEveryWhere;  ///< FILE:LINE: unsteady.output_every_s, blamed for too many bytes
-};
-
-struct SolveRequest {
-    sim::Heightfield terrain;
-    sim::AmbientWind ambient;
-    sim::DomainSpec domain;
-    sim::MassConsistentWeights weights;
-    sim::SolverSettings solver;
-    sim::SteadyModel model = sim::SteadyModel::MassConsistent;  ///< [solver] model
-    sim::MomentumSettings momentum;                             ///< model = momentum
-    std::string vdbPath;     ///< the field (grids "velocity" and "speed"); empty: not written
-    std::string reportPath;  ///< the JSON report; empty: not written
-    std::string sceneName;   ///< recorded in the report and the .vdb metadata
-    std::string outputWhere = "-o";  ///< where the output path came from, for messages
-    /// Set for unsteady scenes: vdbPath is then the stem of a sequence, <stem>_0000.vdb ..., and
-    /// the report lists every step (CFL, iterations, divergence, kinetic energy, timings).
-    std::optional<UnsteadySolveRequest> unsteady;
-    Georeference georef;                ///< a DEM's coordinate system, for the rasters
-    std::vector<double> gridHeights_m;  ///< rasters of the wind this high above ground (steady)
-    double houdiniFps = 0.0;            ///< > 0: also the y-up .vdb sequence, frames at this rate
-};
-
-/// "<stem>_houdini.0025.vdb": the y-up file of the scene frame at t_s (frame 1 at t = 0).
 std::string houdiniPath(const std::string& vdbPath, double fps, double t_s) {
     char num[32];
     std::snprintf(num, sizeof num, ".%04ld.vdb", std::lround(t_s * fps) + 1);
     return std::filesystem::path(vdbPath).replace_extension("").string() + "_houdini" + num;
 }
 
-/// Builds the domain, solves, writes the .vdb and the JSON report (each atomically), prints a
-/// summary to stdout and progress to stderr. Returns EXIT_OK when the solve converged, EXIT_UNMET
-/// when it did not (both files are still written, and the report says so). Throws
-/// std::invalid_argument naming the parameter on bad input (voxel size, top, memory limit, NaN
-/// heights, wind, weights), and std::runtime_error when a file cannot be written.
-int runSolve(const SolveRequest& request);
-
-/// The unsteady run of an unsteady scene (runSolve calls it when request.unsteady is set): the
-/// steady solve, then steps to duration_s writing the sequence; returns 0 when every solve
-/// converged and the field stayed finite, EXIT_UNMET otherwise (files still written, the report
-/// says so).
-int runUnsteadySolve(const SolveRequest& request);
-
-/// "<stem>_0003.vdb" for path "<stem>.vdb" and frame 3.
-std::string sequencePath(const std::string& vdbPath, int frame);
-
-namespace {
-
-/// The folder of `path` ("." for a bare name).
 std::string folderOf(const std::string& path) {
     const auto parent = std::filesystem::path(path).parent_path();
     return parent.empty() ? std::string(".") : parent.string();
 }
 
-/// Creates the folders of the .vdb and the report, takes the .vdb folder's lock and removes
-/// temporaries a killed run left there. Returns the lock.
 std::unique_ptr<OutputLock> prepareSolveOutputs(const SolveRequest& req) {
     for (const std::string& path : {req.vdbPath, req.reportPath})
         if (!path.empty()) std::filesystem::create_directories(folderOf(path));
@@ -111,7 +60,6 @@ std::unique_ptr<OutputLock> prepareSolveOutputs(const SolveRequest& req) {
     return lock;
 }
 
-/// Writes `field` to the staged temporary of `path` and seals it; returns its size in bytes.
 double writeStagedVdb(StagedFiles& staged, const sim::WindField& field, const std::string& path,
                       const sim::VdbMetadata& meta) {
     const std::string tmp = staged.add(path);
@@ -127,42 +75,12 @@ double writeStagedVdb(StagedFiles& staged, const sim::WindField& field, const st
     return staged.seal(path);
 }
 
-/// Steps `solver` to `tEnd` as UnsteadyWindSolver::advanceTo does, but stops after the step in
-/// hand when SIGINT, SIGTERM or SIGHUP arrives (app/io/Interrupt.h).
-std::vector<sim::StepReport> advanceUntilInterrupted(sim::UnsteadyWindSolver& solver, double tEnd) {
-    std::vector<sim::StepReport> reps;
-    // As advanceTo: a last step shorter than this fraction of a regular step is merged.
-    constexpr double MERGE_FRACTION = 1e-6;
-    while (solver.time_s() < tEnd && !interruptSignal()) {
-        double dt = solver.nextDt_s();
-        if (solver.time_s() + dt * (1.0 + MERGE_FRACTION) >= tEnd) dt = tEnd - solver.time_s();
-        reps.push_back(solver.step(dt));
-        if (!reps.back().finite) break;
-    }
-    return reps;
-}
-
-/// After the first .vdb of a sequence: its size times the files still to come must fit in the
-/// folder's free space. Throws InputError.
-void checkRoomForSequence(const std::string& folder, const std::string& where, double fileBytes,
-                          int filesToCome) {
-    // Later fields carry more structure than the initial one: the same margin as for frames.
-    constexpr double FILE_SIZE_MARGIN = 1.25;
-    std::error_code ec;
-    const std::filesystem::space_info space = std::filesystem::space(folder, ec);
-    const double need = fileBytes * FILE_SIZE_MARGIN * filesToCome;
-    if (!ec && need > static_cast<double>(space.available))
-        throw InputError(where + ": '" + folder + "' has " + formatBytes(double(space.available)) +
-                         " free but the " + std::to_string(filesToCome) +
-                         " .vdb files still to write need about " + formatBytes(need) +
-                         " (the first took " + formatBytes(fileBytes) + "); nothing was written");
-}
-
-/// Writes `text` to the staged temporary of `path` and seals it.
 void writeStagedText(StagedFiles& staged, const std::string& path, const std::string& text) {
     writeTextAtomic(staged.add(path), text);
     staged.seal(path);
 }
+
+namespace {
 
 /// The momentum model's settings, result and convergence history (one entry per pseudo-time step).
 nlohmann::json momentumJson(const sim::MomentumReport& m, const sim::MomentumSettings& s) {
@@ -341,169 +259,6 @@ std::string sequencePath(const std::string& vdbPath, int frame) {
     std::snprintf(num, sizeof num, "_%04d", frame);
     const std::string name = p.stem().string() + num + ".vdb";
     return p.has_parent_path() ? (p.parent_path() / name).string() : name;
-}
-
-int runUnsteadySolve(const SolveRequest& req) {
-    const auto t0 = Clock::now();
-    const UnsteadySolveRequest& u = *req.unsteady;
-    req.ambient.validate();
-    u.settings.validate();
-    InterruptScope interrupt("while building the air domain: nothing written");
-    // No progress line before the domain and the sequence's size are checked: bad input gets one
-    // line only.
-    const sim::AirDomain domain(req.terrain, req.domain);
-    if (!req.vdbPath.empty())
-        if (auto problem = sequenceBytesProblem(u.limits, double(domain.boxCellCount())))
-            throw InputError(u.outputEveryWhere + ": " + *problem);
-    std::fprintf(
-        stderr,
-        "solve: %d x %d x %d cells, %zu air; steady solve (initial state and mean flow)...\n",
-        domain.nx(), domain.ny(), domain.nz(), domain.activeCellCount());
-    sim::SteadyWindSolver steadySolver(domain, req.weights);
-    interrupt.exitAtOnce("during the steady solve: nothing written");
-    const sim::SteadyWindResult steady = steadySolver.solve(req.ambient, req.solver);
-    sim::UnsteadyWindSolver solver(domain, steady.field, u.settings, req.ambient.speed_mps);
-
-    nlohmann::json j;
-    j["scene"] = req.sceneName;
-    j["model"] =
-        "unsteady incompressible wind (docs/design.md 4.2): operator splitting on the MAC grid "
-        "(Stam 1999), " +
-        std::string(sim::advectionSchemeName(u.settings.advection)) +
-        " advection, projection on cut cells with warm-started MGPCG (McAdams, Sifakis, Teran "
-        "2010); "
-        "initial state and mean flow: the steady mass-consistent field (Sherman 1978)";
-    j["domain"] = {{"cells", {domain.nx(), domain.ny(), domain.nz()}},
-                   {"voxel_size_m", domain.voxelSize_m()},
-                   {"air_cells", domain.activeCellCount()},
-                   {"memory_estimate_bytes", domain.memoryEstimate_bytes()},
-                   {"memory_limit_bytes", req.domain.memoryLimit_bytes}};
-    j["steady"] = {{"converged", steady.report.converged},
-                   {"iterations", steady.report.iterations},
-                   {"max_div_u_h_over_U", steady.report.maxDivergenceScaled}};
-    const sim::UnsteadySettings& s = u.settings;
-    j["settings"] = {{"advection", sim::advectionSchemeName(s.advection)},
-                     {"dt_s", s.dt_s},
-                     {"cfl", s.cfl},
-                     {"max_dt_s", s.maxDt_s},
-                     {"viscosity_m2ps", s.viscosity_m2ps},
-                     {"vorticity_confinement", s.vorticityConfinement},
-                     {"open_top", s.openTop},
-                     {"projection_tolerance", s.projection.relativeTolerance},
-                     {"duration_s", u.duration_s},
-                     {"output_every_s", u.outputEvery_s},
-                     {"gusts", s.gusts.size()},
-                     {"whirlwinds", s.whirlwinds.size()},
-                     {"vortex_code", solver.usesVortexCode()}};
-    nlohmann::json steps = nlohmann::json::array(), frames = nlohmann::json::array();
-    std::vector<std::string> houdiniPaths;
-    bool ok = steady.report.converged, finite = true;
-    // The sequence and report go to temporaries and move into place together at the end (or,
-    // interrupted, the complete frames and a report that says where the run stopped).
-    interrupt.defer();
-    const std::unique_ptr<OutputLock> lock = prepareSolveOutputs(req);
-    StagedFiles staged;
-    const int outputs = int(std::ceil(u.duration_s / u.outputEvery_s - 1e-9));
-    auto writeFrame = [&](int n) {
-        const std::string path = sequencePath(req.vdbPath, n);
-        if (!req.vdbPath.empty()) {
-            sim::VdbMetadata meta;
-            meta.strings = {{"scene", req.sceneName}};
-            meta.numbers = {{"time_s", solver.time_s()}};
-            const double bytes = writeStagedVdb(staged, solver.field(), path, meta);
-            if (n == 0)
-                checkRoomForSequence(folderOf(req.vdbPath), req.outputWhere, bytes, outputs);
-            if (req.houdiniFps > 0.0) {
-                const std::string hpath = houdiniPath(req.vdbPath, req.houdiniFps, solver.time_s());
-                sim::writeHoudiniVdb(hpath, solver.field(), req.terrain);
-                houdiniPaths.push_back(hpath);
-            }
-        }
-        frames.push_back(
-            {{"frame", n}, {"t_s", solver.time_s()}, {"path", req.vdbPath.empty() ? "" : path}});
-    };
-    writeFrame(0);
-    double maxCfl = 0, maxDiv = 0, solveSeconds = 0;
-    int maxIt = 0, stepCount = 0;
-    // One updating line with ETA on a terminal, one line per output in logs (app/io/Progress.h);
-    // the run's CFL and divergence are in the summary line and the report.
-    Progress progress("output", outputs);
-    for (int n = 1; n <= outputs && finite && !interruptSignal(); ++n) {
-        const auto outputStart = Clock::now();
-        const double target = std::min(u.duration_s, n * u.outputEvery_s);
-        for (const sim::StepReport& r : advanceUntilInterrupted(solver, target)) {
-            ++stepCount;
-            maxCfl = std::max(maxCfl, r.cfl), maxDiv = std::max(maxDiv, r.maxDivergenceScaled);
-            maxIt = std::max(maxIt, r.projection.iterations);
-            solveSeconds += r.total_s;
-            ok = ok && r.projection.converged && r.finite;
-            finite = finite && r.finite;
-            steps.push_back({{"t_s", r.t_s},
-                             {"dt_s", r.dt_s},
-                             {"cfl", r.cfl},
-                             {"projection_iterations", r.projection.iterations},
-                             {"projection_relative_residual", r.projection.relativeResidual},
-                             {"projection_converged", r.projection.converged},
-                             {"max_div_u_h_over_U", r.maxDivergenceScaled},
-                             {"kinetic_energy_m5ps2", r.kineticEnergy_m5ps2},
-                             {"max_speed_mps", r.maxSpeed_mps},
-                             {"finite", r.finite},
-                             {"viscosity_iterations", r.viscosityIterations},
-                             {"advection_s", r.advection_s},
-                             {"forcing_s", r.forcing_s},
-                             {"viscosity_s", r.viscosity_s},
-                             {"projection_s", r.projection_s},
-                             {"step_s", r.total_s}});
-        }
-        if (solver.time_s() < target) break;  // interrupted between two outputs
-        writeFrame(n);
-        progress.step(n, msSince(outputStart));
-    }
-    progress.finish();
-    if (interruptSignal()) {
-        j["interrupted"] = true;
-        j["stopped_by"] = interruptSignalName();
-        j["stopped_at_t_s"] = solver.time_s();
-    }
-    j["steps"] = steps;
-    j["domain"]["peak_resident_bytes"] = peakResidentBytes();  // beside the estimate
-    j["outputs"] = {{"vdb_sequence", frames},
-                    {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
-                    {"placement", "cell-centred averages of the MAC face velocities"}};
-    if (!houdiniPaths.empty())
-        j["outputs"]["houdini"] = {
-            {"paths", houdiniPaths},
-            {"grids", {"vel (vec3s, m/s, y-up)", "surface (level set of the terrain, y-up)"}},
-            {"axes", "houdini (x, y, z) = gale (x, z, -y)"}};
-    j["summary"] = {{"steps", stepCount},
-                    {"simulated_s", solver.time_s()},
-                    {"max_cfl", maxCfl},
-                    {"max_projection_iterations", maxIt},
-                    {"max_div_u_h_over_U", maxDiv},
-                    {"all_converged", ok},
-                    {"finite", finite},
-                    {"mean_step_s", stepCount ? solveSeconds / stepCount : 0.0}};
-    j["total_s"] = secondsSince(t0);
-    if (!req.reportPath.empty()) writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
-    staged.commit();
-    if (interruptSignal()) {
-        std::printf(
-            "solve: interrupted (%s) at t = %.3g s after %d steps: wrote %zu complete .vdb files "
-            "(the last %s) and the report %s\n",
-            interruptSignalName(), solver.time_s(), stepCount, frames.size(),
-            frames.back()["path"].get<std::string>().c_str(), req.reportPath.c_str());
-        return interruptExitCode();
-    }
-    std::printf(
-        "solve: unsteady, %d steps to t = %.2f s (%zu .vdb files), max CFL %.2f, max projection "
-        "iterations %d, "
-        "max|div u| h/U %.2e, %s, %.2f s (%.3f s per step)\n",
-        stepCount, solver.time_s(), frames.size(), maxCfl, maxIt, maxDiv,
-        !finite ? "NON-FINITE FIELD"
-        : ok    ? "all solves converged"
-                : "SOME SOLVES DID NOT CONVERGE",
-        j["total_s"].get<double>(), stepCount ? solveSeconds / stepCount : 0.0);
-    return ok ? EXIT_OK : EXIT_UNMET;
 }
 
 namespace fs = std::filesystem;

@@ -124,7 +124,6 @@ class FieldWind : public WindSource {
     int mGroupColumns = 0;              // width of the group grid (render::VertexWind)
     std::deque<Step> mSteps;
     std::vector<glm::vec3> mSpare;  // a dropped step's storage
-    double mDroppedBefore_s = -1e300;
 
     // The interval [mSteps[mInterval], mSteps[mInterval + 1]] the per-vertex data describe.
     bool mHaveInterval = false;

@@ -45,8 +45,8 @@ double trilinear(const std::vector<double>& a, size_t n0, size_t n1, const AxisW
         return row[x.i0] + (row[x.i1] - row[x.i0]) * x.t;
     };
     auto lerpXY = [&](const double* plane) {
-        const double a = lerpX(plane, y.i0), b = lerpX(plane, y.i1);
-        return a + (b - a) * y.t;
+        const double r0 = lerpX(plane, y.i0), r1 = lerpX(plane, y.i1);
+        return r0 + (r1 - r0) * y.t;
     };
     const double c0 = lerpXY(lo), c1 = lerpXY(hi);
     return c0 + (c1 - c0) * z.t;

@@ -222,15 +222,15 @@ void readWind(Context& ctx, Section s) {
     std::ostringstream desc;
     if (keys) {
         if (shaped) g.failKey("keys", "give either keys or base/peak/attack_s/decay_s, not both");
-        const toml::array* a = keys->as_array();
-        if (!a || a->empty())
+        const toml::array* written = keys->as_array();
+        if (!written || written->empty())
             g.failValue(*keys, "keys", "expected an array of [t_s, intensity] pairs");
         std::vector<coupling::GustKey> list;
-        for (size_t i = 0; i < a->size(); ++i) {
+        for (size_t i = 0; i < written->size(); ++i) {
             const std::string name = "keys[" + std::to_string(i) + "]";
-            const toml::array* pair = (*a)[i].as_array();
+            const toml::array* pair = (*written)[i].as_array();
             if (!pair || pair->size() != 2)
-                g.failValue((*a)[i], name, "expected a pair [t_s, intensity]");
+                g.failValue((*written)[i], name, "expected a pair [t_s, intensity]");
             const double t_s = g.toNumber((*pair)[0], name + "[0]", atLeast(0.0));
             if (!(t_s < period_s))
                 g.failValue((*pair)[0], name + "[0]",

@@ -86,7 +86,9 @@ TEST(FieldWind, GustFrontReachesDownstreamVerticesLaterInOrderOfDistance) {
         const size_t v = static_cast<size_t>(20 * mesh.nx + i);
         ASSERT_GE(crossing[v], 0.0) << "vertex never bent: x = " << mesh.wsPosition_m[v].x;
         EXPECT_NEAR(crossing[v], mesh.wsPosition_m[v].x / c_mps, 0.35) << mesh.wsPosition_m[v].x;
-        if (i > 0) EXPECT_GT(crossing[v], crossing[v - 5]);
+        if (i > 0) {
+            EXPECT_GT(crossing[v], crossing[v - 5]);
+        }
     }
 }
 
@@ -229,7 +231,9 @@ TEST(FieldWind, GroupedBendApproachesTheExactBendAsGroupsGrow) {
         previous = rms;
         // At K = 64 a level is about 0.012 of intensity wide, and the field changes little within
         // one 0.1 s step: the RMS tip error stays under 1 % of a blade (measured: 0.5 %).
-        if (k == 64) EXPECT_LT(rms, GROUPED_TIP_ERROR_BOUND_AT_64);
+        if (k == 64) {
+            EXPECT_LT(rms, GROUPED_TIP_ERROR_BOUND_AT_64);
+        }
     }
 }
 

@@ -144,8 +144,9 @@ TEST(NearGroundSampling, MassConsistentGrassHeightErrorOverCutGroundIsBelowOnePe
                 "cells/R %d  height %.2f m  interpolated L2 %.4f max %.4f  tangential L2 %.4f max "
                 "%.4f\n",
                 cells, height, before.relL2, before.maxRel, after.relL2, after.maxRel);
-            if (cells == 8 && height <= 0.5)
+            if (cells == 8 && height <= 0.5) {
                 EXPECT_LE(after.relL2, MAX_REL_L2) << "height " << height;
+            }
         }
     }
 }
@@ -216,8 +217,9 @@ TEST(NearGroundSampling, LogLawModeReproducesTheLogProfileUnderTheFirstCell) {
             ng.model = coupling::NearGroundModel::Interpolated;
             const std::vector<glm::vec3> before = coupling::sampleAtGrass(f, mesh, height, ng);
             ng.model = coupling::NearGroundModel::LogLaw;
-            if (height < 0.5)
+            if (height < 0.5) {
                 EXPECT_GT(std::abs(before[0].x - exact), 0.05 * exact) << "offset " << offset;
+            }
         }
     }
 }
@@ -235,8 +237,9 @@ TEST(NearGroundSampling, ExtremeRoughnessGivesFiniteWindAndBadValuesAreRefused) 
             for (double height : {0.0, 0.25, 1.0}) {
                 for (const glm::vec3& u : coupling::sampleAtGrass(f, mesh, height, ng)) {
                     EXPECT_TRUE(std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z));
-                    if (height <= z0 + d)
+                    if (height <= z0 + d) {
                         EXPECT_EQ(u.x, 0.0f) << "z0 " << z0 << " d " << d << " height " << height;
+                    }
                 }
             }
         }

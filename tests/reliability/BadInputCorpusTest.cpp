@@ -125,10 +125,10 @@ TEST_P(BadInputCorpus, EveryVerbExitsTwoWithOneMessageNamingFileLineAndReasonAnd
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, BadInputCorpus, testing::ValuesIn(corpus()),
-                         [](const testing::TestParamInfo<CorpusScene>& scene) {
+                         [](const testing::TestParamInfo<CorpusScene>& paramInfo) {
                              std::string name =
-                                 scene.param.folder.substr(11) + "_" +
-                                 scene.param.file.substr(0, scene.param.file.size() - 5);
+                                 paramInfo.param.folder.substr(11) + "_" +
+                                 paramInfo.param.file.substr(0, paramInfo.param.file.size() - 5);
                              for (char& c : name)
                                  if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                              return name;

@@ -70,14 +70,15 @@ std::vector<BendCase> allCases() {
 
 INSTANTIATE_TEST_SUITE_P(ShellsIntensitiesStiffness, BendInvariants,
                          ::testing::ValuesIn(allCases()),
-                         [](const ::testing::TestParamInfo<BendCase>& info) {
+                         [](const ::testing::TestParamInfo<BendCase>& paramInfo) {
                              auto name = [](float v) {
                                  std::string s =
                                      std::to_string(static_cast<int>(std::lround(v * 10)));
                                  return (v < 0 ? "m" + s.substr(1) : s);
                              };
-                             return "N" + std::to_string(info.param.shells) + "_I" +
-                                    name(info.param.intensity) + "_G" + name(info.param.stiffness);
+                             return "N" + std::to_string(paramInfo.param.shells) + "_I" +
+                                    name(paramInfo.param.intensity) + "_G" +
+                                    name(paramInfo.param.stiffness);
                          });
 
 TEST(Bend, ZeroIntensityGivesAStraightBladeOfFullHeight) {

@@ -127,7 +127,9 @@ TEST(BladeMip, GeneratedChainEndsAtTheLastLevelWithBlades) {
     ASSERT_FALSE(texture.levels.empty());
     const Image& last = texture.levels.back();
     EXPECT_FALSE(bladeDots(last).empty());
-    if (last.width > 1) EXPECT_TRUE(bladeDots(downsampleKeepingBlades(last)).empty());
+    if (last.width > 1) {
+        EXPECT_TRUE(bladeDots(downsampleKeepingBlades(last)).empty());
+    }
 }
 
 TEST(BladeMip, RejectsNonSquareOrNonPowerOfTwo) {
