@@ -17,6 +17,7 @@
 #include "app/Cli.h"
 #include "app/Commands.h"
 #include "app/bench/BenchCoupling.h"
+#include "app/bench/BenchMemory.h"
 #include "app/bench/BenchModels.h"
 #include "app/bench/BenchRender.h"
 #include "app/bench/BenchRough.h"
@@ -256,6 +257,18 @@ void addView(CLI::App& bench, VerbTable& verbs) {
     });
 }
 
+void addMemory(CLI::App& bench, VerbTable& verbs) {
+    auto o = std::make_shared<BenchMemoryOptions>();
+    CLI::App* verb = bench.add_subcommand(
+        "memory",
+        "The memory estimate against the measured peak resident memory of child solve and "
+        "render runs, from thin tall boxes to wide flat ones (target: within 1.3x)");
+    verb->add_flag("--quick", o->quick, "4 small shapes (the CI check of the bound)");
+    verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
+    verb->footer(EXIT_CODES_FOOTER);
+    verbs.add(verb, [o] { return runBench([o] { return runBenchMemory(*o); }); });
+}
+
 }  // namespace
 
 void addBenchVerbs(CLI::App& app, VerbTable& verbs) {
@@ -271,6 +284,7 @@ void addBenchVerbs(CLI::App& app, VerbTable& verbs) {
     addStability(*bench, verbs);
     addUnsteady(*bench, verbs);
     addView(*bench, verbs);
+    addMemory(*bench, verbs);
 }
 
 }  // namespace gale::app

@@ -49,6 +49,10 @@ int runCheck(const SceneRunOptions& options) {
     BuildOptions buildOptions;
     buildOptions.solveWind = false;  // check validates and estimates; it does not solve
     const BuiltScene built = buildScene(scene, buildOptions);
+    // Bounds on work the domain decides (the parser has refused too many files and steps).
+    if (scene.wind.kind == WindKind::Unsteady)
+        if (auto problem = sequenceBytesProblem(scene.unsteady, built.domainBoxCells))
+            throw SceneError(scene.where("unsteady.output_every_s") + ": " + *problem);
     const sim::Heightfield& field = built.heightfield;
     const render::TerrainMesh& mesh = built.mesh;
     const GrassSection& grass = scene.grass;
@@ -124,7 +128,10 @@ int runCheck(const SceneRunOptions& options) {
                      " .vdb files (limit " + std::to_string(scene.unsteady.maxFiles) +
                      ", unsteady.max_files) and at least " +
                      formatG(plannedUnsteadySteps(scene), 12) + " time steps (limit " +
-                     std::to_string(scene.unsteady.maxSteps) + ", unsteady.max_steps)");
+                     std::to_string(scene.unsteady.maxSteps) + ", unsteady.max_steps), about " +
+                     formatBytes(plannedSequenceBytes(scene.unsteady, built.domainBoxCells)) +
+                     " of .vdb at most (limit " + formatBytes(scene.unsteady.maxOutputBytes) +
+                     ", unsteady.max_output_gib)");
         line("",
              "forces: " +
                  std::string(us.viscosity_m2ps > 0
@@ -300,6 +307,7 @@ int runCheck(const SceneRunOptions& options) {
                                      ? " and a sky ambient"
                                      : ""));
     for (const std::string& note : scene.notes) line("note", note);
+    for (const std::string& warning : built.warnings) line("warning", warning);
     std::printf("ok: %s is valid (CPU side built in %.0f ms)\n", scene.path.c_str(),
                 built.build_ms);
     return EXIT_OK;

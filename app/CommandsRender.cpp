@@ -21,8 +21,10 @@
 #include "app/io/Interrupt.h"
 #include "app/io/OutputFolder.h"
 #include "app/io/OutputLock.h"
+#include "app/io/ProcessMemory.h"
 #include "app/io/Progress.h"
 #include "app/io/Timing.h"
+#include "app/scene/RenderMemory.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
 #include "coupling/FieldOverlayBuilder.h"
@@ -134,6 +136,8 @@ int runRender(const SceneRunOptions& options) {
         std::fprintf(stderr, "gale: %s\n", text.c_str());
     };
     BuiltScene built = buildScene(scene, buildOptions);
+    for (const std::string& warning : built.warnings)
+        std::fprintf(stderr, "gale: warning: %s\n", warning.c_str());
     if (built.solve) {
         const sim::SolveReport& r = *built.solve;
         std::fprintf(stderr,
@@ -280,6 +284,8 @@ int runRender(const SceneRunOptions& options) {
     report["wind"] = built.wind->describe();
     report["terrain_samples"] = {built.heightfield.nx, built.heightfield.ny};
     report["mesh_vertices"] = built.mesh.wsPosition_m.size();
+    report["memory_estimate_bytes"] = estimateRenderMemory_bytes(scene, built);
+    report["peak_resident_bytes"] = peakResidentBytes();  // beside the estimate
     report["shells"] = scene.grass.params.shells;
     report["build_ms"] = built.build_ms;
     report["frame_ms"] = frame_ms;

@@ -24,6 +24,7 @@
 #include "app/io/Interrupt.h"
 #include "app/io/OutputFolder.h"
 #include "app/io/OutputLock.h"
+#include "app/io/ProcessMemory.h"
 #include "app/io/Progress.h"
 #include "app/io/Timing.h"
 #include "app/scene/SceneBuilder.h"
@@ -196,6 +197,7 @@ int runSolve(const SolveRequest& req) {
         for (const std::string& p : paths) std::printf("solve: wrote %s\n", p.c_str());
     }
     j["total_s"] = secondsSince(t0);
+    j["domain"]["peak_resident_bytes"] = peakResidentBytes();  // beside the estimate
     if (!req.reportPath.empty()) writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
     staged.commit();
     std::printf(
@@ -254,7 +256,8 @@ int runSolveVerb(const SolveVerbOptions& options) {
     request.sceneName = scene.name;
     if (scene.wind.kind == WindKind::Unsteady)
         request.unsteady = UnsteadySolveRequest{scene.unsteady.settings, scene.unsteady.duration_s,
-                                                scene.unsteady.outputEvery_s};
+                                                scene.unsteady.outputEvery_s, scene.unsteady,
+                                                scene.where("unsteady.output_every_s")};
     request.vdbPath =
         options.vdbPath.empty()
             ? (fs::path(scene.output.folder) / (scene.output.prefix + "_wind.vdb")).string()

@@ -19,6 +19,7 @@
 #include "app/io/Errors.h"
 #include "app/io/Interrupt.h"
 #include "app/io/OutputLock.h"
+#include "app/io/ProcessMemory.h"
 #include "app/io/Progress.h"
 #include "app/io/Timing.h"
 #include "app/scene/SceneParser.h"
@@ -71,9 +72,12 @@ int runUnsteadySolve(const SolveRequest& req) {
     req.ambient.validate();
     u.settings.validate();
     InterruptScope interrupt("while building the air domain: nothing written");
-    std::fprintf(stderr, "solve: building the air domain (voxel %.3g m)...\n",
-                 req.domain.voxelSize_m);
+    // No progress line before the domain and the sequence's size are checked: bad input gets one
+    // line only.
     const sim::AirDomain domain(req.terrain, req.domain);
+    if (!req.vdbPath.empty())
+        if (auto problem = sequenceBytesProblem(u.limits, double(domain.boxCellCount())))
+            throw InputError(u.outputEveryWhere + ": " + *problem);
     std::fprintf(
         stderr,
         "solve: %d x %d x %d cells, %zu air; steady solve (initial state and mean flow)...\n",
@@ -94,7 +98,9 @@ int runUnsteadySolve(const SolveRequest& req) {
         "initial state and mean flow: the steady mass-consistent field (Sherman 1978)";
     j["domain"] = {{"cells", {domain.nx(), domain.ny(), domain.nz()}},
                    {"voxel_size_m", domain.voxelSize_m()},
-                   {"air_cells", domain.activeCellCount()}};
+                   {"air_cells", domain.activeCellCount()},
+                   {"memory_estimate_bytes", domain.memoryEstimate_bytes()},
+                   {"memory_limit_bytes", req.domain.memoryLimit_bytes}};
     j["steady"] = {{"converged", steady.report.converged},
                    {"iterations", steady.report.iterations},
                    {"max_div_u_h_over_U", steady.report.maxDivergenceScaled}};
@@ -183,6 +189,7 @@ int runUnsteadySolve(const SolveRequest& req) {
         j["stopped_at_t_s"] = solver.time_s();
     }
     j["steps"] = steps;
+    j["domain"]["peak_resident_bytes"] = peakResidentBytes();  // beside the estimate
     j["outputs"] = {{"vdb_sequence", frames},
                     {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
                     {"placement", "cell-centred averages of the MAC face velocities"}};

@@ -11,6 +11,7 @@
 
 #include "app/io/AtomicFile.h"
 #include "app/io/OutputLock.h"
+#include "app/scene/Scene.h"
 #include "app/scene/WindRaster.h"
 #include "sim/AirDomain.h"
 #include "sim/AmbientWind.h"
@@ -28,6 +29,9 @@ struct UnsteadySolveRequest {
     sim::UnsteadySettings settings;
     double duration_s = 10.0;    ///< simulated time, seconds
     double outputEvery_s = 1.0;  ///< a .vdb at t = 0, every this many seconds, and at duration_s
+    UnsteadySection limits;      ///< the scene's bounds on work (max_output_gib for the sequence)
+    std::string
+        outputEveryWhere;  ///< FILE:LINE: unsteady.output_every_s, blamed for too many bytes
 };
 
 struct SolveRequest {

@@ -16,7 +16,6 @@
 #include "base/ParameterError.h"
 #include "sim/Format.h"
 #include "sim/MomentumWind.h"
-#include "sim/PoissonSolver.h"
 #include "sim/VdbIO.h"
 
 namespace gale::sim {
@@ -62,19 +61,11 @@ float cleanFraction(double f, bool cutCells) {
 }  // namespace detail
 
 double AirDomain::estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentum) {
-    const double cells = double(nx) * ny * nz;
-    // Per cell of the box: open fractions 12 B and air flags 1 B (the domain), the PoissonSystem
-    // copy of the weights 12 B (SteadyWindSolver), the solver's hierarchy and PCG vectors
-    // (estimatedBytesPerCell), the MAC field 24 B, right-hand side and potential 16 B, the
-    // velocity update's face flags 3 B, the OpenVDB mask ~0.5 B and the three output grids written
-    // by writeVdb (~16 B per air voxel for velocity and speed, ~13 B per box voxel for the
-    // staggered faces). Checked against peak RSS in docs/solver.md.
-    return cells * (12.0 + 1.0 + 12.0 + PoissonSolver::estimatedBytesPerCell() + 24.0 + 16.0 + 3.0 +
-                    0.5 + 16.0 + 13.0 + (momentum ? MOMENTUM_EXTRA_BYTES_PER_CELL : 0.0));
+    return solveArrays_bytes(nx, ny, nz, /*terrainSamples=*/0, momentum, RunMemory{});
 }
 
 double AirDomain::estimateSolveMemory_bytes(const GridLayout& g, bool momentum) {
-    double bytes = estimateSolveMemory_bytes(1, 1, 1, momentum) * double(g.nx) * g.ny * g.nz;
+    double bytes = estimateSolveMemory_bytes(g.nx, g.ny, g.nz, momentum);
     if (!g.uniformZ())
         bytes += RESAMPLE_BYTES_PER_VOXEL * double(g.nx) * g.ny *
                  std::ceil((g.wsTop_m() - g.wsMin_m[2]) / g.voxelSize_m - 1e-9);
@@ -171,14 +162,20 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
     const double nzD = stretched ? double(levels.size() - 1) : std::ceil((top - zMin) / h - 1e-9);
     const double resampleD = stretched ? std::ceil((levels.back() - zMin) / h - 1e-9) : 0.0;
     const double estimate =
-        estimateSolveMemory_bytes(1, 1, 1, spec.momentumModel) * nxD * nyD * nzD +
+        spec.run.processBaseline_bytes +
+        solveArrays_bytes(nxD, nyD, nzD, double(hf.height_m.size()), spec.momentumModel, spec.run) +
         RESAMPLE_BYTES_PER_VOXEL * nxD * nyD * resampleD;
     if (nxD * nyD * nzD > 2.0e9 || estimate > spec.memoryLimit_bytes)
-        throw ParameterError("solver.memory_limit_mb", formatG(spec.memoryLimit_bytes / MIB, 4),
-                             "is below the estimated memory of " + formatG(estimate / MIB, 4) +
-                                 " MiB for " + num(nxD) + " x " + num(nyD) + " x " + num(nzD) +
-                                 " cells: raise solver.voxel_size_m, lower solver.top_m or raise "
-                                 "the limit");
+        throw ParameterError(
+            "solver.memory_limit_mb", formatG(spec.memoryLimit_bytes / MIB, 4),
+            "is below the estimated memory of " + formatG(estimate / MIB, 4) + " MiB for " +
+                num(nxD) + " x " + num(nyD) + " x " + num(nzD) + " cells" +
+                (spec.run.processBaseline_bytes > 0
+                     ? " (the program itself " + formatG(spec.run.processBaseline_bytes / MIB, 3) +
+                           " MiB)"
+                     : std::string()) +
+                ": raise solver.voxel_size_m, lower solver.top_m or raise "
+                "the limit");
 
     mLayout = stretched ? GridLayout(int(nxD), int(nyD), h, {hf.originX_m, hf.originY_m, zMin},
                                      std::move(levels))

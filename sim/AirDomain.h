@@ -40,6 +40,7 @@
 
 #include "sim/GridLayout.h"
 #include "sim/Heightfield.h"
+#include "sim/MemoryEstimate.h"
 
 namespace gale::sim {
 
@@ -61,6 +62,9 @@ struct DomainSpec {
     /// Stretched layers: the largest layer thickness, metres, in [firstCell_m, 2 voxelSize_m].
     /// Unset: AirDomain::MAX_LAYER_THICKENING voxelSize_m.
     std::optional<double> maxCell_m{};
+    /// The rest of the run the estimate and limit count: an unsteady run's arrays and the
+    /// process's resident bytes before the domain (sim/MemoryEstimate.h).
+    RunMemory run = {};
 };
 
 class AirDomain {
@@ -110,15 +114,17 @@ class AirDomain {
 
     size_t boxCellCount() const { return mLayout.cellCount(); }
     size_t activeCellCount() const { return mActiveCount; }
-    /// Estimated peak bytes of a steady solve on this domain (made before allocating).
+    /// Estimated peak resident bytes of the run on this domain (made before allocating): the
+    /// process's baseline plus every array of the solve (DomainSpec::run, sim/MemoryEstimate.h).
     size_t memoryEstimate_bytes() const { return mMemoryEstimate_bytes; }
     /// Bytes this object holds (open fractions, flags, OpenVDB mask).
     size_t memory_bytes() const;
     /// Bytes of the OpenVDB air mask alone (Grid::memUsage).
     size_t vdbMemory_bytes() const;
 
-    /// Estimated peak bytes of a steady solve on a box of nx * ny * nz cells (momentum: of the
-    /// momentum model, which adds MOMENTUM_EXTRA_BYTES_PER_CELL).
+    /// Estimated peak bytes of the arrays of a steady solve on a box of nx * ny * nz cells
+    /// (momentum: of the momentum model, which adds MOMENTUM_EXTRA_BYTES_PER_CELL), without the
+    /// terrain copy or the process baseline (sim/MemoryEstimate.h).
     static double estimateSolveMemory_bytes(int nx, int ny, int nz, bool momentum = false);
     /// Estimated peak bytes of a steady solve on `layout`: estimateSolveMemory_bytes over its
     /// cells, plus, for stretched layers, the cubic resample of the standard .vdb grids (nx * ny

@@ -21,11 +21,12 @@
 #include "sim/PoissonDetail.h"
 
 namespace gale::sim::multigrid {
-namespace {
 
 /// The hierarchy stops coarsening once a level has at most this many cells; that level is solved
 /// exactly by dense Cholesky (about COARSEST_MAX_CELLS^3 / 3 flops once, ^2 per application).
 constexpr size_t COARSEST_MAX_CELLS = 600;
+
+namespace {
 /// Open faces thinner than this fraction of a full-open face count as this thick when the coarse
 /// levels are built (the finest level keeps the exact cut-cell weights, so the discretisation and
 /// the solution are unchanged: only the preconditioner differs). Slivers of cut cells otherwise
@@ -289,3 +290,26 @@ void CoarseSolver::solve(const Level& L, const double* b, double* x) {
 }
 
 }  // namespace gale::sim::multigrid
+
+namespace gale::sim {
+
+double PoissonSolver::estimatedBytes(double nx, double ny, double nz) {
+    // Mirrors buildHierarchy's coarsening and memory_bytes()'s arrays (Level::resize pads each
+    // level by one ghost cell per side, which is most of a thin level).
+    auto padded = [](double a, double b, double c) { return (a + 2) * (b + 2) * (c + 2); };
+    // Level 0: weights (3 floats) and activity flags over the padded box, the five PCG vectors;
+    // the solve's solution and the preconditioner's scratch over the cells.
+    double bytes = padded(nx, ny, nz) * (3 * 4.0 + 1.0 + 5 * 8.0) + nx * ny * nz * 2 * 8.0;
+    bytes += ny * nz * 12.0;  // row runs: an offset per row and one run per row, at least
+    while (nx * ny * nz > double(multigrid::COARSEST_MAX_CELLS)) {
+        if (nx <= 1 && ny <= 1 && nz <= 1) break;
+        nx = std::ceil(nx / (nx > 1 ? 2 : 1)), ny = std::ceil(ny / (ny > 1 ? 2 : 1)),
+        nz = std::ceil(nz / (nz > 1 ? 2 : 1));
+        // A coarse level: weights, flags and x, b, r over its padded box, its row runs.
+        bytes += padded(nx, ny, nz) * (3 * 4.0 + 1.0 + 3 * 8.0) + ny * nz * 12.0;
+    }
+    const double m = nx * ny * nz;  // the coarsest level's unknowns, at most
+    return bytes + m * m * 8.0;
+}
+
+}  // namespace gale::sim

@@ -127,12 +127,6 @@ size_t PoissonSolver::memory_bytes() const {
     return bytes;
 }
 
-double PoissonSolver::estimatedBytesPerCell() {
-    // Level 0: five PCG vectors (double) + three weight arrays (float); coarser levels x, b, r and
-    // weights at 1/8 + 1/64 + ... = 1/7 of the cells; plus ~5% padding.
-    return 1.05 * (5 * 8 + 3 * 4 + (3 * 8 + 3 * 4) / 7.0);
-}
-
 double PoissonSolver::bytesPerCellPerIteration(int n, double uniformFraction) {
     // Streams per kernel on one level (doubles 8 B, the three weight arrays 12 B per cell), with
     // the slab pipelining of fusedSweep (neighbour slabs come from cache):

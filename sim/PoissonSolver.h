@@ -129,8 +129,10 @@ class PoissonSolver {
     size_t activeCellCount() const;
     /// Bytes held by the hierarchy and the PCG vectors.
     size_t memory_bytes() const;
-    /// Bytes of the solver's arrays per cell of the box, for estimates before allocating.
-    static double estimatedBytesPerCell();
+    /// Bytes this solver will hold for a box of nx * ny * nz cells (the hierarchy it builds, with
+    /// each level's ghost layer, the PCG vectors and the coarsest level's dense factor), for
+    /// estimates before allocating; doubles so absurd boxes do not overflow.
+    static double estimatedBytes(double nx, double ny, double nz);
     /// Bytes moved per cell of the box in one PCG iteration with V(n, n): reads + writes of every
     /// array a kernel streams, counted once per kernel, on the finest level plus 1/7 for the
     /// coarser ones; cells in uniform (full-open) runs skip their weights. For the

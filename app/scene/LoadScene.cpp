@@ -4,6 +4,7 @@
 #include "app/scene/LoadScene.h"
 
 #include "app/io/Errors.h"
+#include "app/io/ProcessMemory.h"
 #include "app/scene/SceneParser.h"
 
 namespace gale::app {
@@ -21,6 +22,12 @@ Scene loadScene(const SceneRunOptions& options) {
                 std::string(problem->key == "frames" ? "--frames" : "--width/--height") + ": " +
                 problem->reason);
     }
+    // The solve's memory estimate and limit count the whole run: the program as it stands now
+    // (libraries, scene) and, for unsteady scenes, the time stepper's arrays.
+    sim::DomainSpec& domain = scene.solver.domain;
+    if (scene.wind.kind == WindKind::Unsteady)
+        domain.run = sim::unsteadyRunMemory(scene.unsteady.settings);
+    domain.run.processBaseline_bytes = residentBytes();
     return scene;
 }
 

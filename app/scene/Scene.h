@@ -110,6 +110,8 @@ struct UnsteadySection {
     double outputEvery_s = 1.0;      ///< `gale solve`: a .vdb every this many seconds
     int64_t maxFiles = 10000;        ///< refuse runs planning more .vdb files (docs/reliability.md)
     int64_t maxSteps = 1000000;      ///< refuse runs planning more time steps
+    /// Refuse runs whose .vdb files would total more (estimated), bytes; unsteady.max_output_gib.
+    double maxOutputBytes = 1024.0 * 1024 * 1024 * 1024;
 };
 
 struct OutputSection {
@@ -144,6 +146,7 @@ struct Scene {
 
     bool autoCameraPosition = true;  ///< camera.position_m not given: a 3/4 view of the terrain
     bool autoCameraTarget = true;    ///< camera.target_m not given: the terrain's centre
+    bool autoCameraFar = true;       ///< camera.far_m not given: it follows the terrain's extent
     /// Line of each key as written ("terrain.image" -> 7), for messages after parsing.
     std::map<std::string, int> keyLines;
     /// Keys given but not used by this scene (e.g. octaves for a gaussian_hill), one line each.

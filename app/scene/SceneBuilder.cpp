@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <memory>
 #include <stdexcept>
 
@@ -151,6 +152,8 @@ std::unique_ptr<sim::AirDomain> buildDomain(const Scene& scene, BuiltScene& buil
         rethrowAsSceneError(scene, "solver", e);
     }
     built.domainSummary = describeDomain(*domain);
+    built.domainEstimate_bytes = double(domain->memoryEstimate_bytes());
+    built.domainBoxCells = double(domain->boxCellCount());
     return domain;
 }
 
@@ -312,6 +315,35 @@ render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera
     return camera;
 }
 
+/// The default far plane follows the terrain: at least 1.5 x the distance from the camera to the
+/// terrain's farthest bounding-box corner (a 2 km terrain's default camera sits beyond 1000 m).
+/// An explicit far plane nearer than the terrain's nearest point is a warning: every frame would
+/// be sky.
+void fitFarPlane(const Scene& scene, const sim::Heightfield& field, BuiltScene& built) {
+    constexpr double AUTO_FAR_MARGIN = 1.5;  // the mesh's skirt and grass tops lie beyond the box
+    render::Camera& c = built.camera;
+    const glm::dvec3 eye(c.wsPosition_m);
+    const glm::dvec3 lo(field.originX_m, field.originY_m, field.minHeight_m());
+    const glm::dvec3 hi(field.originX_m + field.sizeX_m(), field.originY_m + field.sizeY_m(),
+                        field.maxHeight_m());
+    double farthest = 0.0;
+    for (int n = 0; n < 8; ++n) {
+        const glm::dvec3 corner(n & 1 ? hi.x : lo.x, n & 2 ? hi.y : lo.y, n & 4 ? hi.z : lo.z);
+        farthest = std::max(farthest, glm::length(corner - eye));
+    }
+    if (scene.autoCameraFar) {
+        c.far_m = float(std::max(double(c.far_m), AUTO_FAR_MARGIN * farthest));
+        return;
+    }
+    const double nearest = glm::length(glm::clamp(eye, lo, hi) - eye);
+    if (nearest >= double(c.far_m))
+        built.warnings.push_back(
+            scene.where("camera.far_m") + ": far_m = " + formatG(c.far_m, 4) +
+            " m but the nearest terrain is " + formatG(nearest, 4) +
+            " m from the camera: every frame would show only sky (raise far_m, or leave it out "
+            "and it follows the terrain)");
+}
+
 BuiltScene buildScene(const Scene& scene, const BuildOptions& options) {
     const auto start = Clock::now();
     BuiltScene built;
@@ -358,6 +390,7 @@ BuiltScene buildScene(const Scene& scene, const BuildOptions& options) {
     if (!(d.x * d.x + d.y * d.y + d.z * d.z > 1e-12f))
         failAt(scene, scene.autoCameraTarget ? "camera.position_m" : "camera.target_m",
                "the camera sits on its target (give both position_m and target_m)");
+    fitFarPlane(scene, field, built);
 
     if (scene.wind.kind == WindKind::Solved)
         buildSolvedWind(scene, options, built);

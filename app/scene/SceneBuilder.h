@@ -35,9 +35,14 @@ struct BuiltScene {
     render::Camera camera;           ///< the scene's camera with defaults resolved
     glm::vec3 wsWindSource_m{0.0f};  ///< point source actually used
     double build_ms = 0.0;           ///< wall time of buildScene
+    /// Settings that would give silently wrong output (an explicit far plane before the whole
+    /// terrain), one line each starting FILE:LINE: key; check and render print them.
+    std::vector<std::string> warnings;
 
     // wind.kind = "solved":
     std::string domainSummary;              ///< cells, air cells, memory of the air domain
+    double domainEstimate_bytes = 0.0;      ///< the air domain's run estimate (its baseline incl.)
+    double domainBoxCells = 0.0;            ///< cells of the air domain's box
     std::optional<sim::SolveReport> solve;  ///< the steady solve (absent when not solved)
     double solve_ms = 0.0;                  ///< domain + solve + sampling wall time
 };

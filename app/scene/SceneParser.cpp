@@ -37,8 +37,6 @@ using namespace detail;  // the table-reading layer: Section, Limit, Context (Sc
 /// Bytes per output pixel as PNG, for the absurd-output estimate: grass is noisy and compresses
 /// to roughly 1.5-2.5 bytes per RGB(A) pixel.
 constexpr double PNG_BYTES_PER_PIXEL = 2.0;
-/// Bytes per pixel held by GL and the frame loop: colour and depth buffers, read-back, encoding.
-constexpr double FRAME_BYTES_PER_PIXEL = 16.0;
 
 std::string resolveAgainst(const fs::path& folder, const std::string& p) {
     fs::path path(p);
@@ -81,7 +79,7 @@ void readTerrain(Context& ctx, Section s) {
     spec.sizeY_m = size[1];
     spec.spacing_m = s.number("spacing_m", spec.spacing_m, above(0.0));
     spec.height_m = s.number("height_m", spec.height_m, closed(0.0, 1e5));
-    spec.radius_m = s.number("radius_m", spec.radius_m, above(0.0));
+    spec.radius_m = s.number("radius_m", spec.radius_m, closed(1e-3, 1e7));  // 1/(2 r^2) finite
     const auto center = s.vec<2>("center_m", {spec.sizeX_m / 2, spec.sizeY_m / 2}, anyFinite());
     spec.centerX_m = center[0];
     spec.centerY_m = center[1];
@@ -172,11 +170,11 @@ void readTerrain(Context& ctx, Section s) {
 void readGrass(Context& ctx, Section s) {
     GrassSection& g = ctx.scene->grass;
     g.params.height_m =
-        static_cast<float>(s.number("height_m", g.params.height_m, above(0.0, 100.0)));
+        static_cast<float>(s.number("height_m", g.params.height_m, closed(1e-4, 100.0)));
     g.params.shells = static_cast<int>(s.integer("shells", g.params.shells, 1, MAX_SHELLS));
     g.params.stiffness =
         static_cast<float>(s.number("stiffness", g.params.stiffness, above(0.0, 100.0)));
-    g.params.tile_m = static_cast<float>(s.number("tile_m", g.params.tile_m, above(0.0, 1e5)));
+    g.params.tile_m = static_cast<float>(s.number("tile_m", g.params.tile_m, closed(1e-3, 1e5)));
     const std::string texture = s.string("texture", "generated");
     g.params.aperiodic = s.boolean("aperiodic", g.params.aperiodic);
     g.params.lodPixels =
@@ -218,7 +216,7 @@ void readGrass(Context& ctx, Section s) {
 
 void readSolver(Context& ctx, Section s) {
     SolverSection& v = ctx.scene->solver;
-    v.domain.voxelSize_m = s.number("voxel_size_m", v.domain.voxelSize_m, above(0.0, 1e5));
+    v.domain.voxelSize_m = s.number("voxel_size_m", v.domain.voxelSize_m, closed(1e-3, 1e5));
     v.domain.top_m = s.optionalNumber("top_m", anyFinite());
     // Stretched layers (docs/solver.md): AirDomain checks the ranges against voxel_size_m.
     v.domain.firstCell_m = s.optionalNumber("first_cell_m", above(0.0, 1e5));
@@ -300,6 +298,9 @@ void readUnsteady(Context& ctx, Section s) {
     u.outputEvery_s = s.number("output_every_s", u.outputEvery_s, above(0.0, 1e7));
     u.maxFiles = s.integer("max_files", u.maxFiles, 1, 100000000);
     u.maxSteps = s.integer("max_steps", u.maxSteps, 1, 1000000000000);
+    u.maxOutputBytes =
+        s.number("max_output_gib", u.maxOutputBytes / (MIB * 1024.0), closed(1e-3, 1e9)) * MIB *
+        1024.0;
     s.finish();
     if (ctx.scene->wind.kind == WindKind::Unsteady) {
         // Bounds on work (docs/reliability.md): the files and steps this run plans, refused
@@ -352,7 +353,7 @@ void readLighting(Context& ctx, Section s) {
         render::PointLight light;
         if (!ls.take("position_m")) ls.fail(ls.line(), "", "missing key position_m (required)");
         light.wsPosition_m =
-            toVec3(ls.vec<3>("position_m", fromVec3(light.wsPosition_m), anyFinite()));
+            toVec3(ls.vec<3>("position_m", fromVec3(light.wsPosition_m), floatPosition()));
         light.color = toVec3(ls.vec<3>("color", fromVec3(light.color), closed(0.0, 1e6)));
         const auto att = ls.vec<3>("attenuation", fromVec3(light.attenuation), closed(0.0, 1e6));
         if (!(att[0] + att[1] + att[2] > 0.0))
@@ -376,11 +377,12 @@ void readCamera(Context& ctx, Section s) {
     render::Camera& c = ctx.scene->camera;
     ctx.scene->autoCameraPosition = !s.take("position_m");
     ctx.scene->autoCameraTarget = !s.take("target_m");
-    c.wsPosition_m = toVec3(s.vec<3>("position_m", fromVec3(c.wsPosition_m), anyFinite()));
-    c.wsTarget_m = toVec3(s.vec<3>("target_m", fromVec3(c.wsTarget_m), anyFinite()));
+    c.wsPosition_m = toVec3(s.vec<3>("position_m", fromVec3(c.wsPosition_m), floatPosition()));
+    c.wsTarget_m = toVec3(s.vec<3>("target_m", fromVec3(c.wsTarget_m), floatPosition()));
     c.fovY_deg = static_cast<float>(s.number("fov_deg", c.fovY_deg, closed(1.0, 179.0)));
-    c.near_m = static_cast<float>(s.number("near_m", c.near_m, above(0.0, 1e6)));
+    c.near_m = static_cast<float>(s.number("near_m", c.near_m, closed(1e-4, 1e6)));
     c.far_m = static_cast<float>(s.number("far_m", c.far_m, above(0.0, 1e9)));
+    ctx.scene->autoCameraFar = !s.given("far_m");  // given() holds once the key was read
     s.finish();
     if (!(c.far_m > c.near_m))
         s.failKey("far_m", "must be greater than near_m = " + Limit::num(c.near_m) + " (got " +
@@ -468,6 +470,19 @@ double plannedUnsteadySteps(const Scene& scene) {
         dt_s = std::min(v.maxDt_s, v.cfl * scene.solver.domain.voxelSize_m / speed_mps);
     }
     return std::ceil(u.duration_s / dt_s);
+}
+
+double plannedSequenceBytes(const UnsteadySection& u, double boxCells) {
+    return plannedSequenceFiles(u) * boxCells * VDB_BYTES_PER_CELL;
+}
+
+std::optional<std::string> sequenceBytesProblem(const UnsteadySection& u, double boxCells) {
+    const double bytes = plannedSequenceBytes(u, boxCells);
+    if (bytes <= u.maxOutputBytes) return std::nullopt;
+    return "plans " + Limit::num(plannedSequenceFiles(u)) + " .vdb files of up to " +
+           formatBytes(boxCells * VDB_BYTES_PER_CELL) + " each, about " + formatBytes(bytes) +
+           " in all; at most " + formatBytes(u.maxOutputBytes) +
+           " unless unsteady.max_output_gib raises it (or raise output_every_s)";
 }
 
 double estimatePngBytes(const OutputSection& o) {

@@ -37,8 +37,10 @@ inline constexpr double DEFAULT_SUN_DISTANCE_M = 1.0e6;
 inline constexpr int64_t DEFAULT_MAX_SEQUENCE_FILES = 10000;
 inline constexpr int64_t DEFAULT_MAX_UNSTEADY_STEPS = 1000000;
 inline constexpr int MAX_SAMPLES_PER_SIDE = 16384;  ///< heightfield grid (also sim::makeTerrain's)
-inline constexpr double MAX_TERRAIN_BYTES = 4.0 * 1024 * 1024 * 1024;    ///< heightfield + mesh
-inline constexpr double MAX_FRAME_BYTES = 2.0 * 1024 * 1024 * 1024;      ///< GL buffers of a frame
+inline constexpr double MAX_TERRAIN_BYTES = 4.0 * 1024 * 1024 * 1024;  ///< heightfield + mesh
+inline constexpr double MAX_FRAME_BYTES = 2.0 * 1024 * 1024 * 1024;    ///< GL buffers of a frame
+/// Bytes per pixel held by GL and the frame loop: colour and depth buffers, read-back, encoding.
+inline constexpr double FRAME_BYTES_PER_PIXEL = 16.0;
 inline constexpr double MAX_OUTPUT_BYTES = 1024.0 * 1024 * 1024 * 1024;  ///< all frames, estimated
 inline constexpr uintmax_t MAX_SCENE_FILE_BYTES = 16u * 1024 * 1024;
 
@@ -81,6 +83,18 @@ std::optional<BudgetProblem> outputBudgetProblem(const OutputSection& output);
 /// The .vdb files an unsteady run writes: one at t = 0, one every output_every_s and one at
 /// duration_s.
 double plannedSequenceFiles(const UnsteadySection& unsteady);
+
+/// Bytes of one .vdb of a sequence per cell of the box, at most: velocity (3 floats) and speed
+/// (1) per air cell and the staggered face velocities (3 floats) per cell, before compression
+/// (measured: 22 B per cell on a 96 x 96 x 48 hill).
+inline constexpr double VDB_BYTES_PER_CELL = 28.0;
+
+/// Bytes an unsteady run's .vdb sequence takes at most on a box of boxCells cells.
+double plannedSequenceBytes(const UnsteadySection& unsteady, double boxCells);
+
+/// Why the sequence is too large for unsteady.max_output_gib (to be blamed on
+/// unsteady.output_every_s), or std::nullopt.
+std::optional<std::string> sequenceBytesProblem(const UnsteadySection& unsteady, double boxCells);
 
 /// Time steps an unsteady run takes at least: duration_s / dt_s, or with the adaptive step
 /// duration_s / min(max_dt_s, cfl h / ambient speed) (the field's peak is at least the ambient

@@ -173,6 +173,10 @@ inline Limit anyFinite() { return {}; }
 inline Limit above(double lo, double hi = INF) { return {lo, hi, true, false}; }
 inline Limit atLeast(double lo, double hi = INF) { return {lo, hi, false, false}; }
 inline Limit closed(double lo, double hi) { return {lo, hi, false, false}; }
+/// Positions the renderer holds as floats (camera, lights, the point source): a float keeps a
+/// metre's resolution up to 1.6e7 m, and squared distances stay far below FLT_MAX.
+inline constexpr double MAX_FLOAT_POSITION_M = 1e7;
+inline Limit floatPosition() { return closed(-MAX_FLOAT_POSITION_M, MAX_FLOAT_POSITION_M); }
 
 // ---------------------------------------------------------------------------------------------
 // Reading one table

@@ -133,7 +133,7 @@ void readWind(Context& ctx, Section s) {
     coupling::PointSourceSpec& p = w.pointSource;
     w.autoSource = !s.take("source_m");
     if (!w.autoSource)
-        p.wsSource_m = toVec3(s.vec<3>("source_m", fromVec3(p.wsSource_m), anyFinite()));
+        p.wsSource_m = toVec3(s.vec<3>("source_m", fromVec3(p.wsSource_m), floatPosition()));
     p.steps = static_cast<int>(s.integer("steps", p.steps, 1, 1024));
     p.stepDelay_s = s.number("step_delay_s", p.stepDelay_s, closed(0.0, 3600.0));
     p.blowAway = s.boolean("blow_away", p.blowAway);

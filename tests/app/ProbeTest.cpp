@@ -224,5 +224,104 @@ TEST(FromDeg, CheckPrintsBothConventions) {
         << r.out;
 }
 
+/// `gale probe` of FLAT_SCENE at `masts` (CSV text) into dir/out.csv against `reference`.
+test::RunResult probeFlatAgainst(const TempDir& dir, const std::string& masts,
+                                 const std::string& reference) {
+    test::writeFile(dir / "flat.toml", FLAT_SCENE);
+    test::writeFile(dir / "masts.csv", masts);
+    return test::runGale({"probe", dir / "flat.toml", dir / "masts.csv", "-o", dir / "out.csv",
+                          "--reference", reference});
+}
+
+TEST(Probe, ReferencePointGivesSpeedupsAgainstItsOwnSpeed) {
+    TempDir dir;
+    const auto r =
+        probeFlatAgainst(dir, "name,x,y,height_agl_m\nref,10,10,10\nhigh,10,10,40\n", "ref");
+    ASSERT_EQ(r.exitCode, 0) << r.describe();
+    const auto rows = readCsv(test::readFile(dir / "out.csv"));
+    ASSERT_EQ(rows.size(), 2u);
+    const double ref = std::stod(rows[0].at("speed_mps")),
+                 high = std::stod(rows[1].at("speed_mps"));
+    EXPECT_NEAR(std::stod(rows[0].at("speedup")), 0.0, PRINTED_TOLERANCE);
+    // The speed-up against the reference, from the printed speeds (each rounded to 4 decimals).
+    EXPECT_NEAR(std::stod(rows[1].at("speedup")), high / ref - 1.0, 4 * PRINTED_TOLERANCE);
+    // And the log law's ratio between 40 m and 10 m over z0 = 0.03 m, computed here.
+    const double lawRatio = std::log(40.0 / 0.03) / std::log(10.0 / 0.03);
+    EXPECT_NEAR(high / ref, lawRatio, LOG_LAW_RELATIVE_TOLERANCE * lawRatio);
+}
+
+TEST(Probe, AnUnknownReferenceIsExitTwoNamingTheOptionAndWritesNothing) {
+    TempDir dir;
+    const auto r = probeFlatAgainst(dir, "name,x,y,height_agl_m\nref,10,10,10\n", "nope");
+    EXPECT_EQ(r.exitCode, 2) << r.describe();
+    EXPECT_NE(r.err.find("--reference: no point named 'nope'"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+}
+
+/// A small unsteady scene: 20 m of flat ground in 1 m cells, 1 s in outputs every 0.5 s.
+const char* UNSTEADY_SCENE = R"(
+[terrain]
+kind = "flat"
+size_m = [20.0, 20.0]
+spacing_m = 1.0
+[wind]
+kind = "unsteady"
+speed_mps = 5.0
+profile = "log"
+roughness_m = 0.03
+[solver]
+voxel_size_m = 1.0
+top_m = 12.0
+[unsteady]
+duration_s = 1.0
+output_every_s = 0.5
+)";
+
+TEST(Probe, AnUnsteadySceneGivesOneRowPerPointAndOutputTimeAsTheSequenceFromSolve) {
+    // docs/cli.md: stepped and sampled at t = 0, every output_every_s and the end, the same
+    // times as the .vdb sequence gale solve writes, and --vdb over that sequence gives the same
+    // series (the files hold the face velocities as floats).
+    constexpr double FLOAT_FACES_TOLERANCE_MPS = 1e-3;  // 4 printed decimals + float storage
+    TempDir dir;
+    test::writeFile(dir / "u.toml", UNSTEADY_SCENE);
+    test::writeFile(dir / "p.csv", "name,x,y,height_agl_m\na,5,10,2\nb,15,10,6\n");
+    const auto stepped =
+        test::runGale({"probe", dir / "u.toml", dir / "p.csv", "-o", dir / "s.csv"});
+    ASSERT_EQ(stepped.exitCode, 0) << stepped.describe();
+    const auto solve = test::runGale({"solve", dir / "u.toml", "-o", dir / "seq/w.vdb"});
+    ASSERT_EQ(solve.exitCode, 0) << solve.describe();
+    const auto read =
+        test::runGale({"probe", dir / "u.toml", dir / "p.csv", "-o", dir / "v.csv", "--vdb",
+                       dir / "seq/w_0000.vdb", dir / "seq/w_0001.vdb", dir / "seq/w_0002.vdb"});
+    ASSERT_EQ(read.exitCode, 0) << read.describe();
+    const auto a = readCsv(test::readFile(dir / "s.csv")),
+               b = readCsv(test::readFile(dir / "v.csv"));
+    ASSERT_EQ(a.size(), 6u) << "2 points x 3 times (0, 0.5, 1 s)";
+    ASSERT_EQ(b.size(), a.size());
+    const double times[] = {0.0, 0.0, 0.5, 0.5, 1.0, 1.0};
+    for (size_t i = 0; i < a.size(); ++i) {
+        EXPECT_NEAR(std::stod(a[i].at("t_s")), times[i], PRINTED_TOLERANCE) << i;
+        EXPECT_NEAR(std::stod(b[i].at("t_s")), times[i], PRINTED_TOLERANCE) << i;
+        EXPECT_EQ(a[i].at("name"), b[i].at("name"));
+        const double speed = std::stod(a[i].at("speed_mps"));
+        EXPECT_TRUE(std::isfinite(speed) && speed > 0.0) << i;
+        EXPECT_NEAR(std::stod(b[i].at("speed_mps")), speed, FLOAT_FACES_TOLERANCE_MPS) << i;
+    }
+}
+
+TEST(WindRaster, AnUnsteadySceneIsRefusedWithExitTwoBeforeAnyWork) {
+    // docs/cli.md: rasters are for steady scenes; an unsteady one would need a raster per time.
+    TempDir dir;
+    test::writeFile(dir / "u.toml", UNSTEADY_SCENE);
+    const auto r =
+        test::runGale({"solve", dir / "u.toml", "-o", dir / "out/w.vdb", "--grid-height-m", "2"});
+    EXPECT_EQ(r.exitCode, 2) << r.describe();
+    EXPECT_EQ(test::countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("--grid-height-m: rasters are written for steady scenes only"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+}
+
 }  // namespace
 }  // namespace gale::app

@@ -1,0 +1,87 @@
+/// \file MemoryEstimate.cpp
+/// Bytes of every array a solve allocates, from the box's shape (see MemoryEstimate.h).
+
+#include "sim/MemoryEstimate.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sim/MomentumWind.h"
+#include "sim/PoissonSolver.h"
+#include "sim/UnsteadyWind.h"
+
+namespace gale::sim {
+
+double vdbBoxTree_bytes(double nx, double ny, double nz, double valueBytes) {
+    auto nodes = [&](double span) {
+        return std::ceil(nx / span) * std::ceil(ny / span) * std::ceil(nz / span);
+    };
+    // OpenVDB's 5-4-3 tree: a leaf holds 8^3 values (bools as a bit mask) and a value mask of
+    // 64 B plus its header; an internal node holds a child-or-value slot per child (a pointer, or
+    // the value when wider: 16 B for a Vec3s) and two bit masks. Allocator headers included.
+    const bool isBool = valueBytes <= 1.0;
+    const double leafBytes = (isBool ? 64.0 : 512.0 * valueBytes) + 64.0 + 96.0;
+    const double slot = std::max(8.0, std::ceil(valueBytes / 8.0) * 8.0);
+    const double node1Bytes = 4096.0 * slot + 2 * 512.0 + 64.0;
+    const double node2Bytes = 32768.0 * slot + 2 * 4096.0 + 64.0;
+    const double rootEntryBytes = 96.0;
+    return nodes(8) * leafBytes + nodes(128) * node1Bytes +
+           nodes(4096) * (node2Bytes + rootEntryBytes);
+}
+
+double macFaceCount(double nx, double ny, double nz) {
+    return (nx + 1) * ny * nz + nx * (ny + 1) * nz + nx * ny * (nz + 1);
+}
+
+RunMemory unsteadyRunMemory(const UnsteadySettings& settings) {
+    RunMemory run;
+    run.unsteady = true;
+    // Advection keeps a copy of the field (one array of faces); MacCormack adds its backward pass
+    // and the two limiter bounds, BFECC also its corrected copy, each for one component at a
+    // time (at most about half the faces: the widest component of a flat box).
+    double arrays = 1.0;
+    if (settings.advection == AdvectionScheme::MacCormack) arrays += 4 * 0.5;
+    if (settings.advection == AdvectionScheme::Bfecc) arrays += 5 * 0.5;
+    // The implicit viscosity's conjugate gradients: six vectors of one component.
+    if (settings.viscosity_m2ps > 0.0 || settings.surfaceLayer.enabled)
+        arrays = std::max(arrays, 1.0 + 6 * 0.5);
+    run.scratchFaceArrays = arrays;
+    // Vorticity confinement: centred velocity, vorticity and force (3 doubles each) and the
+    // vorticity's magnitude, per cell.
+    if (settings.vorticityConfinement > 0.0 || !settings.whirlwinds.empty())
+        run.scratchCellBytes = (3 * 3 + 1) * 8.0;
+    return run;
+}
+
+double solveArrays_bytes(double nx, double ny, double nz, double terrainSamples, bool momentum,
+                         const RunMemory& run) {
+    const double cells = nx * ny * nz, faces = macFaceCount(nx, ny, nz);
+    // The air domain: open fractions (a float per face), air flags, the OpenVDB air mask, its own
+    // copy of the heightfield (a float per sample).
+    const double domain =
+        faces * 4.0 + cells * 1.0 + vdbBoxTree_bytes(nx, ny, nz, 1.0) + terrainSamples * 4.0;
+    // The steady solve: the PoissonSystem's weight copy (a float per face), the solver, the MAC
+    // field (a double per face) and its air flags, right-hand side and potential, the velocity
+    // update's face flags.
+    const double steady = faces * (4.0 + 8.0 + 1.0) + cells * (1.0 + 2 * 8.0) +
+                          PoissonSolver::estimatedBytes(nx, ny, nz);
+    // The grids written (VdbIO.h): cell-centred velocity (Vec3s) and speed (float) over the air,
+    // counted over the box; the staggered face velocities (Vec3s) over the box and its far faces.
+    const double output = vdbBoxTree_bytes(nx, ny, nz, 12.0) + vdbBoxTree_bytes(nx, ny, nz, 4.0) +
+                          vdbBoxTree_bytes(nx + 1, ny + 1, nz + 1, 12.0);
+    double extra = 0.0;
+    if (momentum) extra += cells * MOMENTUM_EXTRA_BYTES_PER_CELL;
+    if (run.unsteady) {
+        // UnsteadyWindSolver beside the steady solve: its own PoissonSystem weights and solver,
+        // the mean field and the current field (a double per face each), face masks, the
+        // warm-start potential and the projection's right-hand side, then the widest step's
+        // scratch (the advected copies, MacCormack's or BFECC's passes, the viscosity's CG
+        // vectors, or vorticity confinement's cell vectors).
+        extra += faces * (4.0 + 2 * 8.0 + 1.0) + cells * (1.0 + 2 * 8.0) +
+                 PoissonSolver::estimatedBytes(nx, ny, nz) +
+                 std::max(faces * 8.0 * run.scratchFaceArrays, cells * run.scratchCellBytes);
+    }
+    return domain + steady + output + extra;
+}
+
+}  // namespace gale::sim

@@ -1,0 +1,50 @@
+#pragma once
+/// \file MemoryEstimate.h
+/// Peak memory of a solve, estimated from the box's shape before anything is allocated.
+///
+/// Every array a run allocates is counted with its real dimensions, so thin and flat boxes get
+/// what they really cost: the multigrid levels carry one ghost layer on every side ((nx + 2)(ny
+/// + 2)(nz + 2) per level), and an OpenVDB tree pays for whole 8^3 leaves and 128^3 / 4096^3
+/// internal nodes however few voxels they hold (a column 2 cells wide costs 16x its voxels in
+/// leaves, and one 33-66 KiB internal node per 128 cells of height). Dimensions are doubles so
+/// absurd boxes can be priced (and refused) without overflow. Checked against the peak resident
+/// memory of real runs by `gale bench memory` (docs/reliability.md).
+
+namespace gale::sim {
+
+/// Bytes of an OpenVDB tree whose active voxels fill a box of nx * ny * nz voxels starting at
+/// index (0, 0, 0), with values of valueBytes bytes (1 for a BoolGrid: stored as bits): leaves,
+/// both internal levels and the root's entries (the 5-4-3 tree every gale grid uses).
+double vdbBoxTree_bytes(double nx, double ny, double nz, double valueBytes);
+
+/// Faces of a MAC grid of nx * ny * nz cells, the three components together.
+double macFaceCount(double nx, double ny, double nz);
+
+struct UnsteadySettings;
+
+/// What a run holds besides the air domain and the steady solve, and what the process held
+/// before it (DomainSpec::run: AirDomain counts it in its estimate and limit).
+struct RunMemory {
+    /// An unsteady run: a second solver for the projection, the mean and current fields and the
+    /// step's scratch, scratchFaceArrays doubles per face or scratchCellBytes per cell at the
+    /// widest step (unsteadyRunMemory fills these in).
+    bool unsteady = false;
+    double scratchFaceArrays = 0;
+    double scratchCellBytes = 0;
+    /// Resident bytes of the process before the domain is built (the program, its libraries, the
+    /// scene and terrain), counted in the estimate; 0 for the arrays alone.
+    double processBaseline_bytes = 0;
+};
+
+/// The unsteady run's RunMemory for these settings (its scratch depends on the advection scheme,
+/// the viscosity step and vorticity confinement).
+RunMemory unsteadyRunMemory(const UnsteadySettings& settings);
+
+/// Estimated peak bytes a solve on a box of nx * ny * nz cells allocates: the air domain (with
+/// its copy of terrainSamples heights), the steady solver and its field, the output grids
+/// written at the end or per output time, the momentum model's arrays (momentum) and an unsteady
+/// run's (run.unsteady); not run.processBaseline_bytes.
+double solveArrays_bytes(double nx, double ny, double nz, double terrainSamples, bool momentum,
+                         const RunMemory& run);
+
+}  // namespace gale::sim
