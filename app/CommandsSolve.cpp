@@ -17,8 +17,8 @@
 
 #include "app/Cli.h"
 #include "app/Commands.h"
-#include "app/SolveRun.h"
 #include "app/MomentumJson.h"
+#include "app/SolveRun.h"
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/io/Interrupt.h"
@@ -80,7 +80,6 @@ void writeStagedText(StagedFiles& staged, const std::string& path, const std::st
     writeTextAtomic(staged.add(path), text);
     staged.seal(path);
 }
-
 
 int runSolve(const SolveRequest& req) {
     if (req.unsteady) return runUnsteadySolve(req);
