@@ -42,4 +42,11 @@ void noteAmbientWithoutKind(Context& ctx, Section& s);
 /// SceneWind.cpp.
 void readWind(Context& ctx, Section s);
 
+/// The [lighting] (a default sun and sky when it names no light), [camera], [output] and
+/// [overlay] sections, in SceneLook.cpp.
+void readLighting(Context& ctx, Section s);
+void readCamera(Context& ctx, Section s);
+void readOutput(Context& ctx, Section s);
+void readOverlay(Context& ctx, Section s);
+
 }  // namespace gale::app::detail
