@@ -266,7 +266,7 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
                 }
         const double threshold = spec.vortexQ_per_s2.value_or(
             std::max(0.25 * qMax, (0.1 * uMax / h) * (0.1 * uMax / h)));
-        std::vector<std::pair<double, size_t>> cores;
+        std::vector<std::pair<double, glm::ivec3>> cores;
         for (int k = 1; k + 1 < nz; ++k)
             for (int j = 1; j + 1 < ny; ++j)
                 for (int i = 1; i + 1 < nx; ++i) {
@@ -278,14 +278,14 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
                             for (int di = -1; di <= 1 && peak; ++di)
                                 if ((di || dj || dk) && q[idx(i + di, j + dj, k + dk)] > qc)
                                     peak = false;
-                    if (peak) cores.emplace_back(qc, idx(i, j, k));
+                    if (peak) cores.emplace_back(qc, glm::ivec3(i, j, k));
                 }
         std::sort(cores.begin(), cores.end(), [](auto& a, auto& b) { return a.first > b.first; });
         const auto origin = field.wsMin_m();
         std::vector<glm::ivec3> kept;
-        for (const auto& [qc, n] : cores) {
+        for (const auto& [qc, cell] : cores) {
             if (kept.size() >= MAX_VORTEX_MARKERS) break;
-            const int i = int(n % nx), j = int((n / nx) % ny), k = int(n / (size_t(nx) * ny));
+            const int i = cell.x, j = cell.y, k = cell.z;
             // One marker per core: skip maxima within MARKER_SEPARATION cells of a stronger one.
             bool near = false;
             for (const glm::ivec3& o : kept)

@@ -49,7 +49,7 @@ void addToFaces(sim::UnsteadyWindSolver& solver, const AddedVelocity& added) {
                     const double ground_m =
                         g.terrain ? g.terrain->sample(ws[0], ws[1]) : g.wsMin_m[2];
                     const sim::Vec3d u = added(ws, ws[2] - ground_m);
-                    a[i + size_t(d[0]) * (j + size_t(d[1]) * k)] += u[axis];
+                    a[g.index(placements[axis], i, j, k)] += u[axis];
                 }
     }
 }

@@ -113,26 +113,28 @@ const sim::WindField* SteadyGustWind::currentField() const {
     if (mGustField && mGustField_s == mLastUpdate_s) return &*mGustField;
     if (!mGustField) mGustField.emplace(*mField);
     sim::WindField& out = *mGustField;
-    const int nx = out.nx(), ny = out.ny(), nz = out.nz();
+    const sim::GridIndex G{out.nx(), out.ny(), out.nz()};
     const double h = out.voxelSize_m();
     const auto lo = out.wsMin_m();
-    // One face kind: `columns` x `rows` columns of faces, the first at plan offset (ox, oy) cells,
-    // each column `layers` faces deep; the factor depends on the column's plan position alone.
-    auto scale = [&](const std::vector<double>& steady, std::vector<double>& gust, int columns,
-                     int rows, int layers, double ox, double oy) {
-        std::vector<double> factor(size_t(columns) * rows);
-        for (int j = 0; j < rows; ++j)
-            for (int i = 0; i < columns; ++i)
-                factor[size_t(j) * columns + i] =
+    // One face kind p: its columns of faces, the first at plan offset (ox, oy) cells; the factor
+    // depends on the column's plan position alone. Layer k of p is the columnCount(p) faces
+    // from index(p, 0, 0, k) on, in column order.
+    auto scale = [&](const std::vector<double>& steady, std::vector<double>& gust, sim::Placement p,
+                     double ox, double oy) {
+        const auto n = G.dims(p);
+        std::vector<double> factor(G.columnCount(p));
+        for (int j = 0; j < n[1]; ++j)
+            for (int i = 0; i < n[0]; ++i)
+                factor[G.column(p, i, j)] =
                     mCurve(mLastUpdate_s - arrivalAt_s(lo[0] + (i + ox) * h, lo[1] + (j + oy) * h));
-        const size_t plane = factor.size();
-        for (int k = 0; k < layers; ++k)
-            for (size_t c = 0; c < plane; ++c)
-                gust[k * plane + c] = steady[k * plane + c] * factor[c];
+        for (int k = 0; k < n[2]; ++k) {
+            const size_t f0 = G.index(p, 0, 0, k);
+            for (size_t c = 0; c < factor.size(); ++c) gust[f0 + c] = steady[f0 + c] * factor[c];
+        }
     };
-    scale(mField->u_mps(), out.u_mps(), nx + 1, ny, nz, 0.0, 0.5);
-    scale(mField->v_mps(), out.v_mps(), nx, ny + 1, nz, 0.5, 0.0);
-    scale(mField->w_mps(), out.w_mps(), nx, ny, nz + 1, 0.5, 0.5);
+    scale(mField->u_mps(), out.u_mps(), sim::Placement::FaceX, 0.0, 0.5);
+    scale(mField->v_mps(), out.v_mps(), sim::Placement::FaceY, 0.5, 0.0);
+    scale(mField->w_mps(), out.w_mps(), sim::Placement::FaceZ, 0.5, 0.5);
     mGustField_s = mLastUpdate_s;
     return &out;
 }

@@ -179,7 +179,7 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
     tbb::parallel_for(0, n[2], [&](int k) {
         for (int j = 0; j < n[1]; ++j)
             for (int i = 0; i < n[0]; ++i) {
-                const size_t idx = size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k);
+                const size_t idx = g.index(p, i, j, k);
                 if (mask && !(*mask)[idx]) {
                     out[idx] = q[idx];
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;

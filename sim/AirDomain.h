@@ -158,9 +158,9 @@ class AirDomain {
     double openOutflux(const std::vector<double>& U, const std::vector<double>& V,
                        const std::vector<double>& W, int i, int j, int k) const {
         const GridLayout& g = mLayout;
-        const size_t xm = g.faceXIndex(i, j, k), xp = xm + 1;
-        const size_t ym = g.faceYIndex(i, j, k), yp = ym + size_t(g.nx);
-        const size_t zm = g.faceZIndex(i, j, k), zp = zm + size_t(g.nx) * size_t(g.ny);
+        const size_t xm = g.faceXIndex(i, j, k), xp = g.faceXIndex(i + 1, j, k);
+        const size_t ym = g.faceYIndex(i, j, k), yp = g.faceYIndex(i, j + 1, k);
+        const size_t zm = g.faceZIndex(i, j, k), zp = g.faceZIndex(i, j, k + 1);
         const double side =
             mOpenX[xp] * U[xp] - mOpenX[xm] * U[xm] + mOpenY[yp] * V[yp] - mOpenY[ym] * V[ym];
         return (g.uniformZ() ? side : side * (g.dz_m(k) / g.voxelSize_m)) + mOpenZ[zp] * W[zp] -

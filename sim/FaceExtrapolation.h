@@ -6,12 +6,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "sim/GridLayout.h"
+
 namespace gale::sim::detail {
 
-/// Fills faces with valid == 0 in the face grid `a` (n0 * n1 * n2 values, first index fastest) by
-/// the mean of their valid face neighbours, `layers` times outwards; faces still without a value
-/// get 0. Velocities, m/s; `valid` is not changed.
-void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid, int n0, int n1,
-                      int n2, int layers);
+/// Fills faces with valid == 0 in the face array `a` (g.count(p) values of placement p) by the
+/// mean of their valid face neighbours, `layers` times outwards; faces still without a value get
+/// 0. Velocities, m/s; `valid` is not changed.
+void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid, const GridIndex& g,
+                      Placement p, int layers);
 
 }  // namespace gale::sim::detail

@@ -13,7 +13,8 @@
 /// Arrays (i fastest). Cells: i + nx (j + ny k). The four placements (Placement) of MAC values:
 /// u on x-faces (nx+1) * ny * nz, face (i, j, k) between cells (i-1, j, k) and (i, j, k);
 /// v on y-faces nx * (ny+1) * nz; w on z-faces nx * ny * (nz+1), face k at height z_k; scalars
-/// at cell centres. GridIndex::index is the only place these formulas are written.
+/// at cell centres. GridIndex::index is the only place these formulas are written (and
+/// GridIndex::column the one for 2-D arrays of one value per column).
 ///
 /// Index space. Continuous coordinates in which cell (i, j, k) spans [i, i+1] x [j, j+1] x
 /// [k, k+1]. Horizontally is = (ws - wsMin) / h; vertically is = k + (z - z_k) / (z_{k+1} - z_k)
@@ -57,6 +58,17 @@ struct GridIndex {
     size_t index(Placement p, int i, int j, int k) const {
         const auto d = dims(p);
         return size_t(i) + size_t(d[0]) * (size_t(j) + size_t(d[1]) * size_t(k));
+    }
+    /// Values in a 2-D array of one value per column (i, j) of placement p: dims(p)[0] *
+    /// dims(p)[1] (Cell and FaceZ share nx * ny columns).
+    size_t columnCount(Placement p) const {
+        const auto d = dims(p);
+        return size_t(d[0]) * size_t(d[1]);
+    }
+    /// Index of column (i, j) of placement p in such a 2-D array: i fastest. The face-index
+    /// formula without its level.
+    size_t column(Placement p, int i, int j) const {
+        return size_t(i) + size_t(dims(p)[0]) * size_t(j);
     }
     size_t cellCount() const { return count(Placement::Cell); }
     /// Cell (i, j, k), i in [0, nx).

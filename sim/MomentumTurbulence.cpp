@@ -98,63 +98,65 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
     if (!(nuMol >= 0.0) || !std::isfinite(nuMol))
         throw std::invalid_argument("unsteady.viscosity_m2ps must be >= 0, got " + num(nuMol));
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
-    if (okX.size() != size_t(nx + 1) * ny * nz || okY.size() != size_t(nx) * (ny + 1) * nz ||
-        okZ.size() != size_t(nx) * ny * (nz + 1))
+    const GridIndex G = D.layout();
+    if (okX.size() != G.count(Placement::FaceX) || okY.size() != G.count(Placement::FaceY) ||
+        okZ.size() != G.count(Placement::FaceZ))
         throw std::invalid_argument("TurbulentStress: face masks do not match the domain");
     const double h = D.voxelSize_m(), z0 = s.roughness_m, d = s.displacementHeight_m;
     const auto o = D.wsMin_m();
     const Heightfield& T = D.terrain();
 
-    mGroundCell.resize(size_t(nx) * ny);
-    mGroundX.resize(size_t(nx + 1) * ny);
-    mGroundY.resize(size_t(nx) * (ny + 1));
+    mGroundCell.resize(G.columnCount(Placement::Cell));
+    mGroundX.resize(G.columnCount(Placement::FaceX));
+    mGroundY.resize(G.columnCount(Placement::FaceY));
     for (int j = 0; j <= ny; ++j)
         for (int i = 0; i <= nx; ++i) {
             const double x = o[0] + i * h, y = o[1] + j * h;
             if (i < nx && j < ny)
-                mGroundCell[size_t(i) + size_t(nx) * j] = T.sample(x + 0.5 * h, y + 0.5 * h);
-            if (j < ny) mGroundX[size_t(i) + size_t(nx + 1) * j] = T.sample(x, y + 0.5 * h);
-            if (i < nx) mGroundY[size_t(i) + size_t(nx) * j] = T.sample(x + 0.5 * h, y);
+                mGroundCell[G.column(Placement::Cell, i, j)] = T.sample(x + 0.5 * h, y + 0.5 * h);
+            if (j < ny) mGroundX[G.column(Placement::FaceX, i, j)] = T.sample(x, y + 0.5 * h);
+            if (i < nx) mGroundY[G.column(Placement::FaceY, i, j)] = T.sample(x + 0.5 * h, y);
         }
 
     // Lowest unknown face of each column (the masks are monotone in k over a heightfield).
-    auto lowest = [nz](const std::vector<uint8_t>& ok, int n0, int n1, int n2,
-                       std::vector<int>& low) {
-        low.assign(size_t(n0) * n1, -1);
-        for (int j = 0; j < n1; ++j)
-            for (int i = 0; i < n0; ++i)
-                for (int k = 0; k < n2; ++k)
-                    if (ok[size_t(i) + size_t(n0) * (j + size_t(n1) * k)]) {
-                        low[size_t(i) + size_t(n0) * j] = k;
+    auto lowest = [&G](const std::vector<uint8_t>& ok, Placement p, std::vector<int>& low) {
+        const auto n = G.dims(p);
+        low.assign(G.columnCount(p), -1);
+        for (int j = 0; j < n[1]; ++j)
+            for (int i = 0; i < n[0]; ++i)
+                for (int k = 0; k < n[2]; ++k)
+                    if (ok[G.index(p, i, j, k)]) {
+                        low[G.column(p, i, j)] = k;
                         break;
                     }
-        (void)nz;
     };
-    lowest(okX, nx + 1, ny, nz, mLowX);
-    lowest(okY, nx, ny + 1, nz, mLowY);
-    lowest(okZ, nx, ny, nz + 1, mLowZ);
+    lowest(okX, Placement::FaceX, mLowX);
+    lowest(okY, Placement::FaceY, mLowY);
+    lowest(okZ, Placement::FaceZ, mLowZ);
 
     // l^2 on every z-face with air below (the top face included), from the cell column's ground.
-    mL2Z.assign(size_t(nx) * ny * (nz + 1), 0.f);
+    mL2Z.assign(G.count(Placement::FaceZ), 0.f);
     tbb::parallel_for(1, nz + 1, [&](int k) {
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 if (!D.isAir(i, j, k - 1)) continue;
-                const double zE = o[2] + k * h - mGroundCell[size_t(i) + size_t(nx) * j];
+                const double zE = o[2] + k * h - mGroundCell[G.column(Placement::Cell, i, j)];
                 const double l = surface::discreteMixingLength_m(zE, h, s.mixingLengthMax_m, z0, d);
-                mL2Z[size_t(i) + size_t(nx) * (j + size_t(ny) * k)] = float(l * l);
+                mL2Z[G.faceZIndex(i, j, k)] = float(l * l);
             }
     });
 
     // Balance force and top stress of the ambient profile, per face of the x and y columns.
     mForceX.assign(okX.size(), 0.0), mForceY.assign(okY.size(), 0.0);
-    mTopX.assign(size_t(nx + 1) * ny, 0.0), mTopY.assign(size_t(nx) * (ny + 1), 0.0);
+    mTopX.assign(G.columnCount(Placement::FaceX), 0.0);
+    mTopY.assign(G.columnCount(Placement::FaceY), 0.0);
     if (!s.balanced) return;
     const AmbientWind& A = *s.balanced;
     const double uStar = surface::frictionVelocity_mps(A.speed_mps, A.referenceHeight_m, z0, d);
     const double dir = A.direction_deg * gale::PI / 180.0, e[2] = {std::cos(dir), std::sin(dir)};
     for (int c = 0; c < 2; ++c) {
-        const int n0 = nx + (c == 0), n1 = ny + (c == 1);
+        const Placement p = Placement(c);
+        const int n0 = G.dims(p)[0], n1 = G.dims(p)[1];
         const std::vector<int>& low = c == 0 ? mLowX : mLowY;
         const std::vector<double>& ground = c == 0 ? mGroundX : mGroundY;
         std::vector<double>& force = c == 0 ? mForceX : mForceY;
@@ -162,7 +164,7 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
         tbb::parallel_for(0, n1, [&](int j) {
             std::vector<double> tau(size_t(nz) + 1);
             for (int i = 0; i < n0; ++i) {
-                const size_t col = size_t(i) + size_t(n0) * j;
+                const size_t col = G.column(p, i, j);
                 const int kl = low[col];
                 if (kl < 0) continue;
                 // The two cell columns beside the face column (clamped at the box sides).
@@ -171,8 +173,8 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
                 const int ja = c == 1 ? std::max(j - 1, 0) : j,
                           jb = c == 1 ? std::min(j, ny - 1) : j;
                 auto l2Edge = [&](int k) {
-                    return 0.5 * (double(mL2Z[size_t(ia) + size_t(nx) * (ja + size_t(ny) * k)]) +
-                                  double(mL2Z[size_t(ib) + size_t(nx) * (jb + size_t(ny) * k)]));
+                    return 0.5 * (double(mL2Z[G.faceZIndex(ia, ja, k)]) +
+                                  double(mL2Z[G.faceZIndex(ib, jb, k)]));
                 };
                 const double g = ground[col];
                 const double wallH = std::clamp(o[2] + (kl + 1) * h - g, MIN_WALL_HEIGHT_CELLS * h,
@@ -194,9 +196,7 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
                 for (int k = kl; k < nz; ++k) {
                     const double delta = k == kl ? wallH : h;
                     const double F = -(tau[size_t(k + 1 - kl)] - tau[size_t(k - kl)]) / delta;
-                    const size_t f = c == 0 ? size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)
-                                            : size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k);
-                    force[f] = F * e[c];
+                    force[G.index(p, i, j, k)] = F * e[c];
                 }
                 top[col] = tau[size_t(nz - kl)] * e[c];
             }
@@ -210,15 +210,13 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
     const AirDomain& D = mDomain;
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
     const double h = D.voxelSize_m();
-    auto xi = [&](int i, int j, int k) {
-        return size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k);
-    };
-    auto yi = [&](int i, int j, int k) {
-        return size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k);
-    };
-    auto zi = [&](int i, int j, int k) { return size_t(i) + size_t(nx) * (j + size_t(ny) * k); };
-    mStrainH.assign(size_t(nx) * ny * nz, 0.0);
-    mNuZ.assign(size_t(nx) * ny * (nz + 1), 0.0);
+    const GridIndex G = D.layout();
+    auto xi = [&G](int i, int j, int k) { return G.faceXIndex(i, j, k); };
+    auto yi = [&G](int i, int j, int k) { return G.faceYIndex(i, j, k); };
+    // Cells and z-faces share the first nx * ny * nz indices (the strain lives on cells).
+    auto zi = [&G](int i, int j, int k) { return G.faceZIndex(i, j, k); };
+    mStrainH.assign(G.cellCount(), 0.0);
+    mNuZ.assign(G.count(Placement::FaceZ), 0.0);
     // Cell-centred part of 2 S_ij S_ij without the vertical shears: 2 (du/dx^2 + dv/dy^2 + dw/dz^2)
     // + (du/dy + dv/dx)^2, central differences of cell-centred velocities across the cell.
     tbb::parallel_for(0, nz, [&](int k) {
@@ -303,9 +301,8 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
     computeEddyViscosity(U, V, W);
     for (double nu : mNuZ) rep.maxEddyViscosity_m2ps = std::max(rep.maxEddyViscosity_m2ps, nu);
 
-    auto nuZ = [&](int i, int j, int k) {
-        return mNuZ[size_t(i) + size_t(nx) * (j + size_t(ny) * k)];
-    };
+    const GridIndex G = D.layout();
+    auto nuZ = [&](int i, int j, int k) { return mNuZ[G.faceZIndex(i, j, k)]; };
     auto nuCell = [&](int i, int j, int k) { return 0.5 * (nuZ(i, j, k) + nuZ(i, j, k + 1)); };
 
     // Horizontal speed of each wall face at the start of the step: its own component and the
@@ -313,27 +310,21 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
     std::vector<double> speedX(mLowX.size(), 0.0), speedY(mLowY.size(), 0.0);
     tbb::parallel_for(0, ny + 1, [&](int j) {
         for (int i = 0; i <= nx; ++i) {
-            if (j < ny && mLowX[size_t(i) + size_t(nx + 1) * j] >= 0) {
-                const int k = mLowX[size_t(i) + size_t(nx + 1) * j], ia = std::max(i - 1, 0),
-                          ib = std::min(i, nx - 1);
-                auto vAt = [&](int ii, int jj) {
-                    return V[size_t(ii) + size_t(nx) * (jj + size_t(ny + 1) * k)];
-                };
+            const size_t colX = G.column(Placement::FaceX, i, j);
+            if (j < ny && mLowX[colX] >= 0) {
+                const int k = mLowX[colX], ia = std::max(i - 1, 0), ib = std::min(i, nx - 1);
+                auto vAt = [&](int ii, int jj) { return V[G.faceYIndex(ii, jj, k)]; };
                 const double other =
                     0.25 * (vAt(ia, j) + vAt(ia, j + 1) + vAt(ib, j) + vAt(ib, j + 1));
-                speedX[size_t(i) + size_t(nx + 1) * j] =
-                    std::hypot(U[size_t(i) + size_t(nx + 1) * (j + size_t(ny) * k)], other);
+                speedX[colX] = std::hypot(U[G.faceXIndex(i, j, k)], other);
             }
-            if (i < nx && mLowY[size_t(i) + size_t(nx) * j] >= 0) {
-                const int k = mLowY[size_t(i) + size_t(nx) * j], ja = std::max(j - 1, 0),
-                          jb = std::min(j, ny - 1);
-                auto uAt = [&](int ii, int jj) {
-                    return U[size_t(ii) + size_t(nx + 1) * (jj + size_t(ny) * k)];
-                };
+            const size_t colY = G.column(Placement::FaceY, i, j);
+            if (i < nx && mLowY[colY] >= 0) {
+                const int k = mLowY[colY], ja = std::max(j - 1, 0), jb = std::min(j, ny - 1);
+                auto uAt = [&](int ii, int jj) { return U[G.faceXIndex(ii, jj, k)]; };
                 const double other =
                     0.25 * (uAt(i, ja) + uAt(i + 1, ja) + uAt(i, jb) + uAt(i + 1, jb));
-                speedY[size_t(i) + size_t(nx) * j] =
-                    std::hypot(V[size_t(i) + size_t(nx) * (j + size_t(ny + 1) * k)], other);
+                speedY[colY] = std::hypot(V[G.faceYIndex(i, j, k)], other);
             }
         }
     });
@@ -345,10 +336,10 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
         std::vector<double>& q = *comps[c];
         const std::vector<uint8_t>& ok = *masks[c];
         mOld = q;
-        const int n0 = nx + (c == 0), n1 = ny + (c == 1), n2 = nz + (c == 2);
-        auto idx = [&](int i, int j, int k) {
-            return size_t(i) + size_t(n0) * (j + size_t(n1) * k);
-        };
+        const Placement p = Placement(c);
+        const auto n = G.dims(p);
+        const int n0 = n[0], n1 = n[1], n2 = n[2];
+        auto idx = [&G, p](int i, int j, int k) { return G.index(p, i, j, k); };
         const std::vector<int>& low = c == 0 ? mLowX : c == 1 ? mLowY : mLowZ;
         // nu_t at the face itself (horizontal exchanges) and on the edge below face k (vertical).
         auto cellsBeside = [&](int i, int j, int& ia, int& ja, int& ib, int& jb) {
@@ -381,7 +372,7 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
             RowScratch s(n0, n2);
             for (int j = rows.begin(); j != rows.end(); ++j) {
                 for (int i = 0; i < n0; ++i) {
-                    const size_t col = size_t(i) + size_t(n0) * j;
+                    const size_t col = G.column(p, i, j);
                     const int kl = low[col];
                     int kt = kl - 1;  // last unknown face of the column (none: kl - 1)
                     if (kl >= 0)
@@ -425,7 +416,7 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                             const double e = a * nuBelow(i, j, k + 1) / h;
                             diag += e, s.sup[e0] = -e;
                         } else if (c < 2 && k == nz - 1) {
-                            rhs += a * (c == 0 ? mTopX : mTopY)[size_t(i) + size_t(n0) * j];
+                            rhs += a * (c == 0 ? mTopX : mTopY)[G.column(p, i, j)];
                         }
                         // Horizontal neighbours, point-implicit.
                         const double nuSelf = nuFace(i, j, k);

@@ -103,10 +103,12 @@ WindField prolong(const LevelResult& coarseLevel, const WindField& fine) {
     const double ch = coarse.voxelSize_m();
     const double hi[3] = {co[0] + coarse.nx() * ch, co[1] + coarse.ny() * ch,
                           co[2] + coarse.nz() * ch};
-    const int nx = fine.nx(), ny = fine.ny(), nz = fine.nz();
+    const GridIndex G{fine.nx(), fine.ny(), fine.nz()};
     std::vector<double>* comp[3] = {&out.u_mps(), &out.v_mps(), &out.w_mps()};
     for (int c = 0; c < 3; ++c) {
-        const int n0 = nx + (c == 0), n1 = ny + (c == 1), n2 = nz + (c == 2);
+        const Placement pl = Placement(c);
+        const auto n = G.dims(pl);
+        const int n0 = n[0], n1 = n[1], n2 = n[2];
         std::vector<double>& a = *comp[c];
         tbb::parallel_for(0, n2, [&](int k) {
             for (int j = 0; j < n1; ++j)
@@ -116,7 +118,7 @@ WindField prolong(const LevelResult& coarseLevel, const WindField& fine) {
                                    o[2] + (k + (c == 2 ? 0.0 : 0.5)) * h};
                     for (int e = 0; e < 3; ++e)
                         p[e] = std::clamp(p[e], co[e] + 1e-9 * ch, hi[e] - 1e-9 * ch);
-                    a[size_t(i) + size_t(n0) * (j + size_t(n1) * k)] +=
+                    a[G.index(pl, i, j, k)] +=
                         coarse.velocityAboveTerrainAt_mps(p[0], p[1], p[2])[size_t(c)];
                 }
         });

@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "sim/GridLayout.h"
 #include "sim/PoissonSolver.h"
 
 namespace gale::sim::multigrid {
@@ -84,7 +85,9 @@ struct Level {
         wy.assign(total, 0.f);
         wz.assign(total, 0.f);
     }
-    size_t cells() const { return size_t(nx) * ny * nz; }
+    size_t cells() const { return GridIndex{nx, ny, nz}.cellCount(); }
+    /// Unpadded index of cell (i, j, k) (the solver's input and output arrays).
+    size_t cellIndex(int i, int j, int k) const { return GridIndex{nx, ny, nz}.cellIndex(i, j, k); }
     size_t at(int i, int j, int k) const {
         return size_t(i + 1) + sx * (size_t(j + 1) + sy * size_t(k + 1));
     }

@@ -158,14 +158,12 @@ void PoissonSolver::applyOperator(const std::vector<double>& x, std::vector<doub
     std::vector<double> in(L.total, 0.0), res(L.total, 0.0);
     for (int k = 0; k < L.nz; ++k)
         for (int j = 0; j < L.ny; ++j)
-            for (int i = 0; i < L.nx; ++i)
-                in[L.at(i, j, k)] = x[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)];
+            for (int i = 0; i < L.nx; ++i) in[L.at(i, j, k)] = x[L.cellIndex(i, j, k)];
     (void)multigrid::applyDot(L, in.data(), res.data());
     out.assign(L.cells(), 0.0);
     for (int k = 0; k < L.nz; ++k)
         for (int j = 0; j < L.ny; ++j)
-            for (int i = 0; i < L.nx; ++i)
-                out[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)] = res[L.at(i, j, k)];
+            for (int i = 0; i < L.nx; ++i) out[L.cellIndex(i, j, k)] = res[L.at(i, j, k)];
 }
 
 void PoissonSolver::applyPreconditioner(const std::vector<double>& r, std::vector<double>& z,
@@ -185,7 +183,7 @@ void PoissonSolver::applyPreconditioner(const std::vector<double>& r, std::vecto
         for (int j = 0; j < L.ny; ++j)
             for (int i = 0; i < L.nx; ++i) {
                 const size_t p = L.at(i, j, k);
-                rs[p] = L.active[p] ? r[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)] : 0.0;
+                rs[p] = L.active[p] ? r[L.cellIndex(i, j, k)] : 0.0;
             }
     m.vcycle(0, rs, zs, m.qs.data());
     z.assign(L.cells(), 0.0);
@@ -193,7 +191,7 @@ void PoissonSolver::applyPreconditioner(const std::vector<double>& r, std::vecto
         for (int j = 0; j < L.ny; ++j)
             for (int i = 0; i < L.nx; ++i) {
                 const size_t p = L.at(i, j, k);
-                z[size_t(i) + size_t(L.nx) * (j + size_t(L.ny) * k)] = L.active[p] ? zs[p] : 0.0;
+                z[L.cellIndex(i, j, k)] = L.active[p] ? zs[p] : 0.0;
             }
 }
 
@@ -228,7 +226,7 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
     const bool warm = !solution.empty();
     // Load b (into r) and the warm start (into x), padded; inactive cells stay 0.
     multigrid::forRows(L, [&](int j, int k) {
-        const size_t p0 = L.at(0, j, k), c0 = size_t(L.nx) * (j + size_t(L.ny) * k);
+        const size_t p0 = L.at(0, j, k), c0 = L.cellIndex(0, j, k);
         for (int i = 0; i < L.nx; ++i) {
             const bool active = L.diag(p0 + i) > 0.0;
             r[p0 + i] = active ? rhs[c0 + i] : 0.0;
@@ -251,7 +249,7 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
     auto finish = [&](const char* why) {
         solution.assign(n, 0.0);
         multigrid::forRows(L, [&](int j, int k) {
-            const size_t p0 = L.at(0, j, k), c0 = size_t(L.nx) * (j + size_t(L.ny) * k);
+            const size_t p0 = L.at(0, j, k), c0 = L.cellIndex(0, j, k);
             for (int i = 0; i < L.nx; ++i) solution[c0 + i] = L.active[p0 + i] ? x[p0 + i] : 0.0;
         });
         rep.message = why;
@@ -356,7 +354,7 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
     // Report the true residual, not the recurrence's: b - A x, recomputed once.
     {
         multigrid::forRows(L, [&](int j, int k) {
-            const size_t p0 = L.at(0, j, k), c0 = size_t(L.nx) * (j + size_t(L.ny) * k);
+            const size_t p0 = L.at(0, j, k), c0 = L.cellIndex(0, j, k);
             for (int i = 0; i < L.nx; ++i) z[p0 + i] = L.diag(p0 + i) > 0.0 ? rhs[c0 + i] : 0.0;
         });
         multigrid::residual(L, x, z, r);

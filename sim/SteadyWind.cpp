@@ -64,7 +64,6 @@ PoissonSystem SteadyWindSolver::makeSystem(const AirDomain& d, double r) {
         // with d_k the distance between the centres it separates (the top face: dz of the last
         // layer, the solver doubles boundary weights for the half distance).
         const double h = g.voxelSize_m;
-        const size_t plane = size_t(g.nx) * g.ny;
         for (int k = 0; k < g.nz; ++k) {
             const float side = float(g.dz_m(k) / h);
             for (size_t f = g.faceXIndex(0, 0, k); f < g.faceXIndex(0, 0, k + 1); ++f)
@@ -74,8 +73,8 @@ PoissonSystem SteadyWindSolver::makeSystem(const AirDomain& d, double r) {
         }
         for (int k = 0; k <= g.nz; ++k) {
             const float up = float(h / centreGap_m(g, k));
-            const size_t f0 = g.faceZIndex(0, 0, k);
-            for (size_t f = f0; f < f0 + plane; ++f) s.weightZ[f] *= up;
+            for (size_t f = g.faceZIndex(0, 0, k); f < g.faceZIndex(0, 0, k + 1); ++f)
+                s.weightZ[f] *= up;
         }
     }
     if (r != 1.0)
@@ -223,9 +222,9 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
                 }
             }
     });
-    detail::extrapolateFaces(U, okX, nx + 1, ny, nz, EXTRAPOLATION_LAYERS);
-    detail::extrapolateFaces(V, okY, nx, ny + 1, nz, EXTRAPOLATION_LAYERS);
-    detail::extrapolateFaces(W, okZ, nx, ny, nz + 1, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(U, okX, G, Placement::FaceX, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(V, okY, G, Placement::FaceY, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(W, okZ, G, Placement::FaceZ, EXTRAPOLATION_LAYERS);
 
     // --- divergence of the open fluxes, per air cell, scaled by h / U ----------------------
     const double Uref = ambient.speed_mps > 0.0 ? ambient.speed_mps : 1.0;
@@ -293,21 +292,23 @@ SteadyModelResult solveSteadyModel(const AirDomain& domain, const AmbientWind& a
 
 namespace detail {
 
-void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid0, int n0, int n1,
-                      int n2, int layers) {
+void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid0,
+                      const GridIndex& g, Placement pl, int layers) {
+    const auto n = g.dims(pl);
+    const int n0 = n[0], n1 = n[1], n2 = n[2];
     std::vector<uint8_t> valid = valid0, next;
     for (int layer = 0; layer < layers; ++layer) {
         next = valid;
         tbb::parallel_for(0, n2, [&](int k) {
             for (int j = 0; j < n1; ++j)
                 for (int i = 0; i < n0; ++i) {
-                    const size_t p = size_t(i) + size_t(n0) * (j + size_t(n1) * k);
+                    const size_t p = g.index(pl, i, j, k);
                     if (valid[p]) continue;
                     double s = 0.0;
                     int c = 0;
                     auto take = [&](int ii, int jj, int kk) {
                         if (ii < 0 || jj < 0 || kk < 0 || ii >= n0 || jj >= n1 || kk >= n2) return;
-                        const size_t q = size_t(ii) + size_t(n0) * (jj + size_t(n1) * kk);
+                        const size_t q = g.index(pl, ii, jj, kk);
                         if (valid[q]) s += a[q], ++c;
                     };
                     take(i - 1, j, k), take(i + 1, j, k), take(i, j - 1, k);

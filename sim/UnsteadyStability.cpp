@@ -322,7 +322,7 @@ StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore) {
                     const double v = c == 0   ? -0.5 * a * (ws[0] - half)
                                      : c == 1 ? -0.5 * a * (ws[1] - half)
                                               : a * ws[2];
-                    (*arrays[c])[size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k)] = v;
+                    (*arrays[c])[g.index(Placement(c), i, j, k)] = v;
                 }
     }
     UnsteadySettings s;

@@ -194,12 +194,9 @@ double UnsteadyWindSolver::maxDivergenceScaled() const {
 }
 
 void UnsteadyWindSolver::extrapolateClosedFaces() {
-    detail::extrapolateFaces(mField.u_mps(), mOkX, mGrid.nx + 1, mGrid.ny, mGrid.nz,
-                             EXTRAPOLATION_LAYERS);
-    detail::extrapolateFaces(mField.v_mps(), mOkY, mGrid.nx, mGrid.ny + 1, mGrid.nz,
-                             EXTRAPOLATION_LAYERS);
-    detail::extrapolateFaces(mField.w_mps(), mOkZ, mGrid.nx, mGrid.ny, mGrid.nz + 1,
-                             EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(mField.u_mps(), mOkX, mGrid, Placement::FaceX, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(mField.v_mps(), mOkY, mGrid, Placement::FaceY, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(mField.w_mps(), mOkZ, mGrid, Placement::FaceZ, EXTRAPOLATION_LAYERS);
 }
 
 void UnsteadyWindSolver::resetState(const WindField& state) {
@@ -301,7 +298,7 @@ void UnsteadyWindSolver::applyRegionGusts(double t, double dt) {
             tbb::parallel_for(0, n[2], [&](int k) {
                 for (int j = 0; j < n[1]; ++j)
                     for (int i = 0; i < n[0]; ++i) {
-                        const size_t idx = size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k);
+                        const size_t idx = mGrid.index(p, i, j, k);
                         if (!(*masks[comp])[idx]) continue;
                         const Vec3d ws = mGrid.wsPosition(p, i, j, k);
                         const double r = std::hypot(ws[0] - c[0], ws[1] - c[1]);

@@ -24,12 +24,12 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 struct Operator {
-    std::array<int, 3> n;
+    GridIndex grid;
+    Placement p;
+    std::array<int, 3> n;  // grid.dims(p)
     const std::vector<uint8_t>* mask;
     double a;  // nu dt / h^2
-    size_t idx(int i, int j, int k) const {
-        return size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k);
-    }
+    size_t idx(int i, int j, int k) const { return grid.index(p, i, j, k); }
     // out = (I + a K) x on masked samples (0 elsewhere); diag receives 1 + a * neighbours.
     void apply(const std::vector<double>& x, std::vector<double>& out,
                std::vector<double>* diag) const {
@@ -77,7 +77,7 @@ ViscosityReport diffuseImplicit(const MacGrid& g, double nu, double dt,
         std::vector<double>& x = *comps[c];
         if (!masks[c] || masks[c]->size() != x.size())
             throw std::invalid_argument("diffuseImplicit: bad mask");
-        const Operator op{g.dims(p), masks[c], a};
+        const Operator op{g, p, g.dims(p), masks[c], a};
         std::vector<double> b(x.size()), r(x.size()), z(x.size()), q(x.size()), Ap(x.size()),
             diag(x.size());
         for (size_t i = 0; i < x.size(); ++i) b[i] = (*masks[c])[i] ? x[i] : 0.0;

@@ -139,7 +139,7 @@ void addWhirlwind(const MacGrid& g, const Whirlwind& given, std::array<double, 2
         tbb::parallel_for(0, n[2], [&](int k) {
             for (int j = jLo; j <= std::min(jHi, n[1] - 1); ++j)
                 for (int i = iLo; i <= std::min(iHi, n[0] - 1); ++i) {
-                    const size_t idx = size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k);
+                    const size_t idx = g.index(p, i, j, k);
                     if (mask && !(*mask)[idx]) continue;
                     const Vec3d ws = g.wsPosition(p, i, j, k);
                     const double dx = ws[0] - c[0], dy = ws[1] - c[1],
@@ -177,13 +177,13 @@ double verticalVorticity(const MacGrid& g, const MacVelocity& vel, int i, int j,
     // Cell-centred v and u of the neighbours, central differences (one-sided at the box sides).
     auto uc = [&](int ii, int jj) {
         ii = std::clamp(ii, 0, g.nx - 1), jj = std::clamp(jj, 0, g.ny - 1);
-        const size_t a = size_t(ii) + size_t(g.nx + 1) * (jj + size_t(g.ny) * k);
-        return 0.5 * ((*vel.u)[a] + (*vel.u)[a + 1]);
+        const size_t a = g.faceXIndex(ii, jj, k);
+        return 0.5 * ((*vel.u)[a] + (*vel.u)[g.faceXIndex(ii + 1, jj, k)]);
     };
     auto vc = [&](int ii, int jj) {
         ii = std::clamp(ii, 0, g.nx - 1), jj = std::clamp(jj, 0, g.ny - 1);
-        const size_t a = size_t(ii) + size_t(g.nx) * (jj + size_t(g.ny + 1) * k);
-        return 0.5 * ((*vel.v)[a] + (*vel.v)[a + g.nx]);
+        const size_t a = g.faceYIndex(ii, jj, k);
+        return 0.5 * ((*vel.v)[a] + (*vel.v)[g.faceYIndex(ii, jj + 1, k)]);
     };
     const int ip = std::min(i + 1, g.nx - 1), im = std::max(i - 1, 0),
               jp = std::min(j + 1, g.ny - 1), jm = std::max(j - 1, 0);
@@ -199,7 +199,7 @@ void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, 
     if (!(eps > 0.0)) return;
     const int nx = g.nx, ny = g.ny, nz = g.nz;
     const double h = g.voxelSize_m;
-    const size_t N = size_t(nx) * ny * nz;
+    const size_t N = g.cellCount();
     auto cell = [&](int i, int j, int k) { return g.cellIndex(i, j, k); };
     // Cell-centred velocity, then vorticity by central differences over air neighbours.
     std::vector<Vec3d> uc(N);
@@ -264,12 +264,12 @@ void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, 
             for (int i = 0; i < nx; ++i) {
                 const size_t c = cell(i, j, k);
                 if (!air[c]) continue;
-                if (i > 0 && air[c - 1])
-                    u[g.faceXIndex(i, j, k)] += dt * 0.5 * (f[c][0] + f[c - 1][0]);
-                if (j > 0 && air[c - nx])
-                    v[g.faceYIndex(i, j, k)] += dt * 0.5 * (f[c][1] + f[c - nx][1]);
-                if (k > 0 && air[c - size_t(nx) * ny])
-                    w[c] += dt * 0.5 * (f[c][2] + f[c - size_t(nx) * ny][2]);
+                if (i > 0 && air[cell(i - 1, j, k)])
+                    u[g.faceXIndex(i, j, k)] += dt * 0.5 * (f[c][0] + f[cell(i - 1, j, k)][0]);
+                if (j > 0 && air[cell(i, j - 1, k)])
+                    v[g.faceYIndex(i, j, k)] += dt * 0.5 * (f[c][1] + f[cell(i, j - 1, k)][1]);
+                if (k > 0 && air[cell(i, j, k - 1)])
+                    w[g.faceZIndex(i, j, k)] += dt * 0.5 * (f[c][2] + f[cell(i, j, k - 1)][2]);
             }
     });
 }

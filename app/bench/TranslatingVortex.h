@@ -50,7 +50,7 @@ inline double translatingVortexError(const sim::StabilityRun& run) {
                     const double v =
                         r > 0 ? lambOseenSpeed_mps(gamma, S::CORE_M * S::CORE_M, r) / r : 0.0;
                     const double exact = c == 0 ? S::WIND_MPS - v * dy : v * dx;
-                    const double d = a[size_t(i) + size_t(n[0]) * (j + size_t(n[1]) * k)] - exact;
+                    const double d = a[g.index(sim::Placement(c), i, j, k)] - exact;
                     sum += d * d, ++count;
                 }
     }
