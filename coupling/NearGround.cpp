@@ -3,6 +3,8 @@
 
 #include "coupling/NearGround.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -83,27 +85,34 @@ NearGroundRead asItIs(const glm::dvec3& p) {
     return {glm::vec3(p), glm::vec3(p), pack(glm::dmat3(1.0))};
 }
 
-bool solvedAt(const sim::WindField& field, const glm::dvec3& q, unsigned components) {
-    return !field.belowTerrain(q.x, q.y, q.z) &&
-           field.readsOnlySolvedFaces(q.x, q.y, q.z, components);
+// The solved-face test from the kept flags when there are some, else from the field.
+bool readsOnlySolved(const sim::WindField& field, const SolvedFaces* faces, const glm::dvec3& q,
+                     unsigned components) {
+    return faces ? faces->readsOnlySolvedFaces(q.x, q.y, q.z, components)
+                 : field.readsOnlySolvedFaces(q.x, q.y, q.z, components);
+}
+
+bool solvedAt(const sim::WindField& field, const SolvedFaces* faces, const glm::dvec3& q,
+              unsigned components) {
+    return !field.belowTerrain(q.x, q.y, q.z) && readsOnlySolved(field, faces, q, components);
 }
 
 // The lowest s in [0, NEAR_GROUND_SEARCH_CELLS cells], to an eighth of a cell, at which p + s dir
 // reads only solved faces for `components`; negative when there is none. Coarse steps of half a
 // cell, then two halvings back down (the stencils only gain solved faces as they rise, within a
 // cell).
-double lowestSolved(const sim::WindField& field, const glm::dvec3& p, const glm::dvec3& dir,
-                    unsigned components) {
+double lowestSolved(const sim::WindField& field, const SolvedFaces* faces, const glm::dvec3& p,
+                    const glm::dvec3& dir, unsigned components) {
     // The cell here: the voxel size, or on stretched layers the (thinner) layer at p.
     const sim::GridLayout& g = field.layout();
     const int layer = int(std::clamp(std::floor(g.isZFromWs(p.z)), 0.0, double(g.nz - 1)));
     const double h = std::min(field.voxelSize_m(), g.dz_m(layer));
-    if (solvedAt(field, p, components)) return 0.0;
+    if (solvedAt(field, faces, p, components)) return 0.0;
     for (int step = 1; step <= 2 * NEAR_GROUND_SEARCH_CELLS; ++step) {
         double s = 0.5 * step * h;
-        if (!solvedAt(field, p + s * dir, components)) continue;
+        if (!solvedAt(field, faces, p + s * dir, components)) continue;
         for (double back : {0.25 * h, 0.125 * h})
-            if (solvedAt(field, p + (s - back) * dir, components)) s -= back;
+            if (solvedAt(field, faces, p + (s - back) * dir, components)) s -= back;
         return s;
     }
     return -1.0;
@@ -137,8 +146,8 @@ bool readingMap(const glm::dvec3& n, const glm::dmat3& G, const glm::dmat3& C, d
 }
 
 // Mass-consistent: Q and Q' on the normal; T carried by T(n) = (I - (n - n_Q) S) T(n_Q).
-NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfield& t,
-                              const glm::dvec3& p) {
+NearGroundRead tangentialRead(const sim::WindField& field, const SolvedFaces* faces,
+                              const sim::Heightfield& t, const glm::dvec3& p) {
     const double delta = FRAME_DIFFERENCE_CELLS * field.voxelSize_m();
     // The foot F of the normal through P (not the ground straight below P: on a slope that point's
     // normal misses P, and the wall condition would be applied along a tilted line). Found by
@@ -152,7 +161,8 @@ NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfiel
         n = normalAt(t, foot.x, foot.y, delta);
     }
     const double nP = std::max(0.0, glm::dot(p - foot, n));
-    const double sUV = lowestSolved(field, p, n, UV), sW = lowestSolved(field, p, n, W);
+    const double sUV = lowestSolved(field, faces, p, n, UV),
+                 sW = lowestSolved(field, faces, p, n, W);
     if (sUV < 0.0 || sW < 0.0) return asItIs(p);
     glm::dmat3 shape = shapeOperator(t, foot.x, foot.y, delta, n);
     const double reach = std::max(nP + sUV, nP + sW) * frobenius(shape);
@@ -172,20 +182,22 @@ NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfiel
     // the ground, (s_W - s_UV) tan(slope), is left out of the model (on the hemisphere's cap it
     // changed the error by less than 0.01 %).
     const glm::dvec3 q = p + sUV * n, above = q + glm::dvec3(0.0, 0.0, (sW - sUV) / n.z);
-    if (sW >= sUV && solvedAt(field, above, W)) return {glm::vec3(q), glm::vec3(above), pack(a)};
+    if (sW >= sUV && solvedAt(field, faces, above, W))
+        return {glm::vec3(q), glm::vec3(above), pack(a)};
     return {glm::vec3(q), glm::vec3(p + sW * n), pack(a)};
 }
 
 // Momentum with wall stress: Q at the lowest solved cell centre straight above P at least
 // MIN_LOG_CENTRE_CELLS above the ground, Q' straight above P; T carried by the log law.
-NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t,
-                          const glm::dvec3& p, const NearGround& nearGround) {
+NearGroundRead logLawRead(const sim::WindField& field, const SolvedFaces* faces,
+                          const sim::Heightfield& t, const glm::dvec3& p,
+                          const NearGround& nearGround) {
     const double h = field.voxelSize_m();
     const sim::GridLayout& g = field.layout();
     const double ground = t.sample(p.x, p.y), zP = std::max(0.0, p.z - ground);
     const glm::dvec3 n = normalAt(t, p.x, p.y, FRAME_DIFFERENCE_CELLS * h), up(0.0, 0.0, 1.0);
     const double z0 = nearGround.roughness_m, d = nearGround.displacement_m;
-    const double sW = lowestSolved(field, p, up, W);
+    const double sW = lowestSolved(field, faces, p, up, W);
     if (sW < 0.0) return asItIs(p);
     const double lowest =
         std::max(MIN_LOG_CENTRE_CELLS * h, sim::surface::lowestLogHeight_m(z0, d));
@@ -193,7 +205,7 @@ NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t
     for (int k = first; k <= first + NEAR_GROUND_SEARCH_CELLS && k < field.nz(); ++k) {
         const glm::dvec3 q(p.x, p.y, g.zCentre_m(k));
         const double zQ = q.z - ground;
-        if (zQ < lowest || !solvedAt(field, q, UV)) continue;
+        if (zQ < lowest || !solvedAt(field, faces, q, UV)) continue;
         auto carry = [&](double z) { return sim::surface::logLawRescale_mps(1.0, z, zQ, z0, d); };
         glm::dmat3 a;
         if (!readingMap(n, carry(zP + sW) * glm::dmat3(1.0), carry(zP) * glm::dmat3(1.0), zQ,
@@ -202,6 +214,24 @@ NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t
         return {glm::vec3(q), glm::vec3(p + sW * up), pack(a)};
     }
     return asItIs(p);
+}
+
+// planNearGroundRead, with the solved-face test from `faces` when not null.
+NearGroundRead planRead(const sim::WindField& field, const SolvedFaces* faces, const glm::dvec3& p,
+                        const NearGround& nearGround) {
+    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
+        return asItIs(p);  // reads zero
+    if (field.belowTerrain(p.x, p.y, p.z)) return {glm::vec3(p), glm::vec3(p), {}};
+    const sim::Heightfield* terrain = field.terrain();
+    if (nearGround.model == NearGroundModel::Interpolated || !terrain) return asItIs(p);
+    // Inside the roughness layer the log law's wind is zero, whatever the field holds.
+    if (nearGround.model == NearGroundModel::LogLaw &&
+        p.z - terrain->sample(p.x, p.y) <= nearGround.displacement_m + nearGround.roughness_m)
+        return {glm::vec3(p), glm::vec3(p), {}};
+    if (readsOnlySolved(field, faces, p, sim::WindField::ALL_COMPONENTS)) return asItIs(p);
+    if (nearGround.model == NearGroundModel::LogLaw)
+        return logLawRead(field, faces, *terrain, p, nearGround);
+    return tangentialRead(field, faces, *terrain, p);
 }
 
 }  // namespace
@@ -215,21 +245,61 @@ void validate(const NearGround& g) {
                                     std::to_string(g.displacement_m));
 }
 
+SolvedFaces::SolvedFaces(const sim::WindField& field) : mField(field) {
+    const sim::GridLayout& g = field.layout();
+    const sim::Heightfield* t = field.terrain();
+    if (g.nx == 0 || !t || t->height_m.empty()) return;  // no terrain: ask the field (cheap)
+    // Faces more than two layers above the terrain's highest sample are never cut by it.
+    const double top_m = *std::max_element(t->height_m.begin(), t->height_m.end());
+    const double layer = std::clamp(std::floor(g.isZFromWs(top_m)), 0.0, double(g.nz));
+    for (int axis = 0; axis < 3; ++axis) {
+        const auto d = g.dims(sim::Placement(axis));
+        mLayers[axis] = std::min(d[2], int(layer) + 3);
+        mSolved[axis].resize(size_t(d[0]) * size_t(d[1]) * size_t(mLayers[axis]));
+        uint8_t* out = mSolved[axis].data();
+        tbb::parallel_for(0, mLayers[axis], [&, axis, out](int k) {
+            for (int j = 0; j < d[1]; ++j)
+                for (int i = 0; i < d[0]; ++i)
+                    out[size_t(i) + size_t(d[0]) * (size_t(j) + size_t(d[1]) * size_t(k))] =
+                        field.isSolvedFace(axis, i, j, k) ? 1 : 0;
+        });
+    }
+}
+
+bool SolvedFaces::solved(int axis, int i, int j, int k) const {
+    if (k >= mLayers[axis]) return mField.isSolvedFace(axis, i, j, k);
+    const auto d = mField.layout().dims(sim::Placement(axis));
+    return mSolved[axis][size_t(i) + size_t(d[0]) * (size_t(j) + size_t(d[1]) * size_t(k))] != 0;
+}
+
+bool SolvedFaces::readsOnlySolvedFaces(double x, double y, double z, unsigned components) const {
+    // WindField::readsOnlySolvedFaces, step for step, with isSolvedFace from the kept flags.
+    const sim::GridLayout& g = mField.layout();
+    if (g.nx == 0) return false;
+    const sim::Vec3d is = g.isFromWs({x, y, z});
+    if (!g.containsIs(is)) return false;
+    if ((components & UV) && !(is[2] >= 0.5 && is[2] <= g.nz - 0.5)) return false;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!(components & (1u << axis))) continue;
+        const sim::AxisStencil a = g.stencil(0, axis == 0, is[0]);
+        const sim::AxisStencil b = g.stencil(1, axis == 1, is[1]);
+        const sim::AxisStencil c = g.stencil(2, axis == 2, is[2]);
+        for (int k : {c.i0, c.i1})
+            for (int j : {b.i0, b.i1})
+                for (int i : {a.i0, a.i1})
+                    if (!solved(axis, i, j, k)) return false;
+    }
+    return true;
+}
+
 NearGroundRead planNearGroundRead(const sim::WindField& field, const glm::dvec3& p,
                                   const NearGround& nearGround) {
-    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
-        return asItIs(p);  // reads zero
-    if (field.belowTerrain(p.x, p.y, p.z)) return {glm::vec3(p), glm::vec3(p), {}};
-    const sim::Heightfield* terrain = field.terrain();
-    if (nearGround.model == NearGroundModel::Interpolated || !terrain) return asItIs(p);
-    // Inside the roughness layer the log law's wind is zero, whatever the field holds.
-    if (nearGround.model == NearGroundModel::LogLaw &&
-        p.z - terrain->sample(p.x, p.y) <= nearGround.displacement_m + nearGround.roughness_m)
-        return {glm::vec3(p), glm::vec3(p), {}};
-    if (field.readsOnlySolvedFaces(p.x, p.y, p.z)) return asItIs(p);
-    if (nearGround.model == NearGroundModel::LogLaw)
-        return logLawRead(field, *terrain, p, nearGround);
-    return tangentialRead(field, *terrain, p);
+    return planRead(field, nullptr, p, nearGround);
+}
+
+NearGroundRead planNearGroundRead(const SolvedFaces& solved, const glm::dvec3& p,
+                                  const NearGround& nearGround) {
+    return planRead(solved.field(), &solved, p, nearGround);
 }
 
 }  // namespace gale::coupling
