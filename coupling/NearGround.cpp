@@ -40,22 +40,38 @@ constexpr double MAX_MAP_ENTRY = 4.0;
 constexpr unsigned UV = sim::WindField::COMPONENT_U | sim::WindField::COMPONENT_V;
 constexpr unsigned W = sim::WindField::COMPONENT_W;
 
-glm::dvec3 normalAt(const sim::Heightfield& t, double x, double y, double delta_m) {
-    const double hx = (t.sample(x + delta_m, y) - t.sample(x - delta_m, y)) / (2.0 * delta_m);
-    const double hy = (t.sample(x, y + delta_m) - t.sample(x, y - delta_m)) / (2.0 * delta_m);
+// The unit normal from the four heights h(x +- delta, y) and h(x, y +- delta).
+glm::dvec3 normalFrom(double hE, double hW, double hN, double hS, double delta_m) {
+    const double hx = (hE - hW) / (2.0 * delta_m);
+    const double hy = (hN - hS) / (2.0 * delta_m);
     return glm::normalize(glm::dvec3(-hx, -hy, 1.0));
+}
+
+glm::dvec3 normalAt(const sim::Heightfield& t, double x, double y, double delta_m) {
+    return normalFrom(t.sample(x + delta_m, y), t.sample(x - delta_m, y), t.sample(x, y + delta_m),
+                      t.sample(x, y - delta_m), delta_m);
 }
 
 // The shape operator S of the ground at (x, y): dN along the surface, as a symmetric 3 x 3 acting
 // on tangent vectors and taking N to 0, by central differences `delta_m` apart.
 glm::dmat3 shapeOperator(const sim::Heightfield& t, double x, double y, double delta_m,
                          const glm::dvec3& n) {
-    const glm::dvec3 dNdx =
-        (normalAt(t, x + delta_m, y, delta_m) - normalAt(t, x - delta_m, y, delta_m)) /
-        (2.0 * delta_m);
-    const glm::dvec3 dNdy =
-        (normalAt(t, x, y + delta_m, delta_m) - normalAt(t, x, y - delta_m, delta_m)) /
-        (2.0 * delta_m);
+    // The normals at (x +- delta, y) and (x, y +- delta), each from its four neighbours; the
+    // four diagonal heights are shared by two normals each (the same arguments, so the same
+    // values as four separate normalAt calls).
+    const double xE = x + delta_m, xW = x - delta_m, yN = y + delta_m, yS = y - delta_m;
+    const double hNE = t.sample(xE, yN), hSE = t.sample(xE, yS);
+    const double hNW = t.sample(xW, yN), hSW = t.sample(xW, yS);
+    const glm::dvec3 nE =
+        normalFrom(t.sample(xE + delta_m, y), t.sample(xE - delta_m, y), hNE, hSE, delta_m);
+    const glm::dvec3 nW =
+        normalFrom(t.sample(xW + delta_m, y), t.sample(xW - delta_m, y), hNW, hSW, delta_m);
+    const glm::dvec3 nN =
+        normalFrom(hNE, hNW, t.sample(x, yN + delta_m), t.sample(x, yN - delta_m), delta_m);
+    const glm::dvec3 nS =
+        normalFrom(hSE, hSW, t.sample(x, yS + delta_m), t.sample(x, yS - delta_m), delta_m);
+    const glm::dvec3 dNdx = (nE - nW) / (2.0 * delta_m);
+    const glm::dvec3 dNdy = (nN - nS) / (2.0 * delta_m);
     // A tangent vector w = a (1, 0, h_x) + b (0, 1, h_y) has a = w.x, b = w.y and S w = a dN/dx +
     // b dN/dy; for any w, S w = S (w - (w.N) N). So S = [dN/dx dN/dy] [e_x e_y]^T (I - N N^T).
     const glm::dmat3 tangent = glm::dmat3(1.0) - glm::outerProduct(n, n);
@@ -94,7 +110,13 @@ bool readsOnlySolved(const sim::WindField& field, const SolvedFaces* faces, cons
 
 bool solvedAt(const sim::WindField& field, const SolvedFaces* faces, const glm::dvec3& q,
               unsigned components) {
-    return !field.belowTerrain(q.x, q.y, q.z) && readsOnlySolved(field, faces, q, components);
+    // The cheaper test first: with kept flags the faces (a few byte reads), else the ground (one
+    // terrain sample against one per face).
+    if (faces)
+        return faces->readsOnlySolvedFaces(q.x, q.y, q.z, components) &&
+               !field.belowTerrain(q.x, q.y, q.z);
+    return !field.belowTerrain(q.x, q.y, q.z) &&
+           field.readsOnlySolvedFaces(q.x, q.y, q.z, components);
 }
 
 // The lowest s in [0, NEAR_GROUND_SEARCH_CELLS cells], to an eighth of a cell, at which p + s dir
