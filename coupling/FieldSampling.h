@@ -23,7 +23,7 @@ namespace gale::coupling {
 /// Made for a run that samples one field geometry step after step: how a point is read depends
 /// only on the geometry (cells, air, terrain), so that plan is made once per geometry and kept:
 /// per vertex and component the first face the trilinear stencil reads, its steps to the other
-/// seven and the three weights, and the near-ground 3 x 3 map (132 bytes per vertex). A field
+/// seven and the three weights, and the near-ground 3 x 3 map (136 bytes per vertex). A field
 /// step is then 24 face reads, the blends and one 3 x 3 product per vertex, with no coordinate
 /// conversion; it gives bit for bit what WindField::velocityComponentsAt_mps gives at the
 /// plan's points. Multithreaded; O(vertices). One sampler serves one caller at a time.

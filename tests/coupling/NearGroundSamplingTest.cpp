@@ -276,6 +276,8 @@ TEST(NearGroundSampling, PlannedSamplerEqualsTheDirectReadOnCutGround) {
     const double side = 2 * s.geometry.c();
     for (double x : {-1.0, 0.5 * side, side + 1.0})  // outside the box, and on its side
         mesh.wsPosition_m.push_back(glm::vec3(x, side + 0.5, 0.0f));
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    mesh.wsPosition_m.push_back(glm::vec3(nan, 0.5 * side, 0.0f));  // reads zero, never NaN
     mesh.wsNormal.resize(mesh.wsPosition_m.size(), glm::vec3(0, 0, 1));
     mesh.nx = int(mesh.wsPosition_m.size());
     sim::WindField second = s.solved.field;  // same geometry, other velocities
@@ -287,6 +289,7 @@ TEST(NearGroundSampling, PlannedSamplerEqualsTheDirectReadOnCutGround) {
             coupling::NearGround ng;
             ng.model = model;
             coupling::GrassSampler sampler(mesh, height, ng);
+            int nearGroundReads = 0;  // points read off their own stencils, for the coverage
             for (const sim::WindField* field :
                  std::vector<const sim::WindField*>{&s.solved.field, &second}) {
                 const std::vector<glm::vec3> got = sampler.sample(*field);
@@ -299,6 +302,8 @@ TEST(NearGroundSampling, PlannedSamplerEqualsTheDirectReadOnCutGround) {
                         {r.wsUV_m.x, r.wsUV_m.y, r.wsUV_m.z}, {r.wsW_m.x, r.wsW_m.y, r.wsW_m.z});
                     const glm::vec3 want =
                         coupling::applyNearGroundMap(r.map, glm::vec3(u[0], u[1], u[2]));
+                    if (r.wsUV_m != glm::vec3(glm::dvec3(p.x, p.y, double(p.z) + height)))
+                        ++nearGroundReads;
                     for (int c = 0; c < 3; ++c) {
                         ASSERT_TRUE(std::isfinite(got[v][c]));
                         EXPECT_LE(std::abs(double(got[v][c]) - double(want[c])),
@@ -307,6 +312,9 @@ TEST(NearGroundSampling, PlannedSamplerEqualsTheDirectReadOnCutGround) {
                             << " component " << c;
                     }
                 }
+            }
+            if (model != coupling::NearGroundModel::Interpolated) {
+                EXPECT_GT(nearGroundReads, 0) << "height " << height;
             }
         }
 }
