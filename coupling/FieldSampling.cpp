@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +16,9 @@ namespace {
 
 // Points per TBB task: enough to hide the scheduling, few enough to balance two cores.
 constexpr size_t GRAIN = 4096;
+// Roughly how many faces a vertex's near-ground plan tests (two searches of up to ten candidate
+// points, 8-24 faces each): the plan keeps every solved-face flag when that is fewer faces.
+constexpr size_t FACE_TESTS_PER_PLANNED_VERTEX = 100;
 
 template <class F>
 void forEachPoint(size_t count, F&& f) {
@@ -65,12 +69,18 @@ void GrassSampler::plan(const sim::WindField& field) {
         if (g.count(sim::Placement(c)) > size_t(UINT32_MAX))
             throw std::length_error("GrassSampler: face array too large for a read plan");
     mRead.resize(mVertex.size());
-    // The solved faces once for every vertex's search (the plan's main cost otherwise).
-    const SolvedFaces solved(field);
+    // The solved faces tested once for every vertex's search (the plan's main cost otherwise),
+    // unless testing them all costs more than the vertices' own tests would; the reads are the
+    // same either way.
+    std::optional<SolvedFaces> solved;
+    if (mNearGround.model != NearGroundModel::Interpolated &&
+        SolvedFaces::keptFaceCount(field) < mVertex.size() * FACE_TESTS_PER_PLANNED_VERTEX)
+        solved.emplace(field);
     forEachPoint(mVertex.size(), [&](size_t v) {
         const glm::vec3& p = mVertex[v];
-        const NearGroundRead r =
-            planNearGroundRead(solved, glm::dvec3(p.x, p.y, double(p.z) + mHeight_m), mNearGround);
+        const glm::dvec3 grass(p.x, p.y, double(p.z) + mHeight_m);
+        const NearGroundRead r = solved ? planNearGroundRead(*solved, grass, mNearGround)
+                                        : planNearGroundRead(field, grass, mNearGround);
         VertexRead& out = mRead[v];
         out.map = r.map;
         for (int c = 0; c < 3; ++c) {

@@ -267,16 +267,35 @@ void validate(const NearGround& g) {
                                     std::to_string(g.displacement_m));
 }
 
-SolvedFaces::SolvedFaces(const sim::WindField& field) : mField(field) {
+namespace {
+
+// The face layers SolvedFaces keeps for `axis`: up to two above the terrain's highest sample
+// (higher faces are never cut by it); none without terrain (the field's own test is cheap there).
+int keptLayers(const sim::WindField& field, int axis) {
     const sim::GridLayout& g = field.layout();
     const sim::Heightfield* t = field.terrain();
-    if (g.nx == 0 || !t || t->height_m.empty()) return;  // no terrain: ask the field (cheap)
-    // Faces more than two layers above the terrain's highest sample are never cut by it.
+    if (g.nx == 0 || !t || t->height_m.empty()) return 0;
     const double top_m = *std::max_element(t->height_m.begin(), t->height_m.end());
     const double layer = std::clamp(std::floor(g.isZFromWs(top_m)), 0.0, double(g.nz));
+    return std::min(g.dims(sim::Placement(axis))[2], int(layer) + 3);
+}
+
+}  // namespace
+
+size_t SolvedFaces::keptFaceCount(const sim::WindField& field) {
+    size_t count = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const auto d = field.layout().dims(sim::Placement(axis));
+        count += size_t(d[0]) * size_t(d[1]) * size_t(keptLayers(field, axis));
+    }
+    return count;
+}
+
+SolvedFaces::SolvedFaces(const sim::WindField& field) : mField(field) {
+    const sim::GridLayout& g = field.layout();
     for (int axis = 0; axis < 3; ++axis) {
         const auto d = g.dims(sim::Placement(axis));
-        mLayers[axis] = std::min(d[2], int(layer) + 3);
+        mLayers[axis] = keptLayers(field, axis);
         mSolved[axis].resize(size_t(d[0]) * size_t(d[1]) * size_t(mLayers[axis]));
         uint8_t* out = mSolved[axis].data();
         tbb::parallel_for(0, mLayers[axis], [&, axis, out](int k) {

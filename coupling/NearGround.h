@@ -85,6 +85,8 @@ struct NearGroundRead {
 class SolvedFaces {
   public:
     explicit SolvedFaces(const sim::WindField& field);
+    /// How many faces SolvedFaces(field) would test and keep (its cost), without making them.
+    static size_t keptFaceCount(const sim::WindField& field);
     /// As field.readsOnlySolvedFaces(wsX_m, wsY_m, wsZ_m, components) (world metres), from the
     /// kept flags.
     bool readsOnlySolvedFaces(double wsX_m, double wsY_m, double wsZ_m,

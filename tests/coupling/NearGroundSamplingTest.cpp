@@ -263,11 +263,22 @@ TEST(NearGroundSampling, ExtremeRoughnessGivesFiniteWindAndBadValuesAreRefused) 
 
 // --- the read plan ------------------------------------------------------------------------------
 
+namespace {
+
+// Equal, or both NaN in the same components (a non-finite point's read keeps its NaN position).
+bool sameBits(const glm::vec3& a, const glm::vec3& b) {
+    for (int c = 0; c < 3; ++c)
+        if (!(a[c] == b[c] || (std::isnan(a[c]) && std::isnan(b[c])))) return false;
+    return true;
+}
+
+}  // namespace
+
 // The sampler's per-step path (stencils and weights planned once per geometry, then 24 face
 // reads) against the direct path (planNearGroundRead, WindField::velocityComponentsAt_mps at its
 // points, the map) for every model, over the cut-ground hemisphere, at grass heights and at
 // points outside the box; then again for a second field of the same geometry, read through the
-// same (kept) plan.
+// same (kept) plan. The reads planned from kept solved-face flags equal the field's own.
 TEST(NearGroundSampling, PlannedSamplerEqualsTheDirectReadOnCutGround) {
     // The planned path repeats the direct path's arithmetic in the same order: the bound.
     constexpr double REL_TOL = 1e-12;
@@ -292,12 +303,19 @@ TEST(NearGroundSampling, PlannedSamplerEqualsTheDirectReadOnCutGround) {
             int nearGroundReads = 0;  // points read off their own stencils, for the coverage
             for (const sim::WindField* field :
                  std::vector<const sim::WindField*>{&s.solved.field, &second}) {
+                // The plan from kept solved-face flags (the sampler uses them on large meshes).
+                const coupling::SolvedFaces faces(*field);
                 const std::vector<glm::vec3> got = sampler.sample(*field);
                 ASSERT_EQ(got.size(), mesh.wsPosition_m.size());
                 for (size_t v = 0; v < got.size(); ++v) {
                     const glm::vec3& p = mesh.wsPosition_m[v];
                     const coupling::NearGroundRead r = coupling::planNearGroundRead(
                         *field, glm::dvec3(p.x, p.y, double(p.z) + height), ng);
+                    const coupling::NearGroundRead kept = coupling::planNearGroundRead(
+                        faces, glm::dvec3(p.x, p.y, double(p.z) + height), ng);
+                    EXPECT_TRUE(sameBits(kept.wsUV_m, r.wsUV_m) && sameBits(kept.wsW_m, r.wsW_m) &&
+                                kept.map == r.map)
+                        << "model " << int(model) << " height " << height << " vertex " << v;
                     const auto u = field->velocityComponentsAt_mps(
                         {r.wsUV_m.x, r.wsUV_m.y, r.wsUV_m.z}, {r.wsW_m.x, r.wsW_m.y, r.wsW_m.z});
                     const glm::vec3 want =
