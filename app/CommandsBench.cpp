@@ -120,7 +120,8 @@ void addCoupling(CLI::App& bench, VerbTable& verbs) {
     auto [verb, o] = addBench<BenchCouplingOptions>(
         bench, verbs, "coupling",
         "Grouped against exact bends as the group count grows, and the coupling's cost per "
-        "field step and per frame at 100k and 1M vertices",
+        "field step and per frame at 100k and 1M vertices, and the near-ground read's step and "
+        "plan against plain trilinear sampling",
         "10k and 100k vertices (a CI smoke run)",
         [](BenchCouplingOptions& options) { return runBenchCoupling(options); });
     verb->add_option("--out", o->outputFolder, "Folder for coupling.csv and coupling.svg")

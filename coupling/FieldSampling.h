@@ -2,6 +2,7 @@
 /// \file FieldSampling.h
 /// Reads a solved sim::WindField where the grass lives (docs/design.md 5, step 1).
 
+#include <array>
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <vector>
@@ -20,19 +21,24 @@ namespace gale::coupling {
 /// grass there stands still rather than reading garbage.
 ///
 /// Made for a run that samples one field geometry step after step: how a point is read depends
-/// only on the geometry (cells, air, terrain), so that plan is made once per geometry and kept
-/// (60 bytes per vertex); a field step is then one interpolation and one 3 x 3 product per vertex.
-/// Multithreaded; O(vertices). One sampler serves one caller at a time.
+/// only on the geometry (cells, air, terrain), so that plan is made once per geometry and kept:
+/// per vertex and component the first face the trilinear stencil reads, its steps to the other
+/// seven and the three weights, and the near-ground 3 x 3 map (136 bytes per vertex). A field
+/// step is then 24 face reads, the blends and one 3 x 3 product per vertex, with no coordinate
+/// conversion; it gives bit for bit what WindField::velocityComponentsAt_mps gives at the
+/// plan's points. Multithreaded; O(vertices). One sampler serves one caller at a time.
 class GrassSampler {
   public:
     /// Copies the vertex positions. Throws std::invalid_argument unless sampleHeight_m is finite
-    /// and
-    /// >= 0 (wind.sample_height_m), or when nearGround's parameters are out of range (validate).
+    /// and >= 0 (wind.sample_height_m), or when nearGround's parameters are out of range
+    /// (validate).
     GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_m,
                  const NearGround& nearGround = {});
 
     /// World velocity, m/s, at every sample point into `out` (resized to the vertex count; its
-    /// storage is reused).
+    /// storage is reused). The first call for a field geometry makes the read plan (the cost of
+    /// planNearGroundRead per vertex). Throws std::length_error for a field whose face arrays
+    /// exceed 2^32 values (far beyond any memory limit).
     void sample(const sim::WindField& field, std::vector<glm::vec3>& out);
     std::vector<glm::vec3> sample(const sim::WindField& field) {
         std::vector<glm::vec3> out;
@@ -43,12 +49,29 @@ class GrassSampler {
     size_t vertexCount() const { return mVertex.size(); }
     const NearGround& nearGround() const { return mNearGround; }
 
+    /// One component's trilinear read: the face array index of its stencil's first face (lowest
+    /// x, y, z), whether the stencil steps to a second face along x, y, z (bits 0-2; not at a
+    /// clamped lattice of one sample) or lies outside the box (bit 3: reads zero), and the
+    /// weights of the upper faces along x, y, z (as GridLayout's AxisStencil::t).
+    struct ComponentRead {
+        double t[3];
+        uint32_t base;
+        uint32_t flags;
+    };
+    /// A vertex's read: u, v, w, then u(P) = map (u, v, w) (NearGroundRead's map).
+    struct VertexRead {
+        ComponentRead component[3];
+        std::array<float, 9> map;
+    };
+
   private:
     std::vector<glm::vec3> mVertex;  // world metres
     double mHeight_m;
     NearGround mNearGround;
+    void plan(const sim::WindField& field);  // fills mRead for field's geometry
+
     sim::WindField::Geometry mPlanGeometry;
-    std::vector<NearGroundRead> mRead;  // per vertex, for mPlanGeometry; empty: not made yet
+    std::vector<VertexRead> mRead;  // per vertex, for mPlanGeometry; empty: not made yet
 };
 
 /// One-off sampling: GrassSampler(mesh, sampleHeight_m, nearGround).sample(field).

@@ -3,6 +3,8 @@
 
 #include "coupling/NearGround.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -38,22 +40,38 @@ constexpr double MAX_MAP_ENTRY = 4.0;
 constexpr unsigned UV = sim::WindField::COMPONENT_U | sim::WindField::COMPONENT_V;
 constexpr unsigned W = sim::WindField::COMPONENT_W;
 
-glm::dvec3 normalAt(const sim::Heightfield& t, double x, double y, double delta_m) {
-    const double hx = (t.sample(x + delta_m, y) - t.sample(x - delta_m, y)) / (2.0 * delta_m);
-    const double hy = (t.sample(x, y + delta_m) - t.sample(x, y - delta_m)) / (2.0 * delta_m);
+// The unit normal from the four heights h(x +- delta, y) and h(x, y +- delta).
+glm::dvec3 normalFrom(double hE, double hW, double hN, double hS, double delta_m) {
+    const double hx = (hE - hW) / (2.0 * delta_m);
+    const double hy = (hN - hS) / (2.0 * delta_m);
     return glm::normalize(glm::dvec3(-hx, -hy, 1.0));
+}
+
+glm::dvec3 normalAt(const sim::Heightfield& t, double x, double y, double delta_m) {
+    return normalFrom(t.sample(x + delta_m, y), t.sample(x - delta_m, y), t.sample(x, y + delta_m),
+                      t.sample(x, y - delta_m), delta_m);
 }
 
 // The shape operator S of the ground at (x, y): dN along the surface, as a symmetric 3 x 3 acting
 // on tangent vectors and taking N to 0, by central differences `delta_m` apart.
 glm::dmat3 shapeOperator(const sim::Heightfield& t, double x, double y, double delta_m,
                          const glm::dvec3& n) {
-    const glm::dvec3 dNdx =
-        (normalAt(t, x + delta_m, y, delta_m) - normalAt(t, x - delta_m, y, delta_m)) /
-        (2.0 * delta_m);
-    const glm::dvec3 dNdy =
-        (normalAt(t, x, y + delta_m, delta_m) - normalAt(t, x, y - delta_m, delta_m)) /
-        (2.0 * delta_m);
+    // The normals at (x +- delta, y) and (x, y +- delta), each from its four neighbours; the
+    // four diagonal heights are shared by two normals each (the same arguments, so the same
+    // values as four separate normalAt calls).
+    const double xE = x + delta_m, xW = x - delta_m, yN = y + delta_m, yS = y - delta_m;
+    const double hNE = t.sample(xE, yN), hSE = t.sample(xE, yS);
+    const double hNW = t.sample(xW, yN), hSW = t.sample(xW, yS);
+    const glm::dvec3 nE =
+        normalFrom(t.sample(xE + delta_m, y), t.sample(xE - delta_m, y), hNE, hSE, delta_m);
+    const glm::dvec3 nW =
+        normalFrom(t.sample(xW + delta_m, y), t.sample(xW - delta_m, y), hNW, hSW, delta_m);
+    const glm::dvec3 nN =
+        normalFrom(hNE, hNW, t.sample(x, yN + delta_m), t.sample(x, yN - delta_m), delta_m);
+    const glm::dvec3 nS =
+        normalFrom(hSE, hSW, t.sample(x, yS + delta_m), t.sample(x, yS - delta_m), delta_m);
+    const glm::dvec3 dNdx = (nE - nW) / (2.0 * delta_m);
+    const glm::dvec3 dNdy = (nN - nS) / (2.0 * delta_m);
     // A tangent vector w = a (1, 0, h_x) + b (0, 1, h_y) has a = w.x, b = w.y and S w = a dN/dx +
     // b dN/dy; for any w, S w = S (w - (w.N) N). So S = [dN/dx dN/dy] [e_x e_y]^T (I - N N^T).
     const glm::dmat3 tangent = glm::dmat3(1.0) - glm::outerProduct(n, n);
@@ -83,7 +101,20 @@ NearGroundRead asItIs(const glm::dvec3& p) {
     return {glm::vec3(p), glm::vec3(p), pack(glm::dmat3(1.0))};
 }
 
-bool solvedAt(const sim::WindField& field, const glm::dvec3& q, unsigned components) {
+// The solved-face test from the kept flags when there are some, else from the field.
+bool readsOnlySolved(const sim::WindField& field, const SolvedFaces* faces, const glm::dvec3& q,
+                     unsigned components) {
+    return faces ? faces->readsOnlySolvedFaces(q.x, q.y, q.z, components)
+                 : field.readsOnlySolvedFaces(q.x, q.y, q.z, components);
+}
+
+bool solvedAt(const sim::WindField& field, const SolvedFaces* faces, const glm::dvec3& q,
+              unsigned components) {
+    // The cheaper test first: with kept flags the faces (a few byte reads), else the ground (one
+    // terrain sample against one per face).
+    if (faces)
+        return faces->readsOnlySolvedFaces(q.x, q.y, q.z, components) &&
+               !field.belowTerrain(q.x, q.y, q.z);
     return !field.belowTerrain(q.x, q.y, q.z) &&
            field.readsOnlySolvedFaces(q.x, q.y, q.z, components);
 }
@@ -92,18 +123,18 @@ bool solvedAt(const sim::WindField& field, const glm::dvec3& q, unsigned compone
 // reads only solved faces for `components`; negative when there is none. Coarse steps of half a
 // cell, then two halvings back down (the stencils only gain solved faces as they rise, within a
 // cell).
-double lowestSolved(const sim::WindField& field, const glm::dvec3& p, const glm::dvec3& dir,
-                    unsigned components) {
+double lowestSolved(const sim::WindField& field, const SolvedFaces* faces, const glm::dvec3& p,
+                    const glm::dvec3& dir, unsigned components) {
     // The cell here: the voxel size, or on stretched layers the (thinner) layer at p.
     const sim::GridLayout& g = field.layout();
     const int layer = int(std::clamp(std::floor(g.isZFromWs(p.z)), 0.0, double(g.nz - 1)));
     const double h = std::min(field.voxelSize_m(), g.dz_m(layer));
-    if (solvedAt(field, p, components)) return 0.0;
+    if (solvedAt(field, faces, p, components)) return 0.0;
     for (int step = 1; step <= 2 * NEAR_GROUND_SEARCH_CELLS; ++step) {
         double s = 0.5 * step * h;
-        if (!solvedAt(field, p + s * dir, components)) continue;
+        if (!solvedAt(field, faces, p + s * dir, components)) continue;
         for (double back : {0.25 * h, 0.125 * h})
-            if (solvedAt(field, p + (s - back) * dir, components)) s -= back;
+            if (solvedAt(field, faces, p + (s - back) * dir, components)) s -= back;
         return s;
     }
     return -1.0;
@@ -137,8 +168,8 @@ bool readingMap(const glm::dvec3& n, const glm::dmat3& G, const glm::dmat3& C, d
 }
 
 // Mass-consistent: Q and Q' on the normal; T carried by T(n) = (I - (n - n_Q) S) T(n_Q).
-NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfield& t,
-                              const glm::dvec3& p) {
+NearGroundRead tangentialRead(const sim::WindField& field, const SolvedFaces* faces,
+                              const sim::Heightfield& t, const glm::dvec3& p) {
     const double delta = FRAME_DIFFERENCE_CELLS * field.voxelSize_m();
     // The foot F of the normal through P (not the ground straight below P: on a slope that point's
     // normal misses P, and the wall condition would be applied along a tilted line). Found by
@@ -152,7 +183,8 @@ NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfiel
         n = normalAt(t, foot.x, foot.y, delta);
     }
     const double nP = std::max(0.0, glm::dot(p - foot, n));
-    const double sUV = lowestSolved(field, p, n, UV), sW = lowestSolved(field, p, n, W);
+    const double sUV = lowestSolved(field, faces, p, n, UV),
+                 sW = lowestSolved(field, faces, p, n, W);
     if (sUV < 0.0 || sW < 0.0) return asItIs(p);
     glm::dmat3 shape = shapeOperator(t, foot.x, foot.y, delta, n);
     const double reach = std::max(nP + sUV, nP + sW) * frobenius(shape);
@@ -172,20 +204,22 @@ NearGroundRead tangentialRead(const sim::WindField& field, const sim::Heightfiel
     // the ground, (s_W - s_UV) tan(slope), is left out of the model (on the hemisphere's cap it
     // changed the error by less than 0.01 %).
     const glm::dvec3 q = p + sUV * n, above = q + glm::dvec3(0.0, 0.0, (sW - sUV) / n.z);
-    if (sW >= sUV && solvedAt(field, above, W)) return {glm::vec3(q), glm::vec3(above), pack(a)};
+    if (sW >= sUV && solvedAt(field, faces, above, W))
+        return {glm::vec3(q), glm::vec3(above), pack(a)};
     return {glm::vec3(q), glm::vec3(p + sW * n), pack(a)};
 }
 
 // Momentum with wall stress: Q at the lowest solved cell centre straight above P at least
 // MIN_LOG_CENTRE_CELLS above the ground, Q' straight above P; T carried by the log law.
-NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t,
-                          const glm::dvec3& p, const NearGround& nearGround) {
+NearGroundRead logLawRead(const sim::WindField& field, const SolvedFaces* faces,
+                          const sim::Heightfield& t, const glm::dvec3& p,
+                          const NearGround& nearGround) {
     const double h = field.voxelSize_m();
     const sim::GridLayout& g = field.layout();
     const double ground = t.sample(p.x, p.y), zP = std::max(0.0, p.z - ground);
     const glm::dvec3 n = normalAt(t, p.x, p.y, FRAME_DIFFERENCE_CELLS * h), up(0.0, 0.0, 1.0);
     const double z0 = nearGround.roughness_m, d = nearGround.displacement_m;
-    const double sW = lowestSolved(field, p, up, W);
+    const double sW = lowestSolved(field, faces, p, up, W);
     if (sW < 0.0) return asItIs(p);
     const double lowest =
         std::max(MIN_LOG_CENTRE_CELLS * h, sim::surface::lowestLogHeight_m(z0, d));
@@ -193,7 +227,7 @@ NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t
     for (int k = first; k <= first + NEAR_GROUND_SEARCH_CELLS && k < field.nz(); ++k) {
         const glm::dvec3 q(p.x, p.y, g.zCentre_m(k));
         const double zQ = q.z - ground;
-        if (zQ < lowest || !solvedAt(field, q, UV)) continue;
+        if (zQ < lowest || !solvedAt(field, faces, q, UV)) continue;
         auto carry = [&](double z) { return sim::surface::logLawRescale_mps(1.0, z, zQ, z0, d); };
         glm::dmat3 a;
         if (!readingMap(n, carry(zP + sW) * glm::dmat3(1.0), carry(zP) * glm::dmat3(1.0), zQ,
@@ -202,6 +236,24 @@ NearGroundRead logLawRead(const sim::WindField& field, const sim::Heightfield& t
         return {glm::vec3(q), glm::vec3(p + sW * up), pack(a)};
     }
     return asItIs(p);
+}
+
+// planNearGroundRead, with the solved-face test from `faces` when not null.
+NearGroundRead planRead(const sim::WindField& field, const SolvedFaces* faces, const glm::dvec3& p,
+                        const NearGround& nearGround) {
+    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
+        return asItIs(p);  // reads zero
+    if (field.belowTerrain(p.x, p.y, p.z)) return {glm::vec3(p), glm::vec3(p), {}};
+    const sim::Heightfield* terrain = field.terrain();
+    if (nearGround.model == NearGroundModel::Interpolated || !terrain) return asItIs(p);
+    // Inside the roughness layer the log law's wind is zero, whatever the field holds.
+    if (nearGround.model == NearGroundModel::LogLaw &&
+        p.z - terrain->sample(p.x, p.y) <= nearGround.displacement_m + nearGround.roughness_m)
+        return {glm::vec3(p), glm::vec3(p), {}};
+    if (readsOnlySolved(field, faces, p, sim::WindField::ALL_COMPONENTS)) return asItIs(p);
+    if (nearGround.model == NearGroundModel::LogLaw)
+        return logLawRead(field, faces, *terrain, p, nearGround);
+    return tangentialRead(field, faces, *terrain, p);
 }
 
 }  // namespace
@@ -215,21 +267,80 @@ void validate(const NearGround& g) {
                                     std::to_string(g.displacement_m));
 }
 
+namespace {
+
+// The face layers SolvedFaces keeps for `axis`: up to two above the terrain's highest sample
+// (higher faces are never cut by it); none without terrain (the field's own test is cheap there).
+int keptLayers(const sim::WindField& field, int axis) {
+    const sim::GridLayout& g = field.layout();
+    const sim::Heightfield* t = field.terrain();
+    if (g.nx == 0 || !t || t->height_m.empty()) return 0;
+    const double top_m = *std::max_element(t->height_m.begin(), t->height_m.end());
+    const double layer = std::clamp(std::floor(g.isZFromWs(top_m)), 0.0, double(g.nz));
+    return std::min(g.dims(sim::Placement(axis))[2], int(layer) + 3);
+}
+
+}  // namespace
+
+size_t SolvedFaces::keptFaceCount(const sim::WindField& field) {
+    size_t count = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const auto d = field.layout().dims(sim::Placement(axis));
+        count += size_t(d[0]) * size_t(d[1]) * size_t(keptLayers(field, axis));
+    }
+    return count;
+}
+
+SolvedFaces::SolvedFaces(const sim::WindField& field) : mField(field) {
+    const sim::GridLayout& g = field.layout();
+    for (int axis = 0; axis < 3; ++axis) {
+        const auto d = g.dims(sim::Placement(axis));
+        mLayers[axis] = keptLayers(field, axis);
+        mSolved[axis].resize(size_t(d[0]) * size_t(d[1]) * size_t(mLayers[axis]));
+        uint8_t* out = mSolved[axis].data();
+        tbb::parallel_for(0, mLayers[axis], [&, axis, out](int k) {
+            for (int j = 0; j < d[1]; ++j)
+                for (int i = 0; i < d[0]; ++i)
+                    out[size_t(i) + size_t(d[0]) * (size_t(j) + size_t(d[1]) * size_t(k))] =
+                        field.isSolvedFace(axis, i, j, k) ? 1 : 0;
+        });
+    }
+}
+
+bool SolvedFaces::solved(int axis, int i, int j, int k) const {
+    if (k >= mLayers[axis]) return mField.isSolvedFace(axis, i, j, k);
+    const auto d = mField.layout().dims(sim::Placement(axis));
+    return mSolved[axis][size_t(i) + size_t(d[0]) * (size_t(j) + size_t(d[1]) * size_t(k))] != 0;
+}
+
+bool SolvedFaces::readsOnlySolvedFaces(double x, double y, double z, unsigned components) const {
+    // WindField::readsOnlySolvedFaces, step for step, with isSolvedFace from the kept flags.
+    const sim::GridLayout& g = mField.layout();
+    if (g.nx == 0) return false;
+    const sim::Vec3d is = g.isFromWs({x, y, z});
+    if (!g.containsIs(is)) return false;
+    if ((components & UV) && !(is[2] >= 0.5 && is[2] <= g.nz - 0.5)) return false;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!(components & (1u << axis))) continue;
+        const sim::AxisStencil a = g.stencil(0, axis == 0, is[0]);
+        const sim::AxisStencil b = g.stencil(1, axis == 1, is[1]);
+        const sim::AxisStencil c = g.stencil(2, axis == 2, is[2]);
+        for (int k : {c.i0, c.i1})
+            for (int j : {b.i0, b.i1})
+                for (int i : {a.i0, a.i1})
+                    if (!solved(axis, i, j, k)) return false;
+    }
+    return true;
+}
+
 NearGroundRead planNearGroundRead(const sim::WindField& field, const glm::dvec3& p,
                                   const NearGround& nearGround) {
-    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
-        return asItIs(p);  // reads zero
-    if (field.belowTerrain(p.x, p.y, p.z)) return {glm::vec3(p), glm::vec3(p), {}};
-    const sim::Heightfield* terrain = field.terrain();
-    if (nearGround.model == NearGroundModel::Interpolated || !terrain) return asItIs(p);
-    // Inside the roughness layer the log law's wind is zero, whatever the field holds.
-    if (nearGround.model == NearGroundModel::LogLaw &&
-        p.z - terrain->sample(p.x, p.y) <= nearGround.displacement_m + nearGround.roughness_m)
-        return {glm::vec3(p), glm::vec3(p), {}};
-    if (field.readsOnlySolvedFaces(p.x, p.y, p.z)) return asItIs(p);
-    if (nearGround.model == NearGroundModel::LogLaw)
-        return logLawRead(field, *terrain, p, nearGround);
-    return tangentialRead(field, *terrain, p);
+    return planRead(field, nullptr, p, nearGround);
+}
+
+NearGroundRead planNearGroundRead(const SolvedFaces& solved, const glm::dvec3& p,
+                                  const NearGround& nearGround) {
+    return planRead(solved.field(), &solved, p, nearGround);
 }
 
 }  // namespace gale::coupling

@@ -43,7 +43,9 @@
 /// central differences half a cell apart.
 
 #include <array>
+#include <cstdint>
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "sim/WindField.h"
 
@@ -75,12 +77,39 @@ struct NearGroundRead {
     std::array<float, 9> map{};
 };
 
+/// Which faces of a field geometry are solved (WindField::isSolvedFace), one byte per face in the
+/// layers the terrain reaches into (up to two layers above its highest point; faces higher up are
+/// asked of the field). Made once per geometry so that planning many points does not test the air
+/// flags and the ground again for each of the 24 faces of every candidate point. Multithreaded;
+/// O(faces in those layers). Keeps a reference to `field`, which must outlive it.
+class SolvedFaces {
+  public:
+    explicit SolvedFaces(const sim::WindField& field);
+    /// How many faces SolvedFaces(field) would test and keep (its cost), without making them.
+    static size_t keptFaceCount(const sim::WindField& field);
+    /// As field.readsOnlySolvedFaces(wsX_m, wsY_m, wsZ_m, components) (world metres), from the
+    /// kept flags.
+    bool readsOnlySolvedFaces(double wsX_m, double wsY_m, double wsZ_m,
+                              unsigned components = sim::WindField::ALL_COMPONENTS) const;
+    const sim::WindField& field() const { return mField; }
+
+  private:
+    bool solved(int axis, int i, int j, int k) const;
+    const sim::WindField& mField;
+    int mLayers[3] = {0, 0, 0};       // face layers k < mLayers[axis] are kept
+    std::vector<uint8_t> mSolved[3];  // per axis, the face grid's index order
+};
+
 /// The read for world point wsPoint_m (metres) in `field`'s geometry; depends on the field's
 /// cells, air flags and terrain only, not on its velocities. Read as it is (A = I) in the
 /// Interpolated model, in a field without terrain, where the point's own stencils are solved, or
 /// where no solved point lies within NEAR_GROUND_SEARCH_CELLS cells of it. Never NaN for finite
 /// input. Requires a validated `nearGround`.
 NearGroundRead planNearGroundRead(const sim::WindField& field, const glm::dvec3& wsPoint_m,
+                                  const NearGround& nearGround);
+/// The same read from the solved faces' kept flags (for many points of one geometry): the same
+/// result as planNearGroundRead(solved.field(), wsPoint_m, nearGround), faster.
+NearGroundRead planNearGroundRead(const SolvedFaces& solved, const glm::dvec3& wsPoint_m,
                                   const NearGround& nearGround);
 
 /// How far (cells) the read points may lie from P before the sampler gives up and reads P.

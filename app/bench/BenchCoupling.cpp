@@ -38,6 +38,9 @@ constexpr double TARGET_STEP_MS_AT_1M = 50.0;
 constexpr double TARGET_FRAME_COST_GROWTH = 3.0;
 constexpr int SHELLS = 16;      // tip error is measured on a 16-shell blade of unit height
 constexpr int SPEED_STEPS = 8;  // field steps timed per mesh (the best is reported)
+// Repetitions of the near-ground cost table's three reads, interleaved (the best of each is
+// reported): more than SPEED_STEPS, since its verdict is a ratio of two fast steps.
+constexpr int NEAR_GROUND_STEPS = 16;
 
 // The terrain and its solved wind the benchmark couples: a 200 m meadow with a 20 m hill, 6 m/s
 // log-law wind, solved once on 2 m cells.
@@ -91,6 +94,12 @@ struct SpeedRow {
     size_t vertices;
     double setup_ms, first_ms, sample_ms, groups_ms, step_ms, frame_us;
     double vdbGrid_ms = 0.0, vdbSample_ms = 0.0, vdbMaxDiff_mps = 0.0;  // the OpenVDB baseline
+    // The near-ground read's cost (nearGroundCost): a fresh sampler's first step (plan + step),
+    // then the best step of plain trilinear sampling, of the per-step reads through
+    // planNearGroundRead's points (the sampler before its stencils were planned) and of the
+    // sampler's planned reads.
+    double planFirst_ms = 0.0, planDirect_ms = 0.0, plain_ms = 0.0, direct_ms = 0.0,
+           planned_ms = 0.0;
 };
 
 // The baseline for our sampler: the same field as an OpenVDB staggered grid (built per field step
@@ -139,6 +148,57 @@ void openVdbBaseline(const sim::WindField& field, const render::TerrainMesh& mes
             maxDiff = std::max(maxDiff, std::fabs(double(vdb[v][c]) - reference[v][c]));
     }
     row.vdbGrid_ms = bestGrid, row.vdbSample_ms = bestSample, row.vdbMaxDiff_mps = maxDiff;
+}
+
+// Runs f(v) for every vertex v on TBB tasks of 4096 vertices (as the sampler does).
+template <class F>
+void forEachVertex(size_t count, F&& f) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t v = r.begin(); v != r.end(); ++v) f(v);
+                      });
+}
+
+// What the near-ground law costs per field step against plain trilinear sampling at the grass
+// points (WindField::velocityAboveTerrainAt_mps, the terrain test made once), and what the read
+// plan costs once per geometry, all in the same run (coupling/FieldSampling.h).
+void nearGroundCost(const sim::WindField& field, const render::TerrainMesh& mesh, double height_m,
+                    SpeedRow& row) {
+    const size_t n = mesh.wsPosition_m.size();
+    std::vector<glm::vec3> out(n);
+    auto start = Clock::now();
+    coupling::GrassSampler sampler(mesh, height_m);
+    sampler.sample(field, out);
+    row.planFirst_ms = msSince(start);
+    std::vector<coupling::NearGroundRead> reads(n);
+    start = Clock::now();
+    forEachVertex(n, [&](size_t v) {
+        const glm::vec3& p = mesh.wsPosition_m[v];
+        reads[v] = coupling::planNearGroundRead(field, glm::dvec3(p.x, p.y, p.z + height_m),
+                                                sampler.nearGround());
+    });
+    row.planDirect_ms = msSince(start);
+    row.plain_ms = row.direct_ms = row.planned_ms = 1e300;
+    for (int step = 0; step < NEAR_GROUND_STEPS; ++step) {
+        start = Clock::now();
+        forEachVertex(n, [&](size_t v) {
+            const glm::vec3& p = mesh.wsPosition_m[v];
+            const auto u = field.velocityAboveTerrainAt_mps(p.x, p.y, p.z + height_m);
+            out[v] = glm::vec3(u[0], u[1], u[2]);
+        });
+        row.plain_ms = std::min(row.plain_ms, msSince(start));
+        start = Clock::now();
+        forEachVertex(n, [&](size_t v) {
+            const coupling::NearGroundRead& r = reads[v];
+            const auto u = field.velocityComponentsAt_mps({r.wsUV_m.x, r.wsUV_m.y, r.wsUV_m.z},
+                                                          {r.wsW_m.x, r.wsW_m.y, r.wsW_m.z});
+            out[v] = coupling::applyNearGroundMap(r.map, glm::vec3(u[0], u[1], u[2]));
+        });
+        row.direct_ms = std::min(row.direct_ms, msSince(start));
+        start = Clock::now();
+        sampler.sample(field, out);
+        row.planned_ms = std::min(row.planned_ms, msSince(start));
+    }
 }
 
 }  // namespace
@@ -254,6 +314,7 @@ int runBenchCoupling(const BenchCouplingOptions& options) {
         coupling::GrassSampler asItStands(mesh, grassHeight_m,
                                           {coupling::NearGroundModel::Interpolated});
         openVdbBaseline(field.solved.field, mesh, grassHeight_m, asItStands, row);
+        nearGroundCost(field.solved.field, mesh, grassHeight_m, row);
         speeds.push_back(row);
         const double n = double(row.vertices);
         std::printf("%10zu %11.2f %11.2f %11.2f %11.2f %11.2f %13.1f %11.2f %13.4f\n", row.vertices,
@@ -272,6 +333,23 @@ int runBenchCoupling(const BenchCouplingOptions& options) {
                     r.vdbSample_ms, r.sample_ms,
                     (r.vdbGrid_ms + r.vdbSample_ms) / std::max(1e-9, r.sample_ms),
                     r.vdbMaxDiff_mps);
+
+    std::printf(
+        "\nThe near-ground law's cost (coupling/NearGround.h), best of %d steps: 'plain' reads\n"
+        "the field at the grass points by trilinear interpolation alone; 'direct' reads it at the\n"
+        "near-ground read points, stencils computed per step, and applies the 3 x 3 map (the\n"
+        "sampler before its stencils were planned); 'planned' is the sampler's step. 'direct "
+        "plan'\n"
+        "makes the reads point by point from the field's own solved-face test; 'first' is a new\n"
+        "sampler's first step: its plan (kept solved-face flags) and one step.\n\n",
+        NEAR_GROUND_STEPS);
+    std::printf("%10s %13s %11s %11s %11s %12s %14s %15s\n", "vertices", "direct plan ms",
+                "first ms", "plain ms", "direct ms", "planned ms", "direct/plain", "planned/plain");
+    for (const SpeedRow& r : speeds)
+        std::printf("%10zu %13.1f %11.1f %11.2f %11.2f %12.2f %14.3f %15.3f\n", r.vertices,
+                    r.planDirect_ms, r.planFirst_ms, r.plain_ms, r.direct_ms, r.planned_ms,
+                    r.direct_ms / std::max(1e-9, r.plain_ms),
+                    r.planned_ms / std::max(1e-9, r.plain_ms));
 
     // Targets.
     const SpeedRow& large = speeds.back();
@@ -324,7 +402,12 @@ int runBenchCoupling(const BenchCouplingOptions& options) {
                                   {"frame_us", r.frame_us},
                                   {"openvdb_grid_ms", r.vdbGrid_ms},
                                   {"openvdb_sample_ms", r.vdbSample_ms},
-                                  {"openvdb_max_diff_mps", r.vdbMaxDiff_mps}});
+                                  {"openvdb_max_diff_mps", r.vdbMaxDiff_mps},
+                                  {"near_ground_direct_plan_ms", r.planDirect_ms},
+                                  {"near_ground_first_step_ms", r.planFirst_ms},
+                                  {"plain_sample_ms", r.plain_ms},
+                                  {"near_ground_direct_ms", r.direct_ms},
+                                  {"near_ground_planned_ms", r.planned_ms}});
         j["targets_met"] = stepOk && flatOk;
         writeTextAtomic(options.jsonPath, j.dump(2) + "\n");
     }

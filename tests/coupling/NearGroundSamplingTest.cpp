@@ -260,3 +260,79 @@ TEST(NearGroundSampling, ExtremeRoughnessGivesFiniteWindAndBadValuesAreRefused) 
         }
     }
 }
+
+// --- the read plan ------------------------------------------------------------------------------
+
+namespace {
+
+// Equal, or both NaN in the same components (a non-finite point's read keeps its NaN position).
+bool sameBits(const glm::vec3& a, const glm::vec3& b) {
+    for (int c = 0; c < 3; ++c)
+        if (!(a[c] == b[c] || (std::isnan(a[c]) && std::isnan(b[c])))) return false;
+    return true;
+}
+
+}  // namespace
+
+// The sampler's per-step path (stencils and weights planned once per geometry, then 24 face
+// reads) against the direct path (planNearGroundRead, WindField::velocityComponentsAt_mps at its
+// points, the map) for every model, over the cut-ground hemisphere, at grass heights and at
+// points outside the box; then again for a second field of the same geometry, read through the
+// same (kept) plan. The reads planned from kept solved-face flags equal the field's own.
+TEST(NearGroundSampling, PlannedSamplerEqualsTheDirectReadOnCutGround) {
+    // The planned path repeats the direct path's arithmetic in the same order: the bound.
+    constexpr double REL_TOL = 1e-12;
+    const SolvedHemisphere s = solveHemisphere(4);
+    render::TerrainMesh mesh = grassOn(s);
+    const double side = 2 * s.geometry.c();
+    for (double x : {-1.0, 0.5 * side, side + 1.0})  // outside the box, and on its side
+        mesh.wsPosition_m.push_back(glm::vec3(x, side + 0.5, 0.0f));
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    mesh.wsPosition_m.push_back(glm::vec3(nan, 0.5 * side, 0.0f));  // reads zero, never NaN
+    mesh.wsNormal.resize(mesh.wsPosition_m.size(), glm::vec3(0, 0, 1));
+    mesh.nx = int(mesh.wsPosition_m.size());
+    sim::WindField second = s.solved.field;  // same geometry, other velocities
+    for (auto* a : {&second.u_mps(), &second.v_mps(), &second.w_mps()})
+        for (size_t n = 0; n < a->size(); ++n) (*a)[n] = -2.0 * (*a)[n] + 1e-3 * double(n % 17);
+    for (auto model : {coupling::NearGroundModel::Tangential, coupling::NearGroundModel::LogLaw,
+                       coupling::NearGroundModel::Interpolated})
+        for (double height : {0.25, 0.5, 1.0, 3.0}) {
+            coupling::NearGround ng;
+            ng.model = model;
+            coupling::GrassSampler sampler(mesh, height, ng);
+            int nearGroundReads = 0;  // points read off their own stencils, for the coverage
+            for (const sim::WindField* field :
+                 std::vector<const sim::WindField*>{&s.solved.field, &second}) {
+                // The plan from kept solved-face flags (the sampler uses them on large meshes).
+                const coupling::SolvedFaces faces(*field);
+                const std::vector<glm::vec3> got = sampler.sample(*field);
+                ASSERT_EQ(got.size(), mesh.wsPosition_m.size());
+                for (size_t v = 0; v < got.size(); ++v) {
+                    const glm::vec3& p = mesh.wsPosition_m[v];
+                    const coupling::NearGroundRead r = coupling::planNearGroundRead(
+                        *field, glm::dvec3(p.x, p.y, double(p.z) + height), ng);
+                    const coupling::NearGroundRead kept = coupling::planNearGroundRead(
+                        faces, glm::dvec3(p.x, p.y, double(p.z) + height), ng);
+                    EXPECT_TRUE(sameBits(kept.wsUV_m, r.wsUV_m) && sameBits(kept.wsW_m, r.wsW_m) &&
+                                kept.map == r.map)
+                        << "model " << int(model) << " height " << height << " vertex " << v;
+                    const auto u = field->velocityComponentsAt_mps(
+                        {r.wsUV_m.x, r.wsUV_m.y, r.wsUV_m.z}, {r.wsW_m.x, r.wsW_m.y, r.wsW_m.z});
+                    const glm::vec3 want =
+                        coupling::applyNearGroundMap(r.map, glm::vec3(u[0], u[1], u[2]));
+                    if (r.wsUV_m != glm::vec3(glm::dvec3(p.x, p.y, double(p.z) + height)))
+                        ++nearGroundReads;
+                    for (int c = 0; c < 3; ++c) {
+                        ASSERT_TRUE(std::isfinite(got[v][c]));
+                        EXPECT_LE(std::abs(double(got[v][c]) - double(want[c])),
+                                  REL_TOL * std::abs(double(want[c])))
+                            << "model " << int(model) << " height " << height << " vertex " << v
+                            << " component " << c;
+                    }
+                }
+            }
+            if (model != coupling::NearGroundModel::Interpolated) {
+                EXPECT_GT(nearGroundReads, 0) << "height " << height;
+            }
+        }
+}
