@@ -46,6 +46,18 @@ inline Heightfield centredGaussianHill(double size_m, double spacing_m, double h
     return makeTerrain(s);
 }
 
+/// The hemisphere benchmark's terrain: radius radius_m centred in a square of 2 centre_m, sampled
+/// every radius_m / 128 (fine enough that the sampled surface is not what the tests measure).
+inline Heightfield centredHemisphere(double radius_m, double centre_m) {
+    TerrainSpec s;
+    s.kind = TerrainKind::Hemisphere;
+    s.sizeX_m = s.sizeY_m = 2 * centre_m;
+    s.spacing_m = radius_m / 128;
+    s.radius_m = radius_m;
+    s.centerX_m = s.centerY_m = centre_m;
+    return makeTerrain(s);
+}
+
 /// Steady solve to 1e-9 relative residual in at most 200 iterations (the defaults are 1e-6 and
 /// 100), so the solve's own error stays well below what the tests compare.
 inline SolverSettings tight() {

@@ -165,13 +165,7 @@ struct HemisphereError {
 // a_h = a_v; the exact far field phi = U R^3 cos(theta) / (2 r^2) carried on the open faces.
 HemisphereError hemisphereError(int cellsPerRadius) {
     const double R = 1.0, c = 3.0;
-    TerrainSpec ts;
-    ts.kind = TerrainKind::Hemisphere;
-    ts.sizeX_m = ts.sizeY_m = 2 * c;
-    ts.spacing_m = R / 128;
-    ts.radius_m = R;
-    ts.centerX_m = ts.centerY_m = c;
-    AirDomain domain(makeTerrain(ts),
+    AirDomain domain(test::centredHemisphere(R, c),
                      DomainSpec{R / cellsPerRadius, /*top_m=*/3.0 * R, /*memoryLimit_bytes=*/2e9});
     const gale::exact::HemisphereFlow flow{R, /*U_mps=*/1.0, c, c};
     auto phi = [&](double x, double y, double z) { return flow.phi(x, y, z); };

@@ -73,16 +73,10 @@ struct HemisphereRun {
 HemisphereRun hemisphere(int cellsPerRadius, double firstCellFraction,
                          double maxCellFraction = 4.0) {
     const double R = 1.0, c = 3.0, h = R / cellsPerRadius;
-    TerrainSpec ts;
-    ts.kind = TerrainKind::Hemisphere;
-    ts.sizeX_m = ts.sizeY_m = 2 * c;
-    ts.spacing_m = R / 128;
-    ts.radius_m = R;
-    ts.centerX_m = ts.centerY_m = c;
     DomainSpec spec{h, /*top_m=*/3.0 * R, /*memoryLimit_bytes=*/2e9};
     if (firstCellFraction > 0.0) spec.firstCell_m = firstCellFraction * h;
     if (firstCellFraction > 0.0) spec.maxCell_m = maxCellFraction * h;
-    const AirDomain domain(makeTerrain(ts), spec);
+    const AirDomain domain(test::centredHemisphere(R, c), spec);
     const gale::exact::HemisphereFlow flow{R, /*U_mps=*/1.0, c, c};
     auto phi = [&](double x, double y, double z) { return flow.phi(x, y, z); };
     const SteadyWindResult res = solveSteadyWind(domain, uniformWind(1.0, 0.0), {}, tight(), phi);
