@@ -106,18 +106,25 @@ TEST(PoissonTerrain, CgWithTheVCycleReachesTheToleranceOnFractalTerrain) {
     for (double v : x) ASSERT_TRUE(std::isfinite(v));
 }
 
+/// The steady solve of the rough-terrain tests on `domain`: uniform wind at 30 degrees, to
+/// ROUGH_TOLERANCE in at most 200 iterations; expects convergence.
+SteadyWindResult roughSolve(const AirDomain& domain) {
+    SteadyWindSolver solver(domain);
+    SolverSettings set;
+    set.relativeTolerance = ROUGH_TOLERANCE;
+    set.maxIterations = 200;
+    SteadyWindResult res = solver.solve(test::uniformWind(10.0, 30.0), set);
+    EXPECT_TRUE(res.report.converged) << res.report.message;
+    return res;
+}
+
 /// Iterations of the steady solve (uniform wind at 30 degrees) to ROUGH_TOLERANCE on `terrain`
 /// with cells of voxel_m; also checks the result with the test's own residual.
 int roughIterations(const Heightfield& terrain, double voxel_m) {
     DomainSpec spec;
     spec.voxelSize_m = voxel_m;
     const AirDomain domain(terrain, spec);
-    SteadyWindSolver solver(domain);
-    SolverSettings set;
-    set.relativeTolerance = ROUGH_TOLERANCE;
-    set.maxIterations = 200;
-    const SteadyWindResult res = solver.solve(test::uniformWind(10.0, 30.0), set);
-    EXPECT_TRUE(res.report.converged) << res.report.message;
+    const SteadyWindResult res = roughSolve(domain);
     std::printf("  h %.2f m  %dx%dx%d  %d iterations  residual %.2e\n", voxel_m, domain.nx(),
                 domain.ny(), domain.nz(), res.report.iterations, res.report.relativeResidual);
     return res.report.iterations;
@@ -168,12 +175,7 @@ TEST(PoissonTerrain, SubCellRoughnessWithThinCellsDoesNotStallTheSolve) {
                             domain.openFractionZ(i, j, k) + domain.openFractionZ(i, j, k + 1));
     constexpr double THIN = 0.05;  // a cell with this little open area is a sliver
     ASSERT_LT(weakest, THIN) << "the terrain must produce thin cells for the test to mean anything";
-    SteadyWindSolver solver(domain);
-    SolverSettings set;
-    set.relativeTolerance = ROUGH_TOLERANCE;
-    set.maxIterations = 200;
-    const SteadyWindResult res = solver.solve(test::uniformWind(10.0, 30.0), set);
-    EXPECT_TRUE(res.report.converged) << res.report.message;
+    const SteadyWindResult res = roughSolve(domain);
     EXPECT_LE(res.report.iterations, MAX_ROUGH_ITERATIONS);
 }
 
