@@ -6,6 +6,7 @@
 /// of guessing which key a message belongs to. It is a std::invalid_argument, so code that
 /// catches those still does.
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -27,6 +28,17 @@ class ParameterError : public std::invalid_argument {
     const std::string& value() const { return mValue; }
     /// What the key must be, e.g. "must be > 0".
     const std::string& expected() const { return mExpected; }
+
+    /// The same error about element `index` of the array of tables `arrayKey`: an element's
+    /// validate() knows its key ("wind.gusts.peak_mps") but not its place, which the caller adds
+    /// ("wind.gusts[2].peak_mps"). A key outside `arrayKey` comes back unchanged.
+    ParameterError inElement(const std::string& arrayKey, size_t index) const {
+        const std::string prefix = arrayKey + ".";
+        if (mKey.compare(0, prefix.size(), prefix) != 0) return *this;
+        return ParameterError(
+            arrayKey + "[" + std::to_string(index) + "]." + mKey.substr(prefix.size()), mValue,
+            mExpected);
+    }
 
   private:
     std::string mKey, mValue, mExpected;

@@ -92,17 +92,16 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
         throw std::invalid_argument("terrain must have at least 2x2 samples, got " +
                                     std::to_string(hf.nx) + "x" + std::to_string(hf.ny));
     if (hf.height_m.size() != size_t(hf.nx) * hf.ny)
-        throw std::invalid_argument(
-            "terrain.height_m must have nx*ny = " + std::to_string(size_t(hf.nx) * hf.ny) +
-            " entries, got " + std::to_string(hf.height_m.size()));
+        throw std::logic_error("AirDomain: the heightfield must have nx*ny = " +
+                               std::to_string(size_t(hf.nx) * hf.ny) + " heights, got " +
+                               std::to_string(hf.height_m.size()));
     if (!(hf.spacing_m > 0.0) || !std::isfinite(hf.spacing_m))
-        throw std::invalid_argument("terrain.spacing_m must be > 0 and finite, got " +
-                                    num(hf.spacing_m));
+        throw ParameterError("terrain.spacing_m", num(hf.spacing_m), "must be > 0 and finite");
     if (!std::isfinite(hf.originX_m) || !std::isfinite(hf.originY_m))
         throw std::invalid_argument("terrain origin must be finite");
     for (size_t n = 0; n < hf.height_m.size(); ++n)
         if (!std::isfinite(hf.height_m[n]))
-            throw std::invalid_argument("terrain.height_m is not finite (" + num(hf.height_m[n]) +
+            throw std::invalid_argument("terrain height is not finite (" + num(hf.height_m[n]) +
                                         ") at sample (" + std::to_string(n % hf.nx) + ", " +
                                         std::to_string(n / hf.nx) + ")");
     const double h = spec.voxelSize_m;

@@ -87,13 +87,14 @@ class AirDomain {
     /// Stretched layers: the largest growth ratio from one layer to the next.
     static constexpr double MAX_STRETCH_RATIO = 1.2;
 
-    /// Builds the domain. Throws std::invalid_argument naming the parameter when the terrain has a
-    /// NaN/Inf height or a bad size/spacing, voxelSize_m is not > 0 and finite or is larger than
-    /// the terrain, top_m is not above the highest point (no air), memoryLimit_bytes is not > 0,
-    /// or the memory estimate exceeds memoryLimit_bytes (checked before allocating); throws
-    /// gale::ParameterError naming solver.first_cell_m, solver.stretch_ratio or
-    /// solver.max_cell_m when they are outside their ranges, and solver.first_cell_m when the
-    /// momentum model is asked for on stretched layers (it needs cubic cells).
+    /// Builds the domain. Throws gale::ParameterError naming the scene key: terrain.spacing_m
+    /// when not > 0 and finite; solver.voxel_size_m when not > 0 and finite or larger than the
+    /// terrain; solver.top_m when not above the highest point (no air); solver.memory_limit_mb
+    /// when not > 0 or below the memory estimate (checked before allocating);
+    /// solver.first_cell_m, solver.stretch_ratio or solver.max_cell_m outside their ranges, and
+    /// solver.first_cell_m when the momentum model is asked for on stretched layers (it needs
+    /// cubic cells). Throws std::invalid_argument (bad terrain data) for a NaN/Inf height or
+    /// origin or fewer than 2x2 samples, std::logic_error when height_m is not nx * ny long.
     AirDomain(const Heightfield& terrain, const DomainSpec& spec);
     ~AirDomain();
     AirDomain(AirDomain&&) noexcept;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "sim/Format.h"
 
 namespace gale::sim {
@@ -36,36 +37,32 @@ const char* windProfileName(WindProfile profile) {
 WindProfile windProfileFromName(const std::string& name) {
     if (name == "uniform") return WindProfile::Uniform;
     if (name == "log") return WindProfile::LogLaw;
-    throw std::invalid_argument("unknown wind profile '" + name +
-                                "' (expected one of: uniform, log)");
+    throw ParameterError("wind.profile", "\"" + name + "\"", "expected one of: uniform, log");
 }
 
 void AmbientWind::validate() const {
     if (!(speed_mps >= 0.0) || !std::isfinite(speed_mps))
-        throw std::invalid_argument("AmbientWind.speed_mps must be >= 0 and finite, got " +
-                                    num(speed_mps));
+        throw ParameterError("wind.speed_mps", num(speed_mps), "must be >= 0 and finite");
     if (!std::isfinite(direction_deg))
-        throw std::invalid_argument("AmbientWind.direction_deg must be finite, got " +
-                                    num(direction_deg));
+        throw ParameterError("wind.direction_deg", num(direction_deg), "must be finite");
     if (!(referenceHeight_m > 0.0) || !std::isfinite(referenceHeight_m))
-        throw std::invalid_argument("AmbientWind.referenceHeight_m must be > 0 and finite, got " +
-                                    num(referenceHeight_m));
+        throw ParameterError("wind.reference_height_m", num(referenceHeight_m),
+                             "must be > 0 and finite");
     if (profile == WindProfile::LogLaw) {
         // z_ref / z0 at least this: ln(3) = 1.1 keeps u(z) within a factor ln(z / z0) / 1.1.
         constexpr double MIN_REFERENCE_OVER_ROUGHNESS = 3.0;
         if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
-            throw std::invalid_argument("AmbientWind.roughness_m must be > 0 and finite, got " +
-                                        num(roughness_m));
+            throw ParameterError("wind.roughness_m", num(roughness_m), "must be > 0 and finite");
         // u(z) = U ln(z / z0) / ln(z_ref / z0): as z_ref nears z0 the denominator goes to 0 and
         // the field to infinity (z_ref = 1.0000001 z0 gave 9e9 m/s) or, rounded, to nothing. The
         // neutral log law describes the surface layer well above the roughness elements, so the
         // reference height must be at least a few z0.
         if (!(referenceHeight_m >= MIN_REFERENCE_OVER_ROUGHNESS * roughness_m))
-            throw std::invalid_argument(
-                "AmbientWind.referenceHeight_m (" + num(referenceHeight_m) +
-                " m) must be at least " + num(MIN_REFERENCE_OVER_ROUGHNESS) + " x roughness_m (" +
-                num(roughness_m) + " m), i.e. >= " +
-                num(MIN_REFERENCE_OVER_ROUGHNESS * roughness_m) + " m, for the log law to hold");
+            throw ParameterError("wind.reference_height_m", num(referenceHeight_m) + " m",
+                                 "must be at least " + num(MIN_REFERENCE_OVER_ROUGHNESS) +
+                                     " x roughness_m (" + num(roughness_m) + " m), i.e. >= " +
+                                     num(MIN_REFERENCE_OVER_ROUGHNESS * roughness_m) +
+                                     " m, for the log law to hold");
     }
 }
 

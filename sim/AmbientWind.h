@@ -15,7 +15,7 @@ enum class WindProfile {
 };
 
 /// Name as written in scene files ("uniform", "log"), and back; fromName throws
-/// std::invalid_argument listing the valid names.
+/// gale::ParameterError (wind.profile) listing the valid names.
 const char* windProfileName(WindProfile profile);
 WindProfile windProfileFromName(const std::string& name);
 
@@ -38,7 +38,9 @@ struct AmbientWind {
     /// The compass bearing it blows towards, degrees clockwise from north, [0, 360).
     double towardsBearing_deg() const;
 
-    /// Throws std::invalid_argument naming the field when a value is out of range or not finite.
+    /// Throws gale::ParameterError naming the scene key (wind.speed_mps, wind.reference_height_m,
+    /// wind.roughness_m, ...) when a value is out of range or not finite, or when the log law's
+    /// reference height is below 3 roughness lengths.
     void validate() const;
     /// Horizontal speed at a height above the local ground, m/s (0 at or below z0 for LogLaw;
     /// 0 below the ground for Uniform).

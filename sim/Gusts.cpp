@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "sim/Format.h"
 
 namespace gale::sim {
@@ -40,8 +41,8 @@ GustEnvelope gustEnvelopeFromName(const std::string& name) {
     if (name == "iec_eog") return GustEnvelope::IecEog;
     if (name == "one_minus_cosine") return GustEnvelope::OneMinusCosine;
     if (name == "step") return GustEnvelope::Step;
-    throw std::invalid_argument(
-        "envelope must be one of spline, iec_eog, one_minus_cosine, step (got \"" + name + "\")");
+    throw ParameterError("wind.gusts.envelope", "\"" + name + "\"",
+                         "expected one of: spline, iec_eog, one_minus_cosine, step");
 }
 
 const char* gustEntryName(GustEntry e) { return e == GustEntry::Region ? "region" : "inflow"; }
@@ -49,28 +50,29 @@ const char* gustEntryName(GustEntry e) { return e == GustEntry::Region ? "region
 GustEntry gustEntryFromName(const std::string& name) {
     if (name == "inflow") return GustEntry::Inflow;
     if (name == "region") return GustEntry::Region;
-    throw std::invalid_argument("entry must be one of inflow, region (got \"" + name + "\")");
+    throw ParameterError("wind.gusts.entry", "\"" + name + "\"", "expected one of: inflow, region");
 }
 
 void GustEvent::validate() const {
     if (!std::isfinite(start_s))
-        throw std::invalid_argument("gust.start_s must be finite, got " + num(start_s));
+        throw ParameterError("wind.gusts.start_s", num(start_s), "must be finite");
     if (!std::isfinite(direction_deg))
-        throw std::invalid_argument("gust.direction_deg must be finite");
+        throw ParameterError("wind.gusts.direction_deg", num(direction_deg), "must be finite");
     if (!std::isfinite(peak_mps) || std::abs(peak_mps) > 1000.0)
-        throw std::invalid_argument("gust.peak_mps must be in [-1000, 1000], got " + num(peak_mps));
+        throw ParameterError("wind.gusts.peak_mps", num(peak_mps), "must be in [-1000, 1000]");
     if (!(duration_s > 0.0) || !std::isfinite(duration_s))
-        throw std::invalid_argument("gust.duration_s must be > 0, got " + num(duration_s));
+        throw ParameterError("wind.gusts.duration_s", num(duration_s), "must be > 0 and finite");
     if (entry == GustEntry::Region && (!(regionRadius_m > 0.0) || !std::isfinite(regionRadius_m)))
-        throw std::invalid_argument("gust.region_radius_m must be > 0, got " + num(regionRadius_m));
+        throw ParameterError("wind.gusts.region_radius_m", num(regionRadius_m),
+                             "must be > 0 and finite");
     if (entry == GustEntry::Region &&
         (!(regionSpeed_mps >= 0.0) || !std::isfinite(regionSpeed_mps)))
-        throw std::invalid_argument("gust.region_speed_mps must be >= 0, got " +
-                                    num(regionSpeed_mps));
+        throw ParameterError("wind.gusts.region_speed_mps", num(regionSpeed_mps),
+                             "must be >= 0 and finite");
     if (envelope == GustEnvelope::Spline && attack_s &&
         !(*attack_s > 0.0 && *attack_s < duration_s))
-        throw std::invalid_argument("gust.attack_s must be in (0, duration_s = " + num(duration_s) +
-                                    "), got " + num(*attack_s));
+        throw ParameterError("wind.gusts.attack_s", num(*attack_s),
+                             "must be in (0, duration_s = " + num(duration_s) + ")");
 }
 
 double GustEvent::envelopeAt(double t_s) const {

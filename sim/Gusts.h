@@ -35,12 +35,12 @@ enum class GustEnvelope { Spline, IecEog, OneMinusCosine, Step };
 /// Only while the envelope runs; the energy it adds is reported as forcing.
 enum class GustEntry { Inflow, Region };
 
-/// "inflow", "region" and back; fromName throws std::invalid_argument.
+/// "inflow", "region" and back; fromName throws gale::ParameterError (wind.gusts.entry).
 const char* gustEntryName(GustEntry e);
 GustEntry gustEntryFromName(const std::string& name);
 
 /// "spline", "iec_eog", "one_minus_cosine", "step" and back; fromName throws
-/// std::invalid_argument listing the valid names.
+/// gale::ParameterError (wind.gusts.envelope) listing the valid names.
 const char* gustEnvelopeName(GustEnvelope e);
 GustEnvelope gustEnvelopeFromName(const std::string& name);
 
@@ -62,7 +62,9 @@ struct GustEvent {
     /// Relaxation time of the region forcing, seconds.
     static constexpr double REGION_RELAXATION_S = 0.5;
 
-    /// Throws std::invalid_argument naming the field when a value is out of range or not finite.
+    /// Throws gale::ParameterError naming the scene key without the gust's index
+    /// ("wind.gusts.peak_mps"; ParameterError::inElement adds it) when a value is out of range or
+    /// not finite.
     void validate() const;
     /// Envelope value e at time t_s (dimensionless; 0 outside [start_s, start_s + duration_s]).
     double envelopeAt(double t_s) const;

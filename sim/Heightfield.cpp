@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 
 namespace gale::sim {
 namespace {
@@ -28,30 +29,25 @@ constexpr KindName KIND_NAMES[] = {
     {TerrainKind::Heightmap, "heightmap"},
 };
 
-void requirePositive(double value, const char* field) {
-    if (!std::isfinite(value) || value <= 0.0) {
-        std::ostringstream msg;
-        msg << field << " must be a finite number > 0, got " << value;
-        throw std::invalid_argument(msg.str());
-    }
+/// `key`: the scene's dotted key of the value.
+void requirePositive(double value, const char* key) {
+    if (!std::isfinite(value) || value <= 0.0)
+        throw ParameterError(key, formatG(value), "must be a finite number > 0");
 }
 
-void requireFinite(double value, const char* field) {
-    if (!std::isfinite(value)) {
-        std::ostringstream msg;
-        msg << field << " must be finite, got " << value;
-        throw std::invalid_argument(msg.str());
-    }
+void requireFinite(double value, const char* key) {
+    if (!std::isfinite(value)) throw ParameterError(key, formatG(value), "must be finite");
 }
 
-int samplesAlong(double size_m, double spacing_m, const char* field) {
+/// Samples along one side of `size_m` (named `sizeName`, e.g. "size_m[0]").
+int samplesAlong(double size_m, double spacing_m, const char* sizeName) {
     const double n = std::floor(size_m / spacing_m + 0.5) + 1.0;
-    if (n > MAX_SAMPLES_PER_SIDE) {
-        std::ostringstream msg;
-        msg << field << " / spacing_m gives " << n << " samples per side; at most "
-            << MAX_SAMPLES_PER_SIDE << " are allowed (raise spacing_m)";
-        throw std::invalid_argument(msg.str());
-    }
+    if (n > MAX_SAMPLES_PER_SIDE)
+        throw ParameterError("terrain.spacing_m", formatG(spacing_m),
+                             "gives " + formatG(n, 12) + " samples along " + sizeName + " = " +
+                                 formatG(size_m) + " m; at most " +
+                                 std::to_string(MAX_SAMPLES_PER_SIDE) +
+                                 " are allowed per side (raise spacing_m)");
     return std::max(2, static_cast<int>(n));
 }
 
@@ -139,8 +135,7 @@ TerrainKind terrainKindFromName(const std::string& name) {
         if (name == k.name) return k.kind;
     std::string valid;
     for (const KindName& k : KIND_NAMES) valid += std::string(valid.empty() ? "" : ", ") + k.name;
-    throw std::invalid_argument("unknown terrain kind '" + name + "' (expected one of: " + valid +
-                                ")");
+    throw ParameterError("terrain.kind", "\"" + name + "\"", "expected one of: " + valid);
 }
 
 double Heightfield::sample(double wsX_m, double wsY_m) const {
@@ -173,7 +168,9 @@ double Heightfield::maxHeight_m() const {
 
 Heightfield makeTerrain(const TerrainSpec& spec) {
     if (spec.kind == TerrainKind::Heightmap)
-        throw std::invalid_argument("terrain.kind 'heightmap' is loaded from an image, not built");
+        throw std::logic_error(
+            "makeTerrain: terrain.kind 'heightmap' is loaded from an image, "
+            "not built");
     requirePositive(spec.sizeX_m, "terrain.size_m[0]");
     requirePositive(spec.sizeY_m, "terrain.size_m[1]");
     requirePositive(spec.spacing_m, "terrain.spacing_m");
@@ -186,15 +183,14 @@ Heightfield makeTerrain(const TerrainSpec& spec) {
     if (spec.kind == TerrainKind::Fractal) {
         requirePositive(spec.featureSize_m, "terrain.feature_size_m");
         if (spec.octaves < 1 || spec.octaves > 16)
-            throw std::invalid_argument("terrain.octaves must be in 1..16, got " +
-                                        std::to_string(spec.octaves));
+            throw ParameterError("terrain.octaves", std::to_string(spec.octaves),
+                                 "must be in 1..16");
         if (!(spec.roughness > 0.0 && spec.roughness <= 1.0))
-            throw std::invalid_argument("terrain.roughness must be in (0, 1], got " +
-                                        std::to_string(spec.roughness));
+            throw ParameterError("terrain.roughness", formatG(spec.roughness), "must be in (0, 1]");
     }
     Heightfield f;
-    f.nx = samplesAlong(spec.sizeX_m, spec.spacing_m, "terrain.size_m[0]");
-    f.ny = samplesAlong(spec.sizeY_m, spec.spacing_m, "terrain.size_m[1]");
+    f.nx = samplesAlong(spec.sizeX_m, spec.spacing_m, "size_m[0]");
+    f.ny = samplesAlong(spec.sizeY_m, spec.spacing_m, "size_m[1]");
     f.spacing_m = spec.spacing_m;
     f.height_m.resize(static_cast<size_t>(f.nx) * f.ny);
     for (int j = 0; j < f.ny; ++j)
@@ -214,9 +210,9 @@ Heightfield makeHeightfield(int nx, int ny, double spacing_m, std::vector<float>
                                     std::to_string(MAX_SAMPLES_PER_SIDE) + " per side");
     requirePositive(spacing_m, "terrain.metres_per_pixel");
     if (height_m.size() != static_cast<size_t>(nx) * ny)
-        throw std::invalid_argument("heightfield has " + std::to_string(height_m.size()) +
-                                    " heights for " + std::to_string(nx) + "x" +
-                                    std::to_string(ny) + " samples");
+        throw std::logic_error("heightfield has " + std::to_string(height_m.size()) +
+                               " heights for " + std::to_string(nx) + "x" + std::to_string(ny) +
+                               " samples");
     for (size_t k = 0; k < height_m.size(); ++k) {
         if (!std::isfinite(height_m[k])) {
             std::ostringstream msg;

@@ -44,7 +44,7 @@ enum class TerrainKind {
 };
 
 /// Name as written in scene files ("gaussian_hill"), and back; fromName throws
-/// std::invalid_argument listing the valid names.
+/// gale::ParameterError (terrain.kind) listing the valid names.
 const char* terrainKindName(TerrainKind kind);
 TerrainKind terrainKindFromName(const std::string& name);
 
@@ -65,13 +65,17 @@ struct TerrainSpec {
 };
 
 /// Builds the heightfield of a procedural kind (not Heightmap, which the scene loads from an
-/// image). Throws std::invalid_argument naming the parameter when a size or spacing is not positive
-/// and finite, or when the grid would exceed 16384 samples per side.
+/// image). Throws gale::ParameterError naming the scene key (terrain.size_m[0], terrain.spacing_m,
+/// terrain.octaves, ...) when a size or spacing is not positive and finite, a fractal setting is
+/// out of range, or the grid would exceed 16384 samples per side; std::logic_error for the
+/// Heightmap kind.
 Heightfield makeTerrain(const TerrainSpec& spec);
 
 /// Heightfield from samples already in memory (e.g. a decoded heightmap image), validated:
-/// throws std::invalid_argument if a height is NaN/Inf, the grid is smaller than 2x2, or the
-/// spacing is not positive.
+/// throws std::invalid_argument (bad input data; the caller names its file) if a height is
+/// NaN/Inf or the grid is smaller than 2x2 or larger than 16384 per side, gale::ParameterError
+/// (terrain.metres_per_pixel) if the spacing is not positive and finite, and std::logic_error if
+/// height_m does not hold nx * ny samples.
 Heightfield makeHeightfield(int nx, int ny, double spacing_m, std::vector<float> height_m);
 
 }  // namespace gale::sim

@@ -26,6 +26,8 @@
 #include <string>
 #include <vector>
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "sim/PoissonDetail.h"
 
 namespace gale::sim {
@@ -83,20 +85,19 @@ PoissonSystem PoissonSystem::uniformBox(int nx, int ny, int nz) {
 PoissonSolver::PoissonSolver(const PoissonSystem& sys) : mImpl(std::make_unique<Impl>()) {
     const auto t0 = std::chrono::steady_clock::now();
     if (sys.nx < 1 || sys.ny < 1 || sys.nz < 1)
-        throw std::invalid_argument("PoissonSystem: nx, ny, nz must be >= 1, got " +
-                                    std::to_string(sys.nx) + ", " + std::to_string(sys.ny) + ", " +
-                                    std::to_string(sys.nz));
+        throw std::logic_error("PoissonSystem: nx, ny, nz must be >= 1, got " +
+                               std::to_string(sys.nx) + ", " + std::to_string(sys.ny) + ", " +
+                               std::to_string(sys.nz));
     const size_t nxF = sys.count(Placement::FaceX), nyF = sys.count(Placement::FaceY),
                  nzF = sys.count(Placement::FaceZ);
     auto checkWeights = [](const std::vector<float>& w, size_t n, const char* name) {
         if (w.size() != n)
-            throw std::invalid_argument(std::string("PoissonSystem.") + name + " must have " +
-                                        std::to_string(n) + " entries, got " +
-                                        std::to_string(w.size()));
+            throw std::logic_error(std::string("PoissonSystem.") + name + " must have " +
+                                   std::to_string(n) + " entries, got " + std::to_string(w.size()));
         for (float v : w)
             if (!(v >= 0.f) || !std::isfinite(v))
-                throw std::invalid_argument(std::string("PoissonSystem.") + name +
-                                            " must be finite and >= 0, got " + std::to_string(v));
+                throw std::logic_error(std::string("PoissonSystem.") + name +
+                                       " must be finite and >= 0, got " + std::to_string(v));
     };
     checkWeights(sys.weightX, nxF, "weightX");
     checkWeights(sys.weightY, nyF, "weightY");
@@ -153,8 +154,8 @@ double PoissonSolver::uniformCellFraction() const {
 void PoissonSolver::applyOperator(const std::vector<double>& x, std::vector<double>& out) const {
     const Level& L = mImpl->levels[0];
     if (x.size() != L.cells())
-        throw std::invalid_argument("applyOperator: x must have " + std::to_string(L.cells()) +
-                                    " entries");
+        throw std::logic_error("applyOperator: x must have " + std::to_string(L.cells()) +
+                               " entries");
     std::vector<double> in(L.total, 0.0), res(L.total, 0.0);
     for (int k = 0; k < L.nz; ++k)
         for (int j = 0; j < L.ny; ++j)
@@ -171,11 +172,11 @@ void PoissonSolver::applyPreconditioner(const std::vector<double>& r, std::vecto
     Impl& m = *mImpl;
     const Level& L = m.levels[0];
     if (r.size() != L.cells())
-        throw std::invalid_argument("applyPreconditioner: r must have " +
-                                    std::to_string(L.cells()) + " entries");
+        throw std::logic_error("applyPreconditioner: r must have " + std::to_string(L.cells()) +
+                               " entries");
     if (smoothingSweeps < 1 || smoothingSweeps > 8)
-        throw std::invalid_argument("applyPreconditioner: smoothingSweeps must be in 1..8, got " +
-                                    std::to_string(smoothingSweeps));
+        throw std::logic_error("applyPreconditioner: smoothingSweeps must be in 1..8, got " +
+                               std::to_string(smoothingSweeps));
     m.sweeps = smoothingSweeps;
     double *rs = m.rs.data(), *zs = m.zs.data();
     std::fill(m.rs.begin(), m.rs.end(), 0.0);
@@ -202,21 +203,22 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
     Level& L = m.levels[0];
     const size_t n = L.cells();
     if (rhs.size() != n)
-        throw std::invalid_argument("PoissonSolver::solve: rhs must have " + std::to_string(n) +
-                                    " entries, got " + std::to_string(rhs.size()));
+        throw std::logic_error("PoissonSolver::solve: rhs must have " + std::to_string(n) +
+                               " entries, got " + std::to_string(rhs.size()));
     if (!solution.empty() && solution.size() != n)
-        throw std::invalid_argument(
+        throw std::logic_error(
             "PoissonSolver::solve: solution (warm start) must be empty or have " +
             std::to_string(n) + " entries, got " + std::to_string(solution.size()));
     if (!(settings.relativeTolerance > 0.0 && settings.relativeTolerance < 1.0))
-        throw std::invalid_argument("SolverSettings.relativeTolerance must be in (0, 1), got " +
-                                    std::to_string(settings.relativeTolerance));
+        throw ParameterError("solver.tolerance", formatG(settings.relativeTolerance),
+                             "must be in (0, 1)");
     if (settings.maxIterations < 1)
-        throw std::invalid_argument("SolverSettings.maxIterations must be >= 1, got " +
-                                    std::to_string(settings.maxIterations));
+        throw ParameterError("solver.max_iterations", std::to_string(settings.maxIterations),
+                             "must be >= 1");
+    // No scene key sets the sweeps: `gale solve` and the benchmarks keep the default.
     if (settings.smoothingSweeps < 1 || settings.smoothingSweeps > 8)
-        throw std::invalid_argument("SolverSettings.smoothingSweeps must be in 1..8, got " +
-                                    std::to_string(settings.smoothingSweeps));
+        throw std::logic_error("SolverSettings.smoothingSweeps must be in 1..8, got " +
+                               std::to_string(settings.smoothingSweeps));
     m.sweeps = settings.smoothingSweeps;
 
     SolveReport rep;

@@ -97,8 +97,8 @@ struct [[nodiscard]] SolveReport {
 /// re-entrant (it uses the solver's scratch vectors), but every kernel runs on TBB threads.
 class PoissonSolver {
   public:
-    /// Throws std::invalid_argument naming the field when a size is < 1, a weight vector has the
-    /// wrong length, or a weight is negative or not finite.
+    /// Throws std::logic_error (a broken precondition of the caller) naming the field when a size
+    /// is < 1, a weight vector has the wrong length, or a weight is negative or not finite.
     explicit PoissonSolver(const PoissonSystem& system);
     ~PoissonSolver();
     PoissonSolver(PoissonSolver&&) noexcept;
@@ -108,19 +108,21 @@ class PoissonSolver {
 
     /// Solves A x = rhs. `solution` on input is the warm start (empty: start from zero; else it
     /// must have cellCount() entries); on output it is the solution, 0 in inactive cells.
-    /// Right-hand-side entries of inactive cells are ignored. Throws std::invalid_argument only
-    /// for wrong vector sizes or bad settings; numerical trouble is in the report.
+    /// Right-hand-side entries of inactive cells are ignored. Throws gale::ParameterError naming
+    /// solver.tolerance or solver.max_iterations for a bad setting, std::logic_error for wrong
+    /// vector sizes or smoothingSweeps outside 1..8; numerical trouble is in the report.
     SolveReport solve(const std::vector<double>& rhs, std::vector<double>& solution,
                       const SolverSettings& settings);
 
-    /// out = A x (cellCount() entries each), for tests and diagnostics.
+    /// out = A x (cellCount() entries each), for tests and diagnostics; std::logic_error for
+    /// another size.
     void applyOperator(const std::vector<double>& x, std::vector<double>& out) const;
 
     /// z = M^-1 r: one V(n, n) cycle from zero with n = smoothingSweeps (the preconditioner CG
     /// applies each iteration), cellCount() entries each, 0 in inactive cells; entries of r in
     /// inactive cells are ignored. M^-1 is symmetric positive definite on the active cells, which
     /// is what lets CG keep its guarantees (tested: <a, M^-1 b> = <b, M^-1 a>). Uses the solver's
-    /// scratch vectors (not re-entrant). Throws std::invalid_argument for a wrong size or
+    /// scratch vectors (not re-entrant). Throws std::logic_error for a wrong size or
     /// smoothingSweeps outside 1..8.
     void applyPreconditioner(const std::vector<double>& r, std::vector<double>& z,
                              int smoothingSweeps = 2);

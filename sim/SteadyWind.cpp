@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/ParameterError.h"
 #include "sim/FaceExtrapolation.h"
 #include "sim/Format.h"
 
@@ -30,19 +31,18 @@ double centreGap_m(const GridLayout& g, int k) {
 
 double checkedRatio(const MassConsistentWeights& w) {
     if (!(w.alphaH > 0.0) || !std::isfinite(w.alphaH))
-        throw std::invalid_argument("MassConsistentWeights.alphaH must be > 0 and finite, got " +
-                                    num(w.alphaH));
+        throw ParameterError("solver.alpha_h", num(w.alphaH), "must be > 0 and finite");
     if (!(w.alphaV > 0.0) || !std::isfinite(w.alphaV))
-        throw std::invalid_argument("MassConsistentWeights.alphaV must be > 0 and finite, got " +
-                                    num(w.alphaV));
+        throw ParameterError("solver.alpha_v", num(w.alphaV), "must be > 0 and finite");
     const double r = (w.alphaH / w.alphaV) * (w.alphaH / w.alphaV);
     constexpr double ROUNDING = 1e-9;  // (sqrt(10))^2 must pass as 10
     if (r < SteadyWindSolver::MIN_VERTICAL_RATIO * (1 - ROUNDING) ||
         r > SteadyWindSolver::MAX_VERTICAL_RATIO * (1 + ROUNDING))
-        throw std::invalid_argument("MassConsistentWeights: (alphaH/alphaV)^2 = " + num(r) +
-                                    " is outside the supported [" +
-                                    num(SteadyWindSolver::MIN_VERTICAL_RATIO) + ", " +
-                                    num(SteadyWindSolver::MAX_VERTICAL_RATIO) + "]");
+        throw ParameterError("solver.alpha_v", num(w.alphaV),
+                             "must give (alpha_h / alpha_v)^2 in [" +
+                                 num(SteadyWindSolver::MIN_VERTICAL_RATIO) + ", " +
+                                 num(SteadyWindSolver::MAX_VERTICAL_RATIO) +
+                                 "] (alpha_h = " + num(w.alphaH) + ", ratio " + num(r) + ")");
     return r;
 }
 
@@ -90,9 +90,9 @@ SteadyWindSolver::SteadyWindSolver(const AirDomain& domain, const MassConsistent
 
 void SteadyWindSolver::setWarmStart(std::vector<double> potential) {
     if (!potential.empty() && potential.size() != mSystem.cellCount())
-        throw std::invalid_argument("SteadyWindSolver::setWarmStart: potential must have " +
-                                    std::to_string(mSystem.cellCount()) + " entries, got " +
-                                    std::to_string(potential.size()));
+        throw std::logic_error("SteadyWindSolver::setWarmStart: potential must have " +
+                               std::to_string(mSystem.cellCount()) + " entries, got " +
+                               std::to_string(potential.size()));
     mPotential = std::move(potential);
 }
 
@@ -256,8 +256,8 @@ const char* steadyModelName(SteadyModel model) {
 SteadyModel steadyModelFromName(const std::string& name) {
     if (name == "mass_consistent") return SteadyModel::MassConsistent;
     if (name == "momentum") return SteadyModel::Momentum;
-    throw std::invalid_argument("unknown steady model '" + name +
-                                "' (expected one of: mass_consistent, momentum)");
+    throw ParameterError("solver.model", "\"" + name + "\"",
+                         "expected one of: mass_consistent, momentum");
 }
 
 SteadyModelResult solveSteadyModel(const AirDomain& domain, const AmbientWind& ambient,

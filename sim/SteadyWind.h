@@ -73,11 +73,12 @@ class SteadyWindSolver {
     static constexpr double MAX_VERTICAL_RATIO = 10.0;
     static constexpr int EXTRAPOLATION_LAYERS = 2;
 
-    /// Throws std::invalid_argument naming the weight when a weight is not > 0 and finite or the
-    /// ratio is outside [MIN_VERTICAL_RATIO, MAX_VERTICAL_RATIO].
+    /// Throws gale::ParameterError naming solver.alpha_h or solver.alpha_v when a weight is not
+    /// > 0 and finite or the ratio is outside [MIN_VERTICAL_RATIO, MAX_VERTICAL_RATIO].
     explicit SteadyWindSolver(const AirDomain& domain, const MassConsistentWeights& weights = {});
 
-    /// Solves for the ambient wind (validated: throws std::invalid_argument naming the field).
+    /// Solves for the ambient wind (validated: throws gale::ParameterError naming the scene key,
+    /// as AmbientWind::validate and PoissonSolver::solve do).
     /// Non-convergence is in the report, never thrown; the field is then the last iterate.
     [[nodiscard]] SteadyWindResult solve(const AmbientWind& ambient, const SolverSettings& settings,
                                          const BoundaryPotential& boundary = {});
@@ -85,7 +86,8 @@ class SteadyWindSolver {
     /// The potential psi (m^2/s) of the last solve, one value per cell (PoissonSystem layout),
     /// 0 outside the air; the next solve starts from it.
     const std::vector<double>& potential_m2ps() const { return mPotential; }
-    /// Sets the warm start (cellCount() entries) or clears it (empty).
+    /// Sets the warm start (cellCount() entries) or clears it (empty); std::logic_error for
+    /// another size.
     void setWarmStart(std::vector<double> potential_m2ps);
     const PoissonSystem& system() const { return mSystem; }
     const PoissonSolver& poisson() const { return mPoisson; }
@@ -116,7 +118,7 @@ enum class SteadyModel {
 };
 
 /// Name as written in scene files ("mass_consistent", "momentum"), and back; fromName throws
-/// std::invalid_argument listing the valid names.
+/// gale::ParameterError (solver.model) listing the valid names.
 const char* steadyModelName(SteadyModel model);
 SteadyModel steadyModelFromName(const std::string& name);
 
@@ -130,7 +132,7 @@ struct SteadyModelResult {
 
 /// Solves the chosen steady model: the mass-consistent field with `weights` and `settings`, or
 /// the momentum model started from the mass-consistent field solved with `settings`
-/// (momentum.start is overwritten by them). Throws std::invalid_argument as the model does.
+/// (momentum.start is overwritten by them). Throws gale::ParameterError as the model does.
 [[nodiscard]] SteadyModelResult solveSteadyModel(const AirDomain& domain,
                                                  const AmbientWind& ambient, SteadyModel model,
                                                  const MassConsistentWeights& weights,

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "sim/Format.h"
 
 namespace gale::sim {
@@ -43,8 +44,8 @@ VortexProfile vortexProfileFromName(const std::string& n) {
     if (n == "rankine") return VortexProfile::Rankine;
     if (n == "lamb_oseen") return VortexProfile::LambOseen;
     if (n == "burgers") return VortexProfile::Burgers;
-    throw std::invalid_argument("profile must be one of rankine, lamb_oseen, burgers (got \"" + n +
-                                "\")");
+    throw ParameterError("wind.whirlwinds.profile", "\"" + n + "\"",
+                         "expected one of: rankine, lamb_oseen, burgers");
 }
 
 double peakSpeedFactor(VortexProfile p) {
@@ -53,25 +54,31 @@ double peakSpeedFactor(VortexProfile p) {
 
 void Whirlwind::validate() const {
     if (!std::isfinite(wsPosition_m[0]) || !std::isfinite(wsPosition_m[1]))
-        throw std::invalid_argument("whirlwind.position_m must be finite");
+        throw ParameterError("wind.whirlwinds.position_m",
+                             "[" + num(wsPosition_m[0]) + ", " + num(wsPosition_m[1]) + "]",
+                             "must be finite");
     if (!(coreRadius_m > 0.0) || !std::isfinite(coreRadius_m))
-        throw std::invalid_argument("whirlwind.core_radius_m must be > 0, got " +
-                                    num(coreRadius_m));
-    if (!std::isfinite(circulation_m2ps) || !std::isfinite(peakSpeed_mps) ||
-        std::abs(peakSpeed_mps) > 1000.0)
-        throw std::invalid_argument(
-            "whirlwind.circulation_m2ps / peak_speed_mps must be finite (|peak| <= 1000)");
+        throw ParameterError("wind.whirlwinds.core_radius_m", num(coreRadius_m),
+                             "must be > 0 and finite");
+    if (!std::isfinite(peakSpeed_mps) || std::abs(peakSpeed_mps) > 1000.0)
+        throw ParameterError("wind.whirlwinds.peak_speed_mps", num(peakSpeed_mps),
+                             "must be in [-1000, 1000]");
+    if (!std::isfinite(circulation_m2ps))
+        throw ParameterError("wind.whirlwinds.circulation_m2ps", num(circulation_m2ps),
+                             "must be finite");
     if (!(updraft_mps >= 0.0) || updraft_mps > 1000.0)
-        throw std::invalid_argument("whirlwind.updraft_mps must be in [0, 1000], got " +
-                                    num(updraft_mps));
+        throw ParameterError("wind.whirlwinds.updraft_mps", num(updraft_mps),
+                             "must be in [0, 1000]");
     if (lifetime_s && !(*lifetime_s > 0.0))
-        throw std::invalid_argument("whirlwind.lifetime_s must be > 0, got " + num(*lifetime_s));
-    if (!std::isfinite(start_s)) throw std::invalid_argument("whirlwind.start_s must be finite");
+        throw ParameterError("wind.whirlwinds.lifetime_s", num(*lifetime_s), "must be > 0");
+    if (!std::isfinite(start_s))
+        throw ParameterError("wind.whirlwinds.start_s", num(start_s), "must be finite");
     if (!(height_m >= 0.0) || !std::isfinite(height_m))
-        throw std::invalid_argument("whirlwind.height_m must be >= 0, got " + num(height_m));
+        throw ParameterError("wind.whirlwinds.height_m", num(height_m), "must be >= 0 and finite");
+    // Not a scene key: the callers (the scene builder, live wind) keep the default.
     if (!(outerRadiusFactor >= 1.0) || !std::isfinite(outerRadiusFactor))
-        throw std::invalid_argument("whirlwind.outer_radius_factor must be >= 1, got " +
-                                    num(outerRadiusFactor));
+        throw std::logic_error("Whirlwind.outerRadiusFactor must be >= 1, got " +
+                               num(outerRadiusFactor));
 }
 
 double Whirlwind::circulation() const {

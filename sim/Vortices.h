@@ -32,7 +32,8 @@ namespace gale::sim {
 
 enum class VortexProfile { Rankine, LambOseen, Burgers };
 
-/// "rankine", "lamb_oseen", "burgers" and back; fromName throws std::invalid_argument.
+/// "rankine", "lamb_oseen", "burgers" and back; fromName throws gale::ParameterError
+/// (wind.whirlwinds.profile).
 const char* vortexProfileName(VortexProfile p);
 VortexProfile vortexProfileFromName(const std::string& name);
 
@@ -51,7 +52,9 @@ struct Whirlwind {
     double height_m = 0.0;  ///< column height above the ground, metres; 0: up to the top
     double outerRadiusFactor = 4.0;  ///< seeded out to this many core radii (then tapered), >= 1
 
-    /// Throws std::invalid_argument naming the field.
+    /// Throws gale::ParameterError naming the scene key without the whirlwind's index
+    /// ("wind.whirlwinds.core_radius_m"; ParameterError::inElement adds it) for a value out of
+    /// range or not finite; std::logic_error for outerRadiusFactor < 1 (no scene key sets it).
     void validate() const;
     /// Gamma, m^2/s (from peakSpeed_mps when it is non-zero).
     double circulation() const;

@@ -167,21 +167,23 @@ TEST(PoissonSolver, InactiveCellsStayZeroAndAreIgnored) {
     for (double v : x) EXPECT_TRUE(std::isfinite(v));
 }
 
+// A malformed system or vector is the caller's bug (std::logic_error); a bad setting is a scene
+// value (gale::ParameterError, a std::invalid_argument).
 TEST(PoissonSolver, BadSystemThrowsNamingTheField) {
     PoissonSystem sys = PoissonSystem::uniformBox(4, 4, 4);
     sys.weightX[3] = -1.f;
     try {
         PoissonSolver s(sys);
-        FAIL() << "expected std::invalid_argument";
-    } catch (const std::invalid_argument& e) {
+        FAIL() << "expected std::logic_error";
+    } catch (const std::logic_error& e) {
         EXPECT_NE(std::string(e.what()).find("weightX"), std::string::npos) << e.what();
     }
     PoissonSystem empty = PoissonSystem::uniformBox(4, 4, 4);
     empty.nz = 0;
-    EXPECT_THROW(PoissonSolver{empty}, std::invalid_argument);
+    EXPECT_THROW(PoissonSolver{empty}, std::logic_error);
     PoissonSolver ok(PoissonSystem::uniformBox(4, 4, 4));
     std::vector<double> x, shortRhs(3, 1.0);
-    EXPECT_THROW((void)ok.solve(shortRhs, x, SolverSettings{}), std::invalid_argument);
+    EXPECT_THROW((void)ok.solve(shortRhs, x, SolverSettings{}), std::logic_error);
     SolverSettings bad;
     bad.relativeTolerance = 0.0;
     EXPECT_THROW((void)ok.solve(std::vector<double>(64, 1.0), x, bad), std::invalid_argument);

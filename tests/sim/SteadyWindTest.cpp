@@ -242,8 +242,8 @@ TEST(SteadyWind, AnisotropicWeightsConvergeWithinTheSupportedRange) {
         EXPECT_TRUE(res.report.converged)
             << "alphaH " << w.alphaH << " alphaV " << w.alphaV << ": " << res.report.message;
     }
-    expectThrowsNaming([&] { SteadyWindSolver s(domain, {1.0, 10.0}); }, "alphaH/alphaV");
-    expectThrowsNaming([&] { SteadyWindSolver s(domain, {0.0, 1.0}); }, "alphaH");
+    expectThrowsNaming([&] { SteadyWindSolver s(domain, {1.0, 10.0}); }, "(alpha_h / alpha_v)^2");
+    expectThrowsNaming([&] { SteadyWindSolver s(domain, {0.0, 1.0}); }, "solver.alpha_h");
 }
 
 // --- extreme terrain ------------------------------------------------------------------------
@@ -360,7 +360,7 @@ TEST(AirDomain, BadInputThrowsNamingTheParameter) {
     }
     Heightfield bad = hf;
     bad.height_m[5] = std::nanf("");
-    expectThrowsNaming([&] { AirDomain d(bad, DomainSpec{1.0, {}, 1e9}); }, "height_m");
+    expectThrowsNaming([&] { AirDomain d(bad, DomainSpec{1.0, {}, 1e9}); }, "height is not finite");
     AmbientWind a;
     a.speed_mps = -1.0;
     AirDomain d(hf, DomainSpec{2.0, {}, 1e9});
