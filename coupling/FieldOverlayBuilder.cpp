@@ -88,7 +88,7 @@ void validate(const OverlaySpec& spec) {
 
 MeshHeight::MeshHeight(const render::TerrainMesh& mesh) : mMesh(mesh) {
     if (mesh.nx < 2 || mesh.ny < 2 || mesh.wsPosition_m.size() != size_t(mesh.nx) * size_t(mesh.ny))
-        throw std::invalid_argument("MeshHeight: the mesh must be a grid of nx, ny >= 2");
+        throw std::logic_error("MeshHeight: the mesh must be a grid of nx, ny >= 2");
     mX0 = mesh.wsPosition_m.front().x;
     mY0 = mesh.wsPosition_m.front().y;
     mX1 = mesh.wsPosition_m.back().x;

@@ -70,6 +70,7 @@ void validate(const OverlaySpec& spec);
 /// in x and y, i fastest); points outside are clamped to the edge.
 class MeshHeight {
   public:
+    /// std::logic_error unless the mesh is an nx x ny grid with nx, ny >= 2.
     explicit MeshHeight(const render::TerrainMesh& mesh);
     double at(double wsX_m, double wsY_m) const;
     double minX() const { return mX0; }

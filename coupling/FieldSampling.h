@@ -29,7 +29,7 @@ namespace gale::coupling {
 /// plan's points. Multithreaded; O(vertices). One sampler serves one caller at a time.
 class GrassSampler {
   public:
-    /// Copies the vertex positions. Throws std::invalid_argument unless sampleHeight_m is finite
+    /// Copies the vertex positions. Throws gale::ParameterError unless sampleHeight_m is finite
     /// and >= 0 (wind.sample_height_m), or when nearGround's parameters are out of range
     /// (validate).
     GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_m,

@@ -89,11 +89,10 @@ FieldWind::FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec)
     : mSpec(spec), mOscillators(spec.frequency_hz, spec.dampingRatio) {
     validate(spec);
     const size_t count = mesh.wsPosition_m.size();
-    if (count == 0) throw std::invalid_argument("field wind needs a terrain mesh with vertices");
+    if (count == 0) throw std::logic_error("field wind needs a terrain mesh with vertices");
     if (mesh.wsNormal.size() != count)
-        throw std::invalid_argument("terrain mesh has " + std::to_string(count) +
-                                    " positions but " + std::to_string(mesh.wsNormal.size()) +
-                                    " normals");
+        throw std::logic_error("terrain mesh has " + std::to_string(count) + " positions but " +
+                               std::to_string(mesh.wsNormal.size()) + " normals");
     mNormal = mesh.wsNormal;
     // The per-interval buffers, sized once here rather than at the first field step.
     mDrive0.resize(count);
@@ -128,15 +127,15 @@ FieldWind::FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec)
 }
 
 void FieldWind::addFieldStep(double t_s, std::vector<glm::vec3> wsVelocity_mps) {
-    if (!std::isfinite(t_s)) throw std::invalid_argument("field step time must be finite");
+    if (!std::isfinite(t_s)) throw std::logic_error("field step time must be finite");
     if (wsVelocity_mps.size() != mNormal.size())
-        throw std::invalid_argument("field step has " + std::to_string(wsVelocity_mps.size()) +
-                                    " velocities for " + std::to_string(mNormal.size()) +
-                                    " grass vertices");
+        throw std::logic_error("field step has " + std::to_string(wsVelocity_mps.size()) +
+                               " velocities for " + std::to_string(mNormal.size()) +
+                               " grass vertices");
     if (!mSteps.empty() && !(t_s > mSteps.back().t_s))
-        throw std::invalid_argument("field step at t = " + std::to_string(t_s) +
-                                    " s does not follow the previous step at t = " +
-                                    std::to_string(mSteps.back().t_s) + " s");
+        throw std::logic_error("field step at t = " + std::to_string(t_s) +
+                               " s does not follow the previous step at t = " +
+                               std::to_string(mSteps.back().t_s) + " s");
     mSteps.push_back({t_s, std::move(wsVelocity_mps)});
 }
 

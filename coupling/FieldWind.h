@@ -64,7 +64,7 @@ struct FieldWindSpec {
     bool blendGroups = true;
 };
 
-/// Validates a spec; throws std::invalid_argument naming the field (wind.response ...).
+/// Validates a spec; throws gale::ParameterError naming the scene key (wind.groups ...).
 void validate(const FieldWindSpec& spec);
 
 const char* bladeResponseName(BladeResponse r);
@@ -75,12 +75,13 @@ Grouping groupingFromName(const std::string& name);
 class FieldWind : public WindSource {
   public:
     /// The mesh gives positions (for tiles) and normals (for the tangent planes); it must outlive
-    /// nothing: FieldWind copies what it needs.
+    /// nothing: FieldWind copies what it needs. Throws gale::ParameterError as validate(spec),
+    /// std::logic_error for a mesh without vertices or with as many normals as positions.
     FieldWind(const render::TerrainMesh& mesh, const FieldWindSpec& spec);
 
     /// Adds field step k at time t_s (seconds, strictly after the previous step's): the world
     /// velocity, m/s, at grass height above every mesh vertex. Non-finite velocities count as
-    /// zero wind. Throws std::invalid_argument on a wrong size or a time out of order.
+    /// zero wind. Throws std::logic_error on a wrong size or a time out of order.
     void addFieldStep(double t_s, std::vector<glm::vec3> wsVelocity_mps);
     /// Forgets steps older than t_s except the one bracketing it (streaming runs keep memory flat).
     void dropStepsBefore(double t_s);

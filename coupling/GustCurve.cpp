@@ -20,7 +20,9 @@ GustCurve::GustCurve(double period_s, std::vector<GustKey> keys)
     : mPeriod_s(period_s), mKeys(std::move(keys)) {
     if (!std::isfinite(period_s) || period_s <= 0.0)
         throw ParameterError("wind.gust.period_s", formatG(period_s), "must be finite and > 0");
-    if (mKeys.empty()) throw std::invalid_argument("gust curve needs at least one key");
+    if (mKeys.empty())
+        throw ParameterError("wind.gust.keys", "[]",
+                             "must hold at least one [t_s, intensity] pair");
     for (size_t k = 0; k < mKeys.size(); ++k) {
         const GustKey& key = mKeys[k];
         if (!std::isfinite(key.t_s) || !std::isfinite(key.intensity))

@@ -18,7 +18,8 @@ class GustCurve {
   public:
     /// Keys must be finite with strictly increasing t in [0, period_s); period_s > 0. The curve
     /// wraps: after the last key it runs to the first key at t + period. Throws
-    /// std::invalid_argument naming the offending key.
+    /// gale::ParameterError naming the offending scene key (wind.gust.period_s,
+    /// wind.gust.keys[k], wind.gust.keys when there is none).
     GustCurve(double period_s, std::vector<GustKey> keys);
 
     /// A default gust: calm base, a sharp rise over `attack_s` to `peak`, a gradual fall over

@@ -35,9 +35,8 @@ PointSourceWind::PointSourceWind(const render::TerrainMesh& mesh, const PointSou
                              "must be finite");
     const size_t count = mesh.wsPosition_m.size();
     if (mesh.wsNormal.size() != count)
-        throw std::invalid_argument("terrain mesh has " + std::to_string(count) +
-                                    " positions but " + std::to_string(mesh.wsNormal.size()) +
-                                    " normals");
+        throw std::logic_error("terrain mesh has " + std::to_string(count) + " positions but " +
+                               std::to_string(mesh.wsNormal.size()) + " normals");
     render::VertexWind vertex;
     vertex.wsDirection.resize(count);
     vertex.group.resize(count);

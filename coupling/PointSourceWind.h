@@ -28,6 +28,9 @@ struct PointSourceSpec {
 
 class PointSourceWind : public WindSource {
   public:
+    /// Throws gale::ParameterError naming the scene key (wind.steps, wind.step_delay_s,
+    /// wind.source_m) on a bad spec, std::logic_error when the mesh has not one normal per
+    /// position.
     PointSourceWind(const render::TerrainMesh& mesh, const PointSourceSpec& spec, GustCurve curve);
     int groupCount() const override { return mSpec.steps; }
     void update(double t_s, render::GrassWind& wind) override;

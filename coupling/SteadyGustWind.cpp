@@ -26,12 +26,12 @@ SteadyGustWind::SteadyGustWind(const render::TerrainMesh& mesh,
     if (spec.levels < 1 || spec.levels > 256)
         throw ParameterError("wind.levels", std::to_string(spec.levels), "must be in 1..256");
     if (!std::isfinite(spec.convection_mps) || spec.convection_mps <= 0.0)
-        throw std::invalid_argument("gust convection speed must be finite and > 0, got " +
-                                    std::to_string(spec.convection_mps));
+        throw std::logic_error("gust convection speed must be finite and > 0, got " +
+                               std::to_string(spec.convection_mps));
     const size_t count = mesh.wsPosition_m.size();
     if (wsVelocity_mps.size() != count || mesh.wsNormal.size() != count || count == 0)
-        throw std::invalid_argument("steady gust wind: " + std::to_string(wsVelocity_mps.size()) +
-                                    " velocities for " + std::to_string(count) + " vertices");
+        throw std::logic_error("steady gust wind: " + std::to_string(wsVelocity_mps.size()) +
+                               " velocities for " + std::to_string(count) + " vertices");
     glm::vec2 along(spec.wsDirection.x, spec.wsDirection.y);
     along = glm::length(along) > 0.0f ? glm::normalize(along) : glm::vec2(1.0f, 0.0f);
     mAlong = along;

@@ -37,8 +37,9 @@ struct SteadyGustSpec {
 class SteadyGustWind : public WindSource {
   public:
     /// wsVelocity_mps: the steady field at grass height above each vertex (FieldSampling), for the
-    /// ambient wind the curve scales (g = 1 is that field). Throws std::invalid_argument naming
-    /// the field on a bad spec or a size mismatch.
+    /// ambient wind the curve scales (g = 1 is that field). Throws gale::ParameterError naming the
+    /// scene key on a bad spec (wind.arrival_bands, wind.levels, ...), std::logic_error on a size
+    /// mismatch or a convection speed that is not > 0 and finite.
     SteadyGustWind(const render::TerrainMesh& mesh, const std::vector<glm::vec3>& wsVelocity_mps,
                    const SteadyGustSpec& spec, GustCurve curve);
     int groupCount() const override { return static_cast<int>(mGroupBase.size()); }

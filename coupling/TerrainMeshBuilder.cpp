@@ -25,7 +25,7 @@ render::TerrainMesh buildTerrainMesh(const sim::Heightfield& field, float tile_m
         throw ParameterError("terrain.mesh_stride", std::to_string(stride), "must be >= 1");
     if (!std::isfinite(tile_m) || tile_m <= 0.0f)
         throw ParameterError("grass.tile_m", formatG(tile_m), "must be finite and > 0");
-    if (field.nx < 2 || field.ny < 2) throw std::invalid_argument("heightfield smaller than 2x2");
+    if (field.nx < 2 || field.ny < 2) throw std::logic_error("heightfield smaller than 2x2");
     const std::vector<int> is = strided(field.nx, stride), js = strided(field.ny, stride);
     render::TerrainMesh mesh;
     mesh.nx = static_cast<int>(is.size());

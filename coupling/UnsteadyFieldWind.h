@@ -46,8 +46,8 @@ NearGround nearGroundOf(const sim::UnsteadySettings& settings);
 class UnsteadyFieldWind : public WindSource {
   public:
     /// Takes the domain and the steady field (the initial state and mean flow). sampleHeight_m:
-    /// height above the ground where the grass reads the field. Throws std::invalid_argument on
-    /// bad settings (naming the key) or a bad response spec.
+    /// height above the ground where the grass reads the field. Throws gale::ParameterError on
+    /// bad settings or a bad response spec (naming the scene key).
     UnsteadyFieldWind(const render::TerrainMesh& mesh, std::unique_ptr<sim::AirDomain> domain,
                       const sim::WindField& steady, const sim::UnsteadySettings& settings,
                       double referenceSpeed_mps, const FieldWindSpec& response,

@@ -19,7 +19,7 @@ double msSince(Clock::time_point start) {
 render::GlContext& checked(render::GlContext& context, const ViewInputs& inputs) {
     if (!inputs.mesh || !inputs.grass || !inputs.texture || !inputs.densityMap ||
         !inputs.lighting || !inputs.wind)
-        throw std::invalid_argument("ViewPipeline: every ViewInputs pointer must be set");
+        throw std::logic_error("ViewPipeline: every ViewInputs pointer must be set");
     return context;
 }
 

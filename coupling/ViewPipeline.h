@@ -51,7 +51,7 @@ class ViewPipeline {
   public:
     /// Compiles the renderer and overlay shaders in `context` (current, outliving the pipeline),
     /// uploads the inputs and starts the wind worker. Every pointer in `inputs` must be set
-    /// (std::invalid_argument otherwise); the renderer's setters throw as documented in
+    /// (std::logic_error otherwise); the renderer's setters throw as documented in
     /// ShellRenderer.h.
     ViewPipeline(render::GlContext& context, const ViewInputs& inputs);
 

@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "render/ImageIO.h"
 
 namespace gale::render {
@@ -32,9 +34,9 @@ fs::path hiddenTemp(const std::string& path) {
 
 Image downscale(const Image& src, int width, int height) {
     if (width < 1 || height < 1 || width > src.width || height > src.height)
-        throw std::invalid_argument("downscale: target " + std::to_string(width) + "x" +
-                                    std::to_string(height) + " must be within the source " +
-                                    std::to_string(src.width) + "x" + std::to_string(src.height));
+        throw std::logic_error("downscale: target " + std::to_string(width) + "x" +
+                               std::to_string(height) + " must be within the source " +
+                               std::to_string(src.width) + "x" + std::to_string(src.height));
     Image out;
     out.width = width;
     out.height = height;
@@ -121,9 +123,10 @@ std::vector<int> AnimationWriter::sheetIndices(int totalFrames, int sheetFrames)
 
 AnimationWriter::AnimationWriter(const AnimationOptions& options, int totalFrames)
     : mImpl(std::make_unique<Impl>()) {
-    if (totalFrames < 1) throw std::invalid_argument("an animation needs at least one frame");
+    if (totalFrames < 1)
+        throw ParameterError("output.frames", std::to_string(totalFrames), "must be >= 1");
     if (!(options.fps > 0.0) || !std::isfinite(options.fps))
-        throw std::invalid_argument("animation fps must be finite and > 0");
+        throw ParameterError("output.fps", formatG(options.fps), "must be finite and > 0");
     mImpl->options = options;
     mImpl->totalFrames = totalFrames;
     if (!options.sheetPath.empty())

@@ -23,13 +23,15 @@ struct AnimationOptions {
     int gifMaxWidth = 480;      ///< GIF frames wider than this are scaled down
 };
 
-/// Area-averaging downscale of an RGBA8 image to width x height (<= the source size).
+/// Area-averaging downscale of an RGBA8 image to width x height (<= the source size, at least
+/// 1 x 1; std::logic_error otherwise).
 Image downscale(const Image& src, int width, int height);
 
 class AnimationWriter {
   public:
     /// totalFrames is the number of frames the run will add (>= 1). Throws std::runtime_error if
-    /// the GIF cannot be started (names the path).
+    /// the GIF cannot be started (names the path), gale::ParameterError naming output.frames or
+    /// output.fps when totalFrames < 1 or fps is not > 0 and finite.
     AnimationWriter(const AnimationOptions& options, int totalFrames);
     /// Removes the temporary GIF if finish() was not reached.
     ~AnimationWriter();

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 
 namespace gale::render {
 
@@ -42,15 +43,13 @@ void bendBladeInto(int shells, float height_m, float intensity, float stiffness,
 
 std::vector<ShellOffset> bendBlade(int shells, float height_m, float intensity, float stiffness) {
     if (shells < 1)
-        throw std::invalid_argument("shells must be >= 1, got " + std::to_string(shells));
+        throw ParameterError("grass.shells", std::to_string(shells), "must be >= 1 to bend");
     if (!std::isfinite(height_m) || height_m < 0.0f)
-        throw std::invalid_argument("blade height must be finite and >= 0, got " +
-                                    std::to_string(height_m));
+        throw ParameterError("grass.height_m", formatG(height_m), "must be finite and >= 0");
     if (!std::isfinite(intensity))
-        throw std::invalid_argument("intensity must be finite, got " + std::to_string(intensity));
+        throw std::logic_error("bendBlade: intensity must be finite, got " + formatG(intensity));
     if (!std::isfinite(stiffness) || stiffness <= 0.0f)
-        throw std::invalid_argument("stiffness must be finite and > 0, got " +
-                                    std::to_string(stiffness));
+        throw ParameterError("grass.stiffness", formatG(stiffness), "must be finite and > 0");
     std::vector<ShellOffset> out(static_cast<size_t>(shells) + 1);
     bendBladeInto(shells, height_m, intensity, stiffness, out.data());
     return out;

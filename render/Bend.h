@@ -47,8 +47,9 @@ inline constexpr double kTipTiltKnee_rad = 0.25 * PI;
 double tipTilt_rad(double intensity);
 
 /// Offsets of shells 0..N (shell 0 = ground, offset 0) for one intensity.
-/// height_m = N * S. Requires shells >= 1; intensity and stiffness finite, stiffness > 0; throws
-/// std::invalid_argument otherwise.
+/// height_m = N * S. Requires shells >= 1, height_m >= 0 and stiffness > 0, finite (else
+/// gale::ParameterError naming grass.shells, grass.height_m or grass.stiffness) and a finite
+/// intensity (else std::logic_error: intensities come from the wind source).
 std::vector<ShellOffset> bendBlade(int shells, float height_m, float intensity, float stiffness);
 
 /// The same, written into out[0..shells] (out must hold shells + 1 entries); no allocation, for

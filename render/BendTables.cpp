@@ -62,18 +62,18 @@ void BendTables::setGroups(const GrassWind& wind, int columns, int maxTextureSiz
     columns = std::clamp(columns, 1, groups);
     const int rows = (groups + columns - 1) / columns;
     if (columns > maxTextureSize || rows > maxTextureSize) {
-        throw std::invalid_argument("GrassWind.groupIntensity has " + std::to_string(groups) +
-                                    " groups in a grid " + std::to_string(columns) +
-                                    " wide; the group table holds at most " +
-                                    std::to_string(maxTextureSize) + " on a side");
+        throw std::logic_error("GrassWind.groupIntensity has " + std::to_string(groups) +
+                               " groups in a grid " + std::to_string(columns) +
+                               " wide; the group table holds at most " +
+                               std::to_string(maxTextureSize) + " on a side");
     }
     mTilts.resize(static_cast<size_t>(columns) * rows);
     for (int g = 0; g < groups; ++g) {
         const float intensity =
             wind.groupIntensity.empty() ? 0.0f : wind.groupIntensity[static_cast<size_t>(g)];
         if (!std::isfinite(intensity)) {
-            throw std::invalid_argument("GrassWind.groupIntensity[" + std::to_string(g) +
-                                        "] is not finite");
+            throw std::logic_error("GrassWind.groupIntensity[" + std::to_string(g) +
+                                   "] is not finite");
         }
         mTilts[static_cast<size_t>(g)] = static_cast<float>(tipTilt_rad(intensity));
     }
@@ -109,20 +109,19 @@ void DensityTables::setMap(const DensityMap& map, int maxTextureSize) {
     const size_t texels = static_cast<size_t>(std::max(map.width, 0)) * std::max(map.height, 0);
     if (map.width < 1 || map.height < 1 || map.width > maxTextureSize ||
         map.height > maxTextureSize || map.density.size() != texels) {
-        throw std::invalid_argument("DensityMap is " + std::to_string(map.width) + " x " +
-                                    std::to_string(map.height) + " with " +
-                                    std::to_string(map.density.size()) +
-                                    " values; expected width * height values, each side 1.." +
-                                    std::to_string(maxTextureSize));
+        throw std::logic_error("DensityMap is " + std::to_string(map.width) + " x " +
+                               std::to_string(map.height) + " with " +
+                               std::to_string(map.density.size()) +
+                               " values; expected width * height values, each side 1.." +
+                               std::to_string(maxTextureSize));
     }
     for (size_t t = 0; t < texels; ++t)
         if (!std::isfinite(map.density[t]))
-            throw std::invalid_argument("DensityMap.density[" + std::to_string(t) +
-                                        "] is not finite");
+            throw std::logic_error("DensityMap.density[" + std::to_string(t) + "] is not finite");
     const bool finite = std::isfinite(map.wsSize_m.x) && std::isfinite(map.wsSize_m.y) &&
                         std::isfinite(map.wsMin_m.x) && std::isfinite(map.wsMin_m.y);
     if (!finite || !(map.wsSize_m.x > 0.0f && map.wsSize_m.y > 0.0f))
-        throw std::invalid_argument("DensityMap.wsSize_m must be finite and > 0, wsMin_m finite");
+        throw std::logic_error("DensityMap.wsSize_m must be finite and > 0, wsMin_m finite");
     glBindTexture(GL_TEXTURE_2D, mMap.get());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, map.width, map.height, 0, GL_RED, GL_FLOAT,

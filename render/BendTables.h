@@ -47,7 +47,7 @@ class BendTables {
 
     /// Computes every group's tip tilt from wind.groupIntensity (tipTilt_rad, render/Bend.h) and
     /// uploads them `columns` groups to a row (columns >= 1). An empty groupIntensity is one
-    /// group at rest. Throws std::invalid_argument naming GrassWind.groupIntensity[g] if an
+    /// group at rest. Throws std::logic_error naming GrassWind.groupIntensity[g] if an
     /// intensity is not finite, or if the grid exceeds maxTextureSize texels on a side.
     void setGroups(const GrassWind& wind, int columns, int maxTextureSize);
 
@@ -71,7 +71,7 @@ class DensityTables {
     DensityTables();
     /// The cut table of a new grass texture (its level 0).
     void setCuts(const Image& level0);
-    /// Uploads `map`, or removes it when map.width == 0. Throws std::invalid_argument naming the
+    /// Uploads `map`, or removes it when map.width == 0. Throws std::logic_error naming the
     /// field on wrong sizes, non-finite values or a side above maxTextureSize.
     void setMap(const DensityMap& map, int maxTextureSize);
 

@@ -45,8 +45,8 @@ glm::mat4 clipFromCamera(const Camera& camera, float aspect) {
         throw ParameterError("camera.fov_deg", formatG(camera.fovY_deg), "must be in (0, 180)");
     }
     if (!(aspect > 0.0f) || !std::isfinite(aspect)) {
-        throw std::invalid_argument("Camera: aspect (width / height) must be > 0, got " +
-                                    std::to_string(aspect));
+        throw std::logic_error("Camera: aspect (width / height) must be > 0, got " +
+                               std::to_string(aspect));
     }
     if (!(camera.near_m > 0.0f && camera.far_m > camera.near_m && std::isfinite(camera.far_m))) {
         throw ParameterError(
@@ -63,8 +63,8 @@ glm::mat4 clipFromWorld(const Camera& camera, float aspect) {
 
 WorldRay pixelRay(const Camera& camera, int width_px, int height_px, double x_px, double y_px) {
     if (width_px < 1 || height_px < 1)
-        throw std::invalid_argument("pixelRay: the view must be at least 1 x 1 pixels, got " +
-                                    std::to_string(width_px) + " x " + std::to_string(height_px));
+        throw std::logic_error("pixelRay: the view must be at least 1 x 1 pixels, got " +
+                               std::to_string(width_px) + " x " + std::to_string(height_px));
     const glm::mat4 worldFromClip =
         glm::inverse(clipFromWorld(camera, float(width_px) / float(height_px)));
     // Normalised device coordinates: x right, y up, z -1 on the near plane and +1 on the far one.

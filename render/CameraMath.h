@@ -10,12 +10,14 @@ namespace gale::render {
 
 /// View matrix (camera from world), right-handed, z up. When the camera looks straight up or down
 /// the z-up hint is degenerate and +y serves as "up" on screen instead. Throws
-/// std::invalid_argument if the position equals the target or a value is not finite.
+/// gale::ParameterError (camera.position_m, camera.target_m) if the position equals the target
+/// or a value is not finite.
 glm::mat4 cameraFromWorld(const Camera& camera);
 
 /// Perspective projection (clip from camera) with camera.fovY_deg, the given aspect
-/// (width / height) and camera.near_m / far_m. Throws std::invalid_argument on
-/// fovY_deg outside (0, 180), aspect <= 0 or not 0 < near_m < far_m.
+/// (width / height) and camera.near_m / far_m. Throws gale::ParameterError (camera.fov_deg,
+/// camera.near_m, camera.far_m) on fovY_deg outside (0, 180) or not 0 < near_m < far_m, and
+/// std::logic_error on aspect <= 0.
 glm::mat4 clipFromCamera(const Camera& camera, float aspect);
 
 /// clipFromCamera * cameraFromWorld.
@@ -29,7 +31,7 @@ struct WorldRay {
 
 /// The ray through window point (x_px, y_px) (pixels, origin at the top-left corner, as input
 /// events give it; a pixel's centre is at +0.5) of a width_px x height_px view, from the near plane
-/// away from the camera. Throws std::invalid_argument as clipFromWorld does, and on a size below 1
+/// away from the camera. Throws as clipFromWorld does, and std::logic_error on a size below 1
 /// pixel.
 WorldRay pixelRay(const Camera& camera, int width_px, int height_px, double x_px, double y_px);
 

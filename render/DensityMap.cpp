@@ -11,9 +11,9 @@ namespace gale::render {
 DensityMap loadDensityMap(const std::string& path, glm::vec2 wsMin_m, glm::vec2 wsSize_m) {
     if (!(std::isfinite(wsSize_m.x) && std::isfinite(wsSize_m.y) && wsSize_m.x > 0.0f &&
           wsSize_m.y > 0.0f && std::isfinite(wsMin_m.x) && std::isfinite(wsMin_m.y))) {
-        throw std::invalid_argument("density map '" + path +
-                                    "': the plan rectangle it covers must be finite with a "
-                                    "positive size");
+        throw std::logic_error("density map '" + path +
+                               "': the plan rectangle it covers must be finite with a "
+                               "positive size");
     }
     const Image image = readImageRgba8(path);
     DensityMap map;

@@ -28,7 +28,7 @@ struct DensityMap {
 /// Reads a density map from any image OpenImageIO reads (8/16-bit or float; the first channel,
 /// a grey image's grey: 0 = bare, full scale = full density) to cover the plan rectangle given.
 /// Throws std::runtime_error naming the path and the reason if the image cannot be read;
-/// std::invalid_argument if wsSize_m is not positive and finite.
+/// std::logic_error if wsSize_m is not positive and finite (the caller's plan rectangle).
 DensityMap loadDensityMap(const std::string& path, glm::vec2 wsMin_m, glm::vec2 wsSize_m);
 
 /// Entries of the density cut table: entry k is the cut for density k / (kDensityCuts - 1).

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "render/BitmapFont.h"
 #include "render/CameraMath.h"
 #include "render/ColorMap.h"
@@ -319,13 +320,13 @@ FieldOverlay::~FieldOverlay() = default;
 
 void FieldOverlay::draw(const Camera& camera, const FieldOverlayData& data) {
     if (!(data.speedMax > 0.0f) || !std::isfinite(data.speedMax))
-        throw std::invalid_argument("FieldOverlayData.speedMax must be > 0, got " +
-                                    std::to_string(data.speedMax));
+        throw ParameterError("overlay.speed_max_mps", formatG(data.speedMax),
+                             "must be > 0 and finite");
     const OverlaySlice& slice = data.slice;
     const size_t sliceN = size_t(std::max(0, slice.nx)) * size_t(std::max(0, slice.ny));
     if (slice.nx != 0 && (slice.nx < 2 || slice.ny < 2 || slice.wsPosition_m.size() != sliceN ||
                           slice.speed.size() != sliceN))
-        throw std::invalid_argument(
+        throw std::logic_error(
             "OverlaySlice needs nx, ny >= 2 and nx * ny positions and "
             "speeds, got " +
             std::to_string(slice.nx) + " x " + std::to_string(slice.ny) + " with " +
@@ -333,12 +334,11 @@ void FieldOverlay::draw(const Camera& camera, const FieldOverlayData& data) {
             std::to_string(slice.speed.size()) + " speeds");
     for (const OverlayPolyline& line : data.streamlines)
         if (line.speed.size() != line.wsPoint_m.size())
-            throw std::invalid_argument("OverlayPolyline has " +
-                                        std::to_string(line.wsPoint_m.size()) + " points but " +
-                                        std::to_string(line.speed.size()) + " speeds");
+            throw std::logic_error("OverlayPolyline has " + std::to_string(line.wsPoint_m.size()) +
+                                   " points but " + std::to_string(line.speed.size()) + " speeds");
     for (const OverlayArrow& a : data.arrows)
         if (!finite3(a.wsBase_m) || !finite3(a.wsVector_m) || !std::isfinite(a.speed))
-            throw std::invalid_argument("OverlayArrow with a non-finite base, vector or speed");
+            throw std::logic_error("OverlayArrow with a non-finite base, vector or speed");
 
     Impl& m = *mImpl;
     const float aspect = float(m.context.width()) / float(m.context.height());

@@ -89,8 +89,9 @@ class FieldOverlay {
     /// it; an arrow shorter on screen than kMinArrowLength_px is drawn that long (same base and
     /// direction), and over a slice arrows are outlined in white so their colour never merges
     /// with the slice's.
-    /// Throws std::invalid_argument on a non-finite position, speedMax <= 0, or a slice or
-    /// polyline whose arrays differ in size. Ends with glFinish.
+    /// Throws gale::ParameterError (overlay.speed_max_mps) for speedMax <= 0, std::logic_error on
+    /// a non-finite position or a slice or polyline whose arrays differ in size. Ends with
+    /// glFinish.
     void draw(const Camera& camera, const FieldOverlayData& data);
 
     /// Draws one line of text with the built-in font at pixel (x_px, y_px) (top-left corner,

@@ -51,18 +51,16 @@ bool finite3(const glm::vec3& v) {
 
 void requireSquarePowerOfTwo(const Image& image, const char* what) {
     if (image.width != image.height || !isPowerOfTwo(image.width)) {
-        throw std::invalid_argument(std::string(what) +
-                                    ": the grass texture must be square with a power-of-two side, "
-                                    "got " +
-                                    std::to_string(image.width) + "x" +
-                                    std::to_string(image.height));
+        throw ParameterError("grass.texture",
+                             std::to_string(image.width) + "x" + std::to_string(image.height),
+                             std::string("must be square with a power-of-two side (") + what + ")");
     }
     const size_t expected =
         static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 4u;
     if (image.rgba.size() != expected) {
-        throw std::invalid_argument(std::string(what) + ": image.rgba holds " +
-                                    std::to_string(image.rgba.size()) + " bytes, expected " +
-                                    std::to_string(expected) + " (width * height * 4)");
+        throw std::logic_error(std::string(what) + ": image.rgba holds " +
+                               std::to_string(image.rgba.size()) + " bytes, expected " +
+                               std::to_string(expected) + " (width * height * 4)");
     }
 }
 
@@ -194,7 +192,7 @@ GrassTexture grassTextureFromImage(Image image) {
 Image downsampleKeepingBlades(const Image& level) {
     requireSquarePowerOfTwo(level, "downsampleKeepingBlades");
     if (level.width < 2) {
-        throw std::invalid_argument("downsampleKeepingBlades: a 1x1 level has no next level");
+        throw std::logic_error("downsampleKeepingBlades: a 1x1 level has no next level");
     }
     const int n = level.width / 2;
     Image out;

@@ -28,16 +28,19 @@ struct GrassTexture {
     std::vector<Image> levels;
 };
 
-/// Generates a seeded grass texture and its MIP chain. Throws std::invalid_argument on a bad spec.
+/// Generates a seeded grass texture and its MIP chain. Throws gale::ParameterError naming the
+/// grass.generated key on a bad spec.
 GrassTexture generateGrassTexture(const GrassTextureSpec& spec);
 
 /// Wraps a loaded RGBA image (alpha = blade height) and builds its MIP chain. The image must be
-/// square with a power-of-two side.
+/// square with a power-of-two side (gale::ParameterError naming grass.texture otherwise) and hold
+/// width * height * 4 bytes (std::logic_error otherwise).
 GrassTexture grassTextureFromImage(Image image);
 
 /// Next MIP level by the blade-keeping rule: a 2x2 block becomes a blade texel if two or more of
 /// its texels are blades (alpha > 0): colour = mean of the blade texels, alpha = their max;
-/// otherwise alpha 0 and colour = mean of all four (Bakay 2003, 3.4).
+/// otherwise alpha 0 and colour = mean of all four (Bakay 2003, 3.4). The level must be square,
+/// a power of two and at least 2 x 2 (std::logic_error otherwise; ParameterError for the shape).
 Image downsampleKeepingBlades(const Image& level);
 
 /// The MIP chain down to the last level that can still hold a blade: generation stops at the first

@@ -6,6 +6,8 @@
 
 #include "render/ShellRenderer.h"
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "render/ShellRendererImpl.h"
 
 namespace gale::render {
@@ -194,10 +196,10 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
     // Size checks every frame (cheap); content checks only when the data is re-uploaded.
     auto checkSize = [&](const char* field, size_t size) {
         if (size != n && !(none && size == 0)) {
-            throw std::invalid_argument("GrassWind." + std::string(field) + " has " +
-                                        std::to_string(size) + " entries, expected " +
-                                        std::to_string(n) + " (one per terrain vertex)" +
-                                        (none ? " or 0 (no wind)" : ""));
+            throw std::logic_error("GrassWind." + std::string(field) + " has " +
+                                   std::to_string(size) + " entries, expected " +
+                                   std::to_string(n) + " (one per terrain vertex)" +
+                                   (none ? " or 0 (no wind)" : ""));
         }
     };
     const std::vector<glm::vec3>& direction = wind.wsDirection();
@@ -218,13 +220,13 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
             for (size_t v = 0; v < n; ++v) {
                 const glm::vec3& d = direction[v];
                 if (!finite3(d)) {
-                    throw std::invalid_argument("GrassWind.wsDirection[" + std::to_string(v) +
-                                                "] is not finite");
+                    throw std::logic_error("GrassWind.wsDirection[" + std::to_string(v) +
+                                           "] is not finite");
                 }
                 const glm::vec2 c = blends ? coord[v] : glm::vec2(0.0f);
                 if (!std::isfinite(c.x) || !std::isfinite(c.y)) {
-                    throw std::invalid_argument("GrassWind.vertex->groupCoord[" +
-                                                std::to_string(v) + "] is not finite");
+                    throw std::logic_error("GrassWind.vertex->groupCoord[" + std::to_string(v) +
+                                           "] is not finite");
                 }
                 data[v] = WindVertex{{d.x, d.y, d.z}, group[v], {c.x, c.y}};
                 maxGroup = std::max(maxGroup, group[v]);
@@ -242,9 +244,9 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
         windBlends = blends;
     }
     if (!none && windMaxGroup >= wind.groupIntensity.size()) {
-        throw std::invalid_argument("GrassWind.group holds group " + std::to_string(windMaxGroup) +
-                                    ", but groupIntensity has only " +
-                                    std::to_string(wind.groupIntensity.size()) + " groups");
+        throw std::logic_error("GrassWind.group holds group " + std::to_string(windMaxGroup) +
+                               ", but groupIntensity has only " +
+                               std::to_string(wind.groupIntensity.size()) + " groups");
     }
 }
 
@@ -273,16 +275,16 @@ ShellRenderer::~ShellRenderer() = default;
 
 void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     if (mesh.nx < 2 || mesh.ny < 2) {
-        throw std::invalid_argument("TerrainMesh needs nx, ny >= 2, got " +
-                                    std::to_string(mesh.nx) + " x " + std::to_string(mesh.ny));
+        throw std::logic_error("TerrainMesh needs nx, ny >= 2, got " + std::to_string(mesh.nx) +
+                               " x " + std::to_string(mesh.ny));
     }
     const size_t n = static_cast<size_t>(mesh.nx) * static_cast<size_t>(mesh.ny);
-    if (n > 0xFFFFFFFFull) throw std::invalid_argument("TerrainMesh has too many vertices");
+    if (n > 0xFFFFFFFFull) throw std::logic_error("TerrainMesh has too many vertices");
     auto checkSize = [&](const char* field, size_t size) {
         if (size != n) {
-            throw std::invalid_argument("TerrainMesh." + std::string(field) + " has " +
-                                        std::to_string(size) +
-                                        " entries, expected nx * ny = " + std::to_string(n));
+            throw std::logic_error("TerrainMesh." + std::string(field) + " has " +
+                                   std::to_string(size) +
+                                   " entries, expected nx * ny = " + std::to_string(n));
         }
     };
     checkSize("wsPosition_m", mesh.wsPosition_m.size());
@@ -295,8 +297,8 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
         const glm::vec3& nn = mesh.wsNormal[v];
         const glm::vec2& uv = mesh.uv[v];
         if (!finite3(p) || !finite3(nn) || !std::isfinite(uv.x) || !std::isfinite(uv.y)) {
-            throw std::invalid_argument("TerrainMesh vertex " + std::to_string(v) +
-                                        " has a non-finite position, normal or uv");
+            throw std::logic_error("TerrainMesh vertex " + std::to_string(v) +
+                                   " has a non-finite position, normal or uv");
         }
         vertices[v] = TerrainVertex{{p.x, p.y, p.z}, {nn.x, nn.y, nn.z}, {uv.x, uv.y}};
     }
@@ -326,31 +328,29 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
 
 void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& texture) {
     if (!(params.height_m > 0.0f) || !std::isfinite(params.height_m)) {
-        throw std::invalid_argument("GrassParams.height_m must be > 0, got " +
-                                    std::to_string(params.height_m));
+        throw ParameterError("grass.height_m", formatG(params.height_m), "must be > 0 and finite");
     }
     if (params.shells < 0 || params.shells > kMaxShells) {
-        throw std::invalid_argument("GrassParams.shells must be in 0.." +
-                                    std::to_string(kMaxShells) + ", got " +
-                                    std::to_string(params.shells));
+        throw ParameterError("grass.shells", std::to_string(params.shells),
+                             "must be in 0.." + std::to_string(kMaxShells));
     }
     if (!(params.lodPixels >= 0.0f) || !std::isfinite(params.lodPixels)) {
-        throw std::invalid_argument("GrassParams.lodPixels must be >= 0, got " +
-                                    std::to_string(params.lodPixels));
+        throw ParameterError("grass.lod_pixels", formatG(params.lodPixels),
+                             "must be >= 0 and finite");
     }
     if (!(params.stiffness > 0.0f) || !std::isfinite(params.stiffness)) {
-        throw std::invalid_argument("GrassParams.stiffness must be > 0, got " +
-                                    std::to_string(params.stiffness));
+        throw ParameterError("grass.stiffness", formatG(params.stiffness),
+                             "must be > 0 and finite");
     }
     if (texture.levels.empty()) {
-        throw std::invalid_argument("GrassTexture has no levels");
+        throw std::logic_error("GrassTexture has no levels");
     }
     for (size_t l = 0; l < texture.levels.size(); ++l) {
         const Image& level = texture.levels[l];
         const int expected = texture.levels[0].width >> l;
         if (level.width != level.height || level.width < 1 || (l > 0 && level.width != expected) ||
             level.rgba.size() != static_cast<size_t>(level.width) * level.height * 4u) {
-            throw std::invalid_argument(
+            throw std::logic_error(
                 "GrassTexture level " + std::to_string(l) + " is " + std::to_string(level.width) +
                 "x" + std::to_string(level.height) + " with " + std::to_string(level.rgba.size()) +
                 " bytes; levels must be square RGBA8, each half the previous");
@@ -391,29 +391,37 @@ void ShellRenderer::setDensityMap(const DensityMap& map) {
 
 void ShellRenderer::setLighting(const Lighting& lighting) {
     if (lighting.lights.size() > static_cast<size_t>(kMaxLights)) {
-        throw std::invalid_argument("Lighting has " + std::to_string(lighting.lights.size()) +
-                                    " lights; the shell renderer supports at most " +
-                                    std::to_string(kMaxLights) + " (kMaxLights)");
+        throw ParameterError(
+            "lighting.light", std::to_string(lighting.lights.size()) + " lights",
+            "must hold at most " + std::to_string(kMaxLights) + " lights (kMaxLights)");
     }
     for (size_t l = 0; l < lighting.lights.size(); ++l) {
         const PointLight& light = lighting.lights[l];
         const glm::vec3& k = light.attenuation;
         if (!finite3(light.wsPosition_m) || !finite3(light.color) || !finite3(k) || k.x < 0.0f ||
             k.y < 0.0f || k.z < 0.0f || !(k.x + k.y + k.z > 0.0f)) {
-            throw std::invalid_argument(
-                "Lighting.lights[" + std::to_string(l) +
-                "]: position and colour must be finite, attenuation (k_c, k_l, k_q) >= 0 and not "
+            throw ParameterError(
+                "lighting.light[" + std::to_string(l) + "]." +
+                    (!finite3(light.wsPosition_m) ? "position_m"
+                     : !finite3(light.color)      ? "color"
+                                                  : "attenuation"),
+                "a non-finite or negative value",
+                "position and colour must be finite, attenuation (k_c, k_l, k_q) >= 0 and not "
                 "all zero");
         }
     }
     if (!finite3(lighting.ambient) || !(lighting.specularPower >= 0.0f) ||
         !std::isfinite(lighting.specularPower) || !std::isfinite(lighting.specularStrength)) {
-        throw std::invalid_argument(
-            "Lighting: ambient and specularStrength must be finite, specularPower >= 0");
+        throw ParameterError(!finite3(lighting.ambient) ? "lighting.ambient"
+                             : !std::isfinite(lighting.specularStrength)
+                                 ? "lighting.specular_strength"
+                                 : "lighting.specular_power",
+                             "a non-finite or negative value",
+                             "ambient and specular_strength must be finite, specular_power >= 0");
     }
     if (!(lighting.selfShadowMin >= 0.0f && lighting.selfShadowMin <= 1.0f)) {
-        throw std::invalid_argument("Lighting.selfShadowMin must be in [0, 1], got " +
-                                    std::to_string(lighting.selfShadowMin));
+        throw ParameterError("lighting.self_shadow_min", formatG(lighting.selfShadowMin),
+                             "must be in [0, 1]");
     }
     mImpl->context.makeCurrent();
     mImpl->lighting = lighting;
@@ -425,8 +433,8 @@ void ShellRenderer::setShellCount(int shells) {
     Impl& m = *mImpl;
     if (!m.haveGrass) throw std::logic_error("ShellRenderer::setShellCount before setGrass");
     if (shells < 0 || shells > kMaxShells)
-        throw std::invalid_argument("ShellRenderer::setShellCount: shells must be in 0.." +
-                                    std::to_string(kMaxShells) + ", got " + std::to_string(shells));
+        throw ParameterError("grass.shells", std::to_string(shells),
+                             "must be in 0.." + std::to_string(kMaxShells));
     m.grass.shells = shells;
 }
 

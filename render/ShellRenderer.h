@@ -42,13 +42,15 @@ class ShellRenderer {
     ShellRenderer& operator=(const ShellRenderer&) = delete;
 
     /// Uploads the terrain grid (world space, metres): nx, ny >= 2, one position, unit normal and
-    /// uv per vertex, two triangles per quad. Throws std::invalid_argument on wrong sizes or
-    /// non-finite values. Forces the wind directions and groups to be re-uploaded.
+    /// uv per vertex, two triangles per quad. Throws std::logic_error (the caller's bug: coupling
+    /// builds the mesh) on wrong sizes or non-finite values. Forces the wind directions and groups
+    /// to be re-uploaded.
     void setTerrain(const TerrainMesh& mesh);
     /// Uploads the grass texture with its blade-keeping MIP chain (thesis 3.4; GL_TEXTURE_MAX_LEVEL
     /// is the last level the chain kept). params.height_m > 0; params.shells in 0..kMaxShells
     /// (0 draws the ground only, the paper's one-shell row); stiffness > 0. Texture levels must be
-    /// square, halving from a power of two. Throws std::invalid_argument otherwise.
+    /// square, halving from a power of two. Throws gale::ParameterError naming grass.height_m,
+    /// grass.shells, grass.lod_pixels or grass.stiffness, std::logic_error for bad texture levels.
     void setGrass(const GrassParams& params, const GrassTexture& texture);
     /// Thins the grass by a density map (render/DensityMap.h); a map of width 0 removes it
     /// (density 1 everywhere). Requires density.size() == width * height, values finite, width
@@ -56,7 +58,8 @@ class ShellRenderer {
     void setDensityMap(const DensityMap& map);
     /// At most kMaxLights point lights (RenderLimits.h); attenuation coefficients >= 0 with
     /// k_c + k_l + k_q > 0; specularPower >= 0; selfShadowMin in [0, 1]. Throws
-    /// std::invalid_argument otherwise.
+    /// gale::ParameterError naming the scene key (lighting.light[l].attenuation,
+    /// lighting.self_shadow_min, ...) otherwise.
     void setLighting(const Lighting& lighting);
 
     /// Draws one frame: per-group (n_i, w_i) tables are built on the CPU from wind.groupIntensity
@@ -65,12 +68,14 @@ class ShellRenderer {
     /// Requires setTerrain and setGrass first (std::logic_error otherwise). wind.wsDirection() and
     /// wind.group() must each hold one entry per terrain vertex and every group must be below
     /// wind.groupIntensity.size(); an empty groupIntensity means no wind (then the per-vertex
-    /// arrays may be empty). Intensities must be finite. Throws std::invalid_argument naming the
-    /// field. Clears to the sky colour, draws, and ends with glFinish.
+    /// arrays may be empty). Intensities must be finite. Throws std::logic_error naming the
+    /// field (the wind comes from coupling, not from a scene value). Clears to the sky colour,
+    /// draws, and ends with glFinish.
     FrameStats draw(const Camera& camera, const GrassWind& wind);
     /// draw() with parts left out (the viewer's terrain and grass toggles); same preconditions.
     FrameStats draw(const Camera& camera, const GrassWind& wind, const DrawOptions& options);
-    /// Changes N without re-uploading the texture: 0..kMaxShells, else std::invalid_argument.
+    /// Changes N without re-uploading the texture: 0..kMaxShells, else gale::ParameterError
+    /// (grass.shells).
     /// Requires setGrass first (std::logic_error otherwise).
     void setShellCount(int shells);
     /// The current N.

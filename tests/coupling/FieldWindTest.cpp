@@ -250,10 +250,11 @@ TEST(FieldWind, RejectsBadSpecsAndSteps) {
     spec.grouping = Grouping::Levels;
     EXPECT_THROW(FieldWind(mesh, spec), std::invalid_argument);
     FieldWind wind(mesh, FieldWindSpec{});
-    EXPECT_THROW(wind.addFieldStep(0.0, {}), std::invalid_argument);
+    // Field steps come from the program, not the scene: a wrong one is a bug.
+    EXPECT_THROW(wind.addFieldStep(0.0, {}), std::logic_error);
     wind.addFieldStep(1.0, std::vector<glm::vec3>(mesh.wsPosition_m.size()));
     EXPECT_THROW(wind.addFieldStep(1.0, std::vector<glm::vec3>(mesh.wsPosition_m.size())),
-                 std::invalid_argument);
+                 std::logic_error);
 }
 
 }  // namespace

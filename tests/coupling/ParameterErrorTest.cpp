@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ParameterErrorCheck.h"
 #include "base/ParameterError.h"
 #include "coupling/FieldWind.h"
 #include "coupling/GustCurve.h"
@@ -21,20 +22,8 @@
 namespace gale {
 namespace {
 
-/// Runs `call` and returns the ParameterError it throws; fails the test if it throws nothing or
-/// anything else.
-ParameterError thrownBy(const std::function<void()>& call) {
-    try {
-        call();
-    } catch (const ParameterError& e) {
-        return e;
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << "threw something other than a ParameterError: " << e.what();
-        return ParameterError("", "", "");
-    }
-    ADD_FAILURE() << "threw nothing";
-    return ParameterError("", "", "");
-}
+using gale::test::logicErrorOf;
+using gale::test::thrownBy;
 
 render::TerrainMesh smallMesh() {
     return coupling::buildTerrainMesh(sim::makeHeightfield(3, 3, 1.0, std::vector<float>(9, 0.0f)),
@@ -96,6 +85,23 @@ TEST(ParameterError, RendererNamesTheSceneKey) {
     const ParameterError e = thrownBy([&] { (void)render::generateGrassTexture(spec); });
     EXPECT_EQ(e.key(), "grass.generated.size");
     EXPECT_EQ(e.value(), "100");
+}
+
+TEST(ParameterError, CouplingBugsAreLogicErrorsNotBadInput) {
+    EXPECT_EQ(thrownBy([] { coupling::GustCurve(2.0, {}); }).key(), "wind.gust.keys");
+    render::TerrainMesh mesh = smallMesh();
+    mesh.wsNormal.pop_back();
+    EXPECT_NE(
+        logicErrorOf([&] { coupling::FieldWind(mesh, coupling::FieldWindSpec{}); }).find("normals"),
+        std::string::npos);
+    coupling::FieldWind wind(smallMesh(), coupling::FieldWindSpec{});
+    EXPECT_NE(logicErrorOf([&] { wind.addFieldStep(0.0, {}); }).find("velocities"),
+              std::string::npos);
+    sim::Heightfield line;
+    line.nx = 1, line.ny = 4, line.spacing_m = 1.0;
+    line.height_m.assign(4, 0.0f);
+    EXPECT_NE(logicErrorOf([&] { (void)coupling::buildTerrainMesh(line, 1.0f); }).find("2x2"),
+              std::string::npos);
 }
 
 }  // namespace

@@ -113,12 +113,12 @@ TEST(DensityMap, BadMapsAreRefused) {
     map.width = 2;
     map.height = 2;
     map.density = {1.0f, 1.0f, 1.0f};
-    EXPECT_THROW(view.renderer.setDensityMap(map), std::invalid_argument);
+    EXPECT_THROW(view.renderer.setDensityMap(map), std::logic_error);
     map.density.push_back(NAN);
-    EXPECT_THROW(view.renderer.setDensityMap(map), std::invalid_argument);
+    EXPECT_THROW(view.renderer.setDensityMap(map), std::logic_error);
     map.density.back() = 1.0f;
     map.wsSize_m = glm::vec2(0.0f, 1.0f);
-    EXPECT_THROW(view.renderer.setDensityMap(map), std::invalid_argument);
+    EXPECT_THROW(view.renderer.setDensityMap(map), std::logic_error);
 }
 
 // Mean absolute difference of the red channel between the image and itself shifted `shift`

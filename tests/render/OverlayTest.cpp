@@ -205,7 +205,7 @@ TEST(Overlay, RejectsBadInputNamingTheField) {
     try {
         overlay.draw(scene.camera, bad);
         FAIL() << "accepted a slice with a missing speed";
-    } catch (const std::invalid_argument& e) {
+    } catch (const std::logic_error& e) {
         EXPECT_NE(std::string(e.what()).find("OverlaySlice"), std::string::npos) << e.what();
     }
 }

@@ -228,13 +228,14 @@ TEST(ShellRenderer, AllGroundTextureShowsOnlyShellZero) {
     EXPECT_EQ(countPixelsOff(image, groundShade), 0);
 }
 
-// Draws the reference scene with `wind` and expects std::invalid_argument naming `expected`.
+// Draws the reference scene with `wind` and expects std::logic_error (the wind comes from
+// coupling, so a malformed one is a bug, not bad input) naming `expected`.
 void expectDrawRefuses(const GrassWind& wind, const std::string& expected) {
     ReferenceRig rig(32, 24);
     try {
         rig.frame(wind);
-        FAIL() << "expected std::invalid_argument naming " << expected;
-    } catch (const std::invalid_argument& e) {
+        FAIL() << "expected std::logic_error naming " << expected;
+    } catch (const std::logic_error& e) {
         EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
     }
 }
