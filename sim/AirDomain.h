@@ -67,7 +67,7 @@ struct DomainSpec {
     RunMemory run = {};
 };
 
-class AirDomain {
+class AirDomain : public LayoutAccessors<AirDomain> {
   public:
     /// Automatic top: this many terrain reliefs above the highest point...
     static constexpr double AUTO_TOP_RELIEF_FACTOR = 3.0;
@@ -102,16 +102,8 @@ class AirDomain {
 
     /// The box's layout (cells, faces, world <-> index): the one shared with the Poisson system,
     /// the wind field and advection.
+    /// nx(), ny(), nz(), voxelSize_m(), wsMin_m() and wsTop_m() come from LayoutAccessors.
     const GridLayout& layout() const { return mLayout; }
-    int nx() const { return mLayout.nx; }
-    int ny() const { return mLayout.ny; }
-    int nz() const { return mLayout.nz; }
-    /// Horizontal cell edge (and the layer thickness of a uniform layout), metres.
-    double voxelSize_m() const { return mLayout.voxelSize_m; }
-    /// World position of the minimum corner of cell (0, 0, 0), metres.
-    std::array<double, 3> wsMin_m() const { return mLayout.wsMin_m; }
-    /// World z of the top boundary (after rounding to whole cells), metres.
-    double wsTop_m() const { return mLayout.wsTop_m(); }
 
     size_t boxCellCount() const { return mLayout.cellCount(); }
     size_t activeCellCount() const { return mActiveCount; }

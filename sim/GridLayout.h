@@ -233,4 +233,25 @@ class GridLayout : public GridIndex {
     double centreLatticeZ(double Z) const;
 };
 
+/// The layout's sizes as members of a class that holds a GridLayout and returns it from
+/// `layout()` (AirDomain, WindField), so callers write `domain.nx()`: one set of forwards for
+/// every holder (CRTP: `class AirDomain : public LayoutAccessors<AirDomain>`).
+template <class Holder>
+class LayoutAccessors {
+  public:
+    /// Cells along x, y and z.
+    int nx() const { return grid().nx; }
+    int ny() const { return grid().ny; }
+    int nz() const { return grid().nz; }
+    /// Horizontal cell edge (and the layer thickness of a uniform layout), metres.
+    double voxelSize_m() const { return grid().voxelSize_m; }
+    /// World position of the minimum corner of cell (0, 0, 0), metres.
+    Vec3d wsMin_m() const { return grid().wsMin_m; }
+    /// World z of the top boundary (after rounding to whole cells), metres.
+    double wsTop_m() const { return grid().wsTop_m(); }
+
+  private:
+    const GridLayout& grid() const { return static_cast<const Holder&>(*this).layout(); }
+};
+
 }  // namespace gale::sim

@@ -27,7 +27,7 @@ struct VdbMetadata {
     std::vector<std::pair<std::string, double>> numbers;
 };
 
-class WindField {
+class WindField : public LayoutAccessors<WindField> {
   public:
     WindField() = default;
     /// An all-zero field over the cells of `layout`. `air` (cellCount() flags, i fastest) marks
@@ -39,13 +39,9 @@ class WindField {
     WindField(int nx, int ny, int nz, double voxelSize_m, std::array<double, 3> wsMin_m,
               std::shared_ptr<const Heightfield> terrain, std::vector<uint8_t> air);
 
+    /// The field's layout; nx(), ny(), nz(), voxelSize_m(), wsMin_m() and wsTop_m() come from
+    /// LayoutAccessors.
     const GridLayout& layout() const { return mLayout; }
-    int nx() const { return mLayout.nx; }
-    int ny() const { return mLayout.ny; }
-    int nz() const { return mLayout.nz; }
-    /// Horizontal cell edge (and the layer thickness of a uniform layout), metres.
-    double voxelSize_m() const { return mLayout.voxelSize_m; }
-    std::array<double, 3> wsMin_m() const { return mLayout.wsMin_m; }
 
     /// Face velocities, m/s (sizes (nx+1)*ny*nz, nx*(ny+1)*nz, nx*ny*(nz+1)).
     std::vector<double>& u_mps() { return mU; }
