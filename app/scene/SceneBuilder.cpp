@@ -69,12 +69,19 @@ void rethrowAsSceneError(const Scene& scene, const std::string& fallbackKey,
         const auto it = scene.keyLines.find(key);
         return it == scene.keyLines.end() ? 0 : it->second;
     };
-    if (lineOf(p->key()) > 0) failAt(scene, p->key(), p->expected() + " (got " + p->value() + ")");
-    // A default the scene did not write: point at its section (or the fallback) and say so.
-    const std::string section = p->key().substr(0, p->key().rfind('.'));
-    const int line = lineOf(section) > 0 ? lineOf(section) : lineOf(fallbackKey);
+    // The line of the key, or of the nearest enclosing part the scene wrote: "terrain.size_m[0]"
+    // is on terrain.size_m's line; a default the scene did not write, on its section's.
+    std::string written = p->key();
+    while (!written.empty() && lineOf(written) == 0) {
+        const size_t cut = written.find_last_of(".[");
+        written = cut == std::string::npos ? std::string() : written.substr(0, cut);
+    }
+    const std::string key = p->key().substr(0, p->key().find('[', p->key().rfind('.') + 1));
+    const bool isDefault = written.size() < key.size();
+    const int line = !written.empty() ? lineOf(written) : lineOf(fallbackKey);
     throw SceneError(scene.path + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
-                     p->key() + ": " + p->expected() + " (got " + p->value() + ", the default)");
+                     p->key() + ": " + p->expected() + " (got " + p->value() +
+                     (isDefault ? ", the default)" : ")"));
 }
 
 namespace {

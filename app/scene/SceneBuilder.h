@@ -20,8 +20,10 @@
 namespace gale::app {
 
 /// Turns a library's std::invalid_argument into the scene's error (SceneError, exit 2): a
-/// gale::ParameterError names its own scene key, and the message points at that key's FILE:LINE;
-/// any other is placed at `fallbackKey` (the section the failing call was built from).
+/// gale::ParameterError names its own scene key, and the message points at that key's FILE:LINE,
+/// at its enclosing key's ("terrain.size_m[0]" on size_m's line), or, when the scene left the
+/// key out, at its section's line with "(got VALUE, the default)"; any other is placed at
+/// `fallbackKey` (the section the failing call was built from).
 [[noreturn]] void rethrowAsSceneError(const Scene& scene, const std::string& fallbackKey,
                                       const std::invalid_argument& error);
 

@@ -66,7 +66,7 @@ void readTerrain(Context& ctx, Section s) {
     const bool isDem = kindName == "dem";  // loaded like a heightmap, through GDAL (Dem.h)
     try {
         spec.kind = isDem ? sim::TerrainKind::Heightmap : sim::terrainKindFromName(kindName);
-    } catch (const std::invalid_argument&) {
+    } catch (const ParameterError&) {  // the list below adds dem, which is not built in sim/
         s.failKey("kind",
                   "expected one of flat, gaussian_hill, ridge, valley, crater, fractal, "
                   "hemisphere, heightmap, dem (got \"" +
@@ -251,8 +251,8 @@ void readSolver(Context& ctx, Section s) {
     const std::string model = s.string("model", sim::steadyModelName(v.model));
     try {
         v.model = sim::steadyModelFromName(model);
-    } catch (const std::invalid_argument& e) {
-        s.failKey("model", e.what());
+    } catch (const ParameterError& e) {
+        s.failParameter(e);
     }
     v.domain.momentumModel = v.model == sim::SteadyModel::Momentum;
     v.momentum.displacementHeight_m =
@@ -277,6 +277,8 @@ void readUnsteady(Context& ctx, Section s) {
     const std::string adv = s.string("advection", sim::advectionSchemeName(v.advection));
     try {
         v.advection = sim::advectionSchemeFromName(adv);
+    } catch (const ParameterError& e) {
+        s.failParameter(e);
     } catch (const std::invalid_argument& e) {
         s.failKey("advection", e.what());
     }

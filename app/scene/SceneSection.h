@@ -23,6 +23,7 @@
 #include "app/io/Errors.h"
 #include "app/scene/Scene.h"
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 
 namespace gale::app::detail {
 
@@ -233,6 +234,21 @@ class Section {
     }
     [[noreturn]] void failKey(const std::string& key, const std::string& reason) const {
         fail(lineOfKey(key), key, reason);
+    }
+    /// A library's ParameterError about a key of this section, at the line of the key it names
+    /// ("wind.profile"; for an element of an array of tables, "wind.gusts.peak_mps" is this
+    /// element's peak_mps), or at this section's line when the key was not written (its default
+    /// is then what is wrong, and the message says so).
+    [[noreturn]] void failParameter(const ParameterError& e) const {
+        // "wind.gusts[2]" answers for "wind.gusts.KEY" too.
+        const bool element = !mName.empty() && mName.back() == ']';
+        const std::string prefix = (element ? mName.substr(0, mName.rfind('[')) : mName) + ".";
+        const bool inside = !mName.empty() && e.key().compare(0, prefix.size(), prefix) == 0;
+        const std::string key = inside ? e.key().substr(prefix.size()) : e.key();
+        const bool isDefault = inside && !given(key);  // a default another key made invalid
+        const std::string got = " (got " + e.value() + (isDefault ? ", the default)" : ")");
+        if (inside) fail(lineOfKey(key), key, e.expected() + got);
+        fail(mLine, "", e.key() + ": " + e.expected() + got);
     }
 
     /// The getters below return the value written under `key`, checked, or `def` when the key is

@@ -42,15 +42,15 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
         const std::string env = gs.string("envelope", sim::gustEnvelopeName(g.envelope));
         try {
             g.envelope = sim::gustEnvelopeFromName(env);
-        } catch (const std::invalid_argument& e) {
-            gs.failKey("envelope", e.what());
+        } catch (const ParameterError& e) {
+            gs.failParameter(e);
         }
         g.attack_s = gs.optionalNumber("attack_s", above(0.0, 1e9));
         const std::string entry = gs.string("entry", sim::gustEntryName(g.entry));
         try {
             g.entry = sim::gustEntryFromName(entry);
-        } catch (const std::invalid_argument& e) {
-            gs.failKey("entry", e.what());
+        } catch (const ParameterError& e) {
+            gs.failParameter(e);
         }
         g.regionStartGiven = gs.take("region_start_m") != nullptr;
         g.regionStart_m = gs.vec<2>("region_start_m", g.regionStart_m, anyFinite());
@@ -64,9 +64,11 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
         if (gs.given("attack_s") && g.envelope != sim::GustEnvelope::Spline)
             ctx.scene->notes.push_back(ctx.scene->where(gs.full("attack_s")) +
                                        ": only the spline envelope has an attack time (ignored)");
-        if (g.attack_s && !(*g.attack_s < g.duration_s))
-            gs.failKey("attack_s", "must be shorter than duration_s = " + Limit::num(g.duration_s) +
-                                       " (got " + Limit::num(*g.attack_s) + ")");
+        try {
+            g.validate();  // what the ranges above cannot see: attack_s within duration_s
+        } catch (const ParameterError& e) {
+            gs.failParameter(e);
+        }
         u.gusts.push_back(g);
         if (!unsteady)
             ctx.scene->notes.push_back(ctx.file + ":" + std::to_string(gs.line()) + ": " +
@@ -95,8 +97,8 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
         const std::string profile = ws.string("profile", sim::vortexProfileName(v.profile));
         try {
             v.profile = sim::vortexProfileFromName(profile);
-        } catch (const std::invalid_argument& e) {
-            ws.failKey("profile", e.what());
+        } catch (const ParameterError& e) {
+            ws.failParameter(e);
         }
         v.updraft_mps = ws.number("updraft_mps", v.updraft_mps, closed(0.0, 1000.0));
         v.start_s = ws.number("start_s", v.start_s, closed(0.0, 1e9));
@@ -104,6 +106,11 @@ void readGustsAndWhirlwinds(Context& ctx, Section& s) {
         v.forced = ws.boolean("forced", v.forced);
         v.height_m = ws.number("height_m", v.height_m, closed(0.0, 1e6));
         ws.finish();
+        try {
+            v.validate();
+        } catch (const ParameterError& e) {
+            ws.failParameter(e);
+        }
         if (ws.given("lifetime_s") && !v.forced)
             ctx.scene->notes.push_back(
                 ctx.scene->where(ws.full("lifetime_s")) +
@@ -150,8 +157,8 @@ void readWind(Context& ctx, Section s) {
     const std::string profile = s.string("profile", sim::windProfileName(a.profile));
     try {
         a.profile = sim::windProfileFromName(profile);
-    } catch (const std::invalid_argument& e) {
-        s.failKey("profile", e.what());
+    } catch (const ParameterError& e) {
+        s.failParameter(e);
     }
     a.roughness_m = s.number("roughness_m", a.roughness_m, above(0.0, 100.0));
     if (!(a.referenceHeight_m > a.roughness_m))
@@ -159,8 +166,8 @@ void readWind(Context& ctx, Section s) {
                                             " (got " + Limit::num(a.referenceHeight_m) + ")");
     try {
         a.validate();  // the log law also needs z_ref a few z0 above the ground
-    } catch (const std::invalid_argument& e) {
-        s.failKey("reference_height_m", e.what());
+    } catch (const ParameterError& e) {
+        s.failParameter(e);
     }
 
     // How the grass answers the solved field (coupling/FieldWind.h).
@@ -170,8 +177,8 @@ void readWind(Context& ctx, Section s) {
             s.string("response", coupling::bladeResponseName(r.response)));
         r.grouping = coupling::groupingFromName(s.string(
             "grouping", r.response == coupling::BladeResponse::Oscillator ? "tiles" : "levels"));
-    } catch (const std::invalid_argument& e) {
-        s.failKey(s.given("grouping") ? "grouping" : "response", e.what());
+    } catch (const ParameterError& e) {
+        s.failParameter(e);
     }
     r.groups = static_cast<int>(s.integer("groups", r.groups, 1, 4096));
     r.blendGroups = p.blendGroups;
@@ -184,8 +191,8 @@ void readWind(Context& ctx, Section s) {
     w.levels = static_cast<int>(s.integer("levels", w.levels, 1, 256));
     try {
         coupling::validate(r);
-    } catch (const std::invalid_argument& e) {
-        s.failKey(s.given("grouping") ? "grouping" : "response", e.what());
+    } catch (const ParameterError& e) {
+        s.failParameter(e);
     }
     const bool solved = w.kind != WindKind::PointSource;
     for (const char* key : {"source_m", "steps", "step_delay_s", "blow_away"})
