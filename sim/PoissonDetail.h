@@ -123,8 +123,11 @@ struct Level {
     /// full-open weights of each layer (x- and y-faces of layer k; z-face k, below layer k, for
     /// k in [0, nz]) and the runs of active cells that have their layer's weights on all six
     /// faces (PoissonLevels.cpp). Kernels treat those with the layer's constants.
+    /// Also fills lowestActive: per column (i + nx j), the lowest active layer (nz if none),
+    /// below which the z-line smoother has nothing to solve.
     void findLayerRuns();
     std::vector<float> layerBx, layerBy, layerBz;
+    std::vector<int> lowestActive;
     /// active = diag > 0 on every cell (PoissonLevels.cpp).
     void markActive();
     double diag(size_t p) const {

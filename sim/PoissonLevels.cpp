@@ -160,6 +160,14 @@ void Level::findLayerRuns() {
                 layerBz[size_t(k)] = std::max(layerBz[size_t(k)], wz[p]);
             }
     });
+    lowestActive.assign(size_t(nx) * size_t(ny), nz);
+    tbb::parallel_for(0, ny, [&](int j) {
+        for (int i = 0; i < nx; ++i) {
+            int k = 0;
+            while (k < nz && !active[at(i, j, k)]) ++k;
+            lowestActive[size_t(i) + size_t(nx) * size_t(j)] = k;
+        }
+    });
     findRuns(*this, [&](size_t p, int k) {
         const float fx = layerBx[size_t(k)], fy = layerBy[size_t(k)];
         return active[p] && wx[p] == fx && wx[p + 1] == fx && wy[p] == fy && wy[p + sx] == fy &&

@@ -19,6 +19,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -94,12 +95,18 @@ void solvePlaneColumns(const Level& L, double* x, const double* b, int j, int co
                        int i1, std::vector<double>& c, std::vector<double>& tmp) {
     const int n = i1 - i0, lane = (i0 + j + colour) & 1;  // first column of the colour
     if (n <= lane) return;
+    // Layers below every column's lowest active cell are rock (x stays 0): not visited.
+    const int* lowest = L.lowestActive.data() + size_t(L.nx) * size_t(j);
+    const int k0 = *std::min_element(lowest + i0, lowest + i1);
+    if (k0 >= L.nz) return;
     const size_t row = size_t(n);
     c.resize(row * (size_t(L.nz) + 1));
     tmp.resize(row);
-    std::fill(c.begin(), c.begin() + std::ptrdiff_t(row), 0.0);  // "below" the lowest layer
+    // c of the layer below the first one visited: rock or the ground, no coupling.
+    std::fill(c.begin() + std::ptrdiff_t(row * size_t(k0)),
+              c.begin() + std::ptrdiff_t(row * (size_t(k0) + 1)), 0.0);
     const std::ptrdiff_t sx = L.sx, sxy = std::ptrdiff_t(L.sxy);
-    for (int k = 0; k < L.nz; ++k) {
+    for (int k = k0; k < L.nz; ++k) {
         const std::ptrdiff_t p0 = std::ptrdiff_t(L.at(i0, j, k));
         double* cRow = c.data() + row * (size_t(k) + 1);
         const double* cBelow = cRow - row;
@@ -122,7 +129,7 @@ void solvePlaneColumns(const Level& L, double* x, const double* b, int j, int co
             });
         for (int i = lane; i < n; i += 2) x[p0 + i] = tmp[size_t(i)];
     }
-    for (int k = L.nz - 2; k >= 0; --k) {
+    for (int k = L.nz - 2; k >= k0; --k) {
         const std::ptrdiff_t p0 = std::ptrdiff_t(L.at(i0, j, k));
         const double* cRow = c.data() + row * (size_t(k) + 1);
         for (int i = lane; i < n; i += 2) x[p0 + i] += cRow[i] * x[p0 + i + sxy];
@@ -159,6 +166,7 @@ void lineSweep(const Level& L, double* x, const double* b, int first, bool fromZ
     // this chunk just finished). Chunks of one step touch disjoint columns and read the other
     // chunks' cells only in the same plane's other colour, which the step does not write.
     const int steps = L.ny + (residualOut ? 2 : 1);
+    tbb::affinity_partitioner affinity;
     for (int s = 0; s < steps; ++s) {
         const bool next = s + 1 < L.ny;
         if (C && next) redirectsOfPlane(s + 1);  // scattered cells: serially, before the chunks
@@ -203,10 +211,10 @@ void lineSweep(const Level& L, double* x, const double* b, int first, bool fromZ
             auto body = [&](const tbb::blocked_range<int>& r) {
                 for (int c = r.begin(); c < r.end(); ++c) chunk(c);
             };
-            // The same chunks on the same threads at every step (the planes they share with the
-            // previous step stay in that core's cache).
-            tbb::parallel_for(tbb::blocked_range<int>(0, chunks, 1), body,
-                              tbb::static_partitioner());
+            // Chunks go back to the threads that ran them in the previous step (the planes they
+            // share stay in that core's cache), but idle threads may still take them: a static
+            // assignment would wait for a thread the OS has descheduled at every step.
+            tbb::parallel_for(tbb::blocked_range<int>(0, chunks, 1), body, affinity);
         }
     }
     if (dotOut) {

@@ -175,7 +175,8 @@ void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, in
     const int lo = std::min(F.tx.c0[i0], F.tx.c1[i0]),
               hi = std::max(F.tx.c0[i1 - 1], F.tx.c1[i1 - 1]);
     thread_local std::vector<double> t;
-    t.assign(size_t(C.sx), 0.0);
+    if (t.size() < size_t(C.sx)) t.resize(size_t(C.sx));
+    std::fill(t.begin() + (lo + 1), t.begin() + (hi + 2), 0.0);
     const int kc[2] = {F.tz.c0[k], F.tz.c1[k]};
     const double kw[2] = {F.tz.w0[k], F.tz.w1[k]};
     const int jc[2] = {F.ty.c0[j], F.ty.c1[j]};
