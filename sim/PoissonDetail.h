@@ -10,6 +10,8 @@
 ///   PoissonOperator.cpp   the 7-point operator: A x with x . A x, the residual, and the
 ///                         constant-coefficient row kernels;
 ///   PoissonSmoothing.cpp  the pipelined red-black Gauss-Seidel sweep (fusedSweep);
+///   PoissonLineSmoothing.cpp  the z-line sweep of stretched layers (lineSweep), pipelined plane
+///                         by plane;
 ///   PoissonTransfer.cpp   trilinear prolongation, restriction (its transpose), and the redirects;
 ///   PoissonSolver.cpp     the public class, the V-cycle and the CG driver.
 ///
