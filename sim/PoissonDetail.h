@@ -10,6 +10,8 @@
 ///   PoissonOperator.cpp   the 7-point operator: A x with x . A x, the residual, and the
 ///                         constant-coefficient row kernels;
 ///   PoissonSmoothing.cpp  the pipelined red-black Gauss-Seidel sweep (fusedSweep);
+///   PoissonLineSmoothing.cpp  the z-line sweep of stretched layers (lineSweep), pipelined plane
+///                         by plane;
 ///   PoissonTransfer.cpp   trilinear prolongation, restriction (its transpose), and the redirects;
 ///   PoissonSolver.cpp     the public class, the V-cycle and the CG driver.
 ///
@@ -32,6 +34,14 @@
 #include "sim/PoissonSolver.h"
 
 namespace gale::sim::multigrid {
+
+/// Row kernels written for the compiler to vectorise are compiled twice, for x86-64-v3 (AVX2, FMA)
+/// and the baseline, and picked at run time.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define GALE_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define GALE_VECTOR_CLONES
+#endif
 
 /// Below this many cells a level runs serially: TBB's scheduling costs more than it saves.
 inline constexpr size_t PARALLEL_MIN_CELLS = 16 * 1024;
@@ -75,6 +85,10 @@ struct Level {
     std::vector<Redirect> redirects;
     std::vector<size_t>
         redirectSlab;  // redirects of fine slab k: [redirectSlab[k], redirectSlab[k+1])
+    /// z-line levels, which sweep plane by plane (fixed j): the redirects of fine plane j are
+    /// redirects[planeRedirects[n]] for n in [planeRedirectStart[j], planeRedirectStart[j+1]).
+    std::vector<uint32_t> planeRedirects;
+    std::vector<size_t> planeRedirectStart;
 
     void resize(int nx_, int ny_, int nz_) {
         nx = nx_, ny = ny_, nz = nz_;
@@ -107,6 +121,15 @@ struct Level {
     /// Sets the full-open weights (bx_, by_, bz_) and finds the runs of cells that have them on
     /// all six faces (PoissonLevels.cpp).
     void findUniformRuns(float bx_, float by_, float bz_);
+    /// z-line levels (stretched layers, whose full-open weights differ from layer to layer): the
+    /// full-open weights of each layer (x- and y-faces of layer k; z-face k, below layer k, for
+    /// k in [0, nz]) and the runs of active cells that have their layer's weights on all six
+    /// faces (PoissonLevels.cpp). Kernels treat those with the layer's constants.
+    /// Also fills lowestActive: per column (i + nx j), the lowest active layer (nz if none),
+    /// below which the z-line smoother has nothing to solve.
+    void findLayerRuns();
+    std::vector<float> layerBx, layerBy, layerBz;
+    std::vector<int> lowestActive;
     /// active = diag > 0 on every cell (PoissonLevels.cpp).
     void markActive();
     double diag(size_t p) const {
@@ -201,6 +224,12 @@ void uniformCandidates(const double* __restrict x, const double* __restrict b,
                        double* __restrict tmp, size_t p0, int i0, int i1, std::ptrdiff_t sx,
                        std::ptrdiff_t sxy, double bx, double by, double bz, double invD);
 
+/// The same on a run of a z-line level's row in layer k (findLayerRuns): horizontal weights bx,
+/// by, z-weights bzLo below and bzUp above.
+double layerApply(const double* __restrict x, const double* __restrict b, double* __restrict out,
+                  size_t p0, int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx,
+                  double by, double bzLo, double bzUp);
+
 /// out = b - A x on a uniform run (residual), or out = A x with b == nullptr; returns sum out * x
 /// (0 for the residual).
 double uniformApply(const double* __restrict x, const double* __restrict b, double* __restrict out,
@@ -230,15 +259,18 @@ void lineSweep(const Level& L, double* x, const double* b, int first, bool fromZ
 /// The 1-D transfer between nFine cells and nCoarse = ceil(nFine / factor) cells (factor 1 or 2).
 Transfer1D makeTransfer(int nFine, int nCoarse, int factor);
 
-/// F.redirects and F.redirectSlab: the fine cells that lose trilinear weight to inactive coarse
-/// cells or Neumann ghosts of C, sorted by fine index whatever the thread count.
+/// F.redirects, F.redirectSlab (and on z-line levels the per-plane index): the fine cells that lose
+/// trilinear weight to inactive coarse cells or Neumann ghosts of C, sorted by fine index whatever
+/// the thread count.
 void buildRedirects(Level& F, const Level& C, const std::array<BoundaryKind, 6>& sides);
 
 /// C.b = P^T rf (the coarse right-hand side from the fine residual), 0 in inactive coarse cells.
 void restrictTo(const Level& F, const double* rf, Level& C);
 
-/// xf += P xc on fine row (j, k), trilinear part only (prolongRedirects adds the rest).
-void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, int j, int k);
+/// xf += P xc on fine cells [i0, i1) of row (j, k), trilinear part only (prolongRedirects adds
+/// the rest).
+void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, int j, int k, int i0,
+                int i1);
 
 /// xf += the redirected part of P xc on fine slab k, in redirect order.
 void prolongRedirects(const Level& F, const double* xc, double* xf, int k);

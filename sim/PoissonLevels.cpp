@@ -96,43 +96,83 @@ void buildCoarse(const Level& F, Level& C) {
 
 }  // namespace
 
-void Level::findUniformRuns(float bx_, float by_, float bz_) {
+namespace {
+
+/// L's runs (at least MIN_RUN long) of cells for which uniform(p, k) holds, rows in parallel
+/// (slab by slab into separate lists), concatenated in row order.
+template <class Uniform>
+void findRuns(Level& L, const Uniform& uniform) {
     constexpr int MIN_RUN = 4;  // shorter runs are not worth a branch
-    bx = bx_, by = by_, bz = bz_;
-    uniformDiag = 2.0 * (double(bx) + by + bz);
-    uniformInvDiag = uniformDiag > 0 ? 1.0 / uniformDiag : 0.0;
-    // Rows in parallel (slab by slab into separate lists), concatenated in row order.
-    std::vector<std::vector<std::array<int, 2>>> perSlab(static_cast<size_t>(nz));
-    std::vector<uint32_t> count(size_t(ny) * nz, 0);
-    tbb::parallel_for(0, nz, [&](int k) {
-        for (int j = 0; j < ny; ++j) {
+    std::vector<std::vector<std::array<int, 2>>> perSlab(static_cast<size_t>(L.nz));
+    std::vector<uint32_t> count(size_t(L.ny) * L.nz, 0);
+    tbb::parallel_for(0, L.nz, [&](int k) {
+        for (int j = 0; j < L.ny; ++j) {
             int start = -1;
-            for (int i = 0; i <= nx; ++i) {
-                bool u = false;
-                if (i < nx && uniformDiag > 0) {
-                    const size_t p = at(i, j, k);
-                    u = wx[p] == bx && wx[p + 1] == bx && wy[p] == by && wy[p + sx] == by &&
-                        wz[p] == bz && wz[p + sxy] == bz;
-                }
+            for (int i = 0; i <= L.nx; ++i) {
+                const bool u = i < L.nx && uniform(L.at(i, j, k), k);
                 if (u && start < 0) start = i;
                 if (!u && start >= 0) {
                     if (i - start >= MIN_RUN)
-                        perSlab[size_t(k)].push_back({start, i}), ++count[rowIndex(j, k)];
+                        perSlab[size_t(k)].push_back({start, i}), ++count[L.rowIndex(j, k)];
                     start = -1;
                 }
             }
         }
     });
-    rowRuns.assign(size_t(ny) * nz + 1, 0);
-    runs.clear();
+    L.rowRuns.assign(size_t(L.ny) * L.nz + 1, 0);
+    L.runs.clear();
     uint32_t acc = 0;
-    for (size_t row = 0; row < count.size(); ++row) rowRuns[row] = acc, acc += count[row];
-    rowRuns[count.size()] = acc;
-    uniformCells = 0;
+    for (size_t row = 0; row < count.size(); ++row) L.rowRuns[row] = acc, acc += count[row];
+    L.rowRuns[count.size()] = acc;
+    L.uniformCells = 0;
     for (const auto& v : perSlab) {
-        runs.insert(runs.end(), v.begin(), v.end());
-        for (const auto& run : v) uniformCells += size_t(run[1] - run[0]);
+        L.runs.insert(L.runs.end(), v.begin(), v.end());
+        for (const auto& run : v) L.uniformCells += size_t(run[1] - run[0]);
     }
+}
+
+}  // namespace
+
+void Level::findUniformRuns(float bx_, float by_, float bz_) {
+    bx = bx_, by = by_, bz = bz_;
+    uniformDiag = 2.0 * (double(bx) + by + bz);
+    uniformInvDiag = uniformDiag > 0 ? 1.0 / uniformDiag : 0.0;
+    findRuns(*this, [&](size_t p, int) {
+        return uniformDiag > 0 && wx[p] == bx && wx[p + 1] == bx && wy[p] == by &&
+               wy[p + sx] == by && wz[p] == bz && wz[p + sxy] == bz;
+    });
+}
+
+void Level::findLayerRuns() {
+    // Per layer the largest weights of its interior x- and y-faces and of the z-faces below it
+    // (boundary z-faces at k = 0 and nz: their own, scaled, values), exact maxima, so
+    // deterministic; a cell whose six faces carry them is on the fast path with its layer's
+    // constants (cells on the box's sides carry the side's scaled weight and are not).
+    layerBx.assign(size_t(nz), 0.f);
+    layerBy.assign(size_t(nz), 0.f);
+    layerBz.assign(size_t(nz) + 1, 0.f);
+    tbb::parallel_for(0, nz + 1, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const size_t p = at(i, j, k);
+                if (k < nz && i > 0) layerBx[size_t(k)] = std::max(layerBx[size_t(k)], wx[p]);
+                if (k < nz && j > 0) layerBy[size_t(k)] = std::max(layerBy[size_t(k)], wy[p]);
+                layerBz[size_t(k)] = std::max(layerBz[size_t(k)], wz[p]);
+            }
+    });
+    lowestActive.assign(size_t(nx) * size_t(ny), nz);
+    tbb::parallel_for(0, ny, [&](int j) {
+        for (int i = 0; i < nx; ++i) {
+            int k = 0;
+            while (k < nz && !active[at(i, j, k)]) ++k;
+            lowestActive[size_t(i) + size_t(nx) * size_t(j)] = k;
+        }
+    });
+    findRuns(*this, [&](size_t p, int k) {
+        const float fx = layerBx[size_t(k)], fy = layerBy[size_t(k)];
+        return active[p] && wx[p] == fx && wx[p + 1] == fx && wy[p] == fy && wy[p + sx] == fy &&
+               wz[p] == layerBz[size_t(k)] && wz[p + sxy] == layerBz[size_t(k) + 1];
+    });
 }
 
 void Level::markActive() {
@@ -203,7 +243,10 @@ size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels) {
             bz = std::max(bz, slabMax[size_t(k)][2]);
             activeCells += slabActive[size_t(k)];
         }
-        L.findUniformRuns(bx, by, bz);
+        if (L.zLines)
+            L.findLayerRuns();
+        else
+            L.findUniformRuns(bx, by, bz);
     }
 
     while (levels.back().cells() > COARSEST_MAX_CELLS) {
@@ -218,9 +261,12 @@ size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels) {
         C.markActive();
         // A coarse face over full-open fine faces: (number of fine faces) * base / factor, exact
         // in floating point for the power-of-two factors used here.
-        C.findUniformRuns(float(double(F.bx) * F.cy * F.cz / F.cx),
-                          float(double(F.by) * F.cx * F.cz / F.cy),
-                          float(double(F.bz) * F.cx * F.cy / F.cz));
+        if (C.zLines)
+            C.findLayerRuns();
+        else
+            C.findUniformRuns(float(double(F.bx) * F.cy * F.cz / F.cx),
+                              float(double(F.by) * F.cx * F.cz / F.cy),
+                              float(double(F.bz) * F.cx * F.cy / F.cz));
         F.tx = makeTransfer(F.nx, C.nx, F.cx);
         F.ty = makeTransfer(F.ny, C.ny, F.cy);
         F.tz = makeTransfer(F.nz, C.nz, F.cz);

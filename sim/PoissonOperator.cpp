@@ -14,13 +14,7 @@
 namespace gale::sim::multigrid {
 
 // Constant-coefficient row kernels for runs of full-open cells, written so the compiler can
-// vectorise them (no stores into arrays they read); compiled twice, for x86-64-v3 (AVX2, FMA)
-// and the baseline, and picked at run time.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define GALE_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define GALE_VECTOR_CLONES
-#endif
+// vectorise them (no stores into arrays they read); GALE_VECTOR_CLONES (PoissonDetail.h).
 
 // The strides are signed so that xr[i - sx] steps back (an unsigned i - sx wraps: UB, UBSan).
 GALE_VECTOR_CLONES
@@ -60,6 +54,32 @@ double uniformApply(const double* __restrict x, const double* __restrict b, doub
     return acc;
 }
 
+GALE_VECTOR_CLONES
+double layerApply(const double* __restrict x, const double* __restrict b, double* __restrict out,
+                  size_t p0, int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx,
+                  double by, double bzLo, double bzUp) {
+    const double D = 2.0 * (bx + by) + bzLo + bzUp;
+    const double* xr = x + p0;
+    double* o = out + p0;
+    double acc = 0.0;
+    if (b) {
+        const double* br = b + p0;
+        for (int i = i0; i < i1; ++i)
+            o[i] = br[i] -
+                   (D * xr[i] - (bx * (xr[i - 1] + xr[i + 1]) + by * (xr[i - sx] + xr[i + sx]) +
+                                 bzLo * xr[i - sxy] + bzUp * xr[i + sxy]));
+        return 0.0;
+    }
+    for (int i = i0; i < i1; ++i) {
+        const double v =
+            D * xr[i] - (bx * (xr[i - 1] + xr[i + 1]) + by * (xr[i - sx] + xr[i + sx]) +
+                         bzLo * xr[i - sxy] + bzUp * xr[i + sxy]);
+        o[i] = v;
+        acc += v * xr[i];
+    }
+    return acc;
+}
+
 double applyDot(const Level& L, const double* in, double* out) {
     const size_t sx = L.sx, sxy = L.sxy;
     const float *wx = L.wx.data(), *wy = L.wy.data(), *wz = L.wz.data();
@@ -84,7 +104,12 @@ double applyDot(const Level& L, const double* in, double* out) {
                     }
                 },
                 [&](int i0, int i1) {
-                    acc += uniformApply(in, nullptr, out, p0, i0, i1, sx, sxy, bx, by, bz, D);
+                    if (L.zLines)
+                        acc += layerApply(in, nullptr, out, p0, i0, i1, sx, sxy,
+                                          L.layerBx[size_t(k)], L.layerBy[size_t(k)],
+                                          L.layerBz[size_t(k)], L.layerBz[size_t(k) + 1]);
+                    else
+                        acc += uniformApply(in, nullptr, out, p0, i0, i1, sx, sxy, bx, by, bz, D);
                 });
             return acc;
         },

@@ -94,12 +94,12 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
     auto prolongSlab = [&](int k, bool serialRows) {
         prolongRedirects(L, xc, x, k);
         if (serialRows) {
-            for (int j = 0; j < L.ny; ++j) prolongRow(*C, xc, L, x, j, k);
+            for (int j = 0; j < L.ny; ++j) prolongRow(*C, xc, L, x, j, k, 0, L.nx);
         } else {
             tbb::parallel_for(tbb::blocked_range<int>(0, L.ny, 16),
                               [&](const tbb::blocked_range<int>& r) {
                                   for (int j = r.begin(); j < r.end(); ++j)
-                                      prolongRow(*C, xc, L, x, j, k);
+                                      prolongRow(*C, xc, L, x, j, k, 0, L.nx);
                               });
         }
     };
@@ -112,7 +112,7 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
             prolongRedirects(L, xc, x, s + 1);
         auto rows = [&](int j0, int j1) {
             for (int j = j0; j < j1; ++j) {
-                if (prolongNext) prolongRow(*C, xc, L, x, j, s + 1);
+                if (prolongNext) prolongRow(*C, xc, L, x, j, s + 1, 0, L.nx);
                 if (s < L.nz) {
                     if (fromZero)
                         startRow(j, s);

@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -123,6 +124,19 @@ void buildRedirects(Level& F, const Level& C, const std::array<BoundaryKind, 6>&
         F.redirects.insert(F.redirects.end(), perSlab[k].begin(), perSlab[k].end());
     }
     F.redirectSlab[F.nz] = F.redirects.size();
+    if (!F.zLines) return;
+    // Plane index for the z-line sweep: a counting sort by j, stable, so each plane keeps the
+    // list's (fine index) order.
+    F.planeRedirectStart.assign(size_t(F.ny) + 1, 0);
+    auto planeOf = [&](size_t fine) { return int((fine / size_t(F.sx)) % size_t(F.sy)) - 1; };
+    for (const Level::Redirect& r : F.redirects)
+        ++F.planeRedirectStart[size_t(planeOf(r.fine)) + 1];
+    for (int j = 0; j < F.ny; ++j)
+        F.planeRedirectStart[size_t(j) + 1] += F.planeRedirectStart[size_t(j)];
+    F.planeRedirects.assign(F.redirects.size(), 0);
+    std::vector<size_t> next(F.planeRedirectStart.begin(), F.planeRedirectStart.end() - 1);
+    for (size_t n = 0; n < F.redirects.size(); ++n)
+        F.planeRedirects[next[size_t(planeOf(F.redirects[n].fine))]++] = uint32_t(n);
 }
 
 // Coarse right-hand side = P^T (fine residual); zero in inactive coarse cells. Rows are
@@ -154,9 +168,15 @@ void restrictTo(const Level& F, const double* rf, Level& C) {
 // the transpose of restriction on the next finer level and the V-cycle unsymmetric. With every
 // inactive cell 0 on every level, the trilinear weight of an inactive coarse neighbour meets a 0
 // and only its redirect to the home cell carries the correction, in both directions.
-void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, int j, int k) {
+void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, int j, int k, int i0,
+                int i1) {
+    if (i0 >= i1) return;
+    // The coarse cells fine cells [i0, i1) read: the transfer is monotone in i.
+    const int lo = std::min(F.tx.c0[i0], F.tx.c1[i0]),
+              hi = std::max(F.tx.c0[i1 - 1], F.tx.c1[i1 - 1]);
     thread_local std::vector<double> t;
-    t.assign(size_t(C.sx), 0.0);
+    if (t.size() < size_t(C.sx)) t.resize(size_t(C.sx));
+    std::fill(t.begin() + (lo + 1), t.begin() + (hi + 2), 0.0);
     const int kc[2] = {F.tz.c0[k], F.tz.c1[k]};
     const double kw[2] = {F.tz.w0[k], F.tz.w1[k]};
     const int jc[2] = {F.ty.c0[j], F.ty.c1[j]};
@@ -165,12 +185,12 @@ void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, in
         for (int b = 0; b < 2; ++b) {
             const double w = kw[a] * jw[b];
             if (w == 0.0) continue;
-            const double* row = xc + C.at(-1, jc[b], kc[a]);
-            for (int I = 0; I < C.sx; ++I) t[I] += w * row[I];
+            const double* row = xc + C.at(0, jc[b], kc[a]);
+            for (int I = lo; I <= hi; ++I) t[size_t(I + 1)] += w * row[I];
         }
     const size_t p0 = F.at(0, j, k);
     const uint8_t* active = F.active.data() + p0;
-    for (int i = 0; i < F.nx; ++i)
+    for (int i = i0; i < i1; ++i)
         if (active[i])
             xf[p0 + i] += F.tx.w0[i] * t[F.tx.c0[i] + 1] + F.tx.w1[i] * t[F.tx.c1[i] + 1];
 }

@@ -309,9 +309,9 @@ int runBenchSolve(const BenchSolveOptions& optIn) {
         "every weight read, less on full-open cells; per row below) x cells x iterations / triad "
         "bandwidth.\n\n",
         opt.relativeTolerance, baseline / 1e6, bw / 1e9, sweeps, sweeps, bytesGeneral);
-    std::printf("%-12s %-19s %5s %5s %9s %8s %8s %8s %8s %9s %8s %9s\n", "size", "solver", "its",
-                "conv", "rel.res", "setup s", "solve s", "total s", "peak MB", "vs gale", "floor s",
-                "x floor");
+    std::printf("%-12s %-19s %5s %5s %9s %8s %8s %8s %8s %10s %9s %8s %9s\n", "size", "solver",
+                "its", "conv", "rel.res", "setup s", "solve s", "total s", "peak MB", "MiB/Mcell",
+                "vs gale", "floor s", "x floor");
     nlohmann::json j;
     j["triad_GBps"] = bw / 1e9;
     j["bytes_per_cell_per_iteration_all_weights"] = bytesGeneral;
@@ -334,9 +334,12 @@ int runBenchSolve(const BenchSolveOptions& optIn) {
             itsLast = r.iterations;
         }
         const double peakMB = std::max(0.0, r.peakRss_bytes - baseline) / 1e6;
-        std::printf("%-12s %-19s %5d %5s %9.1e %8.3f %8.3f %8.3f %8.0f %9s %8s %9s%s\n",
+        // The peak per million cells of the box, in MiB: comparable across sizes and solvers.
+        const double peakMiBPerMillionCells = peakMB * 1e6 / MIB / (cells / 1e6);
+        std::printf("%-12s %-19s %5d %5s %9.1e %8.3f %8.3f %8.3f %8.0f %10.1f %9s %8s %9s%s\n",
                     name.c_str(), row.solver.c_str(), r.iterations, r.converged ? "yes" : "NO",
                     r.relativeResidual, r.setupSeconds, r.solveSeconds, r.totalSeconds, peakMB,
+                    peakMiBPerMillionCells,
                     ours ? "1" : (formatG(r.totalSeconds / oursTotal, 3) + "x").c_str(),
                     ours ? formatG(floorS, 3).c_str() : "",
                     ours ? formatG(r.solveSeconds / floorS, 3).c_str() : "",
@@ -357,6 +360,7 @@ int runBenchSolve(const BenchSolveOptions& optIn) {
                              {"solve_s", r.solveSeconds},
                              {"total_s", r.totalSeconds},
                              {"peak_rss_MB", peakMB},
+                             {"peak_mib_per_million_cells", peakMiBPerMillionCells},
                              {"held_MB", r.heldBytes / 1e6},
                              {"ratio_to_gale_total", ours ? 1.0 : r.totalSeconds / oursTotal},
                              {"floor_s", floorS},
