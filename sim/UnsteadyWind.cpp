@@ -34,16 +34,31 @@ constexpr double MIN_FORCING_STEPS = 1.0;
 /// Forcing and circulation are measured on a ring of this many core radii (at least 2 cells).
 constexpr double FORCING_RING_CORES = 2.0;
 
-/// The steady solve's operator with A = I; the top closed by a lid unless it is open.
+/// The steady solve's operator with A = I (on stretched layers weighted by the layer heights);
+/// the top closed by a lid unless it is open.
 PoissonSystem projectionSystem(const AirDomain& domain, bool openTop) {
-    // Advection traces and the viscosity operator assume cubic cells (docs/unsteady.md).
-    if (!domain.layout().uniformZ())
-        throw ParameterError("solver.first_cell_m", num(domain.layout().dz_m(0)),
-                             "stretched layers are not supported by the unsteady solver yet "
-                             "(wind.kind = \"unsteady\"): remove solver.first_cell_m");
     PoissonSystem s = SteadyWindSolver::makeSystem(domain, /*verticalRatio=*/1.0);
     if (!openTop) s.sides[SIDE_ZMAX] = BoundaryKind::Neumann;
     return s;
+}
+
+/// How fast the field moves through the cells, 1/s: the largest |u| / h and |v| / h over the
+/// x- and y-faces and |w| / dz over the z-faces, dz the thinner of the two layers a z-face
+/// touches (the thinnest layer is where w crosses cells fastest). Times dt: the CFL number.
+double cellRate_ps(const GridLayout& g, const std::vector<double>& U, const std::vector<double>& V,
+                   const std::vector<double>& W) {
+    double horizontal = 0.0, rate = 0.0;
+    for (const auto* a : {&U, &V})
+        for (double x : *a) horizontal = std::max(horizontal, std::abs(x));
+    rate = horizontal / g.voxelSize_m;
+    for (int k = 0; k <= g.nz; ++k) {
+        const double dz = std::min(g.dz_m(std::max(k - 1, 0)), g.dz_m(std::min(k, g.nz - 1)));
+        double wMax = 0.0;
+        for (size_t f = g.faceZIndex(0, 0, k); f < g.faceZIndex(0, 0, k + 1); ++f)
+            wMax = std::max(wMax, std::abs(W[f]));
+        rate = std::max(rate, wMax / dz);
+    }
+    return rate;
 }
 
 }  // namespace
@@ -83,6 +98,10 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
       mSystem(projectionSystem(domain, settings.openTop)),
       mPoisson(mSystem) {
     mSettings.validate();
+    if (mSettings.surfaceLayer.enabled && !domain.layout().uniformZ())
+        throw ParameterError("unsteady.surface_layer", "true",
+                             "cubic cells: the wall stress does not support stretched layers "
+                             "(solver.first_cell_m) yet");
     if (mean.nx() != domain.nx() || mean.ny() != domain.ny() || mean.nz() != domain.nz())
         throw std::invalid_argument("UnsteadyWindSolver: the mean field does not match the domain");
     mGrid = MacGrid(domain.layout(), &domain.terrain());
@@ -90,6 +109,9 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
     for (const auto* a : {&mMeanU, &mMeanV, &mMeanW})
         for (double x : *a) mMeanMax_mps = std::max(mMeanMax_mps, std::abs(x));
     for (const GustEvent& g : mSettings.gusts) mGustMax_mps += std::abs(g.peak_mps);
+    // The far field: the mean flow plus the (horizontal) gusts at their peaks.
+    mFarRate_ps =
+        sim::cellRate_ps(mGrid, mMeanU, mMeanV, mMeanW) + mGustMax_mps / mGrid.voxelSize_m;
     const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
     mOkX.assign(mGrid.count(Placement::FaceX), 0);
     mOkY.assign(mGrid.count(Placement::FaceY), 0);
@@ -159,25 +181,36 @@ double UnsteadyWindSolver::maxSpeed_mps() const {
     return m;
 }
 
+double UnsteadyWindSolver::cellRate_ps() const {
+    const double own = sim::cellRate_ps(mGrid, mField.u_mps(), mField.v_mps(), mField.w_mps());
+    return std::isfinite(own) ? std::max(own, mFarRate_ps) : own;
+}
+
 double UnsteadyWindSolver::nextDt_s() const {
     if (mSettings.dt_s > 0.0) return mSettings.dt_s;
-    double umax = std::max(mMeanMax_mps + mGustMax_mps, 0.0);
-    for (const auto* a : {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()})
-        for (double x : *a) umax = std::max(umax, std::abs(x));
-    if (!(umax > 0.0) || !std::isfinite(umax)) return mSettings.maxDt_s;
-    return std::min(mSettings.maxDt_s, mSettings.cfl * mGrid.voxelSize_m / umax);
+    const double rate = cellRate_ps();
+    if (!(rate > 0.0) || !std::isfinite(rate)) return mSettings.maxDt_s;
+    return std::min(mSettings.maxDt_s, mSettings.cfl / rate);
 }
 
 double UnsteadyWindSolver::kineticEnergy_m5ps2() const {
-    const double h3 = mGrid.voxelSize_m * mGrid.voxelSize_m * mGrid.voxelSize_m;
+    const double h = mGrid.voxelSize_m;
     double e = 0.0;
     const std::vector<double>* a[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
     const std::vector<float>* th[3] = {&mDomain.openFractionsX(), &mDomain.openFractionsY(),
                                        &mDomain.openFractionsZ()};
-    for (int c = 0; c < 3; ++c)
-        for (size_t f = 0; f < a[c]->size(); ++f)
-            e += double((*th[c])[f]) * (*a[c])[f] * (*a[c])[f];
-    return 0.5 * e * h3;
+    for (int c = 0; c < 3; ++c) {
+        const Placement p = Placement(c);
+        for (int k = 0; k < mGrid.dims(p)[2]; ++k) {
+            // The face's control volume: h^2 times its layer (x, y) or the centre gap (z).
+            const double volume = h * h * (c == 2 ? mGrid.centreGap_m(k) : mGrid.dz_m(k));
+            double layer = 0.0;
+            for (size_t f = mGrid.index(p, 0, 0, k); f < mGrid.index(p, 0, 0, k + 1); ++f)
+                layer += double((*th[c])[f]) * (*a[c])[f] * (*a[c])[f];
+            e += layer * volume;
+        }
+    }
+    return 0.5 * e;
 }
 
 double UnsteadyWindSolver::maxDivergenceScaled() const {
@@ -251,11 +284,12 @@ SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {
             }
     });
     tbb::parallel_for(0, nz + 1, [&](int k) {
+        const double gap = mGrid.centreGap_m(k);  // h on cubic cells
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 const size_t f = S.faceZIndex(i, j, k);
                 if (!mOkZ[f]) continue;
-                W[f] += (k == nz ? -2.0 * P(i, j, nz - 1) : P(i, j, k) - P(i, j, k - 1)) / h;
+                W[f] += (k == nz ? -2.0 * P(i, j, nz - 1) : P(i, j, k) - P(i, j, k - 1)) / gap;
             }
     });
     extrapolateClosedFaces();
@@ -371,10 +405,7 @@ StepReport UnsteadyWindSolver::step(double dt) {
     StepReport rep;
     const double t0 = mTime_s, t1 = mTime_s + dt;
     rep.dt_s = dt;
-    double umax = mMeanMax_mps + mGustMax_mps;
-    for (const auto* a : {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()})
-        for (double x : *a) umax = std::max(umax, std::abs(x));
-    rep.cfl = umax * dt / mGrid.voxelSize_m;
+    rep.cfl = cellRate_ps() * dt;
 
     // 1. whirlwinds: seeding and carrying the axis markers (vortex code only when needed).
     auto t = Clock::now();
