@@ -246,39 +246,69 @@ void UnsteadyWindSolver::resetState(const WindField& state) {
 SolveReport UnsteadyWindSolver::project() { return project(mSettings.projection); }
 
 SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {
+    return project(settings, 0.0);
+}
+
+SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double dt) {
     const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
     const double h = mGrid.voxelSize_m;
+    const auto o = mGrid.wsMin_m;
     const PoissonSystem& S = mSystem;
     std::vector<double>&U = mField.u_mps(), &V = mField.v_mps(), &W = mField.w_mps();
     auto air = [&](int i, int j, int k) { return mDomain.isAir(i, j, k); };
-    // Right-hand side: h times the outward open flux (as SteadyWind.cpp); p = 0 on the open sides.
+    // The potential on the open boundaries: -dt p / rho of the given pressure, else 0.
+    const auto& pressure = mSettings.boundaryPressure_m2ps2;
+    const bool data = pressure && dt > 0.0;
+    auto g = [&](double x, double y, double z) { return data ? -dt * pressure({x, y, z}) : 0.0; };
+    const std::vector<float>&thX = mDomain.openFractionsX(), &thY = mDomain.openFractionsY(),
+          &thZ = mDomain.openFractionsZ();
+    // Right-hand side: h times the outward open flux plus the boundary data, with the factor 2 of
+    // a boundary value half a cell from the centre, as SteadyWind.cpp assembles it.
     std::vector<double> rhs(S.cellCount(), 0.0);
     tbb::parallel_for(0, nz, [&](int k) {
+        const double zc = mGrid.zCentre_m(k), side = mGrid.dz_m(k) / h;
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 if (!air(i, j, k)) continue;
-                rhs[S.cellIndex(i, j, k)] = h * mDomain.openOutflux(U, V, W, i, j, k);
+                double b = h * mDomain.openOutflux(U, V, W, i, j, k);
+                if (data) {
+                    const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h;
+                    if (i == 0) b += 2.0 * side * thX[S.faceXIndex(0, j, k)] * g(o[0], yc, zc);
+                    if (i == nx - 1)
+                        b += 2.0 * side * thX[S.faceXIndex(nx, j, k)] * g(o[0] + nx * h, yc, zc);
+                    if (j == 0) b += 2.0 * side * thY[S.faceYIndex(i, 0, k)] * g(xc, o[1], zc);
+                    if (j == ny - 1)
+                        b += 2.0 * side * thY[S.faceYIndex(i, ny, k)] * g(xc, o[1] + ny * h, zc);
+                    if (k == nz - 1 && mSettings.openTop)
+                        b += 2.0 * (h / mGrid.dz_m(k)) * thZ[S.faceZIndex(i, j, nz)] *
+                             g(xc, yc, mGrid.wsTop_m());
+                }
+                rhs[S.cellIndex(i, j, k)] = b;
             }
     });
     SolveReport rep = mPoisson.solve(rhs, mPsi, settings);
     const std::vector<double>& psi = mPsi;
     auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
     tbb::parallel_for(0, nz, [&](int k) {
-        for (int j = 0; j < ny; ++j)
+        const double zc = mGrid.zCentre_m(k);
+        for (int j = 0; j < ny; ++j) {
+            const double yc = o[1] + (j + 0.5) * h;
             for (int i = 0; i <= nx; ++i) {
                 const size_t f = S.faceXIndex(i, j, k);
                 if (!mOkX[f]) continue;
-                U[f] += (i == 0    ? 2.0 * P(0, j, k)
-                         : i == nx ? -2.0 * P(nx - 1, j, k)
+                U[f] += (i == 0    ? 2.0 * (P(0, j, k) - g(o[0], yc, zc))
+                         : i == nx ? 2.0 * (g(o[0] + nx * h, yc, zc) - P(nx - 1, j, k))
                                    : P(i, j, k) - P(i - 1, j, k)) /
                         h;
             }
+        }
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 const size_t f = S.faceYIndex(i, j, k);
                 if (!mOkY[f]) continue;
-                V[f] += (j == 0    ? 2.0 * P(i, 0, k)
-                         : j == ny ? -2.0 * P(i, ny - 1, k)
+                const double xc = o[0] + (i + 0.5) * h;
+                V[f] += (j == 0    ? 2.0 * (P(i, 0, k) - g(xc, o[1], zc))
+                         : j == ny ? 2.0 * (g(xc, o[1] + ny * h, zc) - P(i, ny - 1, k))
                                    : P(i, j, k) - P(i, j - 1, k)) /
                         h;
             }
@@ -289,7 +319,10 @@ SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {
             for (int i = 0; i < nx; ++i) {
                 const size_t f = S.faceZIndex(i, j, k);
                 if (!mOkZ[f]) continue;
-                W[f] += (k == nz ? -2.0 * P(i, j, nz - 1) : P(i, j, k) - P(i, j, k - 1)) / gap;
+                const double top =
+                    k == nz ? g(o[0] + (i + 0.5) * h, o[1] + (j + 0.5) * h, mGrid.wsTop_m()) : 0.0;
+                W[f] +=
+                    (k == nz ? 2.0 * (top - P(i, j, nz - 1)) : P(i, j, k) - P(i, j, k - 1)) / gap;
             }
     });
     extrapolateClosedFaces();
@@ -355,8 +388,12 @@ void UnsteadyWindSolver::applyRegionGusts(double t, double dt) {
 
 void UnsteadyWindSolver::closeLid() {
     std::vector<double>& W = mField.w_mps();
+    const auto& lid = mSettings.lidVelocity_mps;
+    const double h = mGrid.voxelSize_m;
     for (int j = 0; j < mGrid.ny; ++j)
-        for (int i = 0; i < mGrid.nx; ++i) W[mSystem.faceZIndex(i, j, mGrid.nz)] = 0.0;
+        for (int i = 0; i < mGrid.nx; ++i)
+            W[mSystem.faceZIndex(i, j, mGrid.nz)] =
+                lid ? lid(mGrid.wsMin_m[0] + (i + 0.5) * h, mGrid.wsMin_m[1] + (j + 0.5) * h) : 0.0;
 }
 
 void UnsteadyWindSolver::seedDue(double t0, double t1) {
@@ -481,7 +518,7 @@ StepReport UnsteadyWindSolver::step(double dt) {
 
     // 5. projection.
     t = Clock::now();
-    rep.projection = project();
+    rep.projection = project(mSettings.projection, dt);
     rep.projection_s = since(t);
 
     mTime_s = t1;

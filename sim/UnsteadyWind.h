@@ -51,6 +51,7 @@
 /// @endcode
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -80,6 +81,15 @@ struct UnsteadySettings {
     /// hollows into a ring within 5 s and the kinetic energy grows by 7 % in 10 s without forcing;
     /// under the lid the same vortex stays compact and its energy decays monotonically.
     bool openTop = false;
+    /// The lid's normal velocity (m/s, upwards positive) at a world point (x, y) of the top
+    /// when the top is closed (openTop false): Neumann data, a prescribed outflow the
+    /// projection balances through the sides. Empty (default): 0, a free-slip lid.
+    std::function<double(double wsX_m, double wsY_m)> lidVelocity_mps;
+    /// Kinematic pressure p / rho (m^2/s^2) on the open boundaries at a world point there (the
+    /// x and y sides, and the top when openTop): the projection's Dirichlet data. Its potential
+    /// is psi = -dt p / rho (u = u* - dt grad p / rho, Chorin 1968), so a flow whose exact
+    /// pressure is known keeps it at the boundary instead of p = 0. Empty (default): p = 0.
+    std::function<double(const Vec3d& wsPos_m)> boundaryPressure_m2ps2;
     /// Eddy viscosity and wall stress (off by default); viscosity_m2ps is then added to nu_t.
     SurfaceLayerSettings surfaceLayer;
     std::vector<GustEvent> gusts;
@@ -162,9 +172,13 @@ class UnsteadyWindSolver {
     /// Projects the current field (after external edits, e.g. seeding in tests).
     SolveReport project();
     /// The same with other criteria (the steady momentum model's final, tighter projection).
+    /// Both hold p = 0 on the open boundaries; a step uses
+    /// UnsteadySettings::boundaryPressure_m2ps2 there when it is set.
     SolveReport project(const SolverSettings& settings);
 
   private:
+    /// The projection with the boundary potential -dt_s p / rho (dt_s 0: p = 0 data).
+    SolveReport project(const SolverSettings& settings, double dt_s);
     void seedDue(double t0, double t1);
     void applyForcing(double t0, double dt);
     void extrapolateClosedFaces();
