@@ -77,7 +77,8 @@ struct FaceVelocitySampler {
         : g(grid), far(farField), U(vel.u->data()), V(vel.v->data()), W(vel.w->data()) {}
     void operator()(const double* ws, double* u, double* layer_m) const {
         const Vec3d is = g.isFromWs({ws[0], ws[1], ws[2]});
-        *layer_m = g.dz_m(std::clamp(int(std::floor(is[2])), 0, g.nz - 1));
+        *layer_m =
+            g.uniformZ() ? g.voxelSize_m : g.dz_m(std::clamp(int(std::floor(is[2])), 0, g.nz - 1));
         if (far && outsideWs(g, ws)) {
             const Vec3d f = far({ws[0], ws[1], ws[2]});
             u[0] = f[0], u[1] = f[1], u[2] = f[2];
