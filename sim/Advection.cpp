@@ -9,6 +9,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "base/ParameterError.h"
+
 namespace gale::sim {
 
 const char* advectionSchemeName(AdvectionScheme s) {
@@ -27,17 +29,9 @@ AdvectionScheme advectionSchemeFromName(const std::string& name) {
     if (name == "semi_lagrangian") return AdvectionScheme::SemiLagrangian;
     if (name == "maccormack") return AdvectionScheme::MacCormack;
     if (name == "bfecc") return AdvectionScheme::Bfecc;
-    throw std::invalid_argument(
-        "advection must be one of semi_lagrangian, maccormack, bfecc (got \"" + name + "\")");
+    throw ParameterError("unsteady.advection", "\"" + name + "\"",
+                         "one of semi_lagrangian, maccormack, bfecc");
 }
-
-namespace {
-
-/// Offset of a placement's samples in index space: faces sit on integer coordinates along their
-/// axis and at half cells across it.
-constexpr double offset(Placement p, int axis) { return int(p) == axis ? 0.0 : 0.5; }
-
-}  // namespace
 
 double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, const Vec3d& ws,
                 double* lo, double* hi) {
@@ -52,77 +46,90 @@ Vec3d velocityAt(const MacGrid& g, const MacVelocity& vel, const FarField& far, 
 
 namespace {
 
-/// One placement's samples read in index space through the layout's sampler (the hot loop of the
-/// advection).
-struct IndexSampler {
-    const GridLayout& g;
-    Placement p;
-    const double* a;
-    IndexSampler(const MacGrid& grid, Placement placement, const std::vector<double>& q)
-        : g(grid), p(placement), a(q.data()) {}
-    double operator()(const double* is, double* lo = nullptr, double* hi = nullptr) const {
-        return g.sample(p, a, {is[0], is[1], is[2]}, lo, hi);
-    }
-};
-
-bool outsideIs(const MacGrid& g, const double* is) {
-    return !(is[0] >= 0.0 && is[0] <= g.nx && is[1] >= 0.0 && is[1] <= g.ny && is[2] <= g.nz);
+/// True when a world point lies outside the box through an x or y side or the top
+/// (MacGrid::outside without the conversion to index space).
+bool outsideWs(const MacGrid& g, const double* x) {
+    const double x1 = g.wsMin_m[0] + g.nx * g.voxelSize_m, y1 = g.wsMin_m[1] + g.ny * g.voxelSize_m;
+    return !(x[0] >= g.wsMin_m[0] && x[0] <= x1 && x[1] >= g.wsMin_m[1] && x[1] <= y1 &&
+             x[2] <= g.wsTop_m());
 }
 
-/// Height of the point above the terrain surface in cells (negative below); +inf without terrain.
-double aboveGroundCells(const MacGrid& g, const double* is) {
-    if (!g.terrain) return HUGE_VAL;
-    const Vec3d ws = g.wsFromIs({is[0], is[1], is[2]});
-    return g.cellsFromMetres(ws[2] - g.terrain->sample(ws[0], ws[1]));
+/// Height of a world point above the terrain surface, metres (negative below); +inf without
+/// terrain.
+double aboveGround_m(const MacGrid& g, const double* x) {
+    return g.terrain ? x[2] - g.terrain->sample(x[0], x[1]) : HUGE_VAL;
 }
+
+/// World z above which no terrain lies (-inf: no terrain): traces above it skip the surface
+/// test, which is most of the box.
+double terrainTop_m(const MacGrid& g) { return g.terrain ? g.terrain->maxHeight_m() : -HUGE_VAL; }
 
 /// Bisection steps locating where a substep crosses the terrain: the stop lies within
 /// 2^-TERRAIN_BISECTIONS of a substep (< 1e-3 cells) above the surface.
 constexpr int TERRAIN_BISECTIONS = 12;
 
-/// The substepped midpoint trace of traceBack() in index space (Advection.h, "Traces"):
-/// displacements in cells are dt u / h through MacGrid::cellsFromMetres. velocityIs(is, u) gives
-/// the velocity (m/s) at an index-space point, the far field outside the box.
-/// Index-space z above which no terrain lies (-inf: no terrain): traces above it skip the
-/// surface test, which is most of the box.
-double terrainTopIs(const MacGrid& g) {
-    return g.terrain ? g.isFromWs({0.0, 0.0, g.terrain->maxHeight_m()})[2] : -HUGE_VAL;
-}
+/// The velocity (m/s, world axes) at a world point: the three MAC components interpolated from
+/// their own faces through the layout's sampler (GridLayout::sampleFaces), or the far field's
+/// outside the box when one is given. Also gives the thickness (metres) of the layer the point
+/// lies in (the end layers' outside the box), the spacing a vertical displacement is measured in.
+struct FaceVelocitySampler {
+    FaceVelocitySampler(const MacGrid& grid, const MacVelocity& vel, const FarField& farField)
+        : g(grid), far(farField), U(vel.u->data()), V(vel.v->data()), W(vel.w->data()) {}
+    void operator()(const double* ws, double* u, double* layer_m) const {
+        const Vec3d is = g.isFromWs({ws[0], ws[1], ws[2]});
+        *layer_m =
+            g.uniformZ() ? g.voxelSize_m : g.dz_m(std::clamp(int(std::floor(is[2])), 0, g.nz - 1));
+        if (far && outsideWs(g, ws)) {
+            const Vec3d f = far({ws[0], ws[1], ws[2]});
+            u[0] = f[0], u[1] = f[1], u[2] = f[2];
+            return;
+        }
+        const Vec3d s = g.sampleFaces(U, V, W, is);
+        u[0] = s[0], u[1] = s[1], u[2] = s[2];
+    }
+    const MacGrid& g;
+    const FarField& far;
+    const double *U, *V, *W;
+};
 
-template <class VelocityIs>
-void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, double dt,
-             double groundTopIs, double* dep) {
+/// The substepped midpoint trace of traceBack() in world space (Advection.h, "Traces"): a
+/// substep moves by s u metres; its length s holds the travel to at most
+/// MAX_TRACE_CELLS_PER_SUBSTEP cells along every axis, horizontal cells of h and vertical ones
+/// of the local layer's thickness (so a trace through thin stretched layers takes short
+/// substeps). x0 and dep are world metres.
+void traceWs(const MacGrid& g, const FaceVelocitySampler& velocityWs, const double* x0, double dt,
+             double groundTop_m, double* dep) {
     double x[3] = {x0[0], x0[1], x0[2]};
     const double sign = dt < 0.0 ? -1.0 : 1.0;
     double remaining = std::abs(dt);
     // Only a trace that starts above the surface is stopped by it (samples inside cut cells may
     // sit below the bilinear surface; they are traced freely until they emerge).
-    bool above = x[2] > groundTopIs || aboveGroundCells(g, x) >= 0.0;
+    bool above = x[2] > groundTop_m || aboveGround_m(g, x) >= 0.0;
+    const double h = g.voxelSize_m;
     // A trace that would need more substeps than this is stalled in a near-zero velocity field
     // (each substep covers the whole remaining time once the speed is small): cannot happen,
     // but the cap keeps every trace finite whatever the field holds.
     constexpr int MAX_SUBSTEPS = 4096;
     for (int n = 0; n < MAX_SUBSTEPS && remaining > 0.0; ++n) {
-        double u0[3], xm[3], u1[3], xn[3];
-        velocityIs(x, u0);
-        if (outsideIs(g, x)) {
+        double u0[3], xm[3], u1[3], xn[3], layer_m, unused_m;
+        velocityWs(x, u0, &layer_m);
+        if (outsideWs(g, x)) {
             // Outside the box: the far field is smooth, finish in one midpoint step.
-            for (int a = 0; a < 3; ++a)
-                xm[a] = x[a] - sign * g.cellsFromMetres(0.5 * remaining * u0[a]);
-            velocityIs(xm, u1);
-            for (int a = 0; a < 3; ++a) x[a] -= sign * g.cellsFromMetres(remaining * u1[a]);
+            for (int a = 0; a < 3; ++a) xm[a] = x[a] - sign * 0.5 * remaining * u0[a];
+            velocityWs(xm, u1, &unused_m);
+            for (int a = 0; a < 3; ++a) x[a] -= sign * remaining * u1[a];
             break;
         }
-        const double speedCells =
-            g.cellsFromMetres(std::max({std::abs(u0[0]), std::abs(u0[1]), std::abs(u0[2])}));
+        const double cellsPerSecond =
+            std::max({std::abs(u0[0]) / h, std::abs(u0[1]) / h, std::abs(u0[2]) / layer_m});
         double s = remaining;
-        if (speedCells * s > MAX_TRACE_CELLS_PER_SUBSTEP)
-            s = MAX_TRACE_CELLS_PER_SUBSTEP / speedCells;
+        if (cellsPerSecond * s > MAX_TRACE_CELLS_PER_SUBSTEP)
+            s = MAX_TRACE_CELLS_PER_SUBSTEP / cellsPerSecond;
         if (!(s > 0.0)) break;  // infinite speed: stay put rather than spin
-        for (int a = 0; a < 3; ++a) xm[a] = x[a] - sign * g.cellsFromMetres(0.5 * s * u0[a]);
-        velocityIs(xm, u1);
-        for (int a = 0; a < 3; ++a) xn[a] = x[a] - sign * g.cellsFromMetres(s * u1[a]);
-        const double heightNew = xn[2] > groundTopIs ? HUGE_VAL : aboveGroundCells(g, xn);
+        for (int a = 0; a < 3; ++a) xm[a] = x[a] - sign * 0.5 * s * u0[a];
+        velocityWs(xm, u1, &unused_m);
+        for (int a = 0; a < 3; ++a) xn[a] = x[a] - sign * s * u1[a];
+        const double heightNew = xn[2] > groundTop_m ? HUGE_VAL : aboveGround_m(g, xn);
         if (above && heightNew < 0.0) {
             // Crossed into the rock: bisect for the last point above the surface and stop there.
             double lo = 0.0, hi = 1.0;
@@ -130,7 +137,7 @@ void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, d
                 const double mid = 0.5 * (lo + hi);
                 const double p[3] = {x[0] + mid * (xn[0] - x[0]), x[1] + mid * (xn[1] - x[1]),
                                      x[2] + mid * (xn[2] - x[2])};
-                (aboveGroundCells(g, p) >= 0.0 ? lo : hi) = mid;
+                (aboveGround_m(g, p) >= 0.0 ? lo : hi) = mid;
             }
             for (int a = 0; a < 3; ++a) x[a] += lo * (xn[a] - x[a]);
             break;
@@ -142,28 +149,6 @@ void traceIs(const MacGrid& g, const VelocityIs& velocityIs, const double* x0, d
     for (int a = 0; a < 3; ++a) dep[a] = x[a];
 }
 
-/// The velocity (m/s, world axes) at an index-space point: interpolated from the staggered faces,
-/// or the far field's outside the box when one is given.
-struct FaceVelocitySampler {
-    FaceVelocitySampler(const MacGrid& grid, const MacVelocity& vel, const FarField& farField)
-        : g(grid),
-          far(farField),
-          Su(grid, Placement::FaceX, *vel.u),
-          Sv(grid, Placement::FaceY, *vel.v),
-          Sw(grid, Placement::FaceZ, *vel.w) {}
-    void operator()(const double* is, double* u) const {
-        if (far && outsideIs(g, is)) {
-            const Vec3d f = far(g.wsFromIs({is[0], is[1], is[2]}));
-            u[0] = f[0], u[1] = f[1], u[2] = f[2];
-            return;
-        }
-        u[0] = Su(is), u[1] = Sv(is), u[2] = Sw(is);
-    }
-    const MacGrid& g;
-    const FarField& far;
-    const IndexSampler Su, Sv, Sw;
-};
-
 /// One semi-Lagrangian pass; optionally records the min/max of the interpolation neighbours and
 /// whether the departure point left the box.
 void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
@@ -173,9 +158,8 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
     const auto n = g.dims(p);
     out.resize(q.size());
     if (lo) lo->resize(q.size()), hi->resize(q.size());
-    const IndexSampler Q(g, p, q);
-    const double groundTop = terrainTopIs(g);
-    const FaceVelocitySampler velocityIs(g, vel, far);
+    const double groundTop = terrainTop_m(g);
+    const FaceVelocitySampler velocityWs(g, vel, far);
     tbb::parallel_for(0, n[2], [&](int k) {
         for (int j = 0; j < n[1]; ++j)
             for (int i = 0; i < n[0]; ++i) {
@@ -185,17 +169,17 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;
                     continue;
                 }
-                const double x0[3] = {i + offset(p, 0), j + offset(p, 1), k + offset(p, 2)};
+                const Vec3d x0 = g.wsPosition(p, i, j, k);
                 double dep[3];
-                traceIs(g, velocityIs, x0, dt, groundTop, dep);
-                if (outside && outsideIs(g, dep)) {
-                    out[idx] = outside(g.wsFromIs({dep[0], dep[1], dep[2]}));
+                traceWs(g, velocityWs, x0.data(), dt, groundTop, dep);
+                if (outside && outsideWs(g, dep)) {
+                    out[idx] = outside({dep[0], dep[1], dep[2]});
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;  // no limiter on inflow
-                } else if (lo) {
-                    out[idx] = Q(dep, &(*lo)[idx], &(*hi)[idx]);
-                } else {
-                    out[idx] = Q(dep);
+                    continue;
                 }
+                const Vec3d is = g.isFromWs({dep[0], dep[1], dep[2]});
+                out[idx] = lo ? g.sample(p, q.data(), is, &(*lo)[idx], &(*hi)[idx])
+                              : g.sample(p, q.data(), is);
             }
     });
 }
@@ -204,11 +188,10 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
 
 Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& ws,
                 double dt) {
-    const FaceVelocitySampler velocityIs(g, vel, far);
-    const Vec3d is = g.isFromWs(ws);
-    double dep[3];
-    traceIs(g, velocityIs, is.data(), dt, terrainTopIs(g), dep);
-    return g.wsFromIs({dep[0], dep[1], dep[2]});
+    const FaceVelocitySampler velocityWs(g, vel, far);
+    Vec3d dep;
+    traceWs(g, velocityWs, ws.data(), dt, terrainTop_m(g), dep.data());
+    return dep;
 }
 
 void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,

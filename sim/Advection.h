@@ -3,10 +3,11 @@
 /// Advection on the staggered (MAC) grid of the wind solvers (docs/unsteady.md, "Method").
 ///
 /// Layout. A MacGrid is the AirDomain's GridLayout (GridLayout.h: cells, the four placements of
-/// MAC values, index space, the one staggered sampler) plus the terrain traces stop at. The
-/// conversion world metres -> index cells happens in one place only, GridLayout::isFromWs (so a
-/// trace moves by u dt metres = u dt / h cells, never by u dt cells). Advection needs cubic cells
-/// (GridLayout::uniformZ): the unsteady solver refuses stretched layouts.
+/// MAC values, index space, the one staggered sampler) plus the terrain traces stop at. Traces
+/// run in world metres (a trace moves by u dt metres) and read values through the layout's
+/// sampler at GridLayout::isFromWs of each point, so cubic cells and stretched layers (level
+/// heights that grow upwards) take the same path: the sampler's vertical weights come from the
+/// world heights of the samples.
 ///
 /// Schemes (AdvectionScheme):
 ///  - SemiLagrangian: Stam 1999 ("Stable fluids"), with a second-order (explicit midpoint, RK2)
@@ -14,7 +15,8 @@
 ///    stable: each new value is a convex combination of old ones.
 ///
 /// Traces (every scheme). A trace is split into substeps of at most MAX_TRACE_CELLS_PER_SUBSTEP
-/// cells each (the substep length follows the local speed, so a trace at CFL 50 follows the
+/// cells each along every axis (horizontal cells of h, vertical ones of the local layer's
+/// thickness; the substep length follows the local speed, so a trace at CFL 50 follows the
 /// streamline through ~25 midpoint steps instead of jumping 50 cells in one), and, when the grid
 /// names its terrain (MacGrid::terrain), a trace that crosses from above the terrain surface to
 /// below it stops on the surface (the crossing found by bisection along the substep): air next to
@@ -46,8 +48,8 @@ namespace gale::sim {
 
 enum class AdvectionScheme { SemiLagrangian, MacCormack, Bfecc };
 
-/// "semi_lagrangian", "maccormack", "bfecc" and back; fromName throws std::invalid_argument
-/// listing the valid names.
+/// "semi_lagrangian", "maccormack", "bfecc" and back; fromName throws gale::ParameterError
+/// (unsteady.advection) listing the valid names.
 const char* advectionSchemeName(AdvectionScheme scheme);
 AdvectionScheme advectionSchemeFromName(const std::string& name);
 
@@ -109,8 +111,9 @@ using OutsideValue = std::function<double(const Vec3d& wsPos_m)>;
 
 /// Advects q (placement p) through the frozen velocity over dt_s seconds with `scheme` and writes
 /// the result to `out` (resized). Samples with mask[idx] == 0 (if mask is given) are copied
-/// unchanged. `outside` gives q where a trace leaves the box (empty: clamp to the box).
-/// Multithreaded (TBB). Throws std::invalid_argument on wrong sizes.
+/// unchanged. `outside` gives q where a trace leaves the box (empty: clamp to the box). Each
+/// sample's trace starts at its world position (GridLayout::wsPosition). Multithreaded (TBB).
+/// Throws std::invalid_argument on wrong sizes.
 void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
             const FarField& far, const OutsideValue& outside, double dt_s, AdvectionScheme scheme,
             std::vector<double>& out, const std::vector<uint8_t>* mask = nullptr);

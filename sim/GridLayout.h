@@ -152,6 +152,15 @@ class GridLayout : public GridIndex {
         return uniformZ() ? wsMin_m[2] + (k + 0.5) * voxelSize_m
                           : 0.5 * (mZLevels_m[size_t(k)] + mZLevels_m[size_t(k) + 1]);
     }
+    /// Distance between the centres z-face k separates, k in [0, nz], metres: h for cubic
+    /// cells; on stretched layers the mean of the two layers, and at the bottom and the top
+    /// face the end layer's thickness (a value on the face sits half of it from the centre).
+    double centreGap_m(int k) const {
+        if (uniformZ()) return voxelSize_m;
+        if (k <= 0) return dz_m(0);
+        if (k >= nz) return dz_m(nz - 1);
+        return 0.5 * (dz_m(k - 1) + dz_m(k));
+    }
     /// World z of the top of the box, metres.
     double wsTop_m() const { return zFace_m(nz); }
     /// The nz + 1 level heights (world z of the z-faces, metres), uniform layouts included.

@@ -19,16 +19,6 @@ namespace {
 
 using detail::num;
 
-/// Distance between the centres z-face k separates, metres: h for cubic cells; on stretched
-/// layers the mean of the two layers, and at the bottom and top the end layer's thickness (the
-/// top's Dirichlet value sits on the face, half of it away: the factor 2 of boundary faces).
-double centreGap_m(const GridLayout& g, int k) {
-    if (g.uniformZ()) return g.voxelSize_m;
-    if (k <= 0) return g.dz_m(0);
-    if (k >= g.nz) return g.dz_m(g.nz - 1);
-    return 0.5 * (g.dz_m(k - 1) + g.dz_m(k));
-}
-
 double checkedRatio(const MassConsistentWeights& w) {
     if (!(w.alphaH > 0.0) || !std::isfinite(w.alphaH))
         throw ParameterError("solver.alpha_h", num(w.alphaH), "must be > 0 and finite");
@@ -72,7 +62,7 @@ PoissonSystem SteadyWindSolver::makeSystem(const AirDomain& d, double r) {
                 s.weightY[f] *= side;
         }
         for (int k = 0; k <= g.nz; ++k) {
-            const float up = float(h / centreGap_m(g, k));
+            const float up = float(h / g.centreGap_m(k));
             for (size_t f = g.faceZIndex(0, 0, k); f < g.faceZIndex(0, 0, k + 1); ++f)
                 s.weightZ[f] *= up;
         }
@@ -210,7 +200,7 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
             }
     });
     tbb::parallel_for(0, nz + 1, [&](int k) {
-        const double gap = centreGap_m(G, k);
+        const double gap = G.centreGap_m(k);
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 const size_t f = S.faceZIndex(i, j, k);

@@ -297,7 +297,41 @@ StabilityRun runTranslatingVortex(int cellsPerCore, double courant) {
     return r;
 }
 
-StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore) {
+double burgersStrainPressure_m2ps2(double a, double cx, double cy, const Vec3d& ws) {
+    // Burgers 1948: u_r = -a r / 2 gives (u . grad) u_r = a^2 r / 4, w = a z gives a^2 z; both
+    // are -grad p / rho of p / rho = -a^2 (r^2 / 8 + z^2 / 2).
+    const double dx = ws[0] - cx, dy = ws[1] - cy;
+    return -a * a * ((dx * dx + dy * dy) / 8.0 + ws[2] * ws[2] / 2.0);
+}
+
+namespace {
+
+/// The swirl's kinematic pressure (m^2/s^2) at radius r_m of a vortex, 0 at infinity.
+double swirlPressure_m2ps2(const Whirlwind& w, double r) {
+    // Radial balance dp/dr = rho v^2 / r integrated inwards from infinity (Lamb 1932): Simpson's
+    // rule in ln r' from r to R = 64 r_c, plus the potential tail Gamma^2 / (8 pi^2 R^2) beyond.
+    constexpr int INTERVALS = 256;  // even; error far below the runs' (checked against 1024)
+    const double R = 64.0 * w.coreRadius_m, rr = std::max(r, 1e-6 * w.coreRadius_m);
+    if (rr >= R) {
+        const double G = w.circulation();
+        return -G * G / (8.0 * PI * PI * rr * rr);
+    }
+    const double l0 = std::log(rr), l1 = std::log(R), dl = (l1 - l0) / INTERVALS;
+    double sum = 0.0;
+    for (int n = 0; n <= INTERVALS; ++n) {
+        const double v = w.tangentialSpeed_mps(std::exp(l0 + n * dl));
+        sum += (n == 0 || n == INTERVALS ? 1.0
+                : n % 2                  ? 4.0
+                                         : 2.0) *
+               v * v;  // v^2 / r' dr' = v^2 dl
+    }
+    const double G = w.circulation();
+    return -(sum * dl / 3.0 + G * G / (8.0 * PI * PI * R * R));
+}
+
+}  // namespace
+
+StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore, bool exactBoundaries) {
     using S = BurgersSpec;
     if (cellsPerCore < 1)
         throw std::invalid_argument("runBurgersVortex: cellsPerCore must be >= 1");
@@ -309,7 +343,13 @@ StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore) {
         std::make_unique<AirDomain>(terrain, DomainSpec{h, S::HEIGHT_CORES * S::CORE_M, 2e9});
     const AirDomain& d = *r.domain;
     // The strain flow u_r = -a r / 2, w = a z as the mean flow (and far field): linear, so
-    // discretely divergence-free on the MAC grid.
+    // discretely divergence-free on the MAC grid. With exact boundaries (strained variants) the
+    // mean flow is the whole Burgers solution, strain plus the unwindowed Lamb-Oseen swirl, so
+    // the air the strain draws in through the sides carries the swirl's circulation as it does
+    // in the exact solution (a windowed swirl would let circulation-free air reach the core
+    // after about a t = 2).
+    const Whirlwind swirl = vortex(half, half, S::CORE_M, S::PEAK_MPS);
+    const bool exactSwirl = exactBoundaries && a > 0.0;
     WindField mean(d.nx(), d.ny(), d.nz(), h, d.wsMin_m(), d.terrainShared(), d.airFlags());
     const MacGrid g{d.nx(), d.ny(), d.nz(), h, d.wsMin_m()};
     std::vector<double>* arrays[3] = {&mean.u_mps(), &mean.v_mps(), &mean.w_mps()};
@@ -319,26 +359,46 @@ StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore) {
             for (int j = 0; j < n[1]; ++j)
                 for (int i = 0; i < n[0]; ++i) {
                     const Vec3d ws = g.wsPosition(Placement(c), i, j, k);
-                    const double v = c == 0   ? -0.5 * a * (ws[0] - half)
-                                     : c == 1 ? -0.5 * a * (ws[1] - half)
-                                              : a * ws[2];
+                    const double dx = ws[0] - half, dy = ws[1] - half;
+                    double v = c == 0 ? -0.5 * a * dx : c == 1 ? -0.5 * a * dy : a * ws[2];
+                    const double rho = std::hypot(dx, dy);
+                    if (exactSwirl && c < 2 && rho > 0.0)  // e_theta = (-dy, dx) / rho
+                        v += swirl.tangentialSpeed_mps(rho) * (c == 0 ? -dy : dx) / rho;
                     (*arrays[c])[g.index(Placement(c), i, j, k)] = v;
                 }
     }
     UnsteadySettings s;
-    // The strain leaves through the top: open (p = 0). Without strain nothing leaves, and the lid
-    // keeps the open top's known artefact (the core's low pressure drawing air in through the top,
+    // Boundaries (exactBoundaries false: the old set-up). The strain leaves through the top:
+    // open with p = 0 there and on the sides, which cannot carry the strain's pressure, so the
+    // strain decays inside the box. Without strain nothing leaves, and the lid keeps the open
+    // top's known artefact (the core's low pressure drawing air in through the top,
     // docs/unsteady.md) out of the viscous-spreading contrast.
-    s.openTop = variant != BurgersVariant::NoStrain;
+    s.openTop = variant != BurgersVariant::NoStrain && !exactBoundaries;
     s.viscosity_m2ps = variant == BurgersVariant::NoViscosity ? 0.0 : S::viscosity_m2ps();
+    // MacCormack: at 4 cells per core semi-Lagrangian's numerical viscosity is about half of nu
+    // (measured: the balanced core settles towards 1.22 r_c), MacCormack's about a sixth.
+    s.advection = AdvectionScheme::MacCormack;
+    if (exactBoundaries && a > 0.0) {
+        // The exact solution on the boundary: its pressure (strain plus swirl) on the open
+        // sides, and its outflow w = a z through the top as a prescribed normal velocity, so
+        // the core's low pressure cannot draw air in there.
+        s.boundaryPressure_m2ps2 = [a, half, swirl](const Vec3d& ws) {
+            return burgersStrainPressure_m2ps2(a, half, half, ws) +
+                   swirlPressure_m2ps2(swirl, std::hypot(ws[0] - half, ws[1] - half));
+        };
+        const double top = d.wsTop_m();
+        s.lidVelocity_mps = [a, top](double, double) { return a * top; };
+    }
     const double umax = 0.5 * S::STRAIN_PER_S * half + S::PEAK_MPS;
     const int steps = std::max(1, int(std::ceil(S::TIME_S * umax / h)));  // CFL 1
     s.dt_s = S::TIME_S / steps;
     s.projection.relativeTolerance = 1e-7;
     s.projection.maxIterations = 200;
-    Whirlwind w = vortex(half, half, S::CORE_M, S::PEAK_MPS);
-    w.outerRadiusFactor = 3.0;
-    s.whirlwinds.push_back(w);
+    if (!exactSwirl) {  // seeded in the first step, windowed to 3 cores
+        Whirlwind w = swirl;
+        w.outerRadiusFactor = 3.0;
+        s.whirlwinds.push_back(w);
+    }
     r.referenceSpeed_mps = S::PEAK_MPS;
     r.solver = std::make_unique<UnsteadyWindSolver>(d, mean, s, S::PEAK_MPS);
     r.start = mean;

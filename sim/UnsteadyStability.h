@@ -28,7 +28,9 @@
 ///    the axisymmetric strain u_r = -a r / 2, w = a z by viscosity nu with r_c^2 = 4 nu / a; the
 ///    strain is the run's mean flow (and far field), with an open top for its outflow.
 ///    Variants without viscosity (the core contracts as r_c^2 e^{-a t}) and without strain (it
-///    spreads as r_c^2 + 4 nu t) show the balance is what holds it.
+///    spreads as r_c^2 + 4 nu t) show the balance is what holds it. The boundaries hold the
+///    exact solution: the strain's pressure on the open sides, its outflow through the top
+///    (with p = 0 there the strain decays inside the box).
 
 #include <memory>
 #include <string>
@@ -93,8 +95,18 @@ struct BurgersSpec {
     static constexpr double viscosity_m2ps() { return STRAIN_PER_S * CORE_M * CORE_M / 4.0; }
 };
 /// Runs a variant at CFL 1 (of the strain's side inflow plus the peak swirl) with cells of
-/// CORE_M / cellsPerCore. Throws std::invalid_argument if cellsPerCore < 1.
-StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore);
+/// CORE_M / cellsPerCore. exactBoundaries (strained variants): the open sides hold the strain's
+/// exact pressure p / rho = -a^2 (r^2 / 8 + z^2 / 2) (UnsteadySettings::boundaryPressure_m2ps2)
+/// and the top its exact outflow w = a z_top (UnsteadySettings::lidVelocity_mps); false: the
+/// old open boundary, p = 0 on the sides and an open top, which cannot carry that pressure.
+/// Throws std::invalid_argument if cellsPerCore < 1.
+StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore,
+                              bool exactBoundaries = true);
+/// The strain's kinematic pressure p / rho (m^2/s^2) at a world point, for strain a_per_s about
+/// the vertical axis through (axisX_m, axisY_m) with its stagnation plane at z = 0: the Euler
+/// balance (u . grad) u = -grad p / rho of u_r = -a r / 2, w = a z.
+double burgersStrainPressure_m2ps2(double a_per_s, double axisX_m, double axisY_m,
+                                   const Vec3d& wsPos_m);
 /// Core radius of the final swirl at mid-height, metres: the radius of the peak azimuthal speed
 /// (circulation around rings) divided by 1.1209 (Lamb-Oseen's peak), for the bench.
 double burgersCoreRadius_m(const StabilityRun& run);

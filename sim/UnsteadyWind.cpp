@@ -34,16 +34,31 @@ constexpr double MIN_FORCING_STEPS = 1.0;
 /// Forcing and circulation are measured on a ring of this many core radii (at least 2 cells).
 constexpr double FORCING_RING_CORES = 2.0;
 
-/// The steady solve's operator with A = I; the top closed by a lid unless it is open.
+/// The steady solve's operator with A = I (on stretched layers weighted by the layer heights);
+/// the top closed by a lid unless it is open.
 PoissonSystem projectionSystem(const AirDomain& domain, bool openTop) {
-    // Advection traces and the viscosity operator assume cubic cells (docs/unsteady.md).
-    if (!domain.layout().uniformZ())
-        throw ParameterError("solver.first_cell_m", num(domain.layout().dz_m(0)),
-                             "stretched layers are not supported by the unsteady solver yet "
-                             "(wind.kind = \"unsteady\"): remove solver.first_cell_m");
     PoissonSystem s = SteadyWindSolver::makeSystem(domain, /*verticalRatio=*/1.0);
     if (!openTop) s.sides[SIDE_ZMAX] = BoundaryKind::Neumann;
     return s;
+}
+
+/// How fast the field moves through the cells, 1/s: the largest |u| / h and |v| / h over the
+/// x- and y-faces and |w| / dz over the z-faces, dz the thinner of the two layers a z-face
+/// touches (the thinnest layer is where w crosses cells fastest). Times dt: the CFL number.
+double cellRate_ps(const GridLayout& g, const std::vector<double>& U, const std::vector<double>& V,
+                   const std::vector<double>& W) {
+    double horizontal = 0.0, rate = 0.0;
+    for (const auto* a : {&U, &V})
+        for (double x : *a) horizontal = std::max(horizontal, std::abs(x));
+    rate = horizontal / g.voxelSize_m;
+    for (int k = 0; k <= g.nz; ++k) {
+        const double dz = std::min(g.dz_m(std::max(k - 1, 0)), g.dz_m(std::min(k, g.nz - 1)));
+        double wMax = 0.0;
+        for (size_t f = g.faceZIndex(0, 0, k); f < g.faceZIndex(0, 0, k + 1); ++f)
+            wMax = std::max(wMax, std::abs(W[f]));
+        rate = std::max(rate, wMax / dz);
+    }
+    return rate;
 }
 
 }  // namespace
@@ -83,6 +98,10 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
       mSystem(projectionSystem(domain, settings.openTop)),
       mPoisson(mSystem) {
     mSettings.validate();
+    if (mSettings.surfaceLayer.enabled && !domain.layout().uniformZ())
+        throw ParameterError("unsteady.surface_layer", "true",
+                             "cubic cells: the wall stress does not support stretched layers "
+                             "(solver.first_cell_m) yet");
     if (mean.nx() != domain.nx() || mean.ny() != domain.ny() || mean.nz() != domain.nz())
         throw std::invalid_argument("UnsteadyWindSolver: the mean field does not match the domain");
     mGrid = MacGrid(domain.layout(), &domain.terrain());
@@ -90,6 +109,9 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
     for (const auto* a : {&mMeanU, &mMeanV, &mMeanW})
         for (double x : *a) mMeanMax_mps = std::max(mMeanMax_mps, std::abs(x));
     for (const GustEvent& g : mSettings.gusts) mGustMax_mps += std::abs(g.peak_mps);
+    // The far field: the mean flow plus the (horizontal) gusts at their peaks.
+    mFarRate_ps =
+        sim::cellRate_ps(mGrid, mMeanU, mMeanV, mMeanW) + mGustMax_mps / mGrid.voxelSize_m;
     const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
     mOkX.assign(mGrid.count(Placement::FaceX), 0);
     mOkY.assign(mGrid.count(Placement::FaceY), 0);
@@ -159,25 +181,36 @@ double UnsteadyWindSolver::maxSpeed_mps() const {
     return m;
 }
 
+double UnsteadyWindSolver::cellRate_ps() const {
+    const double own = sim::cellRate_ps(mGrid, mField.u_mps(), mField.v_mps(), mField.w_mps());
+    return std::isfinite(own) ? std::max(own, mFarRate_ps) : own;
+}
+
 double UnsteadyWindSolver::nextDt_s() const {
     if (mSettings.dt_s > 0.0) return mSettings.dt_s;
-    double umax = std::max(mMeanMax_mps + mGustMax_mps, 0.0);
-    for (const auto* a : {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()})
-        for (double x : *a) umax = std::max(umax, std::abs(x));
-    if (!(umax > 0.0) || !std::isfinite(umax)) return mSettings.maxDt_s;
-    return std::min(mSettings.maxDt_s, mSettings.cfl * mGrid.voxelSize_m / umax);
+    const double rate = cellRate_ps();
+    if (!(rate > 0.0) || !std::isfinite(rate)) return mSettings.maxDt_s;
+    return std::min(mSettings.maxDt_s, mSettings.cfl / rate);
 }
 
 double UnsteadyWindSolver::kineticEnergy_m5ps2() const {
-    const double h3 = mGrid.voxelSize_m * mGrid.voxelSize_m * mGrid.voxelSize_m;
+    const double h = mGrid.voxelSize_m;
     double e = 0.0;
     const std::vector<double>* a[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
     const std::vector<float>* th[3] = {&mDomain.openFractionsX(), &mDomain.openFractionsY(),
                                        &mDomain.openFractionsZ()};
-    for (int c = 0; c < 3; ++c)
-        for (size_t f = 0; f < a[c]->size(); ++f)
-            e += double((*th[c])[f]) * (*a[c])[f] * (*a[c])[f];
-    return 0.5 * e * h3;
+    for (int c = 0; c < 3; ++c) {
+        const Placement p = Placement(c);
+        for (int k = 0; k < mGrid.dims(p)[2]; ++k) {
+            // The face's control volume: h^2 times its layer (x, y) or the centre gap (z).
+            const double volume = h * h * (c == 2 ? mGrid.centreGap_m(k) : mGrid.dz_m(k));
+            double layer = 0.0;
+            for (size_t f = mGrid.index(p, 0, 0, k); f < mGrid.index(p, 0, 0, k + 1); ++f)
+                layer += double((*th[c])[f]) * (*a[c])[f] * (*a[c])[f];
+            e += layer * volume;
+        }
+    }
+    return 0.5 * e;
 }
 
 double UnsteadyWindSolver::maxDivergenceScaled() const {
@@ -213,49 +246,83 @@ void UnsteadyWindSolver::resetState(const WindField& state) {
 SolveReport UnsteadyWindSolver::project() { return project(mSettings.projection); }
 
 SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {
+    return project(settings, 0.0);
+}
+
+SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double dt) {
     const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
     const double h = mGrid.voxelSize_m;
+    const auto o = mGrid.wsMin_m;
     const PoissonSystem& S = mSystem;
     std::vector<double>&U = mField.u_mps(), &V = mField.v_mps(), &W = mField.w_mps();
     auto air = [&](int i, int j, int k) { return mDomain.isAir(i, j, k); };
-    // Right-hand side: h times the outward open flux (as SteadyWind.cpp); p = 0 on the open sides.
+    // The potential on the open boundaries: -dt p / rho of the given pressure, else 0.
+    const auto& pressure = mSettings.boundaryPressure_m2ps2;
+    const bool data = pressure && dt > 0.0;
+    auto g = [&](double x, double y, double z) { return data ? -dt * pressure({x, y, z}) : 0.0; };
+    const std::vector<float>&thX = mDomain.openFractionsX(), &thY = mDomain.openFractionsY(),
+          &thZ = mDomain.openFractionsZ();
+    // Right-hand side: h times the outward open flux plus the boundary data, with the factor 2 of
+    // a boundary value half a cell from the centre, as SteadyWind.cpp assembles it.
     std::vector<double> rhs(S.cellCount(), 0.0);
     tbb::parallel_for(0, nz, [&](int k) {
+        const double zc = mGrid.zCentre_m(k), side = mGrid.dz_m(k) / h;
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 if (!air(i, j, k)) continue;
-                rhs[S.cellIndex(i, j, k)] = h * mDomain.openOutflux(U, V, W, i, j, k);
+                double b = h * mDomain.openOutflux(U, V, W, i, j, k);
+                if (data) {
+                    const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h;
+                    if (i == 0) b += 2.0 * side * thX[S.faceXIndex(0, j, k)] * g(o[0], yc, zc);
+                    if (i == nx - 1)
+                        b += 2.0 * side * thX[S.faceXIndex(nx, j, k)] * g(o[0] + nx * h, yc, zc);
+                    if (j == 0) b += 2.0 * side * thY[S.faceYIndex(i, 0, k)] * g(xc, o[1], zc);
+                    if (j == ny - 1)
+                        b += 2.0 * side * thY[S.faceYIndex(i, ny, k)] * g(xc, o[1] + ny * h, zc);
+                    if (k == nz - 1 && mSettings.openTop)
+                        b += 2.0 * (h / mGrid.dz_m(k)) * thZ[S.faceZIndex(i, j, nz)] *
+                             g(xc, yc, mGrid.wsTop_m());
+                }
+                rhs[S.cellIndex(i, j, k)] = b;
             }
     });
     SolveReport rep = mPoisson.solve(rhs, mPsi, settings);
     const std::vector<double>& psi = mPsi;
     auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
     tbb::parallel_for(0, nz, [&](int k) {
-        for (int j = 0; j < ny; ++j)
+        const double zc = mGrid.zCentre_m(k);
+        for (int j = 0; j < ny; ++j) {
+            const double yc = o[1] + (j + 0.5) * h;
             for (int i = 0; i <= nx; ++i) {
                 const size_t f = S.faceXIndex(i, j, k);
                 if (!mOkX[f]) continue;
-                U[f] += (i == 0    ? 2.0 * P(0, j, k)
-                         : i == nx ? -2.0 * P(nx - 1, j, k)
+                U[f] += (i == 0    ? 2.0 * (P(0, j, k) - g(o[0], yc, zc))
+                         : i == nx ? 2.0 * (g(o[0] + nx * h, yc, zc) - P(nx - 1, j, k))
                                    : P(i, j, k) - P(i - 1, j, k)) /
                         h;
             }
+        }
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 const size_t f = S.faceYIndex(i, j, k);
                 if (!mOkY[f]) continue;
-                V[f] += (j == 0    ? 2.0 * P(i, 0, k)
-                         : j == ny ? -2.0 * P(i, ny - 1, k)
+                const double xc = o[0] + (i + 0.5) * h;
+                V[f] += (j == 0    ? 2.0 * (P(i, 0, k) - g(xc, o[1], zc))
+                         : j == ny ? 2.0 * (g(xc, o[1] + ny * h, zc) - P(i, ny - 1, k))
                                    : P(i, j, k) - P(i, j - 1, k)) /
                         h;
             }
     });
     tbb::parallel_for(0, nz + 1, [&](int k) {
+        const double gap = mGrid.centreGap_m(k);  // h on cubic cells
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 const size_t f = S.faceZIndex(i, j, k);
                 if (!mOkZ[f]) continue;
-                W[f] += (k == nz ? -2.0 * P(i, j, nz - 1) : P(i, j, k) - P(i, j, k - 1)) / h;
+                const double top =
+                    k == nz ? g(o[0] + (i + 0.5) * h, o[1] + (j + 0.5) * h, mGrid.wsTop_m()) : 0.0;
+                W[f] +=
+                    (k == nz ? 2.0 * (top - P(i, j, nz - 1)) : P(i, j, k) - P(i, j, k - 1)) / gap;
             }
     });
     extrapolateClosedFaces();
@@ -321,8 +388,12 @@ void UnsteadyWindSolver::applyRegionGusts(double t, double dt) {
 
 void UnsteadyWindSolver::closeLid() {
     std::vector<double>& W = mField.w_mps();
+    const auto& lid = mSettings.lidVelocity_mps;
+    const double h = mGrid.voxelSize_m;
     for (int j = 0; j < mGrid.ny; ++j)
-        for (int i = 0; i < mGrid.nx; ++i) W[mSystem.faceZIndex(i, j, mGrid.nz)] = 0.0;
+        for (int i = 0; i < mGrid.nx; ++i)
+            W[mSystem.faceZIndex(i, j, mGrid.nz)] =
+                lid ? lid(mGrid.wsMin_m[0] + (i + 0.5) * h, mGrid.wsMin_m[1] + (j + 0.5) * h) : 0.0;
 }
 
 void UnsteadyWindSolver::seedDue(double t0, double t1) {
@@ -371,10 +442,7 @@ StepReport UnsteadyWindSolver::step(double dt) {
     StepReport rep;
     const double t0 = mTime_s, t1 = mTime_s + dt;
     rep.dt_s = dt;
-    double umax = mMeanMax_mps + mGustMax_mps;
-    for (const auto* a : {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()})
-        for (double x : *a) umax = std::max(umax, std::abs(x));
-    rep.cfl = umax * dt / mGrid.voxelSize_m;
+    rep.cfl = cellRate_ps() * dt;
 
     // 1. whirlwinds: seeding and carrying the axis markers (vortex code only when needed).
     auto t = Clock::now();
@@ -450,7 +518,7 @@ StepReport UnsteadyWindSolver::step(double dt) {
 
     // 5. projection.
     t = Clock::now();
-    rep.projection = project();
+    rep.projection = project(mSettings.projection, dt);
     rep.projection_s = since(t);
 
     mTime_s = t1;

@@ -28,9 +28,18 @@
 ///     refilled by extrapolation as in the steady solve.
 /// The steady field is a fixed point of steps 2-5 up to the advection's truncation error.
 ///
-/// Time step: UnsteadySettings::dt_s if > 0, else adaptive, dt = cfl h / max|u| (the field's
-/// maximum and the far field's), at most maxDt_s. The semi-Lagrangian path is stable at any CFL;
-/// each StepReport says what CFL the step reached.
+/// Time step: UnsteadySettings::dt_s if > 0, else adaptive, dt = cfl / cellRate_ps() (the
+/// field's and the far field's fastest crossing of a cell: |u| / h horizontally, |w| / dz through
+/// the layers, so thin stretched layers bound the step through w), at most maxDt_s. The
+/// semi-Lagrangian path is stable at any CFL; each StepReport says what CFL the step reached.
+///
+/// Stretched layers (GridLayout with level heights, docs/unsteady.md): every step works in world
+/// metres. Traces run in world space and sample through the layout's staggered sampler, which
+/// knows the level heights; the viscosity is the flux-form Laplacian on the layers
+/// (sim/Viscosity.h); the projection is the steady solve's layer-weighted operator with the
+/// z-gradient taken over the distance between layer centres; the confinement's vertical
+/// derivatives and the kinetic energy use the layer heights. The surface layer's stresses
+/// (UnsteadySettings::surfaceLayer) still need cubic cells.
 ///
 /// @code
 ///   gale::sim::AirDomain domain(terrain, {/*voxelSize_m=*/2.0});
@@ -42,6 +51,7 @@
 /// @endcode
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -59,7 +69,7 @@ namespace gale::sim {
 struct UnsteadySettings {
     AdvectionScheme advection = AdvectionScheme::SemiLagrangian;
     double dt_s = 0.0;            ///< fixed step, seconds; 0: adaptive from cfl
-    double cfl = 2.0;             ///< adaptive: max|u| dt / h, > 0
+    double cfl = 2.0;             ///< adaptive: cellRate_ps() dt (max |u| dt / h on cubes), > 0
     double maxDt_s = 1.0;         ///< adaptive: longest step, seconds (used in calm air), > 0
     double viscosity_m2ps = 0.0;  ///< kinematic viscosity nu, m^2/s, >= 0 (0: no diffusion step)
     double vorticityConfinement = 0.0;  ///< epsilon of Fedkiw et al. 2001, >= 0 (0: off)
@@ -71,6 +81,15 @@ struct UnsteadySettings {
     /// hollows into a ring within 5 s and the kinetic energy grows by 7 % in 10 s without forcing;
     /// under the lid the same vortex stays compact and its energy decays monotonically.
     bool openTop = false;
+    /// The lid's normal velocity (m/s, upwards positive) at a world point (x, y) of the top
+    /// when the top is closed (openTop false): Neumann data, a prescribed outflow the
+    /// projection balances through the sides. Empty (default): 0, a free-slip lid.
+    std::function<double(double wsX_m, double wsY_m)> lidVelocity_mps;
+    /// Kinematic pressure p / rho (m^2/s^2) on the open boundaries at a world point there (the
+    /// x and y sides, and the top when openTop): the projection's Dirichlet data. Its potential
+    /// is psi = -dt p / rho (u = u* - dt grad p / rho, Chorin 1968), so a flow whose exact
+    /// pressure is known keeps it at the boundary instead of p = 0. Empty (default): p = 0.
+    std::function<double(const Vec3d& wsPos_m)> boundaryPressure_m2ps2;
     /// Eddy viscosity and wall stress (off by default); viscosity_m2ps is then added to nu_t.
     SurfaceLayerSettings surfaceLayer;
     std::vector<GustEvent> gusts;
@@ -84,10 +103,11 @@ struct UnsteadySettings {
 struct [[nodiscard]] StepReport {
     double t_s = 0;           ///< time at the end of the step, seconds
     double dt_s = 0;          ///< step length, seconds
-    double cfl = 0;           ///< max|u| dt / h reached (field before the step and far field)
+    double cfl = 0;           ///< cellRate_ps() dt reached (field before the step and far field)
     double maxSpeed_mps = 0;  ///< max cell-centred speed over air cells after the step
     double kineticEnergy_m5ps2 =
-        0;  ///< 1/2 sum_f theta_f u_f^2 h^3 after the step (per unit density)
+        0;  ///< 1/2 sum_f theta_f u_f^2 V_f after the step (per unit density); V_f the face's
+            ///< control volume, h^3 on cubic cells
     double maxDivergenceScaled =
         0;               ///< max over air cells |sum_f theta_f u_f . n| / U after the projection
     bool finite = true;  ///< no NaN/Inf in any velocity after the step
@@ -106,13 +126,17 @@ class UnsteadyWindSolver {
     /// domain must outlive the solver. meanFlow: the steady field on this domain (its arrays give
     /// the initial state and the far field). referenceSpeed_mps: U of the divergence scaling
     /// (the ambient speed; 0 means 1 m/s). Throws std::invalid_argument on bad settings or a field
-    /// that does not match the domain, and gale::ParameterError (solver.first_cell_m) on a domain
-    /// of stretched layers, which it does not support yet.
+    /// that does not match the domain, and gale::ParameterError (unsteady.surface_layer) when
+    /// the surface layer is asked for on stretched layers, which it does not support yet.
     UnsteadyWindSolver(const AirDomain& domain, const WindField& meanFlow,
                        const UnsteadySettings& settings, double referenceSpeed_mps);
 
     /// The next step length the settings ask for (fixed, or adaptive from cfl), seconds.
     double nextDt_s() const;
+    /// How fast the current field or the far field crosses cells, 1/s: the largest |u| / h,
+    /// |v| / h and, on z-faces, |w| / dz with dz the thinner layer beside the face. Times dt it
+    /// is the step's CFL number (the thinnest layers bound w's).
+    double cellRate_ps() const;
     /// One step of dt_s (> 0) seconds.
     StepReport step(double dt_s);
     /// Steps until time() == t_s (the last step shortened to land on it); none if t_s <= time().
@@ -148,9 +172,13 @@ class UnsteadyWindSolver {
     /// Projects the current field (after external edits, e.g. seeding in tests).
     SolveReport project();
     /// The same with other criteria (the steady momentum model's final, tighter projection).
+    /// Both hold p = 0 on the open boundaries; a step uses
+    /// UnsteadySettings::boundaryPressure_m2ps2 there when it is set.
     SolveReport project(const SolverSettings& settings);
 
   private:
+    /// The projection with the boundary potential -dt_s p / rho (dt_s 0: p = 0 data).
+    SolveReport project(const SolverSettings& settings, double dt_s);
     void seedDue(double t0, double t1);
     void applyForcing(double t0, double dt);
     void extrapolateClosedFaces();
@@ -168,6 +196,7 @@ class UnsteadyWindSolver {
     double mRefSpeed_mps;
     double mTime_s = 0.0;
     double mMeanMax_mps = 0.0, mGustMax_mps = 0.0;
+    double mFarRate_ps = 0.0;  // cellRate_ps of the mean flow plus the gusts' peaks
     WindField mField;
     std::vector<double> mMeanU, mMeanV, mMeanW;
     std::vector<uint8_t> mOkX, mOkY,

@@ -1,5 +1,6 @@
 /// \file Viscosity.cpp
-/// Backward-Euler viscosity by Jacobi-preconditioned CG, per MAC component.
+/// Backward-Euler viscosity by Jacobi-preconditioned CG, per MAC component, in the finite-volume
+/// flux form of Patankar 1980 on stretched layers.
 #include "sim/Viscosity.h"
 
 #include <tbb/blocked_range.h>
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace gale::sim {
 namespace {
@@ -23,17 +25,41 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
         std::plus<double>());
 }
 
+/// The backward-Euler operator of one component in flux form, divided by h^3 (Viscosity.h).
+/// Level k of the component's samples has control-volume height e_k and lies at distance d_k
+/// from level k + 1; mass[k] = e_k / h, horizontal conductance a e_k / h, vertical conductance
+/// up[k] = a h / d_k, with a = nu dt / h^2. All 1, a and a on cubic cells.
 struct Operator {
     GridIndex grid;
     Placement p;
     std::array<int, 3> n;  // grid.dims(p)
     const std::vector<uint8_t>* mask;
-    double a;  // nu dt / h^2
+    double a;                        // nu dt / h^2
+    std::vector<double> mass, side;  // per level: e_k / h and a e_k / h
+    std::vector<double> up;          // per level: a h / d_k towards level k + 1
+
+    Operator(const GridLayout& g, Placement placement, const std::vector<uint8_t>* m,
+             double nuDtOverH2)
+        : grid(g), p(placement), n(g.dims(placement)), mask(m), a(nuDtOverH2) {
+        const double h = g.voxelSize_m;
+        const size_t levels = size_t(n[2]);
+        mass.resize(levels), side.resize(levels), up.assign(levels, 0.0);
+        for (int k = 0; k < n[2]; ++k) {
+            // z-faces sit on the level heights, their volumes span centre to centre; every other
+            // placement sits at layer centres and spans its layer.
+            const bool onFace = p == Placement::FaceZ;
+            const double e = onFace ? g.centreGap_m(k) : g.dz_m(k);
+            mass[size_t(k)] = e / h, side[size_t(k)] = a * e / h;
+            if (k + 1 < n[2]) up[size_t(k)] = a * h / (onFace ? g.dz_m(k) : g.centreGap_m(k + 1));
+        }
+    }
     size_t idx(int i, int j, int k) const { return grid.index(p, i, j, k); }
-    // out = (I + a K) x on masked samples (0 elsewhere); diag receives 1 + a * neighbours.
+    // out = (M + a K) x on masked samples (0 elsewhere); diag receives its diagonal.
     void apply(const std::vector<double>& x, std::vector<double>& out,
                std::vector<double>* diag) const {
         tbb::parallel_for(0, n[2], [&](int k) {
+            const double m = mass[size_t(k)], cs = side[size_t(k)];
+            const double cDown = k > 0 ? up[size_t(k) - 1] : 0.0, cUp = up[size_t(k)];
             for (int j = 0; j < n[1]; ++j)
                 for (int i = 0; i < n[0]; ++i) {
                     const size_t c = idx(i, j, k);
@@ -42,19 +68,18 @@ struct Operator {
                         if (diag) (*diag)[c] = 1.0;
                         continue;
                     }
-                    double s = 0.0;
-                    int cnt = 0;
-                    auto nb = [&](int ii, int jj, int kk) {
+                    double s = 0.0, d = m;
+                    auto nb = [&](int ii, int jj, int kk, double conductance) {
                         if (ii < 0 || jj < 0 || kk < 0 || ii >= n[0] || jj >= n[1] || kk >= n[2])
                             return;
                         const size_t q = idx(ii, jj, kk);
                         if (!(*mask)[q]) return;
-                        s += x[q], ++cnt;
+                        s += conductance * (x[c] - x[q]), d += conductance;
                     };
-                    nb(i - 1, j, k), nb(i + 1, j, k), nb(i, j - 1, k), nb(i, j + 1, k),
-                        nb(i, j, k - 1), nb(i, j, k + 1);
-                    out[c] = x[c] + a * (cnt * x[c] - s);
-                    if (diag) (*diag)[c] = 1.0 + a * cnt;
+                    nb(i - 1, j, k, cs), nb(i + 1, j, k, cs), nb(i, j - 1, k, cs),
+                        nb(i, j + 1, k, cs), nb(i, j, k - 1, cDown), nb(i, j, k + 1, cUp);
+                    out[c] = m * x[c] + s;
+                    if (diag) (*diag)[c] = d;
                 }
         });
     }
@@ -67,7 +92,9 @@ ViscosityReport diffuseImplicit(const MacGrid& g, double nu, double dt,
                                 std::vector<double>& u, std::vector<double>& v,
                                 std::vector<double>& w, double tol, int maxIterations) {
     if (!(nu >= 0.0) || !(dt >= 0.0))
-        throw std::invalid_argument("diffuseImplicit: nu and dt must be >= 0");
+        throw std::invalid_argument(
+            "diffuseImplicit: nu and dt must be >= 0, got nu = " + std::to_string(nu) +
+            " m^2/s, dt = " + std::to_string(dt) + " s");
     ViscosityReport rep;
     const double a = nu * dt / (g.voxelSize_m * g.voxelSize_m);
     if (a == 0.0) return rep;
@@ -77,10 +104,12 @@ ViscosityReport diffuseImplicit(const MacGrid& g, double nu, double dt,
         std::vector<double>& x = *comps[c];
         if (!masks[c] || masks[c]->size() != x.size())
             throw std::invalid_argument("diffuseImplicit: bad mask");
-        const Operator op{g, p, g.dims(p), masks[c], a};
+        const Operator op(g, p, masks[c], a);
         std::vector<double> b(x.size()), r(x.size()), z(x.size()), q(x.size()), Ap(x.size()),
             diag(x.size());
-        for (size_t i = 0; i < x.size(); ++i) b[i] = (*masks[c])[i] ? x[i] : 0.0;
+        for (int k = 0; k < op.n[2]; ++k)
+            for (size_t i = op.idx(0, 0, k); i < op.idx(0, 0, k + 1); ++i)
+                b[i] = (*masks[c])[i] ? op.mass[size_t(k)] * x[i] : 0.0;
         op.apply(x, Ap, &diag);
         for (size_t i = 0; i < x.size(); ++i) r[i] = (*masks[c])[i] ? b[i] - Ap[i] : 0.0;
         const double bnorm = std::sqrt(dot(b, b));

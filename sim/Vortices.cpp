@@ -227,7 +227,10 @@ void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, 
         if (!air[a]) a = cell(i, j, k), lo[axis] = (axis == 0 ? i : axis == 1 ? j : k);
         if (!air[b]) b = cell(i, j, k), hi[axis] = (axis == 0 ? i : axis == 1 ? j : k);
         const int span = hi[axis] - lo[axis];
-        return span > 0 ? (uc[b][comp] - uc[a][comp]) / (span * h) : 0.0;
+        // Distance between the two centres: span h, through the layer heights along z.
+        const double dist =
+            axis < 2 || g.uniformZ() ? span * h : g.zCentre_m(hi[2]) - g.zCentre_m(lo[2]);
+        return span > 0 ? (uc[b][comp] - uc[a][comp]) / dist : 0.0;
     };
     std::vector<Vec3d> om(N, Vec3d{0, 0, 0});
     std::vector<double> mag(N, 0.0);
@@ -253,9 +256,11 @@ void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, 
                     const size_t q = cell(ii, jj, kk);
                     return air[q] ? mag[q] : mag[c];
                 };
+                // Vertically over the two centre gaps around the cell (2 h on cubic cells).
+                const double spanZ = g.centreGap_m(k) + g.centreGap_m(k + 1);
                 Vec3d eta{(m(i + 1, j, k) - m(i - 1, j, k)) / (2 * h),
                           (m(i, j + 1, k) - m(i, j - 1, k)) / (2 * h),
-                          (m(i, j, k + 1) - m(i, j, k - 1)) / (2 * h)};
+                          (m(i, j, k + 1) - m(i, j, k - 1)) / spanZ};
                 const double len = std::sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]);
                 if (!(len > 1e-12)) continue;
                 const Vec3d Nv{eta[0] / len, eta[1] / len, eta[2] / len};

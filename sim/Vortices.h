@@ -101,7 +101,9 @@ double verticalVorticity(const MacGrid& g, const MacVelocity& vel, int i, int j,
 
 /// Vorticity confinement (Fedkiw, Stam, Jensen 2001): f = epsilon h (N x omega),
 /// N = grad|omega| / |grad|omega||, cell-centred, averaged to faces and added as dt_s * f.
-/// Only cells with air[c] != 0 take part; epsilon >= 0 (dimensionless).
+/// Only cells with air[c] != 0 take part; epsilon >= 0 (dimensionless). h is the horizontal
+/// spacing; on stretched layers the vertical derivatives divide by the distances between the
+/// layer centres.
 void addVorticityConfinement(const MacGrid& g, const std::vector<uint8_t>& air, double epsilon,
                              double dt_s, std::vector<double>& u, std::vector<double>& v,
                              std::vector<double>& w);

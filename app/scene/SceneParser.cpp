@@ -225,10 +225,6 @@ void readSolver(Context& ctx, Section s) {
     for (const char* key : {"stretch_ratio", "max_cell_m"})
         if (s.given(key) && !v.domain.firstCell_m)
             s.failKey(key, "applies to stretched layers only: give solver.first_cell_m too");
-    if (v.domain.firstCell_m && ctx.scene->wind.kind == WindKind::Unsteady)
-        s.failKey("first_cell_m",
-                  "stretched layers are not supported by the unsteady solver yet (wind.kind = "
-                  "\"unsteady\"): remove it");
     v.domain.memoryLimit_bytes =
         s.number("memory_limit_mb", v.domain.memoryLimit_bytes / MIB, above(0.0, 1e9)) * MIB;
     v.weights.alphaH = s.number("alpha_h", v.weights.alphaH, above(0.0, 1e6));
@@ -293,6 +289,11 @@ void readUnsteady(Context& ctx, Section s) {
     v.surfaceLayer.roughness_m = ambient.roughness_m;
     v.surfaceLayer.displacementHeight_m = ctx.scene->solver.momentum.displacementHeight_m;
     if (ambient.profile == sim::WindProfile::LogLaw) v.surfaceLayer.balanced = ambient;
+    if (v.surfaceLayer.enabled && ctx.scene->solver.domain.firstCell_m &&
+        ctx.scene->wind.kind == WindKind::Unsteady)
+        s.failKey("surface_layer",
+                  "the surface layer needs cubic cells: it does not support stretched layers "
+                  "(solver.first_cell_m) yet");
     v.projection.relativeTolerance =
         s.number("tolerance", v.projection.relativeTolerance, above(0.0, 0.5));
     v.projection.maxIterations =
