@@ -42,6 +42,44 @@ std::vector<uint32_t> stitchedLevel(int nx, int i0, int i1, int j0, int j1, int 
     return out;
 }
 
+/// Cuts level `level` of `chunk` (rows j0..j1 of a grid nx wide, cells `step` quads tall, its
+/// index list in row order) into at most kChunkBands bands of whole cell rows, with their boxes.
+void splitBands(TerrainChunk& chunk, int level, int nx, int j0, int j1, int step,
+                const std::vector<glm::vec3>& wsPosition_m, const std::vector<uint32_t>& indices) {
+    const IndexRange all = chunk.levels[level];
+    const int cellRows = (j1 - j0 + step - 1) / step;
+    const int bands = std::min(kChunkBands, cellRows);
+    const int rowsPerBand = (cellRows + bands - 1) / bands;
+    int count = 0;
+    int current = -1;
+    for (uint32_t t = all.first; t + 2 < all.first + all.count; t += 3) {
+        // The cell row of a triangle: its lowest vertex row, rounded down to the cell grid.
+        int lowest = j1;
+        for (int k = 0; k < 3; ++k)
+            lowest = std::min(lowest, static_cast<int>(indices[t + k] / static_cast<uint32_t>(nx)));
+        const int band = std::min(((lowest - j0) / step) / rowsPerBand, bands - 1);
+        if (band != current) {
+            // Row order makes the bands contiguous; anything else keeps the level whole.
+            if (band < current) {
+                chunk.bands[level][0] = {all, chunk.wsMin_m, chunk.wsMax_m};
+                chunk.bandCount[level] = 1;
+                return;
+            }
+            current = band;
+            chunk.bands[level][count] = {
+                {t, 0u}, wsPosition_m[indices[t]], wsPosition_m[indices[t]]};
+            ++count;
+        }
+        ChunkBand& b = chunk.bands[level][count - 1];
+        b.range.count += 3;
+        for (int k = 0; k < 3; ++k) {
+            b.wsMin_m = glm::min(b.wsMin_m, wsPosition_m[indices[t + k]]);
+            b.wsMax_m = glm::max(b.wsMax_m, wsPosition_m[indices[t + k]]);
+        }
+    }
+    chunk.bandCount[level] = count;
+}
+
 }  // namespace
 
 std::vector<TerrainChunk> buildChunks(int nx, int ny, const std::vector<glm::vec3>& wsPosition_m,
@@ -73,6 +111,7 @@ std::vector<TerrainChunk> buildChunks(int nx, int ny, const std::vector<glm::vec
             chunk.firstIndex = chunk.levels[0].first;
             chunk.indexCount = chunk.levels[0].count;
             indices.insert(indices.end(), own.begin(), own.end());
+            splitBands(chunk, 0, nx, j0, j1, 1, wsPosition_m, indices);
             chunks.push_back(chunk);
             spans.push_back({i0, i1, j0, j1});
         }
@@ -91,6 +130,7 @@ std::vector<TerrainChunk> buildChunks(int nx, int ny, const std::vector<glm::vec
             indices.insert(indices.end(), own.begin(), own.end());
             chunks[c].levelError_m[level] =
                 meshLevelError(nx, wsPosition_m, indices, chunks[c].levels[level]);
+            splitBands(chunks[c], level, nx, j0, j1, step, wsPosition_m, indices);
         }
     }
     return chunks;

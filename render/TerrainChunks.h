@@ -42,10 +42,22 @@ constexpr float kMeshCellPerLodPixel = 4.0f;
 constexpr float kMeshErrorPerLodPixel = 0.5f;
 constexpr float kMeshFlatCellPerLodPixel = 32.0f;
 
+/// Row bands per chunk: each mesh level's index list is also cut into bands of whole rows, each
+/// with its own box, so a chunk that spans the distance where a shell is dropped draws that shell
+/// only over the bands that need it (the mesh level stays the chunk's, so no crack opens).
+constexpr int kChunkBands = 4;
+
 /// A range of the terrain's index buffer.
 struct IndexRange {
     uint32_t first = 0;
     uint32_t count = 0;
+};
+
+/// Rows of one mesh level of a chunk: a contiguous part of the level's index list and the box
+/// (world metres) of the vertices its triangles use.
+struct ChunkBand {
+    IndexRange range;
+    glm::vec3 wsMin_m{0.0f}, wsMax_m{0.0f};
 };
 
 struct TerrainChunk {
@@ -59,6 +71,10 @@ struct TerrainChunk {
     /// levelError_m[l]: the largest vertical distance, metres, between a full-mesh vertex of the
     /// chunk and level l's surface above or below it (0 for level 0).
     float levelError_m[kMeshLevels] = {};
+    /// bands[l][b], b < bandCount[l]: level l cut into bands of whole (coarse) rows, south first,
+    /// together exactly levels[l] (render/TerrainChunks.h, kChunkBands).
+    ChunkBand bands[kMeshLevels][kChunkBands];
+    int bandCount[kMeshLevels] = {};
     float quad_m = 0.0f;                     ///< the longest quad side in the chunk (3-D), metres
     glm::vec3 wsMin_m{0.0f}, wsMax_m{0.0f};  ///< bounds of the ground, before the grass margin
 };

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/vector_relational.hpp>
 #include <map>
 #include <utility>
 #include <vector>
@@ -162,6 +163,37 @@ TEST(ChunkMesh, TheLevelCoarsensWithDistanceAndKeepsCellsWithinThePixelBudget) {
     }
     EXPECT_EQ(detail::meshLevel(c, focal_px, lodPixels, 1e6f), detail::kMeshLevels - 1);
     EXPECT_EQ(detail::meshLevel(c, focal_px, 0.0f, 1e6f), 0);  // no level of detail
+}
+
+TEST(ChunkMesh, RowBandsSplitEveryLevelInOrderAndBoundTheirTriangles) {
+    const ChunkedGrid g;
+    for (const detail::TerrainChunk& c : g.chunks)
+        for (int l = 0; l < c.levelCount; ++l) {
+            const int bands = c.bandCount[l];
+            ASSERT_GE(bands, 1);
+            ASSERT_LE(bands, detail::kChunkBands);
+            // 32 cell rows at level 0: four bands of 8 rows, 32 x 8 quads of 2 triangles each.
+            if (l == 0) {
+                EXPECT_EQ(bands, detail::kChunkBands);
+                for (int b = 0; b < bands; ++b) EXPECT_EQ(c.bands[0][b].range.count, 32u * 8u * 6u);
+            }
+            uint32_t next = c.levels[l].first;
+            for (int b = 0; b < bands; ++b) {
+                const detail::ChunkBand& band = c.bands[l][b];
+                EXPECT_EQ(band.range.first, next) << "level " << l << " band " << b;
+                next = band.range.first + band.range.count;
+                for (uint32_t t = band.range.first; t < next; ++t) {
+                    const glm::vec3& p = g.mesh.wsPosition_m[g.indices[t]];
+                    EXPECT_TRUE(glm::all(glm::greaterThanEqual(p, band.wsMin_m)) &&
+                                glm::all(glm::lessThanEqual(p, band.wsMax_m)))
+                        << "level " << l << " band " << b;
+                }
+                if (b > 0) {
+                    EXPECT_LE(c.bands[l][b - 1].wsMin_m.y, band.wsMin_m.y);  // south first
+                }
+            }
+            EXPECT_EQ(next, c.levels[l].first + c.levels[l].count) << "level " << l;
+        }
 }
 
 // A 33 x 33 grid, 1 m apart: one chunk, levels 0..5.
