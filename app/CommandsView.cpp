@@ -249,6 +249,9 @@ int runView(const ViewOptions& options) {
                         view.worker().post([placed](coupling::WindSource& wind) {
                             auto& unsteady = static_cast<coupling::UnsteadyFieldWind&>(wind);
                             (void)coupling::addLiveSource(unsteady.solver(), placed);
+                            // The grass reads the field through its sampled steps: the newest
+                            // one takes the source now, not at the solver's next step.
+                            unsteady.resampleCurrentField();
                         });
                     livePending = LivePending{true, placed.kind, Clock::now(), number};
                     note(std::string(coupling::liveSourceName(placed.kind)) + " at (" +

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
@@ -137,6 +138,17 @@ void FieldWind::addFieldStep(double t_s, std::vector<glm::vec3> wsVelocity_mps) 
                                " s does not follow the previous step at t = " +
                                std::to_string(mSteps.back().t_s) + " s");
     mSteps.push_back({t_s, std::move(wsVelocity_mps)});
+}
+
+void FieldWind::replaceLastStep(std::vector<glm::vec3> wsVelocity_mps) {
+    if (mSteps.empty()) throw std::invalid_argument("no field step to replace yet");
+    if (wsVelocity_mps.size() != mNormal.size())
+        throw std::invalid_argument("field step has " + std::to_string(wsVelocity_mps.size()) +
+                                    " velocities for " + std::to_string(mNormal.size()) +
+                                    " grass vertices");
+    mSpare = std::exchange(mSteps.back().wsVelocity_mps, std::move(wsVelocity_mps));
+    // The interval reads the newest step when it ends there (or is the held last step).
+    if (mHaveInterval && mIntervalFirst + 2 >= mSteps.size()) enterInterval(mIntervalFirst);
 }
 
 void FieldWind::dropStepsBefore(double t_s) {

@@ -56,6 +56,12 @@ void UnsteadyFieldWind::advanceTo(double t_s) {
     }
 }
 
+void UnsteadyFieldWind::resampleCurrentField() {
+    std::vector<glm::vec3> velocity = mWind.spareStepBuffer();
+    mSampler.sample(mSolver->field(), velocity);
+    mWind.replaceLastStep(std::move(velocity));
+}
+
 void UnsteadyFieldWind::update(double t_s, render::GrassWind& wind) {
     const UnsteadyRunStats before = mStats;
     if (mStats.allFinite) advanceTo(t_s);

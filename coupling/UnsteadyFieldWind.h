@@ -65,6 +65,11 @@ class UnsteadyFieldWind : public WindSource {
     /// The solver itself, for sources dropped into the running flow (coupling/LiveWind.h); only
     /// from the thread that calls update().
     sim::UnsteadyWindSolver& solver() { return *mSolver; }
+    /// Samples the solver's current field again into the newest field step (the solver's own
+    /// time), after a source went into the field in place (coupling/LiveWind.h): the next
+    /// update() shows it, blended in over the last step interval, without waiting for a solver
+    /// step. Only from the thread that calls update().
+    void resampleCurrentField();
     const UnsteadyRunStats& stats() const { return mStats; }
     /// The sampler the grass reads the field through (its near-ground law: nearGroundOf).
     GrassSampler& sampler() { return mSampler; }

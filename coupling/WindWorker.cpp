@@ -103,22 +103,35 @@ void WindWorker::run() {
             posted = mPostedCount;
         }
         try {
+            // Updates the source to `at_s`, builds the overlays and publishes the snapshot.
+            const auto publish = [&](double at_s, std::chrono::steady_clock::time_point start) {
+                mSource.update(at_s, wind);
+                render::FieldOverlayData data =
+                    buildOverlay(mSource, wind, mMesh, overlayScale.frame(overlay), mGrassHeight_m);
+                overlayScale.seen(data);
+                const double step_ms = msSince(start);
+                std::string report = mSource.stepReport();
+                std::lock_guard<std::mutex> lock(mMutex);
+                mLatest.wind = wind;
+                mLatest.overlay = std::move(data);
+                mLatest.t_s = at_s;
+                mLatest.step_ms = step_ms;
+                mLatest.report = std::move(report);
+                mLatest.workDone = posted;
+                ++mLatest.serial;
+            };
             const auto start = std::chrono::steady_clock::now();
             for (auto& w : work) w(mSource);
-            mSource.update(t_s, wind);
-            render::FieldOverlayData data =
-                buildOverlay(mSource, wind, mMesh, overlayScale.frame(overlay), mGrassHeight_m);
-            overlayScale.seen(data);
-            const double step_ms = msSince(start);
-            std::string report = mSource.stepReport();
-            std::lock_guard<std::mutex> lock(mMutex);
-            mLatest.wind = wind;
-            mLatest.overlay = std::move(data);
-            mLatest.t_s = t_s;
-            mLatest.step_ms = step_ms;
-            mLatest.report = std::move(report);
-            mLatest.workDone = posted;
-            ++mLatest.serial;
+            // Work changed the source (a whirlwind dropped with the mouse): show it at the time
+            // already shown first, which takes no solver step, so the reader's next frame has it
+            // instead of waiting for the step to the newer request as well.
+            if (!work.empty() && done_s < t_s) {
+                publish(done_s, start);
+                mDone.notify_all();
+                publish(t_s, std::chrono::steady_clock::now());
+            } else {
+                publish(t_s, start);
+            }
         } catch (...) {
             std::lock_guard<std::mutex> lock(mMutex);
             mError = std::current_exception();

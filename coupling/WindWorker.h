@@ -60,7 +60,9 @@ class WindWorker {
     /// counts: a request made while a step runs replaces any older one still waiting.
     void request(double t_s, const OverlaySpec& overlay);
     /// Runs `work` on the worker thread before its next update, in the order posted, and makes the
-    /// worker update again even at an unchanged request time (the source changed). An exception
+    /// worker update again even at an unchanged request time (the source changed). When the
+    /// request is newer than the last snapshot, the worker first publishes a snapshot at the last
+    /// snapshot's time (no solver step for a stepped source), then one at the request. An exception
     /// from `work` is a failure of the worker (rethrowIfFailed). Returns the item's number
     /// (1, 2, ...): the first snapshot with workDone >= that number shows its effect.
     uint64_t post(std::function<void(WindSource&)> work);

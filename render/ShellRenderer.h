@@ -18,7 +18,7 @@ struct FrameStats {
     double gpu_ms = 0.0;      ///< draw calls through glFinish
     int chunks = 0;           ///< terrain chunks in the frustum (render/TerrainChunks.h)
     int chunksCulled = 0;     ///< chunks outside it, not drawn
-    long long layers = 0;     ///< chunk layers drawn (sum over chunks of the shells each drew)
+    long long layers = 0;     ///< layers drawn: over the chunks' row bands, the shells each drew
     long long triangles = 0;  ///< triangles drawn: over chunks, mesh triangles x layers
 };
 

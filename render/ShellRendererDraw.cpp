@@ -96,12 +96,15 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         glUniform2fv(loc.densitySize, 1, glm::value_ptr(m.density->wsSize_m()));
         return loc;
     };
-    // Visible chunks, nearest first (the early depth test then discards more of the far ones),
-    // their boxes grown by the grass height: a bent blade reaches that far from its root.
+    // Visible chunks, their boxes grown by the grass height: a bent blade reaches that far from
+    // its root. Each takes its mesh level from its nearest point (render/TerrainChunks.h: the
+    // same level over the whole chunk, so no crack opens) and is drawn band by band, each band
+    // with the shells its own nearest point needs; all bands nearest first (the early depth test
+    // then discards more of the far ones).
     const glm::vec3 reach(m.grass.height_m);
     struct Visible {
-        float near_m, far_m;  // nearest and farthest point of the chunk's ground from the eye
-        const detail::TerrainChunk* chunk;
+        float near_m, far_m;  // nearest and farthest point of the band's ground from the eye
+        detail::IndexRange mesh;
     };
     std::vector<Visible> visible;
     for (const detail::TerrainChunk& chunk : m.chunks) {
@@ -110,15 +113,26 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
             ++stats.chunksCulled;
             continue;
         }
-        visible.push_back({detail::distanceToBox(camera.wsPosition_m, chunk.wsMin_m, chunk.wsMax_m),
-                           detail::farthestInBox(camera.wsPosition_m, chunk.wsMin_m, chunk.wsMax_m),
-                           &chunk});
+        ++stats.chunks;
+        const float chunkNear_m =
+            detail::distanceToBox(camera.wsPosition_m, chunk.wsMin_m, chunk.wsMax_m);
+        const int level = detail::meshLevel(chunk, focal_px, m.grass.lodPixels, chunkNear_m);
+        for (int b = 0; b < chunk.bandCount[level]; ++b) {
+            const detail::ChunkBand& band = chunk.bands[level][b];
+            if (!detail::boxMayBeVisible(clipFromWorldM, band.wsMin_m - reach,
+                                         band.wsMax_m + reach))
+                continue;
+            visible.push_back(
+                {detail::distanceToBox(camera.wsPosition_m, band.wsMin_m, band.wsMax_m),
+                 detail::farthestInBox(camera.wsPosition_m, band.wsMin_m, band.wsMax_m),
+                 band.range});
+        }
     }
     std::sort(visible.begin(), visible.end(),
               [](const Visible& a, const Visible& b) { return a.near_m < b.near_m; });
     if (options.nearestTexels) glBindSampler(kGrassUnit, m.nearestSampler.get());
     glBindVertexArray(m.vao.get());
-    for (const auto& [near_m, far_m, chunk] : visible) {
+    for (const auto& [near_m, far_m, mesh] : visible) {
         const detail::ShellRange range = detail::shellRange(shells, d1_m, near_m);
         // Instance k is shell top - k stride: top shell first, ground last. The thesis (3.1)
         // draws bottom to top because its shells were blended; ours are alpha-tested and opaque
@@ -131,14 +145,9 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         const ShellLocations& loc = useProgram(sceneBits | (fades ? kVariantFade : 0u));
         glUniform1i(loc.topShell, range.top);
         glUniform1i(loc.shellStride, range.stride);
-        // The chunk's mesh level (render/TerrainChunks.h): coarser far away, its border always
-        // at full resolution, so neighbours at different levels meet without cracks.
-        const detail::IndexRange& mesh =
-            chunk->levels[detail::meshLevel(*chunk, focal_px, m.grass.lodPixels, near_m)];
         glDrawElementsInstanced(
             GL_TRIANGLES, static_cast<GLsizei>(mesh.count), GL_UNSIGNED_INT,
             reinterpret_cast<const void*>(size_t(mesh.first) * sizeof(uint32_t)), count);
-        ++stats.chunks;
         stats.layers += count;
         stats.triangles += static_cast<long long>(mesh.count / 3) * count;
     }

@@ -42,6 +42,44 @@ std::vector<uint32_t> stitchedLevel(int nx, int i0, int i1, int j0, int j1, int 
     return out;
 }
 
+/// Cuts level `level` of `chunk` (rows j0..j1 of a grid nx wide, cells `step` quads tall, its
+/// index list in row order) into at most kChunkBands bands of whole cell rows, with their boxes.
+void splitBands(TerrainChunk& chunk, int level, int nx, int j0, int j1, int step,
+                const std::vector<glm::vec3>& wsPosition_m, const std::vector<uint32_t>& indices) {
+    const IndexRange all = chunk.levels[level];
+    const int cellRows = (j1 - j0 + step - 1) / step;
+    const int bands = std::min(kChunkBands, cellRows);
+    const int rowsPerBand = (cellRows + bands - 1) / bands;
+    int count = 0;
+    int current = -1;
+    for (uint32_t t = all.first; t + 2 < all.first + all.count; t += 3) {
+        // The cell row of a triangle: its lowest vertex row, rounded down to the cell grid.
+        int lowest = j1;
+        for (int k = 0; k < 3; ++k)
+            lowest = std::min(lowest, static_cast<int>(indices[t + k] / static_cast<uint32_t>(nx)));
+        const int band = std::min(((lowest - j0) / step) / rowsPerBand, bands - 1);
+        if (band != current) {
+            // Row order makes the bands contiguous; anything else keeps the level whole.
+            if (band < current) {
+                chunk.bands[level][0] = {all, chunk.wsMin_m, chunk.wsMax_m};
+                chunk.bandCount[level] = 1;
+                return;
+            }
+            current = band;
+            chunk.bands[level][count] = {
+                {t, 0u}, wsPosition_m[indices[t]], wsPosition_m[indices[t]]};
+            ++count;
+        }
+        ChunkBand& b = chunk.bands[level][count - 1];
+        b.range.count += 3;
+        for (int k = 0; k < 3; ++k) {
+            b.wsMin_m = glm::min(b.wsMin_m, wsPosition_m[indices[t + k]]);
+            b.wsMax_m = glm::max(b.wsMax_m, wsPosition_m[indices[t + k]]);
+        }
+    }
+    chunk.bandCount[level] = count;
+}
+
 }  // namespace
 
 std::vector<TerrainChunk> buildChunks(int nx, int ny, const std::vector<glm::vec3>& wsPosition_m,
@@ -73,6 +111,7 @@ std::vector<TerrainChunk> buildChunks(int nx, int ny, const std::vector<glm::vec
             chunk.firstIndex = chunk.levels[0].first;
             chunk.indexCount = chunk.levels[0].count;
             indices.insert(indices.end(), own.begin(), own.end());
+            splitBands(chunk, 0, nx, j0, j1, 1, wsPosition_m, indices);
             chunks.push_back(chunk);
             spans.push_back({i0, i1, j0, j1});
         }
@@ -89,6 +128,9 @@ std::vector<TerrainChunk> buildChunks(int nx, int ny, const std::vector<glm::vec
                                        static_cast<uint32_t>(own.size())};
             chunks[c].levelCount = level + 1;
             indices.insert(indices.end(), own.begin(), own.end());
+            chunks[c].levelError_m[level] =
+                meshLevelError(nx, wsPosition_m, indices, chunks[c].levels[level]);
+            splitBands(chunks[c], level, nx, j0, j1, step, wsPosition_m, indices);
         }
     }
     return chunks;
@@ -132,15 +174,57 @@ ShellRange shellRange(int shells, float d1_m, float distance_m) {
     return range;
 }
 
+float meshLevelError(int nx, const std::vector<glm::vec3>& wsPosition_m,
+                     const std::vector<uint32_t>& indices, IndexRange range) {
+    float error_m = 0.0f;
+    for (uint32_t t = range.first; t + 2 < range.first + range.count; t += 3) {
+        // The triangle in grid-index space, where the vertices inside it are the integer points.
+        int gi[3], gj[3];
+        float z[3];
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = indices[t + k];
+            gi[k] = static_cast<int>(v % static_cast<uint32_t>(nx));
+            gj[k] = static_cast<int>(v / static_cast<uint32_t>(nx));
+            z[k] = wsPosition_m[v].z;
+        }
+        const int twiceArea = (gi[1] - gi[0]) * (gj[2] - gj[0]) - (gj[1] - gj[0]) * (gi[2] - gi[0]);
+        if (twiceArea == 0) continue;
+        const int iLo = std::min({gi[0], gi[1], gi[2]}), iHi = std::max({gi[0], gi[1], gi[2]});
+        const int jLo = std::min({gj[0], gj[1], gj[2]}), jHi = std::max({gj[0], gj[1], gj[2]});
+        for (int j = jLo; j <= jHi; ++j)
+            for (int i = iLo; i <= iHi; ++i) {
+                // Barycentric weights times twice the area, exact in integers.
+                const int w0 = (gi[1] - i) * (gj[2] - j) - (gj[1] - j) * (gi[2] - i);
+                const int w1 = (gi[2] - i) * (gj[0] - j) - (gj[2] - j) * (gi[0] - i);
+                const int w2 = twiceArea - w0 - w1;
+                if ((twiceArea > 0) ? (w0 < 0 || w1 < 0 || w2 < 0) : (w0 > 0 || w1 > 0 || w2 > 0))
+                    continue;
+                const float surface_m =
+                    (static_cast<float>(w0) * z[0] + static_cast<float>(w1) * z[1] +
+                     static_cast<float>(w2) * z[2]) /
+                    static_cast<float>(twiceArea);
+                const float vertex_m = wsPosition_m[static_cast<size_t>(j) * nx + i].z;
+                error_m = std::max(error_m, std::abs(vertex_m - surface_m));
+            }
+    }
+    return error_m;
+}
+
 int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float near_m) {
     if (!(lodPixels > 0.0f) || !(focal_px > 0.0f) || !(chunk.quad_m > 0.0f)) return 0;
-    // Cells of 2^l quads span 2^l quad_m focal_px / near_m pixels at the chunk's nearest point.
-    const float budget_px = kMeshCellPerLodPixel * lodPixels;
+    // Cells of 2^l quads span 2^l quad_m focal_px / near_m pixels at the chunk's nearest point,
+    // and a height error e spans e focal_px / near_m pixels there.
+    const auto cellFits = [&](int level, float perLodPixel) {
+        return static_cast<float>(1 << level) * chunk.quad_m * focal_px <=
+               perLodPixel * lodPixels * near_m;
+    };
     int level = 0;
-    while (level + 1 < chunk.levelCount &&
-           static_cast<float>(2 << level) * chunk.quad_m * focal_px <= budget_px * near_m)
-        ++level;
-    return level;
+    while (level + 1 < chunk.levelCount && cellFits(level + 1, kMeshCellPerLodPixel)) ++level;
+    int flat = 0;
+    while (flat + 1 < chunk.levelCount && cellFits(flat + 1, kMeshFlatCellPerLodPixel) &&
+           chunk.levelError_m[flat + 1] * focal_px <= kMeshErrorPerLodPixel * lodPixels * near_m)
+        ++flat;
+    return std::max(level, flat);
 }
 
 bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m) {

@@ -28,15 +28,36 @@ constexpr float kLodFadeStart = 0.7f;
 /// Mesh levels per chunk: level l takes every 2^l-th vertex inside the chunk (l = 5: one coarse
 /// cell per 32-quad chunk).
 constexpr int kMeshLevels = 6;
-/// A chunk takes the coarsest mesh level whose cells are at most this many times
+/// A chunk may always take a mesh level whose cells are at most this many times
 /// GrassParams::lodPixels across on screen (default 2 px: 8-pixel cells; the ground is smooth at
 /// that scale, and a software rasteriser pays per vertex and per small triangle).
 constexpr float kMeshCellPerLodPixel = 4.0f;
+/// Where the ground is flat at the chunk's scale, larger cells: a level whose surface stays within
+/// kMeshErrorPerLodPixel lodPixels (on screen, at the chunk's nearest point) of the full mesh's
+/// vertices, with cells up to kMeshFlatCellPerLodPixel lodPixels across (default 1 px and 64 px).
+/// The cap keeps the per-vertex wind and light sampled finely enough near the camera: a cell
+/// 64 px wide at 7 m is 0.9 m of ground, finer than the gust fronts and whirlwind cores of the
+/// examples. Measured on examples/knoll.toml (docs/render.md, "Where a frame's time goes"): the
+/// full mesh near the camera was 70 % of the frame's triangles and half its rasteriser time.
+constexpr float kMeshErrorPerLodPixel = 0.5f;
+constexpr float kMeshFlatCellPerLodPixel = 32.0f;
+
+/// Row bands per chunk: each mesh level's index list is also cut into bands of whole rows, each
+/// with its own box, so a chunk that spans the distance where a shell is dropped draws that shell
+/// only over the bands that need it (the mesh level stays the chunk's, so no crack opens).
+constexpr int kChunkBands = 4;
 
 /// A range of the terrain's index buffer.
 struct IndexRange {
     uint32_t first = 0;
     uint32_t count = 0;
+};
+
+/// Rows of one mesh level of a chunk: a contiguous part of the level's index list and the box
+/// (world metres) of the vertices its triangles use.
+struct ChunkBand {
+    IndexRange range;
+    glm::vec3 wsMin_m{0.0f}, wsMax_m{0.0f};
 };
 
 struct TerrainChunk {
@@ -47,6 +68,13 @@ struct TerrainChunk {
     /// the same border and no crack opens. levels[0] is the full mesh.
     IndexRange levels[kMeshLevels];
     int levelCount = 1;
+    /// levelError_m[l]: the largest vertical distance, metres, between a full-mesh vertex of the
+    /// chunk and level l's surface above or below it (0 for level 0).
+    float levelError_m[kMeshLevels] = {};
+    /// bands[l][b], b < bandCount[l]: level l cut into bands of whole (coarse) rows, south first,
+    /// together exactly levels[l] (render/TerrainChunks.h, kChunkBands).
+    ChunkBand bands[kMeshLevels][kChunkBands];
+    int bandCount[kMeshLevels] = {};
     float quad_m = 0.0f;                     ///< the longest quad side in the chunk (3-D), metres
     glm::vec3 wsMin_m{0.0f}, wsMax_m{0.0f};  ///< bounds of the ground, before the grass margin
 };
@@ -83,11 +111,19 @@ struct ShellRange {
 /// the smallest stride 2^k with D1 2^k > d, and the highest multiple of it <= N.
 ShellRange shellRange(int shells, float d1_m, float distance_m);
 
-/// The mesh level of a chunk whose nearest ground point is `near_m` metres from the eye: the
-/// coarsest l < chunk.levelCount whose cells (2^l quad_m) span at most kMeshCellPerLodPixel
-/// lodPixels on screen at that distance (focal_px the focal length in pixels). 0 when lodPixels
-/// is 0 (no level of detail).
+/// The mesh level of a chunk whose nearest ground point is `near_m` metres from the eye (focal_px
+/// the focal length in pixels), the coarser of two rules: the coarsest l < chunk.levelCount whose
+/// cells (2^l quad_m) span at most kMeshCellPerLodPixel lodPixels on screen at that distance; and
+/// the coarsest l whose cells span at most kMeshFlatCellPerLodPixel lodPixels and whose
+/// levelError_m, and that of every finer level, spans at most kMeshErrorPerLodPixel lodPixels. 0
+/// when lodPixels is 0 (no level of detail).
 int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float near_m);
+
+/// The largest vertical distance, metres, between a vertex of the nx-wide grid `wsPosition_m`
+/// inside the triangles indices[range] (plan coordinates; the triangles' corners are grid
+/// vertices) and those triangles' surface at the vertex's plan position.
+float meshLevelError(int nx, const std::vector<glm::vec3>& wsPosition_m,
+                     const std::vector<uint32_t>& indices, IndexRange range);
 
 /// True if, somewhere in a chunk whose ground reaches `far_m` metres from the eye, a shell of
 /// `range` (of N = `shells`) may have started to thin out, or the ground may have started to stand

@@ -31,6 +31,9 @@ uniform vec3 uBladeColor;       // mean colour of the texture's blade texels (le
 in vec2 vUv;
 in vec2 vDensityUv;
 in float vFade;
+#if FADE && !DENSITY
+in float vFadeCut;
+#endif
 in float vStandIn;
 in vec3 vLight;
 flat in float vThreshold;
@@ -91,7 +94,10 @@ void main() {
     vec4 texel = texture(uGrass, vUv);
 #endif
     float threshold = vThreshold;
-#if FADE || DENSITY
+#if FADE && !DENSITY
+    // The level of detail's fade alone: its cut comes from the vertex stage (shell.vert).
+    threshold = max(threshold, vFadeCut);
+#elif FADE || DENSITY
     // The map's density times the level of detail's fade (render/TerrainChunks.h).
     float density = 1.0;
 #if FADE

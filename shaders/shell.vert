@@ -9,12 +9,17 @@
 // Specialised by defines (ShellRenderer compiles one program per combination, see shell.frag):
 //   BLEND_GROUPS  1: blend the four nearest groups at aGroupCoord (bilinear), so no stripes show
 //                 where groups change; 0: this vertex's group alone.
-//   FADE          1: pass the level of detail's fade to the fragment stage.
+//   FADE          1: pass the level of detail's fade to the fragment stage; without DENSITY as
+//                 the alpha cut it implies (one lookup per vertex instead of per fragment).
+//   DENSITY       1: a density map thins the blades too (the fragment stage looks the cut up).
 #ifndef BLEND_GROUPS
 #define BLEND_GROUPS 0
 #endif
 #ifndef FADE
 #define FADE 0
+#endif
+#ifndef DENSITY
+#define DENSITY 0
 #endif
 
 // Must equal gale::render::kMaxLights (render/RenderLimits.h); ShellRenderer checks the array size.
@@ -63,6 +68,13 @@ uniform vec2 uDensitySize;
 out vec2 vUv;
 out vec2 vDensityUv;       // where the blade's root is on the density map (row 0 = north)
 out float vFade;           // share of this shell's blades the level of detail keeps, [0, 1]
+#if FADE && !DENSITY
+// The alpha cut for vFade (render/DensityMap.h), looked up per vertex: with no density map the fade
+// is the only density, a smooth function of the distance, so the cut is interpolated across a
+// triangle instead of the fade (measured: 3-5 % of a frame on llvmpipe, docs/render.md).
+uniform sampler2D uDensityCut;
+out float vFadeCut;
+#endif
 out float vStandIn;        // ground only: how far it stands in for the dropped grass, [0, 1]
 out vec3 vLight;           // light reaching the vertex, multiplies the texture colour
 flat out float vThreshold; // alpha test: keep texels with alpha >= vThreshold
@@ -104,6 +116,12 @@ void main() {
         float drop = uLodD1 * float(1 << findLSB(i));
         vFade = 1.0 - smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
     }
+#if !DENSITY
+    // Shell 0 keeps every texel; a full fade's cut is 0 (every blade kept).
+    vFadeCut = (i > 0)
+                   ? textureLod(uDensityCut, vec2((vFade * 255.0 + 0.5) / 256.0, 0.5), 0.0).r
+                   : -1.0;
+#endif
     // Where the last shell thins out the ground alone remains; it takes over the look of the
     // grass it replaces (shaded as the top layer, in the mean blade colour), at the same pace, so
     // the far field keeps the grass's brightness instead of the shaded soil's.

@@ -59,6 +59,54 @@ TEST(FieldWind, UniformWindOverFlatGroundBendsEveryVertexAlike) {
     }
 }
 
+TEST(FieldWind, ReplacingTheLastStepShowsWhatAWindBuiltWithTheNewStepShows) {
+    // A source dropped into a running solver changes the newest sampled step in place
+    // (UnsteadyFieldWind::resampleCurrentField): the grass must then show exactly what a wind
+    // built from the start with the new step shows, at a time inside the interval already entered.
+    const render::TerrainMesh mesh = flatMesh(20.0, 1.0);
+    FieldWindSpec spec;
+    spec.bendSpeed_mps = 10.0;
+    const VelocityFn calm = [](const glm::vec3&, double) { return glm::vec3(2, 0, 0); };
+    const VelocityFn breeze = [](const glm::vec3&, double) { return glm::vec3(4, 0, 0); };
+    // A whirlwind-like swirl about (10, 10): what the dropped source adds.
+    const VelocityFn swirl = [](const glm::vec3& p, double) {
+        return glm::vec3(4.0f - 0.5f * (p.y - 10.0f), 0.5f * (p.x - 10.0f), 0.0f);
+    };
+    FieldWind replaced(mesh, spec);
+    replaced.addFieldStep(0.0, sampleAll(mesh, calm, 0.0));
+    replaced.addFieldStep(1.0, sampleAll(mesh, breeze, 1.0));
+    render::GrassWind before, after, fresh;
+    replaced.update(0.5, before);  // enters the interval [0, 1] with the breeze at its end
+    replaced.replaceLastStep(sampleAll(mesh, swirl, 1.0));
+    replaced.update(0.75, after);
+
+    FieldWind built(mesh, spec);
+    built.addFieldStep(0.0, sampleAll(mesh, calm, 0.0));
+    built.addFieldStep(1.0, sampleAll(mesh, swirl, 1.0));
+    built.update(0.75, fresh);
+
+    ASSERT_EQ(after.groupIntensity.size(), fresh.groupIntensity.size());
+    for (size_t g = 0; g < fresh.groupIntensity.size(); ++g)
+        EXPECT_EQ(after.groupIntensity[g], fresh.groupIntensity[g]) << "group " << g;
+    size_t changed = 0;
+    const std::vector<float> shownBefore = FieldWind::shownIntensity(before);
+    const std::vector<float> shownAfter = FieldWind::shownIntensity(after);
+    const std::vector<float> shownFresh = FieldWind::shownIntensity(fresh);
+    for (size_t v = 0; v < mesh.wsPosition_m.size(); ++v) {
+        EXPECT_EQ(after.wsDirection()[v], fresh.wsDirection()[v]) << v;
+        EXPECT_EQ(shownAfter[v], shownFresh[v]) << v;
+        // At least 0.05 of intensity apart: well above float noise, so the swirl arrived.
+        constexpr float kChanged = 0.05f;
+        if (std::abs(shownAfter[v] - shownBefore[v]) > kChanged ||
+            glm::distance(after.wsDirection()[v], before.wsDirection()[v]) > kChanged)
+            ++changed;
+    }
+    EXPECT_GT(changed, mesh.wsPosition_m.size() / 2);
+    EXPECT_THROW(replaced.replaceLastStep({}), std::invalid_argument);
+    FieldWind empty(mesh, spec);
+    EXPECT_THROW(empty.replaceLastStep(sampleAll(mesh, calm, 0.0)), std::invalid_argument);
+}
+
 TEST(FieldWind, GustFrontReachesDownstreamVerticesLaterInOrderOfDistance) {
     const render::TerrainMesh mesh = flatMesh();
     const double c_mps = 5.0;  // front speed

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "coupling/WindWorker.h"
 
@@ -25,6 +26,7 @@ class StampSource : public coupling::WindSource {
     int groupCount() const override { return kGroups; }
     void update(double t_s, render::GrassWind& wind) override {
         ++updates;
+        times.push_back(t_s);
         if (t_s >= failAt_s)
             throw std::runtime_error("source failed at t = " + std::to_string(t_s));
         if (delay_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
@@ -42,6 +44,7 @@ class StampSource : public coupling::WindSource {
     std::string describe() const override { return "stamp"; }
 
     std::atomic<int> updates{0};
+    std::vector<double> times;  ///< every update's time; written by the worker thread only
     double failAt_s = 1e300;
     int delay_ms = 0;
 };
@@ -154,6 +157,29 @@ TEST(WindWorker, PostedWorkRunsOnTheWorkerBeforeTheNextUpdateAndItsFailureReache
     worker.post([](coupling::WindSource&) { throw std::invalid_argument("bad whirlwind"); });
     worker.request(0.75, coupling::OverlaySpec{});
     EXPECT_THROW(worker.waitFor(0.75, shown), std::invalid_argument);
+}
+
+TEST(WindWorker, PostedWorkIsShownAtTheLastShownTimeBeforeTheStepToANewerRequest) {
+    // A whirlwind dropped while the worker steps: the worker publishes the source as changed at
+    // the time it last showed (no solver step for a stepping source) before stepping to the newer
+    // request, so the reader's next frame has it.
+    StampSource source;
+    source.delay_ms = 40;  // long steps: the work and the newer request arrive during one
+    const render::TerrainMesh mesh = noMesh();
+    coupling::WindWorker worker(source, mesh, 0.5);
+    coupling::WindSnapshot shown;
+    worker.request(0.5, coupling::OverlaySpec{});
+    worker.waitFor(0.5, shown);
+    const int before = source.updates.load();
+    worker.request(0.75, coupling::OverlaySpec{});
+    while (source.updates.load() == before) std::this_thread::yield();  // 0.75 under way
+    const uint64_t number = worker.post([](coupling::WindSource&) {});
+    worker.request(1.0, coupling::OverlaySpec{});
+    worker.waitFor(1.0, shown);
+    EXPECT_GE(shown.workDone, number);
+    // waitFor synchronises with the worker's writes: the log is complete up to 1.0.
+    const std::vector<double> expected = {0.5, 0.75, 0.75, 1.0};
+    EXPECT_EQ(source.times, expected);
 }
 
 }  // namespace

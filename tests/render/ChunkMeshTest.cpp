@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/vector_relational.hpp>
 #include <map>
 #include <utility>
 #include <vector>
@@ -162,6 +163,98 @@ TEST(ChunkMesh, TheLevelCoarsensWithDistanceAndKeepsCellsWithinThePixelBudget) {
     }
     EXPECT_EQ(detail::meshLevel(c, focal_px, lodPixels, 1e6f), detail::kMeshLevels - 1);
     EXPECT_EQ(detail::meshLevel(c, focal_px, 0.0f, 1e6f), 0);  // no level of detail
+}
+
+TEST(ChunkMesh, RowBandsSplitEveryLevelInOrderAndBoundTheirTriangles) {
+    const ChunkedGrid g;
+    for (const detail::TerrainChunk& c : g.chunks)
+        for (int l = 0; l < c.levelCount; ++l) {
+            const int bands = c.bandCount[l];
+            ASSERT_GE(bands, 1);
+            ASSERT_LE(bands, detail::kChunkBands);
+            // 32 cell rows at level 0: four bands of 8 rows, 32 x 8 quads of 2 triangles each.
+            if (l == 0) {
+                EXPECT_EQ(bands, detail::kChunkBands);
+                for (int b = 0; b < bands; ++b) EXPECT_EQ(c.bands[0][b].range.count, 32u * 8u * 6u);
+            }
+            uint32_t next = c.levels[l].first;
+            for (int b = 0; b < bands; ++b) {
+                const detail::ChunkBand& band = c.bands[l][b];
+                EXPECT_EQ(band.range.first, next) << "level " << l << " band " << b;
+                next = band.range.first + band.range.count;
+                for (uint32_t t = band.range.first; t < next; ++t) {
+                    const glm::vec3& p = g.mesh.wsPosition_m[g.indices[t]];
+                    EXPECT_TRUE(glm::all(glm::greaterThanEqual(p, band.wsMin_m)) &&
+                                glm::all(glm::lessThanEqual(p, band.wsMax_m)))
+                        << "level " << l << " band " << b;
+                }
+                if (b > 0) {
+                    EXPECT_LE(c.bands[l][b - 1].wsMin_m.y, band.wsMin_m.y);  // south first
+                }
+            }
+            EXPECT_EQ(next, c.levels[l].first + c.levels[l].count) << "level " << l;
+        }
+}
+
+// A 33 x 33 grid, 1 m apart: one chunk, levels 0..5.
+TerrainMesh singleChunk(float (*height)(float, float)) {
+    return test::makeGridMesh(33, 33, 16.0f, 1.0f, height);
+}
+
+TEST(ChunkMesh, LevelErrorIsZeroOnAPlaneAndTheSpikeHeightWhereASpikeIsCut) {
+    // A tilted plane is reproduced exactly by every level; a single raised vertex (at grid
+    // index (3, 5): odd, so no coarse level keeps it and every coarse triangle over it lies in
+    // the flat ground) is missed by exactly its height.
+    constexpr float kSpike_m = 0.75f;
+    // Heights of tens of centimetres interpolated in float: a few ulps.
+    constexpr float ERROR_TOLERANCE_M = 1e-5f;
+    const TerrainMesh plane = singleChunk([](float x, float y) { return 0.1f * x - 0.05f * y; });
+    const TerrainMesh spike = singleChunk([](float x, float y) {
+        return (std::abs(x - (-13.0f)) < 0.1f && std::abs(y - (-11.0f)) < 0.1f) ? kSpike_m : 0.0f;
+    });
+    for (const TerrainMesh* mesh : {&plane, &spike}) {
+        std::vector<uint32_t> indices;
+        const auto chunks = detail::buildChunks(mesh->nx, mesh->ny, mesh->wsPosition_m, indices);
+        ASSERT_EQ(chunks.size(), 1u);
+        ASSERT_EQ(chunks[0].levelCount, detail::kMeshLevels);
+        EXPECT_EQ(chunks[0].levelError_m[0], 0.0f);
+        for (int l = 1; l < detail::kMeshLevels; ++l) {
+            const float expected = mesh == &plane ? 0.0f : kSpike_m;
+            EXPECT_NEAR(chunks[0].levelError_m[l], expected, ERROR_TOLERANCE_M) << "level " << l;
+            EXPECT_NEAR(
+                detail::meshLevelError(mesh->nx, mesh->wsPosition_m, indices, chunks[0].levels[l]),
+                expected, ERROR_TOLERANCE_M);
+        }
+    }
+}
+
+TEST(ChunkMesh, FlatGroundTakesCellsUpToTheFlatBudgetAndRoughGroundDoesNot) {
+    const float focal_px = 500.0f, lodPixels = 2.0f;
+    const TerrainMesh flat = singleChunk([](float, float) { return 0.0f; });
+    std::vector<uint32_t> indices;
+    const auto chunks = detail::buildChunks(flat.nx, flat.ny, flat.wsPosition_m, indices);
+    const detail::TerrainChunk& f = chunks[0];
+    const ChunkedGrid rough;
+    const detail::TerrainChunk& r = rough.chunks[0];
+    for (float d : {5.0f, 20.0f, 60.0f, 150.0f}) {
+        const int lf = detail::meshLevel(f, focal_px, lodPixels, d);
+        // Flat: the coarsest level whose cells span at most the flat budget on screen.
+        int expected = 0;
+        while (expected + 1 < f.levelCount && float(2 << expected) * f.quad_m * focal_px / d <=
+                                                  detail::kMeshFlatCellPerLodPixel * lodPixels)
+            ++expected;
+        EXPECT_EQ(lf, expected) << d << " m";
+        // Rough (bumps 2 m high, 1 m apart): only the small-cell rule, as before.
+        const int lr = detail::meshLevel(r, focal_px, lodPixels, d);
+        if (lr > 0) {
+            EXPECT_LE(float(1 << lr) * r.quad_m * focal_px / d,
+                      detail::kMeshCellPerLodPixel * lodPixels)
+                << d << " m";
+        }
+        EXPECT_LE(lr, lf) << d << " m";
+    }
+    EXPECT_GT(detail::meshLevel(f, focal_px, lodPixels, 20.0f),
+              detail::meshLevel(r, focal_px, lodPixels, 20.0f));
 }
 
 }  // namespace
