@@ -25,6 +25,7 @@
 #include "app/scene/SceneParser.h"
 #include "base/Numbers.h"
 #include "sim/AirDomain.h"
+#include "sim/MemoryEstimate.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
 #include "sim/VdbIO.h"
@@ -76,7 +77,8 @@ int runUnsteadySolve(const SolveRequest& req) {
     // line only.
     const sim::AirDomain domain(req.terrain, req.domain);
     if (!req.vdbPath.empty())
-        if (auto problem = sequenceBytesProblem(u.limits, double(domain.boxCellCount())))
+        if (auto problem = sequenceBytesProblem(
+                u.limits, sim::vdbWindFile_bytes(domain.nx(), domain.ny(), domain.nz())))
             throw InputError(u.outputEveryWhere + ": " + *problem);
     std::fprintf(
         stderr,
