@@ -51,7 +51,7 @@ int runCheck(const SceneRunOptions& options) {
     const BuiltScene built = buildScene(scene, buildOptions);
     // Bounds on work the domain decides (the parser has refused too many files and steps).
     if (scene.wind.kind == WindKind::Unsteady)
-        if (auto problem = sequenceBytesProblem(scene.unsteady, built.domainBoxCells))
+        if (auto problem = sequenceBytesProblem(scene.unsteady, built.domainVdbFile_bytes))
             throw SceneError(scene.where("unsteady.output_every_s") + ": " + *problem);
     const sim::Heightfield& field = built.heightfield;
     const render::TerrainMesh& mesh = built.mesh;
@@ -129,7 +129,7 @@ int runCheck(const SceneRunOptions& options) {
                      ", unsteady.max_files) and at least " +
                      formatG(plannedUnsteadySteps(scene), 12) + " time steps (limit " +
                      std::to_string(scene.unsteady.maxSteps) + ", unsteady.max_steps), about " +
-                     formatBytes(plannedSequenceBytes(scene.unsteady, built.domainBoxCells)) +
+                     formatBytes(plannedSequenceBytes(scene.unsteady, built.domainVdbFile_bytes)) +
                      " of .vdb at most (limit " + formatBytes(scene.unsteady.maxOutputBytes) +
                      ", unsteady.max_output_gib)");
         line("",

@@ -293,12 +293,11 @@ int runRender(const SceneRunOptions& options) {
     report["draw_gpu_ms"] = drawGpu_ms;
     report["render_s"] = loop_s;
     report["total_s"] = msSince(runStart) / 1000.0;
-    if (interruptSignal()) report["stopped_by"] = interruptSignalName();
+    // A signal after the last frame stops nothing: the report is a complete run's.
+    if (interruptSignal() && done < out.frames) report["stopped_by"] = interruptSignalName();
     try {
         // The report last: frames without their report are never moved into place.
-        const std::string reportTmp = staged.add(reportPath);
-        writeTextAtomic(reportTmp, report.dump(2) + "\n");
-        staged.seal(reportPath);
+        writeStagedText(staged, reportPath, report.dump(2) + "\n");
         staged.commit();
     } catch (...) {
         staged.discard();
@@ -327,6 +326,7 @@ int runRender(const SceneRunOptions& options) {
                 fs::path(written.back()).filename().c_str(),
                 Progress::formatDuration(loop_s).c_str(), mean_ms, reportPath.c_str());
     for (const std::string& f : extras) std::printf("preview %s\n", f.c_str());
+    if (interruptSignal()) return reportInterruptedWhileWriting(shown, reportPath);
     return EXIT_OK;
 }
 

@@ -76,11 +76,6 @@ double writeStagedVdb(StagedFiles& staged, const sim::WindField& field, const st
     return staged.seal(path);
 }
 
-void writeStagedText(StagedFiles& staged, const std::string& path, const std::string& text) {
-    writeTextAtomic(staged.add(path), text);
-    staged.seal(path);
-}
-
 int runSolve(const SolveRequest& req) {
     if (req.unsteady) return runUnsteadySolve(req);
     const auto t0 = Clock::now();
@@ -207,15 +202,7 @@ int runSolve(const SolveRequest& req) {
         rep.maxDivergenceScaled, j["total_s"].get<double>(), domain.nx(), domain.ny(), domain.nz(),
         domain.activeCellCount());
     if (!rep.converged) std::printf("solve: %s\n", rep.message.c_str());
-    if (interruptSignal()) {
-        std::fflush(stdout);
-        std::fprintf(stderr,
-                     "gale: interrupted (%s) while writing; the solve had finished and %s%s%s are "
-                     "complete\n",
-                     interruptSignalName(), req.vdbPath.c_str(),
-                     req.reportPath.empty() ? "" : " and ", req.reportPath.c_str());
-        return interruptExitCode();
-    }
+    if (interruptSignal()) return reportInterruptedWhileWriting(req.vdbPath, req.reportPath);
     return rep.converged ? EXIT_OK : EXIT_UNMET;
 }
 

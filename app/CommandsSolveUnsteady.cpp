@@ -25,6 +25,7 @@
 #include "app/scene/SceneParser.h"
 #include "base/Numbers.h"
 #include "sim/AirDomain.h"
+#include "sim/MemoryEstimate.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
 #include "sim/VdbIO.h"
@@ -76,14 +77,15 @@ int runUnsteadySolve(const SolveRequest& req) {
     // line only.
     const sim::AirDomain domain(req.terrain, req.domain);
     if (!req.vdbPath.empty())
-        if (auto problem = sequenceBytesProblem(u.limits, double(domain.boxCellCount())))
+        if (auto problem = sequenceBytesProblem(
+                u.limits, sim::vdbWindFile_bytes(domain.nx(), domain.ny(), domain.nz())))
             throw InputError(u.outputEveryWhere + ": " + *problem);
     std::fprintf(
         stderr,
         "solve: %d x %d x %d cells, %zu air; steady solve (initial state and mean flow)...\n",
         domain.nx(), domain.ny(), domain.nz(), domain.activeCellCount());
-    sim::SteadyWindSolver steadySolver(domain, req.weights);
     interrupt.exitAtOnce("during the steady solve: nothing written");
+    sim::SteadyWindSolver steadySolver(domain, req.weights);
     const sim::SteadyWindResult steady = steadySolver.solve(req.ambient, req.solver);
     sim::UnsteadyWindSolver solver(domain, steady.field, u.settings, req.ambient.speed_mps);
 
@@ -183,7 +185,10 @@ int runUnsteadySolve(const SolveRequest& req) {
         progress.step(n, msSince(outputStart));
     }
     progress.finish();
-    if (interruptSignal()) {
+    // Stopped before the last output: the report says where. A signal after it (while the
+    // report and files are moved into place) stops nothing: the run is complete.
+    const bool stoppedEarly = interruptSignal() != 0 && int(frames.size()) <= outputs;
+    if (stoppedEarly) {
         j["interrupted"] = true;
         j["stopped_by"] = interruptSignalName();
         j["stopped_at_t_s"] = solver.time_s();
@@ -209,7 +214,7 @@ int runUnsteadySolve(const SolveRequest& req) {
     j["total_s"] = secondsSince(t0);
     if (!req.reportPath.empty()) writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
     staged.commit();
-    if (interruptSignal()) {
+    if (stoppedEarly) {
         std::printf(
             "solve: interrupted (%s) at t = %.3g s after %d steps: wrote %zu complete .vdb files "
             "(the last %s) and the report %s\n",
@@ -226,6 +231,12 @@ int runUnsteadySolve(const SolveRequest& req) {
         : ok    ? "all solves converged"
                 : "SOME SOLVES DID NOT CONVERGE",
         j["total_s"].get<double>(), stepCount ? solveSeconds / stepCount : 0.0);
+    if (interruptSignal())
+        return reportInterruptedWhileWriting(
+            req.vdbPath.empty()
+                ? std::string()
+                : sequencePath(req.vdbPath, 0) + " .. " + frames.back()["path"].get<std::string>(),
+            req.reportPath);
     return ok ? EXIT_OK : EXIT_UNMET;
 }
 

@@ -85,7 +85,4 @@ std::unique_ptr<OutputLock> prepareSolveOutputs(const SolveRequest& req);
 double writeStagedVdb(StagedFiles& staged, const sim::WindField& field, const std::string& path,
                       const sim::VdbMetadata& meta);
 
-/// Writes `text` to the staged temporary of `path` and seals it.
-void writeStagedText(StagedFiles& staged, const std::string& path, const std::string& text);
-
 }  // namespace gale::app

@@ -29,6 +29,22 @@ double vdbBoxTree_bytes(double nx, double ny, double nz, double valueBytes) {
            nodes(4096) * (node2Bytes + rootEntryBytes);
 }
 
+double vdbWindFile_bytes(double nx, double ny, double nz) {
+    auto nodes = [](double x, double y, double z, double span) {
+        return std::ceil(x / span) * std::ceil(y / span) * std::ceil(z / span);
+    };
+    // Internal nodes write their child and value masks (2 x 512 B for 16^3 children, 2 x 4 KiB
+    // for 32^3) and their tile values, compressed (background only); a file its header, the grid
+    // descriptors, transforms and metadata.
+    constexpr double NODE1_FILE_BYTES = 1536.0, NODE2_FILE_BYTES = 9216.0, FILE_BYTES = 8192.0;
+    auto grid = [&](double x, double y, double z, double valueBytes) {
+        return x * y * z * valueBytes + nodes(x, y, z, 8) * VDB_FILE_LEAF_BYTES +
+               nodes(x, y, z, 128) * NODE1_FILE_BYTES + nodes(x, y, z, 4096) * NODE2_FILE_BYTES;
+    };
+    return grid(nx, ny, nz, 12.0) + grid(nx, ny, nz, 4.0) + grid(nx + 1, ny + 1, nz + 1, 12.0) +
+           FILE_BYTES;
+}
+
 double macFaceCount(double nx, double ny, double nz) {
     return (nx + 1) * ny * nz + nx * (ny + 1) * nz + nx * ny * (nz + 1);
 }

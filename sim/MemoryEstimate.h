@@ -20,6 +20,21 @@ double vdbBoxTree_bytes(double nx, double ny, double nz, double valueBytes);
 /// Faces of a MAC grid of nx * ny * nz cells, the three components together.
 double macFaceCount(double nx, double ny, double nz);
 
+/// Bytes of one .vdb file WindField::writeVdb writes for a box of nx * ny * nz cubic cells, at
+/// most: the grids velocity (3 floats) and speed (1) over the box's cells and velocity_faces (3
+/// floats) over (nx + 1)(ny + 1)(nz + 1) voxels, their values counted uncompressed (a field
+/// with no smooth parts does not compress), plus what OpenVDB writes per 8^3 leaf
+/// (VDB_FILE_LEAF_BYTES: two value masks, the compression header) however few voxels it holds, per
+/// internal node and per file. Measured on written files of steady and unsteady runs, from 2 x 2 x
+/// 3000 columns to 256 x 256 x 10 slabs: 0.46-0.74 of this (docs/reliability.md). Stretched layers
+/// (a steady solve only) write other grids and are not covered.
+double vdbWindFile_bytes(double nx, double ny, double nz);
+
+/// What OpenVDB writes per leaf besides its values: the value mask twice (topology and buffers,
+/// 64 B each), the compression's metadata byte, selection mask and Blosc headers; 241 B by count,
+/// rounded up.
+inline constexpr double VDB_FILE_LEAF_BYTES = 256.0;
+
 struct UnsteadySettings;
 
 /// What a run holds besides the air domain and the steady solve, and what the process held

@@ -134,10 +134,13 @@ void commitTemporary(const std::string& tmpPath, const std::string& path) {
     syncFolder(folderOf(path), path);
 }
 
-void writeTextAtomic(const std::string& path, const std::string& text) {
-    const std::string tmp = temporaryPathFor(path);
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd < 0) failWrite(path, std::strerror(errno), tmp);
+namespace {
+
+/// Writes `text` to `tmpPath` (created or truncated), fsyncs and closes it; every failure
+/// removes the temporary and throws naming `path`, the file the user asked for.
+void writeWholeText(const std::string& tmpPath, const std::string& path, const std::string& text) {
+    const int fd = ::open(tmpPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) failWrite(path, std::strerror(errno), tmpPath);
     size_t done = 0;
     while (done < text.size()) {
         const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
@@ -145,19 +148,31 @@ void writeTextAtomic(const std::string& path, const std::string& text) {
         if (n <= 0) {
             const int err = n < 0 ? errno : ENOSPC;
             ::close(fd);
-            failWrite(path, std::strerror(err), tmp);
+            failWrite(path, std::strerror(err), tmpPath);
         }
         done += static_cast<size_t>(n);
     }
     if (::fsync(fd) != 0) {
         const int err = errno;
         ::close(fd);
-        failWrite(path, std::strerror(err), tmp);
+        failWrite(path, std::strerror(err), tmpPath);
     }
-    if (::close(fd) != 0) failWrite(path, std::strerror(errno), tmp);
+    if (::close(fd) != 0) failWrite(path, std::strerror(errno), tmpPath);
+}
+
+}  // namespace
+
+void writeTextAtomic(const std::string& path, const std::string& text) {
+    const std::string tmp = temporaryPathFor(path);
+    writeWholeText(tmp, path, text);
     if (::rename(tmp.c_str(), path.c_str()) != 0) failWrite(path, std::strerror(errno), tmp);
     unregisterForRemoval(tmp);
     syncFolder(folderOf(path), path);
+}
+
+void writeStagedText(StagedFiles& staged, const std::string& path, const std::string& text) {
+    writeWholeText(staged.add(path), path, text);
+    staged.seal(path);
 }
 
 std::vector<std::string> staleTemporaries(const std::string& folder) {

@@ -89,6 +89,10 @@ class StagedFiles {
     std::vector<Entry> mEntries;
 };
 
+/// Writes `text` to the staged temporary of `path` (every byte checked, fsync'ed) and seals it.
+/// Throws std::runtime_error "PATH: cannot write: REASON" naming `path`, not the temporary.
+void writeStagedText(StagedFiles& staged, const std::string& path, const std::string& text);
+
 /// One file a run reads or writes, and what it is for messages ("the scene", "-o").
 struct RunPath {
     std::string path;

@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstring>
 
 #include "app/io/AtomicFile.h"
@@ -77,5 +78,16 @@ int interruptSignal() { return gSignal; }
 int interruptExitCode() { return gSignal == 0 ? 0 : 128 + gSignal; }
 
 const char* interruptSignalName() { return nameOf(gSignal); }
+
+int reportInterruptedWhileWriting(const std::string& output, const std::string& report) {
+    std::string files = output;
+    if (!files.empty() && !report.empty()) files += " and ";
+    files += report;
+    std::fflush(stdout);
+    std::fprintf(stderr, "gale: interrupted (%s) while writing; the run had finished%s%s%s\n",
+                 interruptSignalName(), files.empty() ? "" : " and ", files.c_str(),
+                 files.empty() ? "" : " are complete");
+    return interruptExitCode();
+}
 
 }  // namespace gale::app

@@ -9,6 +9,8 @@
 ///   finishes the file in hand, keeps what is complete, writes its report and returns
 ///   interruptExitCode().
 
+#include <string>
+
 namespace gale::app {
 
 /// Installs the handlers for its lifetime (and restores the previous ones); starts in the
@@ -35,5 +37,11 @@ int interruptExitCode();
 
 /// "SIGINT", "SIGTERM", "SIGHUP" (or "signal N").
 const char* interruptSignalName();
+
+/// For a signal that came after the run's work was complete, while its outputs were moved into
+/// place: flushes stdout, says on stderr "gale: interrupted (SIGTERM) while writing; the run had
+/// finished and OUTPUT and REPORT are complete" (`report` may be empty) and returns
+/// interruptExitCode(). The outputs and report stay those of a complete run.
+int reportInterruptedWhileWriting(const std::string& output, const std::string& report);
 
 }  // namespace gale::app

@@ -23,6 +23,7 @@
 #include "coupling/UnsteadyFieldWind.h"
 #include "render/ImageIO.h"
 #include "sim/AirDomain.h"
+#include "sim/MemoryEstimate.h"
 #include "sim/SteadyWind.h"
 
 namespace gale::app {
@@ -160,7 +161,7 @@ std::unique_ptr<sim::AirDomain> buildDomain(const Scene& scene, BuiltScene& buil
     }
     built.domainSummary = describeDomain(*domain);
     built.domainEstimate_bytes = double(domain->memoryEstimate_bytes());
-    built.domainBoxCells = double(domain->boxCellCount());
+    built.domainVdbFile_bytes = sim::vdbWindFile_bytes(domain->nx(), domain->ny(), domain->nz());
     return domain;
 }
 

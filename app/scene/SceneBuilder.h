@@ -44,7 +44,7 @@ struct BuiltScene {
     // wind.kind = "solved":
     std::string domainSummary;              ///< cells, air cells, memory of the air domain
     double domainEstimate_bytes = 0.0;      ///< the air domain's run estimate (its baseline incl.)
-    double domainBoxCells = 0.0;            ///< cells of the air domain's box
+    double domainVdbFile_bytes = 0.0;       ///< one .vdb of its field, at most (MemoryEstimate.h)
     std::optional<sim::SolveReport> solve;  ///< the steady solve (absent when not solved)
     double solve_ms = 0.0;                  ///< domain + solve + sampling wall time
 };

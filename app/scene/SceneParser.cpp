@@ -360,16 +360,16 @@ double plannedUnsteadySteps(const Scene& scene) {
     return std::ceil(u.duration_s / dt_s);
 }
 
-double plannedSequenceBytes(const UnsteadySection& u, double boxCells) {
-    return plannedSequenceFiles(u) * boxCells * VDB_BYTES_PER_CELL;
+double plannedSequenceBytes(const UnsteadySection& u, double fileBytes) {
+    return plannedSequenceFiles(u) * fileBytes;
 }
 
-std::optional<std::string> sequenceBytesProblem(const UnsteadySection& u, double boxCells) {
-    const double bytes = plannedSequenceBytes(u, boxCells);
+std::optional<std::string> sequenceBytesProblem(const UnsteadySection& u, double fileBytes) {
+    const double bytes = plannedSequenceBytes(u, fileBytes);
     if (bytes <= u.maxOutputBytes) return std::nullopt;
     return "plans " + Limit::num(plannedSequenceFiles(u)) + " .vdb files of up to " +
-           formatBytes(boxCells * VDB_BYTES_PER_CELL) + " each, about " + formatBytes(bytes) +
-           " in all; at most " + formatBytes(u.maxOutputBytes) +
+           formatBytes(fileBytes) + " each, about " + formatBytes(bytes) + " in all; at most " +
+           formatBytes(u.maxOutputBytes) +
            " unless unsteady.max_output_gib raises it (or raise output_every_s)";
 }
 

@@ -84,17 +84,13 @@ std::optional<BudgetProblem> outputBudgetProblem(const OutputSection& output);
 /// duration_s.
 double plannedSequenceFiles(const UnsteadySection& unsteady);
 
-/// Bytes of one .vdb of a sequence per cell of the box, at most: velocity (3 floats) and speed
-/// (1) per air cell and the staggered face velocities (3 floats) per cell, before compression
-/// (measured: 22 B per cell on a 96 x 96 x 48 hill).
-inline constexpr double VDB_BYTES_PER_CELL = 28.0;
-
-/// Bytes an unsteady run's .vdb sequence takes at most on a box of boxCells cells.
-double plannedSequenceBytes(const UnsteadySection& unsteady, double boxCells);
+/// Bytes an unsteady run's .vdb sequence takes at most, each file taking fileBytes at most
+/// (sim::vdbWindFile_bytes of the box).
+double plannedSequenceBytes(const UnsteadySection& unsteady, double fileBytes);
 
 /// Why the sequence is too large for unsteady.max_output_gib (to be blamed on
-/// unsteady.output_every_s), or std::nullopt.
-std::optional<std::string> sequenceBytesProblem(const UnsteadySection& unsteady, double boxCells);
+/// unsteady.output_every_s), or std::nullopt; fileBytes as for plannedSequenceBytes.
+std::optional<std::string> sequenceBytesProblem(const UnsteadySection& unsteady, double fileBytes);
 
 /// Time steps an unsteady run takes at least: duration_s / dt_s, or with the adaptive step
 /// duration_s / min(max_dt_s, cfl h / ambient speed) (the field's peak is at least the ambient

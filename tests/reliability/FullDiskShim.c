@@ -8,6 +8,10 @@
 // std::ofstream) and fwrite/fputs/fputc (libpng, giflib, OpenImageIO's file proxy, stdio). glibc's
 // stdio buffers, so a real full disk shows up at the flush inside fwrite or fclose; the shim fails
 // the fwrite itself, marks the stream's error flag, and makes its fflush and fclose fail too.
+//
+// With GALE_FULL_DISK_STATVFS=1 it also tells the truth about the space: statvfs of a path in
+// the folder reports the bytes still allowed as free (f_bavail, f_bfree), so that free-space
+// checks see the disk the writes will meet.
 
 #define _GNU_SOURCE
 #include <dlfcn.h>
@@ -17,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <sys/types.h>
 #include <sys/uio.h>
 #include <unistd.h>
@@ -170,5 +175,25 @@ int fclose(FILE* f) {
         errno = ENOSPC;
         return EOF;
     }
+    return r;
+}
+
+// Free space under the folder, as the writes will find it (GALE_FULL_DISK_STATVFS=1 only).
+static void reportFree(const char* path, struct statvfs* buf) {
+    configure();
+    const char* on = getenv("GALE_FULL_DISK_STATVFS");
+    if (gLeft == LLONG_MAX || !on || strcmp(on, "1") != 0) return;
+    char target[PATH_MAX];
+    if (!realpath(path, target)) return;
+    const size_t len = strlen(gFolder);
+    if (strncmp(target, gFolder, len) != 0 || (target[len] != '/' && target[len] != '\0')) return;
+    const unsigned long block = buf->f_frsize ? buf->f_frsize : 4096;
+    buf->f_bavail = buf->f_bfree = (fsblkcnt_t)(gLeft / (long long)block);
+}
+
+int statvfs(const char* path, struct statvfs* buf) {
+    REAL(statvfs);
+    const int r = real_statvfs(path, buf);
+    if (r == 0) reportFree(path, buf);
     return r;
 }

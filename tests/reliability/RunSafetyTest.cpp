@@ -214,6 +214,39 @@ TEST(Signals, AnySignalDuringAnUnsteadySolveKeepsTheCompleteSequenceAndAReport) 
     }
 }
 
+TEST(Signals, ASignalAfterTheLastOutputKeepsACompleteRunsReportAndSaysSo) {
+    // 41 outputs of a small box; the signal comes once the last is written, while the files and
+    // report are moved into place (or just after the run ended: then exit 0).
+    TempDir cwd;
+    writeFile(cwd / "scene.toml",
+              "[terrain]\nkind = \"hemisphere\"\nsize_m = [8.0, 8.0]\nradius_m = 2.0\n"
+              "[wind]\nkind = \"unsteady\"\nspeed_mps = 2.0\n[solver]\nvoxel_size_m = 0.5\n"
+              "[unsteady]\nduration_s = 8.0\noutput_every_s = 0.2\n");
+    RunOptions options;
+    options.cwd = cwd.str();
+    Child child({"solve", "scene.toml", "-o", "field/w.vdb"}, options);
+    ASSERT_TRUE(waitFor([&] { return child.errSoFar().find("output 40/40") != std::string::npos; },
+                        REACH_TIMEOUT_S))
+        << child.errSoFar();
+    child.signal(SIGTERM);
+    const RunResult r = child.wait(STOP_TIMEOUT_S);
+    ASSERT_FALSE(r.timedOut) << r.describe();
+    ASSERT_TRUE(r.exitCode == 0 || r.exitCode == 128 + SIGTERM) << r.describe();
+    const nlohmann::json report = nlohmann::json::parse(readFile(cwd / "field/w.json"));
+    // The report is a complete run's: all 41 files, the whole duration, not "interrupted".
+    EXPECT_FALSE(report.contains("interrupted")) << report.dump();
+    EXPECT_EQ(report["outputs"]["vdb_sequence"].size(), 41u);
+    EXPECT_DOUBLE_EQ(report["summary"]["simulated_s"].get<double>(), 8.0);
+    EXPECT_EQ(listTree(cwd / "field").size(), 42u) << describeTree(listTree(cwd / "field"));
+    if (r.exitCode != 0) {
+        EXPECT_NE(r.err.find("interrupted (SIGTERM) while writing; the run had finished"),
+                  std::string::npos)
+            << r.err;
+    }
+    EXPECT_EQ(r.out.find("interrupted"), std::string::npos) << r.out;
+    EXPECT_TRUE(hiddenOrTemporary(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
+}
+
 TEST(Leftovers, AKilledRunsTemporariesAreNamedByCheckAndRemovedByTheNextRun) {
     TempDir cwd;
     writeFile(cwd / "scene.toml", readFile(sourcePath(TINY)));
