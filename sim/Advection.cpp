@@ -197,12 +197,11 @@ Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, c
 void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
             const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
             std::vector<double>& out, const std::vector<uint8_t>* mask) {
-    if (q.size() != g.count(p)) throw std::invalid_argument("advect: quantity has the wrong size");
+    if (q.size() != g.count(p)) throw std::logic_error("advect: quantity has the wrong size");
     if (!vel.u || !vel.v || !vel.w || vel.u->size() != g.count(Placement::FaceX) ||
         vel.v->size() != g.count(Placement::FaceY) || vel.w->size() != g.count(Placement::FaceZ))
-        throw std::invalid_argument("advect: velocity arrays have the wrong size");
-    if (mask && mask->size() != q.size())
-        throw std::invalid_argument("advect: mask has the wrong size");
+        throw std::logic_error("advect: velocity arrays have the wrong size");
+    if (mask && mask->size() != q.size()) throw std::logic_error("advect: mask has the wrong size");
     if (scheme == AdvectionScheme::SemiLagrangian) {
         semiLagrangian(g, p, q, vel, far, outside, dt, out, mask, nullptr, nullptr);
         return;

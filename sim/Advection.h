@@ -113,7 +113,7 @@ using OutsideValue = std::function<double(const Vec3d& wsPos_m)>;
 /// the result to `out` (resized). Samples with mask[idx] == 0 (if mask is given) are copied
 /// unchanged. `outside` gives q where a trace leaves the box (empty: clamp to the box). Each
 /// sample's trace starts at its world position (GridLayout::wsPosition). Multithreaded (TBB).
-/// Throws std::invalid_argument on wrong sizes.
+/// Throws std::logic_error on wrong sizes (a caller's bug).
 void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
             const FarField& far, const OutsideValue& outside, double dt_s, AdvectionScheme scheme,
             std::vector<double>& out, const std::vector<uint8_t>* mask = nullptr);

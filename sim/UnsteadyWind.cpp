@@ -65,27 +65,28 @@ double cellRate_ps(const GridLayout& g, const std::vector<double>& U, const std:
 
 void UnsteadySettings::validate() const {
     if (!(dt_s >= 0.0) || !std::isfinite(dt_s))
-        throw std::invalid_argument("unsteady.dt_s must be >= 0, got " + num(dt_s));
+        throw ParameterError("unsteady.dt_s", num(dt_s), "must be >= 0 s and finite");
     if (dt_s == 0.0 && (!(cfl > 0.0) || !std::isfinite(cfl)))
-        throw std::invalid_argument("unsteady.cfl must be > 0, got " + num(cfl));
+        throw ParameterError("unsteady.cfl", num(cfl), "must be > 0 and finite");
     if (!(maxDt_s > 0.0) || !std::isfinite(maxDt_s))
-        throw std::invalid_argument("unsteady.max_dt_s must be > 0, got " + num(maxDt_s));
+        throw ParameterError("unsteady.max_dt_s", num(maxDt_s), "must be > 0 s and finite");
     if (!(viscosity_m2ps >= 0.0) || !std::isfinite(viscosity_m2ps))
-        throw std::invalid_argument("unsteady.viscosity_m2ps must be >= 0, got " +
-                                    num(viscosity_m2ps));
+        throw ParameterError("unsteady.viscosity_m2ps", num(viscosity_m2ps),
+                             "must be >= 0 m^2/s and finite");
     if (surfaceLayer.enabled) surfaceLayer.validate();
     if (!(vorticityConfinement >= 0.0) || !std::isfinite(vorticityConfinement))
-        throw std::invalid_argument("unsteady.vorticity_confinement must be >= 0, got " +
-                                    num(vorticityConfinement));
+        throw ParameterError("unsteady.vorticity_confinement", num(vorticityConfinement),
+                             "must be >= 0 and finite");
+    // Each event names its own key ("wind.gusts.duration_s"); the index makes it the scene's.
     for (size_t i = 0; i < gusts.size(); ++i) try {
             gusts[i].validate();
-        } catch (const std::invalid_argument& e) {
-            throw std::invalid_argument("wind.gusts[" + std::to_string(i) + "]: " + e.what());
+        } catch (const ParameterError& e) {
+            throw e.inElement("wind.gusts", i);
         }
     for (size_t i = 0; i < whirlwinds.size(); ++i) try {
             whirlwinds[i].validate();
-        } catch (const std::invalid_argument& e) {
-            throw std::invalid_argument("wind.whirlwinds[" + std::to_string(i) + "]: " + e.what());
+        } catch (const ParameterError& e) {
+            throw e.inElement("wind.whirlwinds", i);
         }
 }
 
@@ -103,7 +104,7 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
                              "cubic cells: the wall stress does not support stretched layers "
                              "(solver.first_cell_m) yet");
     if (mean.nx() != domain.nx() || mean.ny() != domain.ny() || mean.nz() != domain.nz())
-        throw std::invalid_argument("UnsteadyWindSolver: the mean field does not match the domain");
+        throw std::logic_error("UnsteadyWindSolver: the mean field does not match the domain");
     mGrid = MacGrid(domain.layout(), &domain.terrain());
     mMeanU = mean.u_mps(), mMeanV = mean.v_mps(), mMeanW = mean.w_mps();
     for (const auto* a : {&mMeanU, &mMeanV, &mMeanW})
@@ -236,7 +237,7 @@ void UnsteadyWindSolver::resetState(const WindField& state) {
     if (state.u_mps().size() != mField.u_mps().size() ||
         state.v_mps().size() != mField.v_mps().size() ||
         state.w_mps().size() != mField.w_mps().size())
-        throw std::invalid_argument(
+        throw std::logic_error(
             "UnsteadyWindSolver::resetState: the field does not match the "
             "domain");
     mField.u_mps() = state.u_mps(), mField.v_mps() = state.v_mps(), mField.w_mps() = state.w_mps();
@@ -437,7 +438,7 @@ void UnsteadyWindSolver::applyForcing(double t0, double dt) {
 
 StepReport UnsteadyWindSolver::step(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt))
-        throw std::invalid_argument("UnsteadyWindSolver::step: dt_s must be > 0, got " + num(dt));
+        throw std::logic_error("UnsteadyWindSolver::step: dt_s must be > 0, got " + num(dt));
     const auto tStart = Clock::now();
     StepReport rep;
     const double t0 = mTime_s, t1 = mTime_s + dt;

@@ -95,7 +95,7 @@ struct UnsteadySettings {
     std::vector<GustEvent> gusts;
     std::vector<Whirlwind> whirlwinds;
 
-    /// Throws std::invalid_argument naming the field (unsteady.cfl, wind.gusts[i].duration_s ...).
+    /// Throws gale::ParameterError with the scene key (unsteady.cfl, wind.gusts[i].duration_s ...).
     void validate() const;
 };
 
@@ -125,9 +125,9 @@ class UnsteadyWindSolver {
   public:
     /// domain must outlive the solver. meanFlow: the steady field on this domain (its arrays give
     /// the initial state and the far field). referenceSpeed_mps: U of the divergence scaling
-    /// (the ambient speed; 0 means 1 m/s). Throws std::invalid_argument on bad settings or a field
-    /// that does not match the domain, and gale::ParameterError (unsteady.surface_layer) when
-    /// the surface layer is asked for on stretched layers, which it does not support yet.
+    /// (the ambient speed; 0 means 1 m/s). Throws gale::ParameterError on bad settings (and
+    /// unsteady.surface_layer when the surface layer is asked for on stretched layers, which it
+    /// does not support yet), std::logic_error when the field does not match the domain.
     UnsteadyWindSolver(const AirDomain& domain, const WindField& meanFlow,
                        const UnsteadySettings& settings, double referenceSpeed_mps);
 
@@ -167,7 +167,7 @@ class UnsteadyWindSolver {
     /// `state`, keeping the mean flow as the far field and time() unchanged: the steady momentum
     /// model starts a fine level from a coarser level's solution this way. Faces outside the air
     /// are refilled by extrapolation as after a projection; the next step projects. Throws
-    /// std::invalid_argument when the arrays do not match the domain.
+    /// std::logic_error when the arrays do not match the domain.
     void resetState(const WindField& state);
     /// Projects the current field (after external edits, e.g. seeding in tests).
     SolveReport project();

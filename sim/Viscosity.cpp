@@ -92,9 +92,8 @@ ViscosityReport diffuseImplicit(const MacGrid& g, double nu, double dt,
                                 std::vector<double>& u, std::vector<double>& v,
                                 std::vector<double>& w, double tol, int maxIterations) {
     if (!(nu >= 0.0) || !(dt >= 0.0))
-        throw std::invalid_argument(
-            "diffuseImplicit: nu and dt must be >= 0, got nu = " + std::to_string(nu) +
-            " m^2/s, dt = " + std::to_string(dt) + " s");
+        throw std::logic_error("diffuseImplicit: nu and dt must be >= 0, got nu = " +
+                               std::to_string(nu) + " m^2/s, dt = " + std::to_string(dt) + " s");
     ViscosityReport rep;
     const double a = nu * dt / (g.voxelSize_m * g.voxelSize_m);
     if (a == 0.0) return rep;
@@ -103,7 +102,7 @@ ViscosityReport diffuseImplicit(const MacGrid& g, double nu, double dt,
         const Placement p = Placement(c);
         std::vector<double>& x = *comps[c];
         if (!masks[c] || masks[c]->size() != x.size())
-            throw std::invalid_argument("diffuseImplicit: bad mask");
+            throw std::logic_error("diffuseImplicit: bad mask");
         const Operator op(g, p, masks[c], a);
         std::vector<double> b(x.size()), r(x.size()), z(x.size()), q(x.size()), Ap(x.size()),
             diag(x.size());

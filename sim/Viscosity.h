@@ -35,8 +35,8 @@ struct ViscosityReport {
 
 /// Diffuses u, v, w in place. masks[c] marks the faces of component c that take part (must not
 /// be null). nu_m2ps >= 0, dt_s >= 0; nothing happens when nu dt is 0. Cubic cells or stretched
-/// layers (the grid's GridLayout). Throws std::invalid_argument on a negative nu or dt or a
-/// missing or mis-sized mask.
+/// layers (the grid's GridLayout). Throws std::logic_error on a negative nu or dt or a
+/// missing or mis-sized mask (callers validate the scene's values first).
 ViscosityReport diffuseImplicit(const MacGrid& g, double nu_m2ps, double dt_s,
                                 const std::array<const std::vector<uint8_t>*, 3>& masks,
                                 std::vector<double>& u, std::vector<double>& v,
