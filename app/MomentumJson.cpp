@@ -29,26 +29,33 @@ nlohmann::json momentumJson(const sim::MomentumReport& m, const sim::MomentumSet
                           {"momentum_residual", l.momentumResidual},
                           {"converged", l.converged},
                           {"seconds", l.seconds}});
-    return {{"converged", m.converged},
-            {"finite", m.finite},
-            {"iterations", m.iterations},
-            {"fine_iterations", m.fineIterations},
-            {"levels", levels},
-            {"momentum_residual", m.momentumResidual},
-            {"residual_definition",
-             "open-fraction weighted RMS over faces of |u(n+1) - u(n)| / dt * h / U^2"},
-            {"tolerance", s.residualTolerance},
-            {"max_div_u_h_over_U", m.maxDivergenceScaled},
-            {"pseudo_dt_s", m.dt_s},
-            {"cfl", s.cfl},
-            {"mixing_length_max_m", s.mixingLengthMax_m},
-            {"displacement_height_m", s.displacementHeight_m},
-            {"max_eddy_viscosity_m2ps", m.maxEddyViscosity_m2ps},
-            {"max_friction_velocity_mps", m.maxFrictionVelocity_mps},
-            {"start_iterations", m.start.iterations},
-            {"message", m.message},
-            {"seconds", m.seconds},
-            {"history", history}};
+    return {
+        {"converged", m.converged},
+        {"finite", m.finite},
+        {"iterations", m.iterations},
+        {"fine_iterations", m.fineIterations},
+        {"levels", levels},
+        {"momentum_residual", m.momentumResidual},
+        {"residual_definition",
+         "open-fraction weighted RMS over faces of |u(n+1) - u(n)| / dt * h / U^2"},
+        {"tolerance", s.residualTolerance},
+        {"max_div_u_h_over_U", m.maxDivergenceScaled},
+        {"pseudo_dt_s", m.dt_s},
+        {"cfl", s.cfl},
+        {"mixing_length_max_m", s.mixingLengthMax_m},
+        {"displacement_height_m", s.displacementHeight_m},
+        {"max_eddy_viscosity_m2ps", m.maxEddyViscosity_m2ps},
+        {"max_friction_velocity_mps", m.maxFrictionVelocity_mps},
+        {"start_iterations", m.start.iterations},
+        {"cycle_period_steps", m.cyclePeriod},
+        {"cycle_autocorrelation", m.cycleCorrelation},
+        {"averaged_steps", m.averagedSteps},
+        {"field", m.averagedSteps > 0
+                      ? "mean of the last averaged_steps iterates (whole cycles of a periodic wake)"
+                      : "last iterate"},
+        {"message", m.message},
+        {"seconds", m.seconds},
+        {"history", history}};
 }
 
 }  // namespace gale::app

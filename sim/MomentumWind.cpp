@@ -73,7 +73,48 @@ void MomentumSettings::validate() const {
     validateWallAndMixing(displacementHeight_m, mixingLengthMax_m);
 }
 
+int residualCyclePeriod(const std::vector<double>& residuals, int window, double& correlation) {
+    correlation = 0.0;
+    const int n = std::min(int(residuals.size()), std::max(window, 0));
+    if (n < 4 * MIN_CYCLE_LAG) return 0;
+    const double* r = residuals.data() + (residuals.size() - size_t(n));
+    double mean = 0.0, firstHalf = 0.0, secondHalf = 0.0;
+    for (int i = 0; i < n; ++i) {
+        mean += r[i];
+        (i < n / 2 ? firstHalf : secondHalf) += r[i];
+    }
+    mean /= n, firstHalf /= n / 2, secondHalf /= n - n / 2;
+    if (!std::isfinite(mean) || !(std::abs(secondHalf - firstHalf) <= 0.25 * firstHalf)) return 0;
+    double var = 0.0;
+    for (int i = 0; i < n; ++i) var += (r[i] - mean) * (r[i] - mean);
+    // A residual that varies by less than 0.1 % of its mean does not cycle (rounding noise).
+    constexpr double MIN_RELATIVE_SPREAD = 1e-3;
+    if (!(std::sqrt(var / n) > MIN_RELATIVE_SPREAD * std::abs(mean))) return 0;
+    // Autocorrelation per lag, normalised by the pairs it has (longer lags are not penalised for
+    // having fewer); the period is the first local maximum above the threshold (its multiples
+    // correlate as well).
+    std::vector<double> corr(size_t(n / 2) + 2, 0.0);
+    for (int lag = MIN_CYCLE_LAG - 1; lag <= n / 2 + 1 && lag < n; ++lag) {
+        double cov = 0.0;
+        for (int i = lag; i < n; ++i) cov += (r[i] - mean) * (r[i - lag] - mean);
+        corr[size_t(lag)] = cov / (n - lag) / (var / n);
+    }
+    for (int lag = MIN_CYCLE_LAG; lag <= n / 2; ++lag) {
+        const double c = corr[size_t(lag)];
+        if (c >= MIN_CYCLE_CORRELATION && c >= corr[size_t(lag - 1)] &&
+            c >= corr[size_t(lag + 1)]) {
+            correlation = c;
+            return lag;
+        }
+    }
+    return 0;
+}
+
 namespace {
+
+/// Residuals of the finest level the cycle detection looks at (the last ones): several periods
+/// of the lee example's 12-step cycle.
+constexpr int CYCLE_WINDOW_STEPS = 96;
 
 /// What one level leaves for the next: its steady field and its mass-consistent start.
 struct LevelResult {
@@ -124,6 +165,42 @@ WindField prolong(const LevelResult& coarseLevel, const WindField& fine) {
         });
     }
     return out;
+}
+
+/// The cycle average of an unconverged finest level (MomentumSettings::averageCycles): when the
+/// residual of the level's steps cycles with a period of P steps, take whole periods more
+/// (at least averageMinSteps) and leave their mean field in the solver. Each extra step is in
+/// the history; lv.message receives the note the report's message ends with.
+template <class Step>
+void averageOverCycles(UnsteadyWindSolver& solver, const MomentumSettings& settings,
+                       MomentumLevel& lv, MomentumReport& rep, Step& stepOnce) {
+    std::vector<double> residuals;
+    for (const MomentumIteration& m : rep.history)
+        if (m.level == lv.level) residuals.push_back(m.momentumResidual);
+    const int period = residualCyclePeriod(residuals, CYCLE_WINDOW_STEPS, rep.cycleCorrelation);
+    rep.cyclePeriod = period;
+    if (period == 0) return;
+    const int steps = period * std::max(1, (settings.averageMinSteps + period - 1) / period);
+    std::vector<double> sum[3];
+    for (int n = 1; n <= steps; ++n) {
+        if (!stepOnce(lv.iterations + n)) return;
+        const WindField& F = solver.field();
+        const std::vector<double>* q[3] = {&F.u_mps(), &F.v_mps(), &F.w_mps()};
+        for (int c = 0; c < 3; ++c) {
+            if (sum[c].empty()) sum[c].assign(q[c]->size(), 0.0);
+            for (size_t f = 0; f < sum[c].size(); ++f) sum[c][f] += (*q[c])[f];
+        }
+    }
+    WindField mean = solver.field();
+    std::vector<double>* out[3] = {&mean.u_mps(), &mean.v_mps(), &mean.w_mps()};
+    for (int c = 0; c < 3; ++c)
+        for (size_t f = 0; f < sum[c].size(); ++f) (*out[c])[f] = sum[c][f] / steps;
+    solver.resetState(mean);
+    rep.averagedSteps = steps;
+    lv.message = "; the residual cycles with a period of " + std::to_string(period) +
+                 " steps (autocorrelation " + num(rep.cycleCorrelation) +
+                 "), so the field is the mean of " + std::to_string(steps) + " more steps (" +
+                 std::to_string(steps / period) + " periods)";
 }
 
 /// The pseudo-time iteration on one level: from `initial` (nullptr: the mass-consistent field),
@@ -178,7 +255,8 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
                                : 1;
     }
     std::vector<double> prevU, prevV, prevW;
-    for (int it = 1; it <= settings.maxIterations; ++it) {
+    // One pseudo-time step, recorded in the history; false when the field became non-finite.
+    auto stepOnce = [&](int it) {
         prevU = solver.field().u_mps(), prevV = solver.field().v_mps(),
         prevW = solver.field().w_mps();
         const StepReport sr = solver.step(lv.dt_s);
@@ -200,8 +278,6 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
         m.advection_s = sr.advection_s, m.stress_s = sr.viscosity_s,
         m.projection_s = sr.projection_s;
         rep.history.push_back(m);
-        lv.iterations = it;
-        lv.momentumResidual = m.momentumResidual;
         if (level == 0) {
             rep.maxDivergenceScaled = m.maxDivergenceScaled;
             rep.maxEddyViscosity_m2ps = sr.turbulence.maxEddyViscosity_m2ps;
@@ -210,8 +286,15 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
         if (!sr.finite || !std::isfinite(m.maxMomentumResidual)) {
             lv.finite = false;
             lv.message = "the field became non-finite at iteration " + std::to_string(it);
-            break;
+            return false;
         }
+        return true;
+    };
+    for (int it = 1; it <= settings.maxIterations; ++it) {
+        if (!stepOnce(it)) break;
+        const MomentumIteration& m = rep.history.back();
+        lv.iterations = it;
+        lv.momentumResidual = m.momentumResidual;
         if (m.momentumResidual <= settings.residualTolerance && m.projectionConverged &&
             it >= lv.minIterations) {
             lv.converged = true;
@@ -221,10 +304,13 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
             break;
         }
     }
-    if (lv.message.empty())
+    if (level == 0 && lv.finite && !lv.converged && settings.averageCycles)
+        averageOverCycles(solver, settings, lv, rep, stepOnce);
+    if (lv.message.empty() || rep.averagedSteps > 0)
         lv.message = "not converged: momentum residual " + num(lv.momentumResidual) + " > " +
                      num(settings.residualTolerance) + " after " + std::to_string(lv.iterations) +
-                     " iterations (raise solver.momentum_max_iterations)";
+                     " iterations (raise solver.momentum_max_iterations)" + lv.message;
+    lv.iterations += rep.averagedSteps;
     if (level == 0 && lv.finite) {
         rep.finalProjection = solver.project(settings.finalProjection);
         rep.maxDivergenceScaled = solver.maxDivergenceScaled();

@@ -27,7 +27,11 @@
 /// residual at or below residualTolerance with a converged projection, and at least as many steps
 /// as the ambient wind needs to cross the box once (MomentumReport::minIterations; a low hill's
 /// small disturbance changes the field little per step from the start). Otherwise the report says
-/// why, and the field is the last iterate.
+/// why, and the field is the last iterate, except when the finest level's residual cycles (a
+/// periodic wake that the pseudo-time iteration follows instead of settling: residualCyclePeriod
+/// finds a period of P steps): then whole periods more are stepped and their mean field is
+/// returned (MomentumSettings::averageCycles; MomentumReport::averagedSteps says so, and the
+/// report stays "not converged").
 ///
 /// @code
 ///   gale::sim::AirDomain domain(terrain, {/*voxelSize_m=*/5.0});
@@ -74,6 +78,12 @@ struct MomentumSettings {
     /// A level started from a coarser level's steady state need not wait for the wind to cross
     /// its box (the coarse level did), only for this many steps, >= 1.
     int minIterationsAfterProlongation = 10;
+    /// When the finest level stops unconverged and its residual cycles (a periodic wake: the
+    /// pseudo-time iteration follows the shedding), run whole periods more and return their mean
+    /// field (MomentumReport::averagedSteps). false: the last iterate.
+    bool averageCycles = true;
+    /// Steps the mean covers at least (a whole number of periods, at least one), >= 1.
+    int averageMinSteps = 24;
     static constexpr int COARSE_MIN_CELLS_XY = 16;
     static constexpr int COARSE_MIN_CELLS_Z = 8;
 
@@ -128,7 +138,24 @@ struct [[nodiscard]] MomentumReport {
     SolveReport start;                   ///< the mass-consistent solve on the domain's own cells
     std::vector<MomentumLevel> levels;   ///< coarsest first, the domain's own cells last
     std::vector<MomentumIteration> history;  ///< every step of every level, in order
+    /// Cycle average (MomentumSettings::averageCycles): the period of the finest level's residual
+    /// in steps (0: none found), the autocorrelation of the residual at that lag, and the steps
+    /// (whole periods, after the last history entry of the unconverged run) whose mean field was
+    /// returned (0: the field is the last iterate).
+    int cyclePeriod = 0;
+    double cycleCorrelation = 0;
+    int averagedSteps = 0;
 };
+
+/// The dominant period, in steps, of a residual history that cycles: over the last `window`
+/// values (n, at most the series), the first lag in [MIN_CYCLE_LAG, n / 2] where the
+/// autocorrelation of the mean-removed series has a local maximum of at least
+/// MIN_CYCLE_CORRELATION, provided the series does not trend (its last half's mean within 25 % of
+/// its first half's), varies by more than 0.1 % of its mean and is finite; else 0. correlation
+/// receives the value at that lag (0 when none). Pure function, no throws.
+int residualCyclePeriod(const std::vector<double>& residuals, int window, double& correlation);
+inline constexpr int MIN_CYCLE_LAG = 2;
+inline constexpr double MIN_CYCLE_CORRELATION = 0.5;
 
 struct MomentumWindResult {
     WindField field;
@@ -137,12 +164,13 @@ struct MomentumWindResult {
 
 /// Extra bytes per cell of the box a momentum solve holds beyond the mass-consistent solve
 /// (AirDomain's memory estimate adds it when DomainSpec::momentumModel is set): the unsteady
-/// solver's mean field, step copies and masks, the previous iterate, the stress step's arrays,
+/// solver's mean field, step copies and masks, the previous iterate, the cycle average's sum, the
+/// stress step's arrays,
 /// and the coarse start's two kept fields, its steady field and its mass-consistent start (24 B
 /// per coarse cell each, an eighth of a cell's; the coarse levels' own solves, at most 1/7 of the
 /// finest level's, are freed before it starts).
 inline constexpr double MOMENTUM_EXTRA_BYTES_PER_CELL =
-    24.0 * 5 + 3.0 + TurbulentStress::BYTES_PER_CELL + 2 * 24.0 / 8;
+    24.0 * 6 + 3.0 + TurbulentStress::BYTES_PER_CELL + 2 * 24.0 / 8;
 
 /// Solves the momentum model for an ambient wind with a log profile (its roughness_m is z0).
 /// Build the domain with DomainSpec::momentumModel set, so that its memory check (made before

@@ -33,6 +33,7 @@ using gale::PI;
 /// One measured point of the validation line (tests/data/validation/README.md).
 struct Measured {
     double xOverH = 0, dzOverH = 0, speedup = 0;
+    double uOverUinf = 0;  ///< the measurement itself, u / U_inf
 };
 
 std::vector<Measured> readValidation(const std::string& path) {
@@ -49,7 +50,7 @@ std::vector<Measured> readValidation(const std::string& path) {
         for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
         if (f.size() < 6 || f[5].empty()) continue;  // no reference below the lowest foot point
         try {
-            out.push_back({std::stod(f[0]), std::stod(f[2]), std::stod(f[5])});
+            out.push_back({std::stod(f[0]), std::stod(f[2]), std::stod(f[5]), std::stod(f[3])});
         } catch (const std::exception&) {
             throw InputError(path + ":" + std::to_string(lineNo) +
                              ": expected numbers in x_over_H, dz_over_H, speedup");
@@ -71,6 +72,10 @@ struct Row {
     double crestSpeedup = NAN;  ///< ridge only: model's speed-up at the crest, dz = 0.25 H
     double leeSpeedup = NAN;    ///< ridge only: at the lee foot (2.5 H), dz = 1.0 H
     double cfl = NAN;           ///< momentum only: the pseudo-time step's cfl
+    /// Ridge only, against the free stream instead of the windward foot: u / U_inf of the model
+    /// at the crest and at the windward foot (dz = 0.25 H), and the RMS of model minus measured
+    /// u / U_inf over every measured point, the foot's included.
+    double crestUinf = NAN, footUinf = NAN, rmsUinf = NAN;
 };
 
 // ---- the ridge of Cao and Tamura (2006), scaled to H = 40 m ------------------------------------
@@ -82,6 +87,11 @@ constexpr double RIDGE_UPWIND_M = 10 * RIDGE_H_M, RIDGE_DOWNWIND_M = 20 * RIDGE_
 constexpr double RIDGE_Z0_M = 0.65;
 constexpr double MEASURED_CREST_SPEEDUP = 1.33;      ///< at dz = 0.25 H (the data)
 constexpr double MEASURED_LEE_FOOT_SPEEDUP = -0.32;  ///< at x = 2.5 H, dz = 1.0 H (the data)
+/// The slope of the same log fit, u / U_inf = A ln(z / z0) (docs/validation.md): the model's
+/// inflow (10 m/s at z = H, z0 above) is that fit, so its U_inf is 10 m/s / (A ln(H / z0)).
+constexpr double RIDGE_FIT_SLOPE = 0.137;
+/// Measured u / U_inf nearest dz = 0.25 H (the data): windward foot (dz 0.241 H), crest (0.248 H).
+constexpr double MEASURED_FOOT_UINF_025H = 0.377, MEASURED_CREST_UINF_025H = 0.884;
 
 double ridgeHeight_m(double xFromCrest_m) {
     if (std::abs(xFromCrest_m) > RIDGE_B_M) return 0.0;
@@ -154,6 +164,15 @@ Row runRidge(bool momentum, int cellsPerH, const std::vector<Measured>& data, in
     }
     r.error = std::sqrt(sum2 / std::max(n, 1));
     r.errorName = "RMS speed-up error, " + std::to_string(n) + " points";
+    // Against the free stream: the model's U_inf is its inflow fit's, not fitted to the hill.
+    const double uInf = wind.speed_mps / (RIDGE_FIT_SLOPE * std::log(RIDGE_H_M / RIDGE_Z0_M));
+    double sumInf = 0;
+    for (const Measured& m : data) {
+        const double d = u(m.xOverH, m.dzOverH) / uInf - m.uOverUinf;
+        sumInf += d * d;
+    }
+    r.rmsUinf = std::sqrt(sumInf / double(data.size()));
+    r.crestUinf = u(0.0, 0.25) / uInf, r.footUinf = u(-2.5, 0.25) / uInf;
     return r;
 }
 
@@ -296,6 +315,15 @@ int runBenchModels(const BenchModelsOptions& opt) {
                                                           : nlohmann::json(r.crestSpeedup)}});
     }
     std::printf("measured crest speed-up at 0.25 H: %.2f\n", MEASURED_CREST_SPEEDUP);
+    std::printf(
+        "\nRidge against the free stream (u / U_inf at dz = 0.25 H; measured: foot %.3f, "
+        "crest %.3f)\n",
+        MEASURED_FOOT_UINF_025H, MEASURED_CREST_UINF_025H);
+    std::printf("%-16s %-9s %8s %8s %14s\n", "model", "res.", "foot", "crest", "RMS u/U_inf");
+    for (const Row& r : rows)
+        if (!std::isnan(r.rmsUinf))
+            std::printf("%-16s %-9s %8.3f %8.3f %14.3f\n", r.model.c_str(), r.resolution.c_str(),
+                        r.footUinf, r.crestUinf, r.rmsUinf);
 
     // The pseudo-time step's effect on the momentum model's steady state (docs/validation.md):
     // a semi-Lagrangian fixed point carries a streamwise numerical viscosity of about

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "sim/AirDomain.h"
 #include "sim/Heightfield.h"
@@ -235,6 +236,29 @@ TEST(MomentumWind, StaysFiniteForHugeWindTinyCellsAndACliff) {
     constexpr double SPEED_BOUND_FACTOR = 5.0;  // generous: a crest speeds the flow up, never by 5x
     const double top = 100.0 * std::log(30.0 / 0.03) / std::log(10.0 / 0.03);
     for (double u : res.field.u_mps()) EXPECT_LE(std::abs(u), SPEED_BOUND_FACTOR * top);
+}
+
+TEST(MomentumWind, CyclePeriodIsFoundInAPeriodicResidualAndNotInAConvergingOne) {
+    // Oracle: series built here with a known period (12 steps, the lee example's) plus a
+    // deterministic pseudo-random jitter of 10 % of the amplitude, and a geometric decay.
+    std::vector<double> cycling, decaying, flat(100, 3e-4);
+    unsigned state = 12345u;
+    for (int i = 0; i < 120; ++i) {
+        state = state * 1664525u + 1013904223u;
+        const double jitter = (double(state >> 8) / double(1u << 24) - 0.5) * 0.2;
+        cycling.push_back(6e-4 + 2.6e-4 * (std::sin(2 * 3.141592653589793 * i / 12.0) + jitter));
+        decaying.push_back(1e-2 * std::pow(0.95, i));
+    }
+    double corr = 0;
+    EXPECT_EQ(residualCyclePeriod(cycling, 96, corr), 12);
+    EXPECT_GE(corr, MIN_CYCLE_CORRELATION);
+    EXPECT_EQ(residualCyclePeriod(decaying, 96, corr), 0);
+    EXPECT_EQ(corr, 0.0);
+    EXPECT_EQ(residualCyclePeriod(flat, 96, corr), 0);  // no variance: nothing cycles
+    std::vector<double> withNan = cycling;
+    withNan[100] = std::nan("");
+    EXPECT_EQ(residualCyclePeriod(withNan, 96, corr), 0);
+    EXPECT_EQ(residualCyclePeriod({}, 96, corr), 0);
 }
 
 TEST(MomentumWind, ZeroWindStaysAtRest) {
