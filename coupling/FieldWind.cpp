@@ -141,11 +141,11 @@ void FieldWind::addFieldStep(double t_s, std::vector<glm::vec3> wsVelocity_mps) 
 }
 
 void FieldWind::replaceLastStep(std::vector<glm::vec3> wsVelocity_mps) {
-    if (mSteps.empty()) throw std::invalid_argument("no field step to replace yet");
+    if (mSteps.empty()) throw std::logic_error("no field step to replace yet");
     if (wsVelocity_mps.size() != mNormal.size())
-        throw std::invalid_argument("field step has " + std::to_string(wsVelocity_mps.size()) +
-                                    " velocities for " + std::to_string(mNormal.size()) +
-                                    " grass vertices");
+        throw std::logic_error("field step has " + std::to_string(wsVelocity_mps.size()) +
+                               " velocities for " + std::to_string(mNormal.size()) +
+                               " grass vertices");
     mSpare = std::exchange(mSteps.back().wsVelocity_mps, std::move(wsVelocity_mps));
     // The interval reads the newest step when it ends there (or is the held last step).
     if (mHaveInterval && mIntervalFirst + 2 >= mSteps.size()) enterInterval(mIntervalFirst);

@@ -87,7 +87,7 @@ class FieldWind : public WindSource {
     /// the field it was sampled from changed in place (a source dropped into the running solver,
     /// coupling/LiveWind.h), and rebuilds the current interval's per-vertex data from it, so the
     /// next update() shows the change without a new step; the oscillators keep their state.
-    /// Throws std::invalid_argument on a wrong size or when there is no step yet.
+    /// Throws std::logic_error on a wrong size or when there is no step yet.
     void replaceLastStep(std::vector<glm::vec3> wsVelocity_mps);
     /// Forgets steps older than t_s except the one bracketing it (streaming runs keep memory flat).
     void dropStepsBefore(double t_s);

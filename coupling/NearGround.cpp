@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "sim/SurfaceLayer.h"
 
 namespace gale::coupling {
@@ -308,11 +310,11 @@ NearGroundRead planRead(const sim::WindField& field, const SolvedFaces* faces, c
 
 void validate(const NearGround& g) {
     if (!std::isfinite(g.roughness_m) || g.roughness_m <= 0.0)
-        throw std::invalid_argument("wind.roughness_m must be finite and > 0, got " +
-                                    std::to_string(g.roughness_m));
+        throw ParameterError("wind.roughness_m", formatG(g.roughness_m),
+                             "must be > 0 m and finite");
     if (!std::isfinite(g.displacement_m) || g.displacement_m < 0.0)
-        throw std::invalid_argument("wind.displacement_m must be finite and >= 0, got " +
-                                    std::to_string(g.displacement_m));
+        throw ParameterError("solver.displacement_height_m", formatG(g.displacement_m),
+                             "must be >= 0 m and finite");
 }
 
 namespace {

@@ -65,8 +65,9 @@ struct NearGround {
     double displacement_m = 0.0;  ///< d, metres (LogLaw): >= 0 and finite (wind.displacement_m)
 };
 
-/// Throws std::invalid_argument naming wind.roughness_m or wind.displacement_m when the log-law
-/// parameters are out of range (checked for every model, so a scene's mistake shows at once).
+/// Throws gale::ParameterError naming wind.roughness_m or solver.displacement_height_m when the
+/// log-law parameters are out of range (checked for every model, so a scene's mistake shows at
+/// once).
 void validate(const NearGround& nearGround);
 
 /// How one point is read: u and v interpolated at wsUV_m, w at wsW_m (world metres), and

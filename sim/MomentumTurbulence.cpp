@@ -77,16 +77,14 @@ void validateWallAndMixing(double displacementHeight_m, double mixingLengthMax_m
 
 void SurfaceLayerSettings::validate() const {
     if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
-        throw std::invalid_argument("solver.roughness_m must be > 0 and finite, got " +
-                                    num(roughness_m));
+        throw ParameterError("wind.roughness_m", num(roughness_m), "must be > 0 m and finite");
     validateWallAndMixing(displacementHeight_m, mixingLengthMax_m);
     if (balanced) {
         balanced->validate();
         if (!(balanced->referenceHeight_m > displacementHeight_m + roughness_m))
-            throw std::invalid_argument("wind.reference_height_m (" +
-                                        num(balanced->referenceHeight_m) +
-                                        " m) must be above displacement height + roughness (" +
-                                        num(displacementHeight_m + roughness_m) + " m)");
+            throw ParameterError("wind.reference_height_m", num(balanced->referenceHeight_m),
+                                 "must be above solver.displacement_height_m + wind.roughness_m (" +
+                                     num(displacementHeight_m + roughness_m) + " m)");
     }
 }
 
@@ -96,12 +94,13 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
     : mDomain(D), mSettings(s), mNuMol(nuMol), mOkX(okX), mOkY(okY), mOkZ(okZ) {
     mSettings.validate();
     if (!(nuMol >= 0.0) || !std::isfinite(nuMol))
-        throw std::invalid_argument("unsteady.viscosity_m2ps must be >= 0, got " + num(nuMol));
+        throw ParameterError("unsteady.viscosity_m2ps", num(nuMol),
+                             "must be >= 0 m^2/s and finite");
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
     const GridIndex G = D.layout();
     if (okX.size() != G.count(Placement::FaceX) || okY.size() != G.count(Placement::FaceY) ||
         okZ.size() != G.count(Placement::FaceZ))
-        throw std::invalid_argument("TurbulentStress: face masks do not match the domain");
+        throw std::logic_error("TurbulentStress: face masks do not match the domain");
     const double h = D.voxelSize_m(), z0 = s.roughness_m, d = s.displacementHeight_m;
     const auto o = D.wsMin_m();
     const Heightfield& T = D.terrain();
@@ -288,10 +287,9 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
 TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::vector<double>& V,
                                         std::vector<double>& W) {
     if (!(dt > 0.0) || !std::isfinite(dt))
-        throw std::invalid_argument("TurbulentStress::apply: dt_s must be > 0, got " + num(dt));
+        throw std::logic_error("TurbulentStress::apply: dt_s must be > 0, got " + num(dt));
     if (U.size() != mOkX.size() || V.size() != mOkY.size() || W.size() != mOkZ.size())
-        throw std::invalid_argument(
-            "TurbulentStress::apply: velocity arrays do not match the domain");
+        throw std::logic_error("TurbulentStress::apply: velocity arrays do not match the domain");
     const AirDomain& D = mDomain;
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
     const double h = D.voxelSize_m(), h2 = h * h;

@@ -65,7 +65,7 @@ struct SurfaceLayerSettings {
     /// body force. Unset: a stress-free top and no force.
     std::optional<AmbientWind> balanced;
 
-    /// Throws std::invalid_argument naming the scene key (solver.roughness_m, ...).
+    /// Throws gale::ParameterError naming the scene key (wind.roughness_m, ...).
     void validate() const;
 };
 
@@ -83,7 +83,7 @@ class TurbulentStress {
   public:
     /// masks: the faces of u, v, w that are unknowns (between air cells or on the box), as the
     /// unsteady solver's projection uses them. molecularViscosity_m2ps (>= 0) is added to nu_t.
-    /// Throws std::invalid_argument on bad settings or mask sizes.
+    /// Throws gale::ParameterError on bad settings, std::logic_error on mask sizes.
     TurbulentStress(const AirDomain& domain, const SurfaceLayerSettings& settings,
                     double molecularViscosity_m2ps, const std::vector<uint8_t>& okX,
                     const std::vector<uint8_t>& okY, const std::vector<uint8_t>& okZ);

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "base/Numbers.h"
+#include "base/ParameterError.h"
 #include "sim/Format.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
@@ -56,20 +57,20 @@ Change changeOver(const std::vector<double>& a, const std::vector<double>& b,
 
 void MomentumSettings::validate() const {
     if (!(cfl > 0.0) || !std::isfinite(cfl))
-        throw std::invalid_argument("solver.cfl must be > 0 and finite, got " + num(cfl));
+        throw std::logic_error("MomentumSettings::cfl must be > 0 and finite, got " + num(cfl));
     if (maxIterations < 1)
-        throw std::invalid_argument("solver.momentum_max_iterations must be >= 1, got " +
-                                    std::to_string(maxIterations));
+        throw ParameterError("solver.momentum_max_iterations", std::to_string(maxIterations),
+                             "must be >= 1");
     if (coarseLevels < 0)
-        throw std::invalid_argument("MomentumSettings::coarseLevels must be >= 0, got " +
-                                    std::to_string(coarseLevels));
+        throw ParameterError("solver.momentum_coarse_levels", std::to_string(coarseLevels),
+                             "must be >= 0");
     if (minIterationsAfterProlongation < 1)
-        throw std::invalid_argument(
+        throw std::logic_error(
             "MomentumSettings::minIterationsAfterProlongation must be >= 1, got " +
             std::to_string(minIterationsAfterProlongation));
     if (!(residualTolerance > 0.0) || !std::isfinite(residualTolerance))
-        throw std::invalid_argument("solver.momentum_tolerance must be > 0, got " +
-                                    num(residualTolerance));
+        throw std::logic_error("MomentumSettings::residualTolerance must be > 0, got " +
+                               num(residualTolerance));
     validateWallAndMixing(displacementHeight_m, mixingLengthMax_m);
 }
 
@@ -340,10 +341,10 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
     settings.validate();
     ambient.validate();
     if (ambient.profile != WindProfile::LogLaw)
-        throw std::invalid_argument(
-            "wind.profile must be \"log\" for solver.model = \"momentum\" (its inflow and wall "
-            "stress need the roughness), got \"" +
-            std::string(windProfileName(ambient.profile)) + "\"");
+        throw ParameterError("wind.profile",
+                             "\"" + std::string(windProfileName(ambient.profile)) + "\"",
+                             "\"log\" for solver.model = \"momentum\" (its inflow and wall "
+                             "stress need the roughness)");
     const auto t0 = Clock::now();
     MomentumWindResult res;
     MomentumReport& rep = res.report;

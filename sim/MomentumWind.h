@@ -87,7 +87,8 @@ struct MomentumSettings {
     static constexpr int COARSE_MIN_CELLS_XY = 16;
     static constexpr int COARSE_MIN_CELLS_Z = 8;
 
-    /// Throws std::invalid_argument naming the scene key (solver.cfl, ...).
+    /// Throws gale::ParameterError naming the scene key (solver.momentum_max_iterations, ...),
+    /// std::logic_error for a setting no scene key reaches (cfl, residualTolerance, ...).
     void validate() const;
 };
 
@@ -175,8 +176,9 @@ inline constexpr double MOMENTUM_EXTRA_BYTES_PER_CELL =
 /// Solves the momentum model for an ambient wind with a log profile (its roughness_m is z0).
 /// Build the domain with DomainSpec::momentumModel set, so that its memory check (made before
 /// anything is allocated) counts the model's arrays.
-/// Throws std::invalid_argument naming the field for a bad wind or settings, or a wind whose
-/// profile is not the log law (the model's inflow and wall stress need the roughness).
+/// Throws gale::ParameterError naming the scene key for a bad wind or settings, or a wind whose
+/// profile is not the log law (wind.profile: the model's inflow and wall stress need the
+/// roughness); std::logic_error for a setting no scene key reaches (cfl, residualTolerance).
 /// Non-convergence is in the report, never thrown.
 [[nodiscard]] MomentumWindResult solveMomentumWind(const AirDomain& domain,
                                                    const AmbientWind& ambient,

@@ -102,9 +102,9 @@ TEST(FieldWind, ReplacingTheLastStepShowsWhatAWindBuiltWithTheNewStepShows) {
             ++changed;
     }
     EXPECT_GT(changed, mesh.wsPosition_m.size() / 2);
-    EXPECT_THROW(replaced.replaceLastStep({}), std::invalid_argument);
+    EXPECT_THROW(replaced.replaceLastStep({}), std::logic_error);
     FieldWind empty(mesh, spec);
-    EXPECT_THROW(empty.replaceLastStep(sampleAll(mesh, calm, 0.0)), std::invalid_argument);
+    EXPECT_THROW(empty.replaceLastStep(sampleAll(mesh, calm, 0.0)), std::logic_error);
 }
 
 TEST(FieldWind, GustFrontReachesDownstreamVerticesLaterInOrderOfDistance) {

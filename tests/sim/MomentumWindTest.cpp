@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "base/ParameterError.h"
 #include "sim/AirDomain.h"
 #include "sim/Heightfield.h"
 #include "sim/MomentumWind.h"
@@ -272,15 +273,24 @@ TEST(MomentumWind, RefusesAUniformProfileAndBadSettings) {
     AirDomain domain(flatGround(0.0), {2.0, 20.0});
     AmbientWind uniform = logWind(5.0);
     uniform.profile = WindProfile::Uniform;
-    EXPECT_THROW((void)solveMomentumWind(domain, uniform, {}), std::invalid_argument);
+    try {
+        (void)solveMomentumWind(domain, uniform, {});
+        FAIL() << "no throw";
+    } catch (const ParameterError& e) {
+        EXPECT_EQ(e.key(), "wind.profile");
+    }
     MomentumSettings bad;
-    bad.cfl = -1;
+    bad.maxIterations = 0;
     try {
         (void)solveMomentumWind(domain, logWind(5.0), bad);
         FAIL() << "no throw";
-    } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find("solver.cfl"), std::string::npos) << e.what();
+    } catch (const ParameterError& e) {
+        EXPECT_EQ(e.key(), "solver.momentum_max_iterations");
     }
+    // A setting no scene key reaches is the caller's bug, not bad input.
+    bad = {};
+    bad.cfl = -1;
+    EXPECT_THROW((void)solveMomentumWind(domain, logWind(5.0), bad), std::logic_error);
 }
 
 TEST(MomentumWind, MemoryEstimateIsCheckedBeforeAllocating) {
