@@ -29,36 +29,12 @@ void uniformCandidates(const double* __restrict x, const double* __restrict b,
                       invD;
 }
 
+/// The 7-point stencil with diagonal D on a run: out = b - A x, or out = A x (returning
+/// sum out * x) when b is null. Both kinds of run below are this kernel.
 GALE_VECTOR_CLONES
-double uniformApply(const double* __restrict x, const double* __restrict b, double* __restrict out,
+double stencilApply(const double* __restrict x, const double* __restrict b, double* __restrict out,
                     size_t p0, int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx,
-                    double by, double bz, double D) {
-    const double* xr = x + p0;
-    double* o = out + p0;
-    double acc = 0.0;
-    if (b) {
-        const double* br = b + p0;
-        for (int i = i0; i < i1; ++i)
-            o[i] = br[i] -
-                   (D * xr[i] - (bx * (xr[i - 1] + xr[i + 1]) + by * (xr[i - sx] + xr[i + sx]) +
-                                 bz * (xr[i - sxy] + xr[i + sxy])));
-        return 0.0;
-    }
-    for (int i = i0; i < i1; ++i) {
-        const double v =
-            D * xr[i] - (bx * (xr[i - 1] + xr[i + 1]) + by * (xr[i - sx] + xr[i + sx]) +
-                         bz * (xr[i - sxy] + xr[i + sxy]));
-        o[i] = v;
-        acc += v * xr[i];
-    }
-    return acc;
-}
-
-GALE_VECTOR_CLONES
-double layerApply(const double* __restrict x, const double* __restrict b, double* __restrict out,
-                  size_t p0, int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx,
-                  double by, double bzLo, double bzUp) {
-    const double D = 2.0 * (bx + by) + bzLo + bzUp;
+                    double by, double bzLo, double bzUp, double D) {
     const double* xr = x + p0;
     double* o = out + p0;
     double acc = 0.0;
@@ -78,6 +54,19 @@ double layerApply(const double* __restrict x, const double* __restrict b, double
         acc += v * xr[i];
     }
     return acc;
+}
+
+double layerApply(const double* __restrict x, const double* __restrict b, double* __restrict out,
+                  size_t p0, int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx,
+                  double by, double bzLo, double bzUp) {
+    return stencilApply(x, b, out, p0, i0, i1, sx, sxy, bx, by, bzLo, bzUp,
+                        2.0 * (bx + by) + bzLo + bzUp);
+}
+
+double uniformApply(const double* __restrict x, const double* __restrict b, double* __restrict out,
+                    size_t p0, int i0, int i1, std::ptrdiff_t sx, std::ptrdiff_t sxy, double bx,
+                    double by, double bz, double D) {
+    return stencilApply(x, b, out, p0, i0, i1, sx, sxy, bx, by, bz, bz, D);
 }
 
 double applyDot(const Level& L, const double* in, double* out) {
