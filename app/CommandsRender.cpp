@@ -178,6 +178,16 @@ int runRender(const SceneRunOptions& options) {
     // Every output goes to its temporary and is moved into place only when the run is done
     // (or interrupted, for what is complete): a failed run leaves the earlier outputs alone.
     StagedFiles staged;
+    // On a failure: the temporaries go, the lock is released, and a folder this run created is
+    // removed again if nothing else is in it.
+    const auto abandon = [&] {
+        staged.discard();
+        lock.reset();
+        if (createdFolder) {
+            std::error_code ec;
+            fs::remove(out.folder, ec);  // only removes it if empty
+        }
+    };
     std::vector<std::string> written;  // frames
     std::vector<std::string> extras;   // contact sheet and GIF
     std::vector<double> frame_ms, drawCpu_ms, drawGpu_ms;
@@ -242,12 +252,7 @@ int runRender(const SceneRunOptions& options) {
             extras.push_back(animation.gifPath);
         }
     } catch (...) {
-        staged.discard();
-        lock.reset();
-        if (createdFolder) {
-            std::error_code ec;
-            fs::remove(out.folder, ec);  // only removes it if empty
-        }
+        abandon();
         throw;
     }
     const double loop_s = msSince(loopStart) / 1000.0;
@@ -300,12 +305,7 @@ int runRender(const SceneRunOptions& options) {
         writeStagedText(staged, reportPath, report.dump(2) + "\n");
         staged.commit();
     } catch (...) {
-        staged.discard();
-        lock.reset();
-        if (createdFolder) {
-            std::error_code ec;
-            fs::remove(out.folder, ec);  // only removes it if empty
-        }
+        abandon();
         throw;
     }
 

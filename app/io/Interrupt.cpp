@@ -15,7 +15,6 @@ constexpr int SIGNALS[] = {SIGINT, SIGTERM, SIGHUP};
 volatile sig_atomic_t gSignal = 0;
 volatile sig_atomic_t gDeferred = 0;
 const char* volatile gStage = "";
-struct sigaction gPrevious[3];
 
 void say(const char* text) { (void)!::write(STDERR_FILENO, text, std::strlen(text)); }
 
@@ -58,11 +57,14 @@ InterruptScope::InterruptScope(const char* stage) {
     sa.sa_handler = onSignal;
     sigemptyset(&sa.sa_mask);
     for (int s : SIGNALS) sigaddset(&sa.sa_mask, s);  // one handler at a time
-    for (int i = 0; i < 3; ++i) sigaction(SIGNALS[i], &sa, &gPrevious[i]);
+    for (int s : SIGNALS) sigaction(s, &sa, nullptr);
 }
 
 InterruptScope::~InterruptScope() {
-    for (int i = 0; i < 3; ++i) sigaction(SIGNALS[i], &gPrevious[i], nullptr);
+    // The verb is done and its outputs are in place. A signal from here until the process exits
+    // is only recorded, so the exit status stays the verb's: the default action, restored here,
+    // would kill a finished run (status 143 and no message) in the moment before it exits.
+    gDeferred = 1;
 }
 
 void InterruptScope::exitAtOnce(const char* stage) {

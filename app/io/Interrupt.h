@@ -13,8 +13,9 @@
 
 namespace gale::app {
 
-/// Installs the handlers for its lifetime (and restores the previous ones); starts in the
-/// "at once" mode with `stage` as the message ("while building the scene: nothing written").
+/// Installs the handlers; starts in the "at once" mode with `stage` as the message ("while
+/// building the scene: nothing written"). When the scope ends the handlers stay, deferred: a
+/// signal after the verb's work is recorded and the process exits with the verb's status.
 class InterruptScope {
   public:
     explicit InterruptScope(const char* stage);
