@@ -164,7 +164,10 @@ int runRender(const SceneRunOptions& options) {
     try {
         lock.emplace(out.folder, folderWhere);
     } catch (...) {
-        if (createdFolder) fs::remove(out.folder);
+        // Another run may have taken the lock and begun writing into the folder this run
+        // created: remove it only if it is still empty, and keep the lock's message.
+        std::error_code ec;
+        if (createdFolder) fs::remove(out.folder, ec);
         throw;
     }
     removeStaleTemporaries(out.folder);

@@ -26,6 +26,8 @@ namespace {
 /// The signal-safe registry: fixed slots of fixed size, a slot is in use when its first byte is
 /// not 0. Written by the main thread only; the handler only reads.
 char gRegistered[REGISTERED_PATHS][PATH_MAX];
+/// setPendingLock's path, empty when none.
+char gPendingLock[PATH_MAX];
 
 [[noreturn]] void failWrite(const std::string& path, const std::string& reason,
                             const std::string& tmpPath) {
@@ -92,9 +94,35 @@ void unregisterForRemoval(const std::string& path) {
         if (slot[0] != '\0' && path == slot) slot[0] = '\0';
 }
 
+void setPendingLock(const std::string& path) {
+    if (path.size() >= PATH_MAX) return;
+    std::memcpy(gPendingLock, path.c_str(), path.size() + 1);
+}
+
+void clearPendingLock() { gPendingLock[0] = '\0'; }
+
+namespace {
+
+/// Whether the file at `path` holds this process's PID as its first line (async-signal-safe:
+/// open, read, close and getpid only).
+bool holdsOwnPid(const char* path) {
+    const int fd = ::open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return false;
+    char text[32];
+    const ssize_t n = ::read(fd, text, sizeof text);
+    ::close(fd);
+    long pid = 0;
+    ssize_t i = 0;
+    for (; i < n && text[i] >= '0' && text[i] <= '9'; ++i) pid = pid * 10 + (text[i] - '0');
+    return i > 0 && pid == static_cast<long>(::getpid());
+}
+
+}  // namespace
+
 void removeRegisteredTemporaries() {
     for (const char* slot : gRegistered)
         if (slot[0] != '\0') ::unlink(slot);
+    if (gPendingLock[0] != '\0' && holdsOwnPid(gPendingLock)) ::unlink(gPendingLock);
 }
 
 std::string temporaryPathFor(const std::string& path) {

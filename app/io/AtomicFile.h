@@ -40,8 +40,16 @@ void writeTextAtomic(const std::string& path, const std::string& text);
 void registerForRemoval(const std::string& path);
 /// Stops tracking `path` (it was committed, or removed).
 void unregisterForRemoval(const std::string& path);
-/// Unlinks every registered path. Async-signal-safe: the signal handlers call it.
+/// Unlinks every registered path, and the pending lock (setPendingLock) if it holds this
+/// process's PID. Async-signal-safe: the signal handlers call it.
 void removeRegisteredTemporaries();
+/// A lock file about to be linked into place (OutputLock): between the link and its
+/// registration a signal would leave it behind, and registering it before the link would let a
+/// signal remove another run's lock. removeRegisteredTemporaries removes it only if it holds
+/// this process's PID, i.e. only if the link happened.
+void setPendingLock(const std::string& path);
+/// Forgets the pending lock (registered, or not ours).
+void clearPendingLock();
 inline constexpr int REGISTERED_PATHS = 64;
 
 /// Temporaries in `folder` (not below) left by gale runs that are no longer running: names of

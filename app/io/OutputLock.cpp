@@ -55,13 +55,16 @@ OutputLock::OutputLock(const std::string& folder, const std::string& where)
             throw std::runtime_error(mPath + ": cannot write: " + std::strerror(err));
         }
     }
+    setPendingLock(mPath);
     for (int attempt = 0; attempt < 2; ++attempt) {
         if (::link(tmp.c_str(), mPath.c_str()) == 0) {
-            discardTemporary(tmp);
             registerForRemoval(mPath);
+            clearPendingLock();
+            discardTemporary(tmp);
             return;
         }
         const int err = errno;
+        clearPendingLock();
         if (err != EEXIST) {
             discardTemporary(tmp);
             throw InputError(where + ": '" + folder + "': cannot create the lock file " + mPath +
@@ -83,7 +86,9 @@ OutputLock::OutputLock(const std::string& folder, const std::string& where)
                      "gale: note: taking over %s from PID %ld, which is no longer running\n",
                      mPath.c_str(), owner);
         ::unlink(mPath.c_str());
+        setPendingLock(mPath);
     }
+    clearPendingLock();
     discardTemporary(tmp);
     throw InputError(where + ": '" + folder + "': the lock " + mPath +
                      " was taken by another run at the same time");
