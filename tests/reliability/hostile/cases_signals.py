@@ -198,7 +198,11 @@ def stale_temporaries(ctx):
     removes them."""
     gale, table = ctx["gale"], ctx["table"]
     for verb, (scene, args, out, moments) in verbs(ctx["repo"]).items():
-        trigger, argument, then = moments["late" if verb != "render" else "middle"]
+        # The moment where something must be on disk half done: the render and the unsteady
+        # solve in the middle of their outputs (after the last output the run may be gone before
+        # the kill arrives), the others once their temporary exists.
+        trigger, argument, then = moments["middle" if verb in ("render", "unsteady solve")
+                                          else "late"]
 
         def case(scene=scene, args=args, out=out, moment=(trigger, argument, then), verb=verb):
             cwd = gale.folder("stale-" + verb)
