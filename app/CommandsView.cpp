@@ -345,15 +345,18 @@ int runView(const ViewOptions& options) {
             // time went: waiting for the worker (the step under way), adding and projecting the
             // source, and publishing it until this frame took it.
             const double total_ms = msSince(livePending.posted);
-            const double wait_ms = std::max(0.0, std::chrono::duration<double, std::milli>(
-                                                     shown.workStarted - livePending.posted)
-                                                     .count());
+            auto msBetween = [](Clock::time_point a, Clock::time_point b) {
+                return std::max(0.0, std::chrono::duration<double, std::milli>(b - a).count());
+            };
+            const double wait_ms = msBetween(livePending.posted, shown.workStarted);
+            const double publish_ms =
+                std::max(0.0, msBetween(shown.workStarted, shown.published) - shown.work_ms);
             std::fprintf(stderr,
                          "gale: %s answered in %.0f ms (wall): %.0f ms waiting for the worker, "
-                         "%.0f ms adding and projecting it, %.0f ms to this frame; at sim t "
-                         "%.3f s\n",
+                         "%.0f ms adding and projecting it, %.0f ms publishing, %.0f ms until "
+                         "this frame took and drew it; at sim t %.3f s\n",
                          coupling::liveSourceName(livePending.kind), total_ms, wait_ms,
-                         shown.work_ms, std::max(0.0, total_ms - wait_ms - shown.work_ms),
+                         shown.work_ms, publish_ms, msBetween(shown.published, Clock::now()),
                          shown.t_s);
             livePending.active = false;
         }

@@ -125,6 +125,7 @@ void WindWorker::run() {
                 mLatest.report = std::move(report);
                 mLatest.workDone = posted;
                 if (!work.empty()) mLatest.workStarted = workStarted, mLatest.work_ms = work_ms;
+                mLatest.published = std::chrono::steady_clock::now();
                 ++mLatest.serial;
                 return shown_s;
             };

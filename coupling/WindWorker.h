@@ -49,6 +49,8 @@ struct WindSnapshot {
     /// source's latency goes. Default (epoch, 0) before any work.
     std::chrono::steady_clock::time_point workStarted{};
     double work_ms = 0.0;
+    /// When this snapshot was published (after the source's update and the overlays).
+    std::chrono::steady_clock::time_point published{};
 };
 
 class WindWorker {
