@@ -172,12 +172,13 @@ void traceWs(const MacGrid& g, const FaceVelocitySampler& velocityWs, const doub
 }
 
 /// The TraceStart of every sample of one placement (index as the placement's array; masked-out
-/// samples are left default), computed once per advect() and shared by its passes.
+/// samples are left default), computed once per advect() and shared by its passes; groundTop:
+/// terrainTop_m(g).
 std::vector<TraceStart> traceStarts(const MacGrid& g, Placement p, const MacVelocity& vel,
-                                    const FarField& far, const std::vector<uint8_t>* mask) {
+                                    const FarField& far, const std::vector<uint8_t>* mask,
+                                    double groundTop) {
     const auto n = g.dims(p);
     std::vector<TraceStart> starts(g.count(p));
-    const double groundTop = terrainTop_m(g);
     const FaceVelocitySampler velocityWs(g, vel, far);
     tbb::parallel_for(0, n[2], [&](int k) {
         for (int j = 0; j < n[1]; ++j)
@@ -193,16 +194,15 @@ std::vector<TraceStart> traceStarts(const MacGrid& g, Placement p, const MacVelo
 
 /// One semi-Lagrangian pass; optionally records the min/max of the interpolation neighbours and
 /// whether the departure point left the box. `starts`: traceStarts() of this placement, or null
-/// to compute each on the way.
+/// to compute each on the way; groundTop: terrainTop_m(g).
 void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                     const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
                     double dt, std::vector<double>& out, const std::vector<uint8_t>* mask,
                     std::vector<double>* lo, std::vector<double>* hi,
-                    const std::vector<TraceStart>* starts) {
+                    const std::vector<TraceStart>* starts, double groundTop) {
     const auto n = g.dims(p);
     out.resize(q.size());
     if (lo) lo->resize(q.size()), hi->resize(q.size());
-    const double groundTop = terrainTop_m(g);
     const FaceVelocitySampler velocityWs(g, vel, far);
     tbb::parallel_for(0, n[2], [&](int k) {
         for (int j = 0; j < n[1]; ++j)
@@ -250,15 +250,18 @@ void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const M
         vel.v->size() != g.count(Placement::FaceY) || vel.w->size() != g.count(Placement::FaceZ))
         throw std::logic_error("advect: velocity arrays have the wrong size");
     if (mask && mask->size() != q.size()) throw std::logic_error("advect: mask has the wrong size");
+    const double groundTop = terrainTop_m(g);  // a scan of the heightfield: once per call
     if (scheme == AdvectionScheme::SemiLagrangian) {
-        semiLagrangian(g, p, q, vel, far, outside, dt, out, mask, nullptr, nullptr, nullptr);
+        semiLagrangian(g, p, q, vel, far, outside, dt, out, mask, nullptr, nullptr, nullptr,
+                       groundTop);
         return;
     }
     // Every pass starts its traces from the same samples through the same frozen velocity.
-    const std::vector<TraceStart> starts = traceStarts(g, p, vel, far, mask);
+    const std::vector<TraceStart> starts = traceStarts(g, p, vel, far, mask, groundTop);
     std::vector<double> fwd, back, lo, hi;
-    semiLagrangian(g, p, q, vel, far, outside, dt, fwd, mask, &lo, &hi, &starts);
-    semiLagrangian(g, p, fwd, vel, far, outside, -dt, back, mask, nullptr, nullptr, &starts);
+    semiLagrangian(g, p, q, vel, far, outside, dt, fwd, mask, &lo, &hi, &starts, groundTop);
+    semiLagrangian(g, p, fwd, vel, far, outside, -dt, back, mask, nullptr, nullptr, &starts,
+                   groundTop);
     out.resize(q.size());
     if (scheme == AdvectionScheme::MacCormack) {
         // Selle et al. 2008: phi^{n+1} = phi_f + (phi^n - phi_b) / 2, limited.
@@ -273,7 +276,8 @@ void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const M
     std::vector<double> corrected(q.size());
     tbb::parallel_for(size_t(0), q.size(),
                       [&](size_t idx) { corrected[idx] = q[idx] + 0.5 * (q[idx] - back[idx]); });
-    semiLagrangian(g, p, corrected, vel, far, outside, dt, out, mask, nullptr, nullptr, &starts);
+    semiLagrangian(g, p, corrected, vel, far, outside, dt, out, mask, nullptr, nullptr, &starts,
+                   groundTop);
     tbb::parallel_for(size_t(0), q.size(), [&](size_t idx) {
         const double v = out[idx];
         out[idx] = std::isfinite(v) ? std::clamp(v, lo[idx], hi[idx]) : fwd[idx];
