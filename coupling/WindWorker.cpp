@@ -105,13 +105,15 @@ void WindWorker::run() {
         }
         double reached_s = t_s;
         try {
-            // Brings the source to `at_s` (or as far as it got before work was posted), builds
-            // the overlays and publishes the snapshot; returns the time published.
+            // Brings the source to `at_s`, builds the overlays and publishes the snapshot; returns
+            // at_s. Stopped short because work was posted, it publishes nothing (the work's own
+            // snapshot follows at once) and returns the time the source reached.
             const auto stop = [this, posted] { return mPostedAtomic.load() != posted; };
             auto workStarted = std::chrono::steady_clock::time_point{};
             double work_ms = 0.0;
             const auto publish = [&](double at_s, std::chrono::steady_clock::time_point start) {
                 const double shown_s = mSource.updateUntil(at_s, wind, stop);
+                if (shown_s < at_s) return shown_s;
                 render::FieldOverlayData data =
                     buildOverlay(mSource, wind, mMesh, overlayScale.frame(overlay), mGrassHeight_m);
                 overlayScale.seen(data);

@@ -70,8 +70,8 @@ class WindWorker {
     void request(double t_s, const OverlaySpec& overlay);
     /// Runs `work` on the worker thread before its next update, in the order posted, and makes the
     /// worker update again even at an unchanged request time (the source changed). An update
-    /// under way stops after its current solver step (WindSource::updateUntil) and publishes the
-    /// time it reached, so the work waits for one step at most, not for the whole update. When the
+    /// under way stops after its current solver step (WindSource::updateUntil), publishing nothing,
+    /// so the work waits for one step at most, not for the whole update. When the
     /// request is newer than the last snapshot, the worker first publishes a snapshot at the last
     /// snapshot's time (no solver step for a stepped source), then one at the request. An exception
     /// from `work` is a failure of the worker (rethrowIfFailed). Returns the item's number
