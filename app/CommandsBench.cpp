@@ -169,7 +169,8 @@ void addStability(CLI::App& bench, VerbTable& verbs) {
 }
 
 /// A scene's unsteady solver as `gale view` builds it (the step limited to an output frame), for
-/// `gale bench unsteady --live`. Throws SceneError (exit 2) when the scene's wind is not unsteady.
+/// `gale bench unsteady --live`. Throws what scene loading throws, and std::invalid_argument
+/// (exit 2, naming FILE:LINE of wind.kind) when the scene's wind is not unsteady.
 LiveStepScene loadLiveStepScene(const std::string& path) {
     struct Owned {
         Scene scene;
@@ -179,6 +180,10 @@ LiveStepScene loadLiveStepScene(const std::string& path) {
     run.scenePath = path;
     auto owned = std::make_shared<Owned>();
     owned->scene = loadScene(run);
+    if (owned->scene.wind.kind != WindKind::Unsteady)  // before the steady solve a build runs
+        throw std::invalid_argument(owned->scene.where("wind.kind") +
+                                    ": bench unsteady --live needs \"unsteady\" (got \"" +
+                                    windKindName(owned->scene.wind.kind) + "\")");
     limitUnsteadyStepToAFrame(owned->scene);  // as gale view does
     BuildOptions build;
     build.progress = [](const std::string& text) {
@@ -187,8 +192,7 @@ LiveStepScene loadLiveStepScene(const std::string& path) {
     owned->built = buildScene(owned->scene, build);
     auto* unsteady = dynamic_cast<coupling::UnsteadyFieldWind*>(owned->built.wind.get());
     if (!unsteady)
-        throw std::invalid_argument("bench unsteady --live: " + path +
-                                    ": wind.kind must be \"unsteady\"");
+        throw std::logic_error("bench unsteady --live: the unsteady scene built no solver");
     return {std::filesystem::path(path).stem().string(), &unsteady->solver(), owned};
 }
 

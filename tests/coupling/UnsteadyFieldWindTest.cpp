@@ -52,6 +52,35 @@ TEST(UnsteadyFieldWind, StepsToEachFrameAndTheGustReachesDownstreamGrassLater) {
     EXPECT_NE(wind.describe().find("unsteady"), std::string::npos);
 }
 
+TEST(UnsteadyFieldWind, AnUpdateStoppedBetweenStepsShowsTheTimeItReachedAndCarriesOn) {
+    // The wind worker stops an update when a source is dropped (WindSource::updateUntil): the
+    // wind then shows the solver's own time, short of the request, and the next update goes on
+    // from there to the request as if it had not stopped.
+    sim::TerrainSpec ts;
+    ts.kind = sim::TerrainKind::Flat;
+    ts.sizeX_m = 32, ts.sizeY_m = 16, ts.spacing_m = 2.0;
+    const sim::Heightfield hf = sim::makeTerrain(ts);
+    const render::TerrainMesh mesh = buildTerrainMesh(hf, 3.0f);
+    auto domain = std::make_unique<sim::AirDomain>(hf, sim::DomainSpec{2.0, {}, 1e9});
+    sim::AmbientWind a;
+    a.speed_mps = 4.0;
+    const auto steady = sim::solveSteadyWind(*domain, a, {}, {});
+    sim::UnsteadySettings s;
+    s.dt_s = 0.25;  // exact in binary: the times below compare exactly
+    UnsteadyFieldWind wind(mesh, std::move(domain), steady.field, s, a.speed_mps, {}, 0.5);
+    render::GrassWind gw;
+    int asked = 0;
+    const auto stopAfterTwoSteps = [&] { return ++asked > 2; };  // asked before every step
+    EXPECT_EQ(wind.updateUntil(2.0, gw, stopAfterTwoSteps), 0.5);
+    EXPECT_EQ(wind.solver().time_s(), 0.5);
+    EXPECT_FALSE(gw.groupIntensity.empty());
+    // Not stopped: the request itself, from where the stopped update left off.
+    EXPECT_EQ(wind.updateUntil(2.0, gw, [] { return false; }), 2.0);
+    EXPECT_EQ(wind.solver().time_s(), 2.0);
+    EXPECT_EQ(wind.stats().steps, 8);
+    EXPECT_TRUE(wind.stats().allFinite);
+}
+
 TEST(UnsteadyFieldWind, SurfaceLayerGrassReadsTheLogLawBelowTheFirstCellCentre) {
     // Flat rough ground, 2 m cells: the first cell centre is 1 m up, the grass reads at 0.25 m.
     sim::TerrainSpec ts;
