@@ -55,7 +55,7 @@ class UnsteadyFieldWind : public WindSource {
 
     int groupCount() const override { return mWind.groupCount(); }
     void update(double t_s, render::GrassWind& wind) override;
-    /// Steps towards t_s, asking `stop` after every solver step; stopped short, the wind shows
+    /// Steps towards t_s, asking `stop` before every solver step; stopped short, the wind shows
     /// the solver's time (the newest field step). Returns that time, seconds.
     double updateUntil(double t_s, render::GrassWind& wind,
                        const std::function<bool()>& stop) override;

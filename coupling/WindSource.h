@@ -24,7 +24,7 @@ class WindSource {
     /// per-vertex directions and groups only when they change, bumping wind.revision then.
     /// `wind` must be the object returned by a previous call or empty.
     virtual void update(double t_s, render::GrassWind& wind) = 0;
-    /// update() that may stop early: a source that steps a solver asks `stop` between its steps
+    /// update() that may stop early: a source that steps a solver asks `stop` before each step
     /// and, when it returns true, brings `wind` to the time its solver reached instead. Returns
     /// the time `wind` now shows, seconds (t_s unless stopped; never earlier than the previous
     /// update's). The default cannot stop: it calls update(t_s, wind). The wind worker passes
