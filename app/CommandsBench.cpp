@@ -17,6 +17,7 @@
 #include "app/Cli.h"
 #include "app/Commands.h"
 #include "app/bench/BenchCoupling.h"
+#include "app/bench/BenchLiveStep.h"
 #include "app/bench/BenchMemory.h"
 #include "app/bench/BenchModels.h"
 #include "app/bench/BenchRender.h"
@@ -29,6 +30,7 @@
 #include "app/scene/LoadScene.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
+#include "coupling/UnsteadyFieldWind.h"
 
 namespace gale::app {
 namespace {
@@ -166,16 +168,56 @@ void addStability(CLI::App& bench, VerbTable& verbs) {
         [](BenchStabilityOptions& options) { return runBenchStability(options); });
 }
 
+/// A scene's unsteady solver as `gale view` builds it (the step limited to an output frame), for
+/// `gale bench unsteady --live`. Throws what scene loading throws, and std::invalid_argument
+/// (exit 2, naming FILE:LINE of wind.kind) when the scene's wind is not unsteady.
+LiveStepScene loadLiveStepScene(const std::string& path) {
+    struct Owned {
+        Scene scene;
+        BuiltScene built;
+    };
+    SceneRunOptions run;
+    run.scenePath = path;
+    auto owned = std::make_shared<Owned>();
+    owned->scene = loadScene(run);
+    if (owned->scene.wind.kind != WindKind::Unsteady)  // before the steady solve a build runs
+        throw std::invalid_argument(owned->scene.where("wind.kind") +
+                                    ": bench unsteady --live needs \"unsteady\" (got \"" +
+                                    windKindName(owned->scene.wind.kind) + "\")");
+    limitUnsteadyStepToAFrame(owned->scene);  // as gale view does
+    BuildOptions build;
+    build.progress = [](const std::string& text) {
+        std::fprintf(stderr, "gale: %s\n", text.c_str());
+    };
+    owned->built = buildScene(owned->scene, build);
+    auto* unsteady = dynamic_cast<coupling::UnsteadyFieldWind*>(owned->built.wind.get());
+    if (!unsteady)
+        throw std::logic_error("bench unsteady --live: the unsteady scene built no solver");
+    return {std::filesystem::path(path).stem().string(), &unsteady->solver(), owned};
+}
+
 void addUnsteady(CLI::App& bench, VerbTable& verbs) {
+    auto live = std::make_shared<BenchLiveStepOptions>();
     auto [verb, o] = addBench<BenchUnsteadyOptions>(
         bench, verbs, "unsteady",
         "Error against run time of the unsteady solver on the exact viscous Lamb-Oseen vortex "
         "(CSV, SVG, orders) per advection scheme, and the time per step and its parts",
         "2 and 4 cells per core, a 48x48x16 timing box (a CI smoke run)",
-        [](BenchUnsteadyOptions& options) { return runBenchUnsteady(options); });
+        [live](BenchUnsteadyOptions& options) {
+            if (live->scenes.empty()) return runBenchUnsteady(options);
+            live->jsonPath = options.jsonPath;
+            live->loader = loadLiveStepScene;
+            return runBenchLiveStep(*live);
+        });
     verb->add_option("--out", o->outputFolder,
                      "Folder for unsteady_accuracy.csv and unsteady_accuracy.svg")
         ->capture_default_str();
+    verb->add_option("--live", live->scenes,
+                     "Only the live-wind step: CPU ms per step and its parts of this unsteady "
+                     "scene's solver as gale view runs it (repeatable)");
+    verb->add_option("--steps", live->steps, "Timed steps per --live scene")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000));
 }
 
 /// `gale bench view --quick`: momentum solves stop after this many pseudo-time steps.

@@ -341,9 +341,22 @@ int runView(const ViewOptions& options) {
         view.draw(camera, simClock_s, overlaySpec, drawOptions, /*exact=*/scripted);
         const coupling::WindSnapshot& shown = view.shown();
         if (livePending.active && shown.workDone >= livePending.work) {
-            // The first snapshot updated after the source went in: the grass has it.
-            std::fprintf(stderr, "gale: %s answered in %.0f ms (wall), at sim t %.3f s\n",
-                         coupling::liveSourceName(livePending.kind), msSince(livePending.posted),
+            // The first snapshot updated after the source went in: the grass has it. Where the
+            // time went: waiting for the worker (the step under way), adding and projecting the
+            // source, and publishing it until this frame took it.
+            const double total_ms = msSince(livePending.posted);
+            auto msBetween = [](Clock::time_point a, Clock::time_point b) {
+                return std::max(0.0, std::chrono::duration<double, std::milli>(b - a).count());
+            };
+            const double wait_ms = msBetween(livePending.posted, shown.workStarted);
+            const double publish_ms =
+                std::max(0.0, msBetween(shown.workStarted, shown.published) - shown.work_ms);
+            std::fprintf(stderr,
+                         "gale: %s answered in %.0f ms (wall): %.0f ms waiting for the worker, "
+                         "%.0f ms adding and projecting it, %.0f ms publishing, %.0f ms until "
+                         "this frame took and drew it; at sim t %.3f s\n",
+                         coupling::liveSourceName(livePending.kind), total_ms, wait_ms,
+                         shown.work_ms, publish_ms, msBetween(shown.published, Clock::now()),
                          shown.t_s);
             livePending.active = false;
         }

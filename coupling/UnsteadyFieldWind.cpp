@@ -27,9 +27,10 @@ UnsteadyFieldWind::UnsteadyFieldWind(const render::TerrainMesh& mesh,
     mWind.addFieldStep(0.0, mSampler.sample(mSolver->field()));
 }
 
-void UnsteadyFieldWind::advanceTo(double t_s) {
+void UnsteadyFieldWind::advanceTo(double t_s, const std::function<bool()>& stop) {
     using Clock = std::chrono::steady_clock;
     while (mSolver->time_s() < t_s) {
+        if (stop && stop()) break;
         const auto t0 = Clock::now();
         const sim::StepReport r = mSolver->step(mSolver->nextDt_s());
         const auto t1 = Clock::now();
@@ -63,14 +64,23 @@ void UnsteadyFieldWind::resampleCurrentField() {
 }
 
 void UnsteadyFieldWind::update(double t_s, render::GrassWind& wind) {
+    (void)updateUntil(t_s, wind, {});
+}
+
+double UnsteadyFieldWind::updateUntil(double t_s, render::GrassWind& wind,
+                                      const std::function<bool()>& stop) {
     const UnsteadyRunStats before = mStats;
-    if (mStats.allFinite) advanceTo(t_s);
+    if (mStats.allFinite) advanceTo(t_s, stop);
     mLastUpdate = mStats;
     mLastUpdate.steps = mStats.steps - before.steps;
     mLastUpdate.solve_s = mStats.solve_s - before.solve_s;
     mLastUpdate.sampling_s = mStats.sampling_s - before.sampling_s;
-    mWind.dropStepsBefore(t_s);
-    mWind.update(t_s, wind);
+    // Stopped short (not for a non-finite field, which stays where it stopped): show the time
+    // reached, which the next update carries on from.
+    const double shown_s = mStats.allFinite && mSolver->time_s() < t_s ? mSolver->time_s() : t_s;
+    mWind.dropStepsBefore(shown_s);
+    mWind.update(shown_s, wind);
+    return shown_s;
 }
 
 std::string UnsteadyFieldWind::stepReport() const {

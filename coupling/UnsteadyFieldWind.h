@@ -55,6 +55,10 @@ class UnsteadyFieldWind : public WindSource {
 
     int groupCount() const override { return mWind.groupCount(); }
     void update(double t_s, render::GrassWind& wind) override;
+    /// Steps towards t_s, asking `stop` before every solver step; stopped short, the wind shows
+    /// the solver's time (the newest field step). Returns that time, seconds.
+    double updateUntil(double t_s, render::GrassWind& wind,
+                       const std::function<bool()>& stop) override;
     std::string describe() const override;
     /// The solver's current field (views of the field); valid until the next update().
     const sim::WindField* currentField() const override { return &mSolver->field(); }
@@ -75,7 +79,7 @@ class UnsteadyFieldWind : public WindSource {
     GrassSampler& sampler() { return mSampler; }
 
   private:
-    void advanceTo(double t_s);
+    void advanceTo(double t_s, const std::function<bool()>& stop);
 
     std::unique_ptr<sim::AirDomain> mDomain;
     std::unique_ptr<sim::UnsteadyWindSolver> mSolver;

@@ -49,6 +49,7 @@ uint64_t WindWorker::post(std::function<void(WindSource&)> work) {
         std::lock_guard<std::mutex> lock(mMutex);
         mPosted.push_back(std::move(work));
         number = ++mPostedCount;
+        mPostedAtomic.store(number);
     }
     mWake.notify_all();
     return number;
@@ -102,10 +103,17 @@ void WindWorker::run() {
             work.swap(mPosted);
             posted = mPostedCount;
         }
+        double reached_s = t_s;
         try {
-            // Updates the source to `at_s`, builds the overlays and publishes the snapshot.
+            // Brings the source to `at_s`, builds the overlays and publishes the snapshot; returns
+            // at_s. Stopped short because work was posted, it publishes nothing (the work's own
+            // snapshot follows at once) and returns the time the source reached.
+            const auto stop = [this, posted] { return mPostedAtomic.load() != posted; };
+            auto workStarted = std::chrono::steady_clock::time_point{};
+            double work_ms = 0.0;
             const auto publish = [&](double at_s, std::chrono::steady_clock::time_point start) {
-                mSource.update(at_s, wind);
+                const double shown_s = mSource.updateUntil(at_s, wind, stop);
+                if (shown_s < at_s) return shown_s;
                 render::FieldOverlayData data =
                     buildOverlay(mSource, wind, mMesh, overlayScale.frame(overlay), mGrassHeight_m);
                 overlayScale.seen(data);
@@ -114,23 +122,30 @@ void WindWorker::run() {
                 std::lock_guard<std::mutex> lock(mMutex);
                 mLatest.wind = wind;
                 mLatest.overlay = std::move(data);
-                mLatest.t_s = at_s;
+                mLatest.t_s = shown_s;
                 mLatest.step_ms = step_ms;
                 mLatest.report = std::move(report);
                 mLatest.workDone = posted;
+                if (!work.empty()) mLatest.workStarted = workStarted, mLatest.work_ms = work_ms;
+                mLatest.published = std::chrono::steady_clock::now();
                 ++mLatest.serial;
+                return shown_s;
             };
             const auto start = std::chrono::steady_clock::now();
-            for (auto& w : work) w(mSource);
+            if (!work.empty()) {
+                workStarted = start;
+                for (auto& w : work) w(mSource);
+                work_ms = msSince(start);
+            }
             // Work changed the source (a whirlwind dropped with the mouse): show it at the time
             // already shown first, which takes no solver step, so the reader's next frame has it
             // instead of waiting for the step to the newer request as well.
             if (!work.empty() && done_s < t_s) {
-                publish(done_s, start);
+                (void)publish(done_s, start);
                 mDone.notify_all();
-                publish(t_s, std::chrono::steady_clock::now());
+                reached_s = publish(t_s, std::chrono::steady_clock::now());
             } else {
-                publish(t_s, start);
+                reached_s = publish(t_s, start);
             }
         } catch (...) {
             std::lock_guard<std::mutex> lock(mMutex);
@@ -138,7 +153,7 @@ void WindWorker::run() {
             mDone.notify_all();
             return;
         }
-        done_s = t_s;
+        done_s = reached_s;  // short of t_s when work was posted meanwhile: the loop goes on
         donePosted = posted;
         doneOverlay = overlay;
         doneOverlaySet = true;

@@ -15,6 +15,8 @@
 /// worker.rethrowIfFailed();    // a failure on the worker thread surfaces here
 /// @endcode
 
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
@@ -42,6 +44,13 @@ struct WindSnapshot {
     std::string report;     ///< the source's stepReport() after that update
     uint64_t serial = 0;    ///< increments with every snapshot; 0: none yet
     uint64_t workDone = 0;  ///< posted work items (post()) that ran before this snapshot's update
+    /// When the newest batch of posted work began to run on the worker, and its wall time in
+    /// milliseconds (a dropped source's projection): with the time of post(), where a dropped
+    /// source's latency goes. Default (epoch, 0) before any work.
+    std::chrono::steady_clock::time_point workStarted{};
+    double work_ms = 0.0;
+    /// When this snapshot was published (after the source's update and the overlays).
+    std::chrono::steady_clock::time_point published{};
 };
 
 class WindWorker {
@@ -60,7 +69,9 @@ class WindWorker {
     /// counts: a request made while a step runs replaces any older one still waiting.
     void request(double t_s, const OverlaySpec& overlay);
     /// Runs `work` on the worker thread before its next update, in the order posted, and makes the
-    /// worker update again even at an unchanged request time (the source changed). When the
+    /// worker update again even at an unchanged request time (the source changed). An update
+    /// under way stops after its current solver step (WindSource::updateUntil), publishing nothing,
+    /// so the work waits for one step at most, not for the whole update. When the
     /// request is newer than the last snapshot, the worker first publishes a snapshot at the last
     /// snapshot's time (no solver step for a stepped source), then one at the request. An exception
     /// from `work` is a failure of the worker (rethrowIfFailed). Returns the item's number
@@ -89,6 +100,7 @@ class WindWorker {
     OverlaySpec mOverlay;
     std::vector<std::function<void(WindSource&)>> mPosted;
     uint64_t mPostedCount = 0;  ///< work items posted so far (the worker updates after each batch)
+    std::atomic<uint64_t> mPostedAtomic{0};  ///< mPostedCount, read by updates without the lock
     WindSnapshot mLatest;
     std::exception_ptr mError;
     bool mStop = false;

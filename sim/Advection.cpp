@@ -97,14 +97,32 @@ struct FaceVelocitySampler {
 /// MAX_TRACE_CELLS_PER_SUBSTEP cells along every axis, horizontal cells of h and vertical ones
 /// of the local layer's thickness (so a trace through thin stretched layers takes short
 /// substeps). x0 and dep are world metres.
-void traceWs(const MacGrid& g, const FaceVelocitySampler& velocityWs, const double* x0, double dt,
-             double groundTop_m, double* dep) {
+/// What a trace needs at its start point that does not depend on the direction of the trace:
+/// the velocity there (m/s), the thickness of its layer (m) and whether it lies on or above the
+/// terrain surface. The forward and backward passes of MacCormack and BFECC start from the same
+/// samples, so they compute it once (TraceStarts).
+struct TraceStart {
+    double u[3];
+    double layer_m;
+    bool above;
+};
+
+TraceStart traceStart(const MacGrid& g, const FaceVelocitySampler& velocityWs, const double* x0,
+                      double groundTop_m) {
+    TraceStart s{};
+    velocityWs(x0, s.u, &s.layer_m);
+    // Only a trace that starts above the surface is stopped by it (samples inside cut cells may
+    // sit below the bilinear surface; they are traced freely until they emerge).
+    s.above = x0[2] > groundTop_m || aboveGround_m(g, x0) >= 0.0;
+    return s;
+}
+
+void traceWs(const MacGrid& g, const FaceVelocitySampler& velocityWs, const double* x0,
+             const TraceStart& start, double dt, double groundTop_m, double* dep) {
     double x[3] = {x0[0], x0[1], x0[2]};
     const double sign = dt < 0.0 ? -1.0 : 1.0;
     double remaining = std::abs(dt);
-    // Only a trace that starts above the surface is stopped by it (samples inside cut cells may
-    // sit below the bilinear surface; they are traced freely until they emerge).
-    bool above = x[2] > groundTop_m || aboveGround_m(g, x) >= 0.0;
+    bool above = start.above;
     const double h = g.voxelSize_m;
     // A trace that would need more substeps than this is stalled in a near-zero velocity field
     // (each substep covers the whole remaining time once the speed is small): cannot happen,
@@ -112,7 +130,11 @@ void traceWs(const MacGrid& g, const FaceVelocitySampler& velocityWs, const doub
     constexpr int MAX_SUBSTEPS = 4096;
     for (int n = 0; n < MAX_SUBSTEPS && remaining > 0.0; ++n) {
         double u0[3], xm[3], u1[3], xn[3], layer_m, unused_m;
-        velocityWs(x, u0, &layer_m);
+        if (n == 0) {
+            u0[0] = start.u[0], u0[1] = start.u[1], u0[2] = start.u[2], layer_m = start.layer_m;
+        } else {
+            velocityWs(x, u0, &layer_m);
+        }
         if (outsideWs(g, x)) {
             // Outside the box: the far field is smooth, finish in one midpoint step.
             for (int a = 0; a < 3; ++a) xm[a] = x[a] - sign * 0.5 * remaining * u0[a];
@@ -149,16 +171,38 @@ void traceWs(const MacGrid& g, const FaceVelocitySampler& velocityWs, const doub
     for (int a = 0; a < 3; ++a) dep[a] = x[a];
 }
 
+/// The TraceStart of every sample of one placement (index as the placement's array; masked-out
+/// samples are left default), computed once per advect() and shared by its passes; groundTop:
+/// terrainTop_m(g).
+std::vector<TraceStart> traceStarts(const MacGrid& g, Placement p, const MacVelocity& vel,
+                                    const FarField& far, const std::vector<uint8_t>* mask,
+                                    double groundTop) {
+    const auto n = g.dims(p);
+    std::vector<TraceStart> starts(g.count(p));
+    const FaceVelocitySampler velocityWs(g, vel, far);
+    tbb::parallel_for(0, n[2], [&](int k) {
+        for (int j = 0; j < n[1]; ++j)
+            for (int i = 0; i < n[0]; ++i) {
+                const size_t idx = g.index(p, i, j, k);
+                if (mask && !(*mask)[idx]) continue;
+                const Vec3d x0 = g.wsPosition(p, i, j, k);
+                starts[idx] = traceStart(g, velocityWs, x0.data(), groundTop);
+            }
+    });
+    return starts;
+}
+
 /// One semi-Lagrangian pass; optionally records the min/max of the interpolation neighbours and
-/// whether the departure point left the box.
+/// whether the departure point left the box. `starts`: traceStarts() of this placement, or null
+/// to compute each on the way; groundTop: terrainTop_m(g).
 void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                     const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
                     double dt, std::vector<double>& out, const std::vector<uint8_t>* mask,
-                    std::vector<double>* lo, std::vector<double>* hi) {
+                    std::vector<double>* lo, std::vector<double>* hi,
+                    const std::vector<TraceStart>* starts, double groundTop) {
     const auto n = g.dims(p);
     out.resize(q.size());
     if (lo) lo->resize(q.size()), hi->resize(q.size());
-    const double groundTop = terrainTop_m(g);
     const FaceVelocitySampler velocityWs(g, vel, far);
     tbb::parallel_for(0, n[2], [&](int k) {
         for (int j = 0; j < n[1]; ++j)
@@ -171,7 +215,9 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                 }
                 const Vec3d x0 = g.wsPosition(p, i, j, k);
                 double dep[3];
-                traceWs(g, velocityWs, x0.data(), dt, groundTop, dep);
+                traceWs(g, velocityWs, x0.data(),
+                        starts ? (*starts)[idx] : traceStart(g, velocityWs, x0.data(), groundTop),
+                        dt, groundTop, dep);
                 if (outside && outsideWs(g, dep)) {
                     out[idx] = outside({dep[0], dep[1], dep[2]});
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;  // no limiter on inflow
@@ -190,7 +236,9 @@ Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, c
                 double dt) {
     const FaceVelocitySampler velocityWs(g, vel, far);
     Vec3d dep;
-    traceWs(g, velocityWs, ws.data(), dt, terrainTop_m(g), dep.data());
+    const double groundTop = terrainTop_m(g);
+    traceWs(g, velocityWs, ws.data(), traceStart(g, velocityWs, ws.data(), groundTop), dt,
+            groundTop, dep.data());
     return dep;
 }
 
@@ -202,13 +250,18 @@ void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const M
         vel.v->size() != g.count(Placement::FaceY) || vel.w->size() != g.count(Placement::FaceZ))
         throw std::logic_error("advect: velocity arrays have the wrong size");
     if (mask && mask->size() != q.size()) throw std::logic_error("advect: mask has the wrong size");
+    const double groundTop = terrainTop_m(g);  // a scan of the heightfield: once per call
     if (scheme == AdvectionScheme::SemiLagrangian) {
-        semiLagrangian(g, p, q, vel, far, outside, dt, out, mask, nullptr, nullptr);
+        semiLagrangian(g, p, q, vel, far, outside, dt, out, mask, nullptr, nullptr, nullptr,
+                       groundTop);
         return;
     }
+    // Every pass starts its traces from the same samples through the same frozen velocity.
+    const std::vector<TraceStart> starts = traceStarts(g, p, vel, far, mask, groundTop);
     std::vector<double> fwd, back, lo, hi;
-    semiLagrangian(g, p, q, vel, far, outside, dt, fwd, mask, &lo, &hi);
-    semiLagrangian(g, p, fwd, vel, far, outside, -dt, back, mask, nullptr, nullptr);
+    semiLagrangian(g, p, q, vel, far, outside, dt, fwd, mask, &lo, &hi, &starts, groundTop);
+    semiLagrangian(g, p, fwd, vel, far, outside, -dt, back, mask, nullptr, nullptr, &starts,
+                   groundTop);
     out.resize(q.size());
     if (scheme == AdvectionScheme::MacCormack) {
         // Selle et al. 2008: phi^{n+1} = phi_f + (phi^n - phi_b) / 2, limited.
@@ -223,7 +276,8 @@ void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const M
     std::vector<double> corrected(q.size());
     tbb::parallel_for(size_t(0), q.size(),
                       [&](size_t idx) { corrected[idx] = q[idx] + 0.5 * (q[idx] - back[idx]); });
-    semiLagrangian(g, p, corrected, vel, far, outside, dt, out, mask, nullptr, nullptr);
+    semiLagrangian(g, p, corrected, vel, far, outside, dt, out, mask, nullptr, nullptr, &starts,
+                   groundTop);
     tbb::parallel_for(size_t(0), q.size(), [&](size_t idx) {
         const double v = out[idx];
         out[idx] = std::isfinite(v) ? std::clamp(v, lo[idx], hi[idx]) : fwd[idx];

@@ -15,14 +15,27 @@
 namespace gale::sim {
 namespace {
 
+/// Grain of the element-wise loops and reductions: large enough that a task outweighs its
+/// scheduling, small enough that a 64 x 64 x 24 component splits over the cores.
+constexpr size_t GRAIN = 4096;
+
 double dot(const std::vector<double>& a, const std::vector<double>& b) {
     return tbb::parallel_reduce(
-        tbb::blocked_range<size_t>(0, a.size(), 4096), 0.0,
+        tbb::blocked_range<size_t>(0, a.size(), GRAIN), 0.0,
         [&](const tbb::blocked_range<size_t>& r, double s) {
             for (size_t i = r.begin(); i != r.end(); ++i) s += a[i] * b[i];
             return s;
         },
         std::plus<double>());
+}
+
+/// Runs body(i) for every i in [0, n) on TBB's threads.
+template <class Body>
+void forEach(size_t n, const Body& body) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, GRAIN),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t i = r.begin(); i != r.end(); ++i) body(i);
+                      });
 }
 
 /// The backward-Euler operator of one component in flux form, divided by h^3 (Viscosity.h).
@@ -106,14 +119,16 @@ ViscosityReport diffuseImplicit(const MacGrid& g, double nu, double dt,
         const Operator op(g, p, masks[c], a);
         std::vector<double> b(x.size()), r(x.size()), z(x.size()), q(x.size()), Ap(x.size()),
             diag(x.size());
-        for (int k = 0; k < op.n[2]; ++k)
+        const std::vector<uint8_t>& mask = *masks[c];
+        tbb::parallel_for(0, op.n[2], [&](int k) {
             for (size_t i = op.idx(0, 0, k); i < op.idx(0, 0, k + 1); ++i)
-                b[i] = (*masks[c])[i] ? op.mass[size_t(k)] * x[i] : 0.0;
+                b[i] = mask[i] ? op.mass[size_t(k)] * x[i] : 0.0;
+        });
         op.apply(x, Ap, &diag);
-        for (size_t i = 0; i < x.size(); ++i) r[i] = (*masks[c])[i] ? b[i] - Ap[i] : 0.0;
+        forEach(x.size(), [&](size_t i) { r[i] = mask[i] ? b[i] - Ap[i] : 0.0; });
         const double bnorm = std::sqrt(dot(b, b));
         if (bnorm == 0.0) continue;
-        for (size_t i = 0; i < x.size(); ++i) z[i] = r[i] / diag[i];
+        forEach(x.size(), [&](size_t i) { z[i] = r[i] / diag[i]; });
         q = z;
         double rz = dot(r, z);
         int it = 0;
@@ -123,13 +138,14 @@ ViscosityReport diffuseImplicit(const MacGrid& g, double nu, double dt,
             const double qAq = dot(q, Ap);
             if (!(qAq > 0.0)) break;
             const double alpha = rz / qAq;
-            for (size_t i = 0; i < x.size(); ++i)
-                if ((*masks[c])[i]) x[i] += alpha * q[i], r[i] -= alpha * Ap[i];
-            for (size_t i = 0; i < x.size(); ++i) z[i] = r[i] / diag[i];
+            forEach(x.size(), [&](size_t i) {
+                if (mask[i]) x[i] += alpha * q[i], r[i] -= alpha * Ap[i];
+                z[i] = r[i] / diag[i];
+            });
             const double rzNew = dot(r, z);
             const double beta = rzNew / rz;
             rz = rzNew;
-            for (size_t i = 0; i < x.size(); ++i) q[i] = z[i] + beta * q[i];
+            forEach(x.size(), [&](size_t i) { q[i] = z[i] + beta * q[i]; });
             rel = std::sqrt(dot(r, r)) / bnorm;
             ++it;
         }

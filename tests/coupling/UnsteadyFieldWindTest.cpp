@@ -13,17 +13,30 @@
 namespace gale::coupling {
 namespace {
 
+/// Flat ground of sx x sy metres at 2 m spacing, its render mesh, an air domain of 2 m cells and
+/// the steady field of a uniform 4 m/s wind along x: the start of the runs below.
+struct FlatRun {
+    sim::Heightfield hf;
+    render::TerrainMesh mesh;
+    std::unique_ptr<sim::AirDomain> domain;
+    sim::AmbientWind ambient;
+    sim::SteadyWindResult steady;
+    FlatRun(double sx, double sy) {
+        sim::TerrainSpec ts;
+        ts.kind = sim::TerrainKind::Flat;
+        ts.sizeX_m = sx, ts.sizeY_m = sy, ts.spacing_m = 2.0;
+        hf = sim::makeTerrain(ts);
+        mesh = buildTerrainMesh(hf, 3.0f);
+        domain = std::make_unique<sim::AirDomain>(hf, sim::DomainSpec{2.0, {}, 1e9});
+        ambient.profile = sim::WindProfile::Uniform;
+        ambient.speed_mps = 4.0;
+        steady = sim::solveSteadyWind(*domain, ambient, {}, {});
+    }
+};
+
 TEST(UnsteadyFieldWind, StepsToEachFrameAndTheGustReachesDownstreamGrassLater) {
-    sim::TerrainSpec ts;
-    ts.kind = sim::TerrainKind::Flat;
-    ts.sizeX_m = 80, ts.sizeY_m = 16, ts.spacing_m = 2.0;
-    const sim::Heightfield hf = sim::makeTerrain(ts);
-    const render::TerrainMesh mesh = buildTerrainMesh(hf, 3.0f);
-    auto domain = std::make_unique<sim::AirDomain>(hf, sim::DomainSpec{2.0, {}, 1e9});
-    sim::AmbientWind a;
-    a.profile = sim::WindProfile::Uniform;
-    a.speed_mps = 4.0;
-    const auto steady = sim::solveSteadyWind(*domain, a, {}, {});
+    FlatRun run(80, 16);
+    const render::TerrainMesh& mesh = run.mesh;
     sim::UnsteadySettings s;
     s.dt_s = 0.5;
     sim::GustEvent g;
@@ -31,7 +44,8 @@ TEST(UnsteadyFieldWind, StepsToEachFrameAndTheGustReachesDownstreamGrassLater) {
     s.gusts.push_back(g);
     FieldWindSpec r;
     r.grouping = Grouping::PerVertex;
-    UnsteadyFieldWind wind(mesh, std::move(domain), steady.field, s, a.speed_mps, r, 0.5);
+    UnsteadyFieldWind wind(mesh, std::move(run.domain), run.steady.field, s, run.ambient.speed_mps,
+                           r, 0.5);
     render::GrassWind gw;
     // Vertices near x = 10 m and x = 60 m on the middle row.
     const size_t row = size_t(mesh.ny / 2) * mesh.nx;
@@ -50,6 +64,28 @@ TEST(UnsteadyFieldWind, StepsToEachFrameAndTheGustReachesDownstreamGrassLater) {
     EXPECT_GT(tFar - tNear, 7.0) << "near " << tNear << " s, far " << tFar << " s";
     EXPECT_LT(tFar - tNear, 14.0) << "near " << tNear << " s, far " << tFar << " s";
     EXPECT_NE(wind.describe().find("unsteady"), std::string::npos);
+}
+
+TEST(UnsteadyFieldWind, AnUpdateStoppedBetweenStepsShowsTheTimeItReachedAndCarriesOn) {
+    // The wind worker stops an update when a source is dropped (WindSource::updateUntil): the
+    // wind then shows the solver's own time, short of the request, and the next update goes on
+    // from there to the request as if it had not stopped.
+    FlatRun run(32, 16);
+    sim::UnsteadySettings s;
+    s.dt_s = 0.25;  // exact in binary: the times below compare exactly
+    UnsteadyFieldWind wind(run.mesh, std::move(run.domain), run.steady.field, s,
+                           run.ambient.speed_mps, {}, 0.5);
+    render::GrassWind gw;
+    int asked = 0;
+    const auto stopAfterTwoSteps = [&] { return ++asked > 2; };  // asked before every step
+    EXPECT_EQ(wind.updateUntil(2.0, gw, stopAfterTwoSteps), 0.5);
+    EXPECT_EQ(wind.solver().time_s(), 0.5);
+    EXPECT_FALSE(gw.groupIntensity.empty());
+    // Not stopped: the request itself, from where the stopped update left off.
+    EXPECT_EQ(wind.updateUntil(2.0, gw, [] { return false; }), 2.0);
+    EXPECT_EQ(wind.solver().time_s(), 2.0);
+    EXPECT_EQ(wind.stats().steps, 8);
+    EXPECT_TRUE(wind.stats().allFinite);
 }
 
 TEST(UnsteadyFieldWind, SurfaceLayerGrassReadsTheLogLawBelowTheFirstCellCentre) {

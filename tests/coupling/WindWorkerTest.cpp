@@ -2,8 +2,10 @@
 // the worker stops cleanly, and failures on the worker thread reach the caller.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -62,6 +64,36 @@ bool complete(const coupling::WindSnapshot& s) {
 }
 
 render::TerrainMesh noMesh() { return {}; }
+
+/// A stepping source: update(t) takes steps of kStep_s up to t and asks updateUntil's `stop`
+/// between them. Its second step of an update waits until the test lets it go (release), so a
+/// test can post work while an update is known to be under way.
+class SteppingSource : public coupling::WindSource {
+  public:
+    static constexpr double kStep_s = 0.125;  // exact in binary: times compare exactly
+    int groupCount() const override { return kGroups; }
+    void update(double t_s, render::GrassWind& wind) override { (void)updateUntil(t_s, wind, {}); }
+    double updateUntil(double t_s, render::GrassWind& wind,
+                       const std::function<bool()>& stop) override {
+        int stepsThisUpdate = 0;
+        while (time_s < t_s) {
+            if (stop && stop()) break;
+            if (++stepsThisUpdate == 2) {
+                underWay.store(true);
+                while (!released.load()) std::this_thread::yield();
+            }
+            time_s += kStep_s;
+        }
+        const double shown_s = std::min(time_s, t_s);
+        wind.groupIntensity.assign(kGroups, float(shown_s));
+        ++wind.revision;
+        return shown_s;
+    }
+    std::string describe() const override { return "stepping"; }
+
+    double time_s = 0.0;  ///< the "solver" time; worker thread only
+    std::atomic<bool> underWay{false}, released{false};
+};
 
 TEST(WindWorker, EverySnapshotAReaderTakesIsComplete) {
     StampSource source;
@@ -180,6 +212,29 @@ TEST(WindWorker, PostedWorkIsShownAtTheLastShownTimeBeforeTheStepToANewerRequest
     // waitFor synchronises with the worker's writes: the log is complete up to 1.0.
     const std::vector<double> expected = {0.5, 0.75, 0.75, 1.0};
     EXPECT_EQ(source.times, expected);
+}
+
+TEST(WindWorker, PostedWorkStopsTheUpdateUnderWayAfterItsCurrentStep) {
+    // A whirlwind dropped during a long update (many solver steps) waits for one step, not for
+    // the whole update: the work runs with the source at the end of the step under way, and the
+    // worker then carries on to the request.
+    SteppingSource source;
+    const render::TerrainMesh mesh = noMesh();
+    coupling::WindWorker worker(source, mesh, 0.5);
+    constexpr double kFar_s = 100 * SteppingSource::kStep_s;  // an update of 100 steps
+    worker.request(kFar_s, coupling::OverlaySpec{});
+    while (!source.underWay.load()) std::this_thread::yield();  // in its second step
+    double workRanAt_s = -1.0;  // written on the worker, read after waitFor (synchronised)
+    const uint64_t number = worker.post([&workRanAt_s](coupling::WindSource& s) {
+        workRanAt_s = static_cast<SteppingSource&>(s).time_s;
+    });
+    source.released.store(true);
+    coupling::WindSnapshot shown;
+    worker.waitFor(kFar_s, shown);
+    EXPECT_EQ(workRanAt_s, 2 * SteppingSource::kStep_s);
+    EXPECT_EQ(shown.t_s, kFar_s);
+    EXPECT_GE(shown.workDone, number);
+    EXPECT_EQ(shown.wind.groupIntensity.front(), float(kFar_s));
 }
 
 }  // namespace
