@@ -133,10 +133,6 @@ AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
             throw ParameterError("solver.max_cell_m", num(maxCell),
                                  "must be in [solver.first_cell_m, 2 voxel_size_m] = [" +
                                      num(first) + ", " + num(MAX_LAYER_THICKENING * h) + "] m");
-        if (spec.momentumModel)
-            throw ParameterError("solver.first_cell_m", num(first),
-                                 "is not supported by solver.model = \"momentum\" (it needs cubic "
-                                 "cells): remove solver.first_cell_m");
     } else if (spec.maxCell_m) {
         throw ParameterError("solver.max_cell_m", num(maxCell),
                              "applies to stretched layers only: give solver.first_cell_m too");

@@ -91,9 +91,8 @@ class AirDomain : public LayoutAccessors<AirDomain> {
     /// when not > 0 and finite; solver.voxel_size_m when not > 0 and finite or larger than the
     /// terrain; solver.top_m when not above the highest point (no air); solver.memory_limit_mb
     /// when not > 0 or below the memory estimate (checked before allocating);
-    /// solver.first_cell_m, solver.stretch_ratio or solver.max_cell_m outside their ranges, and
-    /// solver.first_cell_m when the momentum model is asked for on stretched layers (it needs
-    /// cubic cells). Throws std::invalid_argument (bad terrain data) for a NaN/Inf height or
+    /// solver.first_cell_m, solver.stretch_ratio or solver.max_cell_m outside their ranges.
+    /// Throws std::invalid_argument (bad terrain data) for a NaN/Inf height or
     /// origin or fewer than 2x2 samples, std::logic_error when height_m is not nx * ny long.
     AirDomain(const Heightfield& terrain, const DomainSpec& spec);
     ~AirDomain();

@@ -25,6 +25,16 @@ using detail::num;
 constexpr double MIN_WALL_HEIGHT_CELLS = 0.05;
 constexpr double MAX_WALL_HEIGHT_CELLS = 1.5;
 
+/// The control-volume height (m) of the wall face of a column whose lowest unknown face sits in
+/// layer kl over ground at ground_m (world z): the open height of that layer above the ground,
+/// clamped to [MIN, MAX]_WALL_HEIGHT_CELLS times the layer's thickness (h on cubic cells; on
+/// stretched layers the first layer's own thickness, not h).
+double wallHeight_m(const GridLayout& L, int kl, double ground_m) {
+    const double dz = L.dz_m(kl);
+    return std::clamp(L.zFace_m(kl + 1) - ground_m, MIN_WALL_HEIGHT_CELLS * dz,
+                      MAX_WALL_HEIGHT_CELLS * dz);
+}
+
 /// Solves `count` tridiagonal systems at once, sub[e] x[e - count] + diag[e] x[e] + sup[e]
 /// x[e + count] = rhs[e] with e = k count + i for system i in [0, count) and row k in [0, n), by
 /// the Thomas algorithm (stable without pivoting for the diagonally dominant systems of the
@@ -97,7 +107,8 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
         throw ParameterError("unsteady.viscosity_m2ps", num(nuMol),
                              "must be >= 0 m^2/s and finite");
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
-    const GridIndex G = D.layout();
+    const GridLayout& L = D.layout();
+    const GridIndex G = L;
     if (okX.size() != G.count(Placement::FaceX) || okY.size() != G.count(Placement::FaceY) ||
         okZ.size() != G.count(Placement::FaceZ))
         throw std::logic_error("TurbulentStress: face masks do not match the domain");
@@ -133,14 +144,18 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
     lowest(okY, Placement::FaceY, mLowY);
     lowest(okZ, Placement::FaceZ, mLowZ);
 
-    // l^2 on every z-face with air below (the top face included), from the cell column's ground.
+    // l^2 on every z-face with air below (the top face included), from the cell column's ground,
+    // between the centres of the layers below and above (half a layer each way; at the top face
+    // the top layer's half mirrored).
     mL2Z.assign(G.count(Placement::FaceZ), 0.f);
     tbb::parallel_for(1, nz + 1, [&](int k) {
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 if (!D.isAir(i, j, k - 1)) continue;
-                const double zE = o[2] + k * h - mGroundCell[G.column(Placement::Cell, i, j)];
-                const double l = surface::discreteMixingLength_m(zE, h, s.mixingLengthMax_m, z0, d);
+                const double zE = L.zFace_m(k) - mGroundCell[G.column(Placement::Cell, i, j)];
+                const double below = 0.5 * L.dz_m(k - 1), above = 0.5 * L.dz_m(std::min(k, nz - 1));
+                const double l = surface::discreteMixingLengthBetween_m(zE, below, above,
+                                                                        s.mixingLengthMax_m, z0, d);
                 mL2Z[G.faceZIndex(i, j, k)] = float(l * l);
             }
     });
@@ -176,10 +191,9 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
                                   double(mL2Z[G.faceZIndex(ib, jb, k)]));
                 };
                 const double g = ground[col];
-                const double wallH = std::clamp(o[2] + (kl + 1) * h - g, MIN_WALL_HEIGHT_CELLS * h,
-                                                MAX_WALL_HEIGHT_CELLS * h);
+                const double wallH = wallHeight_m(L, kl, g);
                 auto profileHeight = [&](int k) {
-                    return k == kl ? 0.5 * wallH : o[2] + (k + 0.5) * h - g;
+                    return k == kl ? 0.5 * wallH : L.zCentre_m(k) - g;
                 };
                 auto U0 = [&](double z) { return surface::logLawSpeed_mps(uStar, z, z0, d); };
                 // tau[k - kl]: stress through the bottom of face k; tau[nz - kl]: the top's.
@@ -188,12 +202,12 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
                 tau[0] = cw * cw * u0p * u0p;
                 for (int k = kl + 1; k <= nz; ++k) {
                     const double zLo = profileHeight(k - 1),
-                                 zHi = k < nz ? profileHeight(k) : zLo + h;
-                    const double grad = (U0(zHi) - U0(zLo)) / h;
+                                 zHi = k < nz ? profileHeight(k) : zLo + L.centreGap_m(k);
+                    const double grad = (U0(zHi) - U0(zLo)) / L.centreGap_m(k);
                     tau[size_t(k - kl)] = l2Edge(k) * grad * grad;
                 }
                 for (int k = kl; k < nz; ++k) {
-                    const double delta = k == kl ? wallH : h;
+                    const double delta = k == kl ? wallH : L.dz_m(k);
                     const double F = -(tau[size_t(k + 1 - kl)] - tau[size_t(k - kl)]) / delta;
                     force[G.index(p, i, j, k)] = F * e[c];
                 }
@@ -209,7 +223,8 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
     const AirDomain& D = mDomain;
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
     const double h = D.voxelSize_m();
-    const GridIndex G = D.layout();
+    const GridLayout& L = D.layout();
+    const GridIndex G = L;
     auto xi = [&G](int i, int j, int k) { return G.faceXIndex(i, j, k); };
     auto yi = [&G](int i, int j, int k) { return G.faceYIndex(i, j, k); };
     // Cells and z-faces share the first nx * ny * nz indices (the strain lives on cells).
@@ -224,7 +239,7 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
                 if (!D.isAir(i, j, k)) continue;
                 const double dudx = (U[xi(i + 1, j, k)] - U[xi(i, j, k)]) / h;
                 const double dvdy = (V[yi(i, j + 1, k)] - V[yi(i, j, k)]) / h;
-                const double dwdz = (W[zi(i, j, k + 1)] - W[zi(i, j, k)]) / h;
+                const double dwdz = (W[zi(i, j, k + 1)] - W[zi(i, j, k)]) / L.dz_m(k);
                 const int jm = std::max(j - 1, 0), jp = std::min(j + 1, ny - 1);
                 const int im = std::max(i - 1, 0), ip = std::min(i + 1, nx - 1);
                 const double dudy = jp > jm ? 0.5 *
@@ -242,19 +257,20 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
             }
     });
     // nu_t = nu + l^2 |S| on z-faces between two air cells; the vertical shears S_xz, S_yz as
-    // face differences there.
+    // face differences there, over the distance between the two layers' centres.
     tbb::parallel_for(1, nz, [&](int k) {
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 if (!D.isAir(i, j, k - 1)) continue;
+                const double gap = L.centreGap_m(k);
                 const double dudz = 0.5 *
                                     (U[xi(i, j, k)] - U[xi(i, j, k - 1)] + U[xi(i + 1, j, k)] -
                                      U[xi(i + 1, j, k - 1)]) /
-                                    h;
+                                    gap;
                 const double dvdz = 0.5 *
                                     (V[yi(i, j, k)] - V[yi(i, j, k - 1)] + V[yi(i, j + 1, k)] -
                                      V[yi(i, j + 1, k - 1)]) /
-                                    h;
+                                    gap;
                 const int im = std::max(i - 1, 0), ip = std::min(i + 1, nx - 1);
                 const int jm = std::max(j - 1, 0), jp = std::min(j + 1, ny - 1);
                 const double dwdx =
@@ -294,12 +310,12 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
     const double h = D.voxelSize_m(), h2 = h * h;
     const double z0 = mSettings.roughness_m, d = mSettings.displacementHeight_m;
-    const auto o = D.wsMin_m();
     TurbulenceReport rep;
     computeEddyViscosity(U, V, W);
     for (double nu : mNuZ) rep.maxEddyViscosity_m2ps = std::max(rep.maxEddyViscosity_m2ps, nu);
 
-    const GridIndex G = D.layout();
+    const GridLayout& L = D.layout();
+    const GridIndex G = L;
     auto nuZ = [&](int i, int j, int k) { return mNuZ[G.faceZIndex(i, j, k)]; };
     auto nuCell = [&](int i, int j, int k) { return 0.5 * (nuZ(i, j, k) + nuZ(i, j, k + 1)); };
 
@@ -379,14 +395,14 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                     double wallH = h, wallC = 0.0;
                     if (c < 2 && kl >= 0) {
                         const double g = (c == 0 ? mGroundX : mGroundY)[col];
-                        wallH = std::clamp(o[2] + (kl + 1) * h - g, MIN_WALL_HEIGHT_CELLS * h,
-                                           MAX_WALL_HEIGHT_CELLS * h);
+                        wallH = wallHeight_m(L, kl, g);
                         const double speed = (c == 0 ? speedX : speedY)[col];
                         const double cw = surface::KAPPA / surface::logFactor(0.5 * wallH, z0, d);
                         wallC = cw * cw * speed;  // tau_w = wallC * u, m/s
-                        // The reported u* skips slivers (a wall face under half a cell high sits
-                        // below the log law's range and reports the clamp, not the flow).
-                        if (wallH >= 0.5 * h) (c == 0 ? frictionX : frictionY)[col] = cw * speed;
+                        // The reported u* skips slivers (a wall face under half its layer high
+                        // sits below the log law's range and reports the clamp, not the flow).
+                        if (wallH >= 0.5 * L.dz_m(kl))
+                            (c == 0 ? frictionX : frictionY)[col] = cw * speed;
                     }
                     s.wallH[size_t(i)] = wallH, s.wallC[size_t(i)] = wallC;
                 }
@@ -399,19 +415,27 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                             s.diag[e0] = 1.0, s.rhs[e0] = mOld[f];
                             continue;
                         }
-                        const double delta = (c < 2 && k == kl) ? s.wallH[size_t(i)] : h;
+                        // Control-volume height: a layer for x and y (values at layer
+                        // centres), centre to centre for w (values on the levels); the spacing
+                        // of the vertical fluxes the other way round (Patankar 1980).
+                        const double delta = (c < 2 && k == kl) ? s.wallH[size_t(i)]
+                                             : c < 2            ? L.dz_m(k)
+                                                                : L.centreGap_m(k);
+                        auto spacing = [&](int kUpper) {
+                            return c < 2 ? L.centreGap_m(kUpper) : L.dz_m(kUpper - 1);
+                        };
                         const double a = dt / delta;
                         double diag = 1.0, rhs = mOld[f];
                         // Below: the wall function (x, y) or the edge to the face below.
                         if (k == kl) {
                             diag += a * s.wallC[size_t(i)];
                         } else {
-                            const double e = a * nuBelow(i, j, k) / h;
+                            const double e = a * nuBelow(i, j, k) / spacing(k);
                             diag += e, s.sub[e0] = -e;
                         }
                         // Above: the edge to the face above, or the top stress.
                         if (k < kt) {
-                            const double e = a * nuBelow(i, j, k + 1) / h;
+                            const double e = a * nuBelow(i, j, k + 1) / spacing(k + 1);
                             diag += e, s.sup[e0] = -e;
                         } else if (c < 2 && k == nz - 1) {
                             rhs += a * (c == 0 ? mTopX : mTopY)[G.column(p, i, j)];

@@ -26,8 +26,19 @@
 /// sim/SurfaceLayer.h, u*^2 = [kappa |U_t| / ln((z_p - d) / z0)]^2 along the horizontal velocity
 /// U_t of the face, z_p the centroid of the face's open part above the ground, implicit in u
 /// (tau_bottom = C |U_t| u', a drag that can only slow the face). Delta, the face's
-/// control-volume height, is h above the wall and the open height of the face at the wall.
+/// control-volume height, is the layer's thickness above the wall (h on cubic cells) and the open
+/// height of the face at the wall, clamped to [0.05, 1.5] times that layer's thickness.
 /// Vertical velocity: no stress at the ground (the normal velocity is the projection's).
+///
+/// Stretched layers (GridLayout level heights): the same finite-volume balance with variable
+/// spacing (Patankar 1980). x- and y-faces sit at layer centres and own their layer (dz_k), w
+/// sits on the levels and owns the span between the two centres it separates
+/// (GridLayout::centreGap_m); the vertical gradients (the stress through an edge, du/dz in |S|)
+/// divide by the distance between the two samples. The discrete mixing length on a z-face uses
+/// the two adjacent centres at their own (unequal) distances, and the balance force and top
+/// stress are the discrete divergence of the log profile sampled at the layer centres, so flat
+/// ground keeps the ambient profile exactly on layers too. On layers all h thick every quantity
+/// is the cubic one.
 ///
 /// Top (face above the last row): a prescribed shear stress, the ambient profile's (Richards and
 /// Hoxey 1993 drive their boundary layer by a top shear stress in the same way), so the top can

@@ -140,12 +140,12 @@ WindField prolong(const LevelResult& coarseLevel, const WindField& fine) {
         for (size_t f = 0; f < a.size(); ++f) a[f] -= b[f];
     }
     WindField out = fine;
-    const double h = fine.voxelSize_m();
-    const auto o = fine.wsMin_m(), co = coarse.wsMin_m();
+    const auto co = coarse.wsMin_m();
     const double ch = coarse.voxelSize_m();
-    const double hi[3] = {co[0] + coarse.nx() * ch, co[1] + coarse.ny() * ch,
-                          co[2] + coarse.nz() * ch};
-    const GridIndex G{fine.nx(), fine.ny(), fine.nz()};
+    const double hi[3] = {co[0] + coarse.nx() * ch, co[1] + coarse.ny() * ch, coarse.wsTop_m()};
+    // World positions from the fine layout (its stretched layers, if any); the coarse levels
+    // have cubic cells and are sampled at those positions.
+    const GridLayout& G = fine.layout();
     std::vector<double>* comp[3] = {&out.u_mps(), &out.v_mps(), &out.w_mps()};
     for (int c = 0; c < 3; ++c) {
         const Placement pl = Placement(c);
@@ -155,9 +155,7 @@ WindField prolong(const LevelResult& coarseLevel, const WindField& fine) {
         tbb::parallel_for(0, n2, [&](int k) {
             for (int j = 0; j < n1; ++j)
                 for (int i = 0; i < n0; ++i) {
-                    double p[3] = {o[0] + (i + (c == 0 ? 0.0 : 0.5)) * h,
-                                   o[1] + (j + (c == 1 ? 0.0 : 0.5)) * h,
-                                   o[2] + (k + (c == 2 ? 0.0 : 0.5)) * h};
+                    Vec3d p = G.wsPosition(pl, i, j, k);
                     for (int e = 0; e < 3; ++e)
                         p[e] = std::clamp(p[e], co[e] + 1e-9 * ch, hi[e] - 1e-9 * ch);
                     a[G.index(pl, i, j, k)] +=

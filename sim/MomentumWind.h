@@ -15,7 +15,9 @@
 /// Coarse-grid start (MomentumSettings::coarseLevels): the same iteration on boxes of 2h, 4h, ...
 /// cells first, where a step costs 1/8, 1/64, ... and the wind's first crossing of the box is
 /// made; each finer level starts from the coarser level's correction to the mass-consistent
-/// field, prolonged, and needs only to converge (docs/validation.md, "Run time").
+/// field, prolonged, and needs only to converge (docs/validation.md, "Run time"). On stretched
+/// layers the coarse levels have cubic cells of 2h, 4h, ... and their correction is sampled at
+/// the fine layout's world positions (its layer centres and levels).
 /// Boundaries: the start field is the inflow wherever air enters the box (it carries the log
 /// profile over the sides), outflow is zero-gradient (the advection reads the box), the top is
 /// open (p = 0) with the ambient profile's shear stress, the ground has the wall function.

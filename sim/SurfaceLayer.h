@@ -69,20 +69,30 @@ inline double mixingLength_m(double height_m, double lMax_m, double d_m = 0.0) {
 inline constexpr double BLACKADAR_MAX_MIXING_LENGTH_M = 0.00027 * 15.0 / 1.0e-4;
 
 /// Blackadar's mixing length (m) on a face at edgeHeight_m above ground between two samples
-/// spacing_m apart (at edgeHeight_m -+ spacing_m / 2), with kappa z replaced by the length that
-/// makes a sampled log profile carry exactly u*^2 through that face:
-///   l_d = kappa h / [ln((z_e + h/2 - d) / z0) - ln((z_e - h/2 - d) / z0)]   (-> kappa (z_e - d) as
-///   h -> 0),
-/// since the log law's difference quotient is (u* / kappa) times that bracket over h. Without it
-/// the first face above a wall cell carries (ln 3)^2 = 1.21 u*^2 and the profile drifts. Lengths
-/// clamp as logFactor does; 0 at or below the displacement plane.
+/// below_m under it and above_m over it (at edgeHeight_m - below_m and edgeHeight_m + above_m;
+/// unequal on stretched layers, where the centres of a thin and a thicker layer sit at different
+/// distances from the face between them), with kappa z replaced by the length that makes a
+/// sampled log profile carry exactly u*^2 through that face:
+///   l_d = kappa (a + b) / [ln((z_e + b - d) / z0) - ln((z_e - a - d) / z0)]
+///   (-> kappa (z_e - d) as a, b -> 0),
+/// since the log law's difference quotient over the two samples is (u* / kappa) times that
+/// bracket over a + b. Without it the first face above a wall cell carries (ln 3)^2 = 1.21 u*^2
+/// and the profile drifts. Lengths clamp as logFactor does; 0 at or below the displacement plane.
+inline double discreteMixingLengthBetween_m(double edgeHeight_m, double below_m, double above_m,
+                                            double lMax_m, double z0_m, double d_m) {
+    if (edgeHeight_m - d_m <= 0.0) return 0.0;
+    const double dLog =
+        logFactor(edgeHeight_m + above_m, z0_m, d_m) - logFactor(edgeHeight_m - below_m, z0_m, d_m);
+    const double l =
+        dLog > 1e-12 ? KAPPA * (below_m + above_m) / dLog : KAPPA * (edgeHeight_m - d_m);
+    return l / (1.0 + l / lMax_m);
+}
+
+/// The same with the two samples spacing_m apart, centred on the face (cubic cells).
 inline double discreteMixingLength_m(double edgeHeight_m, double spacing_m, double lMax_m,
                                      double z0_m, double d_m = 0.0) {
-    if (edgeHeight_m - d_m <= 0.0) return 0.0;
-    const double dLog = logFactor(edgeHeight_m + 0.5 * spacing_m, z0_m, d_m) -
-                        logFactor(edgeHeight_m - 0.5 * spacing_m, z0_m, d_m);
-    const double l = dLog > 1e-12 ? KAPPA * spacing_m / dLog : KAPPA * (edgeHeight_m - d_m);
-    return l / (1.0 + l / lMax_m);
+    return discreteMixingLengthBetween_m(edgeHeight_m, 0.5 * spacing_m, 0.5 * spacing_m, lMax_m,
+                                         z0_m, d_m);
 }
 
 }  // namespace gale::sim::surface

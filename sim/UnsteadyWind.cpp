@@ -99,10 +99,6 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
       mSystem(projectionSystem(domain, settings.openTop)),
       mPoisson(mSystem) {
     mSettings.validate();
-    if (mSettings.surfaceLayer.enabled && !domain.layout().uniformZ())
-        throw ParameterError("unsteady.surface_layer", "true",
-                             "cubic cells: the wall stress does not support stretched layers "
-                             "(solver.first_cell_m) yet");
     if (mean.nx() != domain.nx() || mean.ny() != domain.ny() || mean.nz() != domain.nz())
         throw std::logic_error("UnsteadyWindSolver: the mean field does not match the domain");
     mGrid = MacGrid(domain.layout(), &domain.terrain());

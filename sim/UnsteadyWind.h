@@ -38,8 +38,8 @@
 /// knows the level heights; the viscosity is the flux-form Laplacian on the layers
 /// (sim/Viscosity.h); the projection is the steady solve's layer-weighted operator with the
 /// z-gradient taken over the distance between layer centres; the confinement's vertical
-/// derivatives and the kinetic energy use the layer heights. The surface layer's stresses
-/// (UnsteadySettings::surfaceLayer) still need cubic cells.
+/// derivatives and the kinetic energy use the layer heights, and so do the surface layer's wall
+/// stress and eddy viscosity (UnsteadySettings::surfaceLayer; sim/MomentumTurbulence.h).
 ///
 /// @code
 ///   gale::sim::AirDomain domain(terrain, {/*voxelSize_m=*/2.0});

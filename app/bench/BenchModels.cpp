@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -76,6 +77,9 @@ struct Row {
     /// at the crest and at the windward foot (dz = 0.25 H), and the RMS of model minus measured
     /// u / U_inf over every measured point, the foot's included.
     double crestUinf = NAN, footUinf = NAN, rmsUinf = NAN;
+    /// Flat only: |u - log law| / log law of the field read (WindField::velocityAt_mps) 1 m and
+    /// 2 m above the ground.
+    double error1m = NAN, error2m = NAN;
 };
 
 // ---- the ridge of Cao and Tamura (2006), scaled to H = 40 m ------------------------------------
@@ -178,7 +182,9 @@ Row runRidge(bool momentum, int cellsPerH, const std::vector<Measured>& data, in
 
 // ---- flat rough ground: the log law (momentum) --------------------------------------------------
 
-Row runFlat(double h) {
+/// The flat case in cells of edge h; with first_m, on stretched layers from that thickness
+/// (ratio 1.2), h horizontally.
+Row runFlat(double h, std::optional<double> first_m = std::nullopt) {
     const double z0 = 0.03, uRef = 5.0, zRef = 10.0;
     sim::TerrainSpec t;
     t.kind = sim::TerrainKind::Flat;
@@ -188,6 +194,7 @@ Row runFlat(double h) {
     spec.voxelSize_m = h;
     spec.top_m = 60.0;
     spec.momentumModel = true;
+    spec.firstCell_m = first_m;
     sim::AmbientWind wind;
     wind.profile = sim::WindProfile::LogLaw;
     wind.speed_mps = uRef, wind.referenceHeight_m = zRef, wind.roughness_m = z0;
@@ -197,19 +204,24 @@ Row runFlat(double h) {
     Row r;
     r.seconds = secondsSince(t0);
     r.model = "momentum", r.testCase = "flat log law";
-    r.resolution = "h=" + formatG(h, 3) + " m";
+    r.resolution = "h=" + formatG(h, 3) + " m" + (first_m ? ", dz0=" + formatG(*first_m, 3) : "");
     r.nx = domain.nx(), r.ny = domain.ny(), r.nz = domain.nz();
     r.iterations = res.report.iterations, r.converged = res.report.converged;
     const double uStar = sim::surface::frictionVelocity_mps(uRef, zRef, z0);
     const double x = terrain.sizeX_m() / 2, y = terrain.sizeY_m() / 2;
     for (int k = 0; k < domain.nz(); ++k) {
-        const double zc = (k + 0.5) * h;  // the x-faces' height: exact, no interpolation
+        const double zc = domain.layout().zCentre_m(k);  // the x-faces' height: no interpolation
         if (zc < 1.0 || zc > 50.0) continue;
         const double exact = sim::surface::logLawSpeed_mps(uStar, zc, z0);
         r.error =
             std::max(r.error, std::abs(res.field.velocityAt_mps(x, y, zc)[0] - exact) / exact);
     }
     r.errorName = "max |u - log law| / log law, 1-50 m";
+    auto errorAt = [&](double z) {
+        const double exact = sim::surface::logLawSpeed_mps(uStar, z, z0);
+        return std::abs(res.field.velocityAt_mps(x, y, z)[0] - exact) / exact;
+    };
+    r.error1m = errorAt(1.0), r.error2m = errorAt(2.0);
     return r;
 }
 
@@ -275,6 +287,8 @@ int runBenchModels(const BenchModelsOptions& opt) {
     };
     for (int n : hemiRes) add(runHemisphere(n));
     for (double h : flatRes) add(runFlat(h));
+    // The near-ground gain of stretched layers: 4 m cells with a 1 m first layer.
+    add(runFlat(4.0, 1.0));
     for (int n : ridgeRes) {
         add(runRidge(false, n, data, ridgeIterations));
         add(runRidge(true, n, data, ridgeIterations));
@@ -315,6 +329,14 @@ int runBenchModels(const BenchModelsOptions& opt) {
                                                           : nlohmann::json(r.crestSpeedup)}});
     }
     std::printf("measured crest speed-up at 0.25 H: %.2f\n", MEASURED_CREST_SPEEDUP);
+    std::printf(
+        "\nFlat log law near the ground (the field read at 1 m and 2 m; below the first "
+        "centre the reader holds its value)\n");
+    std::printf("%-20s %14s %9s %12s %12s\n", "res.", "cells", "seconds", "error 1 m", "error 2 m");
+    for (const Row& r : rows)
+        if (!std::isnan(r.error1m))
+            std::printf("%-20s %8dx%dx%d %9.3f %12.4f %12.4f\n", r.resolution.c_str(), r.nx, r.ny,
+                        r.nz, r.seconds, r.error1m, r.error2m);
     std::printf(
         "\nRidge against the free stream (u / U_inf at dz = 0.25 H; measured: foot %.3f, "
         "crest %.3f)\n",

@@ -289,11 +289,6 @@ void readUnsteady(Context& ctx, Section s) {
     v.surfaceLayer.roughness_m = ambient.roughness_m;
     v.surfaceLayer.displacementHeight_m = ctx.scene->solver.momentum.displacementHeight_m;
     if (ambient.profile == sim::WindProfile::LogLaw) v.surfaceLayer.balanced = ambient;
-    if (v.surfaceLayer.enabled && ctx.scene->solver.domain.firstCell_m &&
-        ctx.scene->wind.kind == WindKind::Unsteady)
-        s.failKey("surface_layer",
-                  "the surface layer needs cubic cells: it does not support stretched layers "
-                  "(solver.first_cell_m) yet");
     v.projection.relativeTolerance =
         s.number("tolerance", v.projection.relativeTolerance, above(0.0, 0.5));
     v.projection.maxIterations =

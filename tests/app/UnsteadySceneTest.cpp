@@ -37,6 +37,15 @@ TEST(UnsteadyScene, DefaultsApply) {
     EXPECT_EQ(s.unsteady.settings.gusts[0].duration_s, 4.0);
 }
 
+TEST(UnsteadyScene, SurfaceLayerAndMomentumModelAcceptStretchedLayers) {
+    const std::string layers = "[solver]\nvoxel_size_m = 1.0\nfirst_cell_m = 0.25\n";
+    const Scene s = parseSceneString(
+        std::string(BASE) + layers + "[unsteady]\nsurface_layer = true\n", "scene.toml");
+    EXPECT_TRUE(s.unsteady.settings.surfaceLayer.enabled);
+    EXPECT_EQ(s.solver.domain.firstCell_m, 0.25);
+    EXPECT_EQ(errorOf("[wind]\nprofile = \"log\"\n" + layers + "model = \"momentum\"\n"), "");
+}
+
 TEST(UnsteadyScene, BadKeysNameFileLineAndKey) {
     std::string m = errorOf(std::string(BASE) + "[unsteady]\ncfl = -2\n");
     EXPECT_NE(m.find("scene.toml:5: unsteady.cfl"), std::string::npos) << m;

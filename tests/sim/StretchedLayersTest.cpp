@@ -256,7 +256,7 @@ TEST(StretchedLayers, TheEstimateCountsLayersAndIsCheckedBeforeAllocating) {
     }
 }
 
-TEST(StretchedLayers, BadLayerSettingsAndUnsupportedModelsAreRefusedNamingTheKey) {
+TEST(StretchedLayers, BadLayerSettingsAreRefusedNamingTheKey) {
     const Heightfield flat = flatTerrain(32.0, 1.0);
     auto keyOf = [&](DomainSpec spec) -> std::string {
         try {
@@ -274,21 +274,11 @@ TEST(StretchedLayers, BadLayerSettingsAndUnsupportedModelsAreRefusedNamingTheKey
     DomainSpec cap = stretchedSpec(2.0, 0.5);
     cap.maxCell_m = 5.0;
     EXPECT_EQ(keyOf(cap), "solver.max_cell_m");
+    // The momentum model and the unsteady surface layer run on stretched layers
+    // (MomentumStretchedTest.cpp, MomentumUnsteadyTest.cpp).
     DomainSpec momentum = stretchedSpec(2.0, 0.5);
     momentum.momentumModel = true;
-    EXPECT_EQ(keyOf(momentum), "solver.first_cell_m");
-    // The unsteady solver runs on stretched layers (UnsteadyStretchedTest.cpp) but its surface
-    // layer (the wall stress) does not yet.
-    const AirDomain domain(flat, stretchedSpec(2.0, 0.5));
-    const SteadyWindResult mean = solveSteadyWind(domain, uniformWind(5.0), {}, SolverSettings{});
-    UnsteadySettings surface;
-    surface.surfaceLayer.enabled = true;
-    try {
-        UnsteadyWindSolver solver(domain, mean.field, surface, 5.0);
-        FAIL() << "the unsteady surface layer accepted stretched layers";
-    } catch (const ParameterError& e) {
-        EXPECT_EQ(e.key(), "unsteady.surface_layer");
-    }
+    EXPECT_EQ(keyOf(momentum), "");
 }
 
 }  // namespace
