@@ -143,11 +143,6 @@ struct FaceVelocitySampler {
 /// 2^-TERRAIN_BISECTIONS of a substep (< 1e-3 cells) above the surface.
 constexpr int TERRAIN_BISECTIONS = 12;
 
-/// The substepped midpoint trace of traceBack() in world space (Advection.h, "Traces"): a
-/// substep moves by s u metres; its length s holds the travel to at most
-/// MAX_TRACE_CELLS_PER_SUBSTEP cells along every axis, horizontal cells of h and vertical ones
-/// of the local layer's thickness (so a trace through thin stretched layers takes short
-/// substeps). x0 and dep are world metres.
 /// What a trace needs at its start point that does not depend on the direction of the trace:
 /// the velocity there (m/s), the thickness of its layer (m) and whether it lies on or above the
 /// terrain surface. The forward and backward passes of MacCormack and BFECC start from the same
@@ -169,6 +164,11 @@ TraceStart traceStart(const MacGrid& g, const FaceVelocitySampler<Lattice>& velo
     return s;
 }
 
+/// The substepped midpoint trace of traceBack() in world space (Advection.h, "Traces"): a
+/// substep moves by s u metres; its length s holds the travel to at most
+/// MAX_TRACE_CELLS_PER_SUBSTEP cells along every axis, horizontal cells of h and vertical ones
+/// of the local layer's thickness (so a trace through thin stretched layers takes short
+/// substeps). x0 and dep are world metres.
 template <class Lattice>
 void traceWs(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs, const double* x0,
              const TraceStart& start, double dt, double groundTop_m, double* dep) {
