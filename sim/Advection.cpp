@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "base/ParameterError.h"
+#include "sim/UniformLattice.h"
 
 namespace gale::sim {
 
@@ -46,14 +47,6 @@ Vec3d velocityAt(const MacGrid& g, const MacVelocity& vel, const FarField& far, 
 
 namespace {
 
-/// True when a world point lies outside the box through an x or y side or the top
-/// (MacGrid::outside without the conversion to index space).
-bool outsideWs(const MacGrid& g, const double* x) {
-    const double x1 = g.wsMin_m[0] + g.nx * g.voxelSize_m, y1 = g.wsMin_m[1] + g.ny * g.voxelSize_m;
-    return !(x[0] >= g.wsMin_m[0] && x[0] <= x1 && x[1] >= g.wsMin_m[1] && x[1] <= y1 &&
-             x[2] <= g.wsTop_m());
-}
-
 /// Height of a world point above the terrain surface, metres (negative below); +inf without
 /// terrain.
 double aboveGround_m(const MacGrid& g, const double* x) {
@@ -64,39 +57,92 @@ double aboveGround_m(const MacGrid& g, const double* x) {
 /// test, which is most of the box.
 double terrainTop_m(const MacGrid& g) { return g.terrain ? g.terrain->maxHeight_m() : -HUGE_VAL; }
 
-/// Bisection steps locating where a substep crosses the terrain: the stop lies within
-/// 2^-TERRAIN_BISECTIONS of a substep (< 1e-3 cells) above the surface.
-constexpr int TERRAIN_BISECTIONS = 12;
-
-/// The velocity (m/s, world axes) at a world point: the three MAC components interpolated from
-/// their own faces through the layout's sampler (GridLayout::sampleFaces), or the far field's
-/// outside the box when one is given. Also gives the thickness (metres) of the layer the point
-/// lies in (the end layers' outside the box), the spacing a vertical displacement is measured in.
-struct FaceVelocitySampler {
-    FaceVelocitySampler(const MacGrid& grid, const MacVelocity& vel, const FarField& farField)
-        : g(grid), far(farField), U(vel.u->data()), V(vel.v->data()), W(vel.w->data()) {}
-    void operator()(const double* ws, double* u, double* layer_m) const {
+/// The general lattice: world points read through the layout's own sampler at
+/// GridLayout::isFromWs (cubic cells and stretched layers alike).
+struct LayoutLattice {
+    explicit LayoutLattice(const MacGrid& grid) : g(grid) {}
+    /// The three MAC components at world point ws (metres) and the thickness (metres) of the
+    /// layer it lies in (the end layers' outside the box).
+    void sampleFaces(const double* U, const double* V, const double* W, const double* ws, double* u,
+                     double* layer_m) const {
         const Vec3d is = g.isFromWs({ws[0], ws[1], ws[2]});
         *layer_m =
             g.uniformZ() ? g.voxelSize_m : g.dz_m(std::clamp(int(std::floor(is[2])), 0, g.nz - 1));
-        if (far && outsideWs(g, ws)) {
+        const Vec3d s = g.sampleFaces(U, V, W, is);
+        u[0] = s[0], u[1] = s[1], u[2] = s[2];
+    }
+    double sample(Placement p, const double* q, const double* ws, double* lo, double* hi) const {
+        return g.sample(p, q, g.isFromWs({ws[0], ws[1], ws[2]}), lo, hi);
+    }
+    const MacGrid& g;
+};
+
+/// The fast lattice of cubic cells (UniformLattice.h): same answers to round-off, every layer h
+/// thick.
+struct CubicLattice {
+    explicit CubicLattice(const MacGrid& grid) : lattice(grid), h_m(grid.voxelSize_m) {}
+    void sampleFaces(const double* U, const double* V, const double* W, const double* ws, double* u,
+                     double* layer_m) const {
+        *layer_m = h_m;
+        lattice.sampleFaces(U, V, W, ws, u);
+    }
+    double sample(Placement p, const double* q, const double* ws, double* lo, double* hi) const {
+        return lattice.sample(p, q, ws, lo, hi);
+    }
+    UniformLattice lattice;
+    double h_m;
+};
+
+/// The box's x, y sides and top in world metres, for the test "outside through an x or y side
+/// or the top" (MacGrid::outside without the conversion to index space).
+struct BoxSides {
+    explicit BoxSides(const MacGrid& g)
+        : x0(g.wsMin_m[0]),
+          x1(g.wsMin_m[0] + g.nx * g.voxelSize_m),
+          y0(g.wsMin_m[1]),
+          y1(g.wsMin_m[1] + g.ny * g.voxelSize_m),
+          top(g.wsTop_m()) {}
+    bool outside(const double* x) const {
+        return !(x[0] >= x0 && x[0] <= x1 && x[1] >= y0 && x[1] <= y1 && x[2] <= top);
+    }
+    double x0, x1, y0, y1, top;  ///< metres
+};
+
+/// The velocity (m/s, world axes) at a world point: the three MAC components interpolated from
+/// their own faces through the lattice (LayoutLattice or CubicLattice), or the far field's
+/// outside the box when one is given. Also gives the thickness (metres) of the layer the point
+/// lies in (the end layers' outside the box), the spacing a vertical displacement is measured in.
+template <class Lattice>
+struct FaceVelocitySampler {
+    FaceVelocitySampler(const MacGrid& grid, const MacVelocity& vel, const FarField& farField)
+        : g(grid),
+          lattice(grid),
+          box(grid),
+          far(farField),
+          U(vel.u->data()),
+          V(vel.v->data()),
+          W(vel.w->data()) {}
+    void operator()(const double* ws, double* u, double* layer_m) const {
+        if (far && box.outside(ws)) {
+            double unused[3];
+            lattice.sampleFaces(U, V, W, ws, unused, layer_m);
             const Vec3d f = far({ws[0], ws[1], ws[2]});
             u[0] = f[0], u[1] = f[1], u[2] = f[2];
             return;
         }
-        const Vec3d s = g.sampleFaces(U, V, W, is);
-        u[0] = s[0], u[1] = s[1], u[2] = s[2];
+        lattice.sampleFaces(U, V, W, ws, u, layer_m);
     }
     const MacGrid& g;
+    Lattice lattice;
+    BoxSides box;
     const FarField& far;
     const double *U, *V, *W;
 };
 
-/// The substepped midpoint trace of traceBack() in world space (Advection.h, "Traces"): a
-/// substep moves by s u metres; its length s holds the travel to at most
-/// MAX_TRACE_CELLS_PER_SUBSTEP cells along every axis, horizontal cells of h and vertical ones
-/// of the local layer's thickness (so a trace through thin stretched layers takes short
-/// substeps). x0 and dep are world metres.
+/// Bisection steps locating where a substep crosses the terrain: the stop lies within
+/// 2^-TERRAIN_BISECTIONS of a substep (< 1e-3 cells) above the surface.
+constexpr int TERRAIN_BISECTIONS = 12;
+
 /// What a trace needs at its start point that does not depend on the direction of the trace:
 /// the velocity there (m/s), the thickness of its layer (m) and whether it lies on or above the
 /// terrain surface. The forward and backward passes of MacCormack and BFECC start from the same
@@ -107,8 +153,9 @@ struct TraceStart {
     bool above;
 };
 
-TraceStart traceStart(const MacGrid& g, const FaceVelocitySampler& velocityWs, const double* x0,
-                      double groundTop_m) {
+template <class Lattice>
+TraceStart traceStart(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs,
+                      const double* x0, double groundTop_m) {
     TraceStart s{};
     velocityWs(x0, s.u, &s.layer_m);
     // Only a trace that starts above the surface is stopped by it (samples inside cut cells may
@@ -117,7 +164,13 @@ TraceStart traceStart(const MacGrid& g, const FaceVelocitySampler& velocityWs, c
     return s;
 }
 
-void traceWs(const MacGrid& g, const FaceVelocitySampler& velocityWs, const double* x0,
+/// The substepped midpoint trace of traceBack() in world space (Advection.h, "Traces"): a
+/// substep moves by s u metres; its length s holds the travel to at most
+/// MAX_TRACE_CELLS_PER_SUBSTEP cells along every axis, horizontal cells of h and vertical ones
+/// of the local layer's thickness (so a trace through thin stretched layers takes short
+/// substeps). x0 and dep are world metres.
+template <class Lattice>
+void traceWs(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs, const double* x0,
              const TraceStart& start, double dt, double groundTop_m, double* dep) {
     double x[3] = {x0[0], x0[1], x0[2]};
     const double sign = dt < 0.0 ? -1.0 : 1.0;
@@ -135,7 +188,7 @@ void traceWs(const MacGrid& g, const FaceVelocitySampler& velocityWs, const doub
         } else {
             velocityWs(x, u0, &layer_m);
         }
-        if (outsideWs(g, x)) {
+        if (velocityWs.box.outside(x)) {
             // Outside the box: the far field is smooth, finish in one midpoint step.
             for (int a = 0; a < 3; ++a) xm[a] = x[a] - sign * 0.5 * remaining * u0[a];
             velocityWs(xm, u1, &unused_m);
@@ -174,12 +227,13 @@ void traceWs(const MacGrid& g, const FaceVelocitySampler& velocityWs, const doub
 /// The TraceStart of every sample of one placement (index as the placement's array; masked-out
 /// samples are left default), computed once per advect() and shared by its passes; groundTop:
 /// terrainTop_m(g).
+template <class Lattice>
 std::vector<TraceStart> traceStarts(const MacGrid& g, Placement p, const MacVelocity& vel,
                                     const FarField& far, const std::vector<uint8_t>* mask,
                                     double groundTop) {
     const auto n = g.dims(p);
     std::vector<TraceStart> starts(g.count(p));
-    const FaceVelocitySampler velocityWs(g, vel, far);
+    const FaceVelocitySampler<Lattice> velocityWs(g, vel, far);
     tbb::parallel_for(0, n[2], [&](int k) {
         for (int j = 0; j < n[1]; ++j)
             for (int i = 0; i < n[0]; ++i) {
@@ -195,6 +249,7 @@ std::vector<TraceStart> traceStarts(const MacGrid& g, Placement p, const MacVelo
 /// One semi-Lagrangian pass; optionally records the min/max of the interpolation neighbours and
 /// whether the departure point left the box. `starts`: traceStarts() of this placement, or null
 /// to compute each on the way; groundTop: terrainTop_m(g).
+template <class Lattice>
 void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                     const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
                     double dt, std::vector<double>& out, const std::vector<uint8_t>* mask,
@@ -203,7 +258,7 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
     const auto n = g.dims(p);
     out.resize(q.size());
     if (lo) lo->resize(q.size()), hi->resize(q.size());
-    const FaceVelocitySampler velocityWs(g, vel, far);
+    const FaceVelocitySampler<Lattice> velocityWs(g, vel, far);
     tbb::parallel_for(0, n[2], [&](int k) {
         for (int j = 0; j < n[1]; ++j)
             for (int i = 0; i < n[0]; ++i) {
@@ -218,50 +273,36 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                 traceWs(g, velocityWs, x0.data(),
                         starts ? (*starts)[idx] : traceStart(g, velocityWs, x0.data(), groundTop),
                         dt, groundTop, dep);
-                if (outside && outsideWs(g, dep)) {
+                if (outside && velocityWs.box.outside(dep)) {
                     out[idx] = outside({dep[0], dep[1], dep[2]});
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;  // no limiter on inflow
                     continue;
                 }
-                const Vec3d is = g.isFromWs({dep[0], dep[1], dep[2]});
-                out[idx] = lo ? g.sample(p, q.data(), is, &(*lo)[idx], &(*hi)[idx])
-                              : g.sample(p, q.data(), is);
+                out[idx] =
+                    lo ? velocityWs.lattice.sample(p, q.data(), dep, &(*lo)[idx], &(*hi)[idx])
+                       : velocityWs.lattice.sample(p, q.data(), dep, nullptr, nullptr);
             }
     });
 }
 
-}  // namespace
-
-Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& ws,
-                double dt) {
-    const FaceVelocitySampler velocityWs(g, vel, far);
-    Vec3d dep;
-    const double groundTop = terrainTop_m(g);
-    traceWs(g, velocityWs, ws.data(), traceStart(g, velocityWs, ws.data(), groundTop), dt,
-            groundTop, dep.data());
-    return dep;
-}
-
-void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
-            const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
-            std::vector<double>& out, const std::vector<uint8_t>* mask) {
-    if (q.size() != g.count(p)) throw std::logic_error("advect: quantity has the wrong size");
-    if (!vel.u || !vel.v || !vel.w || vel.u->size() != g.count(Placement::FaceX) ||
-        vel.v->size() != g.count(Placement::FaceY) || vel.w->size() != g.count(Placement::FaceZ))
-        throw std::logic_error("advect: velocity arrays have the wrong size");
-    if (mask && mask->size() != q.size()) throw std::logic_error("advect: mask has the wrong size");
+/// advect() after its argument checks, through one lattice.
+template <class Lattice>
+void advectWith(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
+                const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
+                std::vector<double>& out, const std::vector<uint8_t>* mask) {
     const double groundTop = terrainTop_m(g);  // a scan of the heightfield: once per call
     if (scheme == AdvectionScheme::SemiLagrangian) {
-        semiLagrangian(g, p, q, vel, far, outside, dt, out, mask, nullptr, nullptr, nullptr,
-                       groundTop);
+        semiLagrangian<Lattice>(g, p, q, vel, far, outside, dt, out, mask, nullptr, nullptr,
+                                nullptr, groundTop);
         return;
     }
     // Every pass starts its traces from the same samples through the same frozen velocity.
-    const std::vector<TraceStart> starts = traceStarts(g, p, vel, far, mask, groundTop);
+    const std::vector<TraceStart> starts = traceStarts<Lattice>(g, p, vel, far, mask, groundTop);
     std::vector<double> fwd, back, lo, hi;
-    semiLagrangian(g, p, q, vel, far, outside, dt, fwd, mask, &lo, &hi, &starts, groundTop);
-    semiLagrangian(g, p, fwd, vel, far, outside, -dt, back, mask, nullptr, nullptr, &starts,
-                   groundTop);
+    semiLagrangian<Lattice>(g, p, q, vel, far, outside, dt, fwd, mask, &lo, &hi, &starts,
+                            groundTop);
+    semiLagrangian<Lattice>(g, p, fwd, vel, far, outside, -dt, back, mask, nullptr, nullptr,
+                            &starts, groundTop);
     out.resize(q.size());
     if (scheme == AdvectionScheme::MacCormack) {
         // Selle et al. 2008: phi^{n+1} = phi_f + (phi^n - phi_b) / 2, limited.
@@ -276,12 +317,46 @@ void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const M
     std::vector<double> corrected(q.size());
     tbb::parallel_for(size_t(0), q.size(),
                       [&](size_t idx) { corrected[idx] = q[idx] + 0.5 * (q[idx] - back[idx]); });
-    semiLagrangian(g, p, corrected, vel, far, outside, dt, out, mask, nullptr, nullptr, &starts,
-                   groundTop);
+    semiLagrangian<Lattice>(g, p, corrected, vel, far, outside, dt, out, mask, nullptr, nullptr,
+                            &starts, groundTop);
     tbb::parallel_for(size_t(0), q.size(), [&](size_t idx) {
         const double v = out[idx];
         out[idx] = std::isfinite(v) ? std::clamp(v, lo[idx], hi[idx]) : fwd[idx];
     });
+}
+
+template <class Lattice>
+Vec3d traceBackWith(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& ws,
+                    double dt) {
+    const FaceVelocitySampler<Lattice> velocityWs(g, vel, far);
+    Vec3d dep;
+    const double groundTop = terrainTop_m(g);
+    traceWs(g, velocityWs, ws.data(), traceStart(g, velocityWs, ws.data(), groundTop), dt,
+            groundTop, dep.data());
+    return dep;
+}
+
+}  // namespace
+
+Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& ws,
+                double dt) {
+    return UniformLattice::usable(g) ? traceBackWith<CubicLattice>(g, vel, far, ws, dt)
+                                     : traceBackWith<LayoutLattice>(g, vel, far, ws, dt);
+}
+
+void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
+            const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
+            std::vector<double>& out, const std::vector<uint8_t>* mask) {
+    if (q.size() != g.count(p)) throw std::logic_error("advect: quantity has the wrong size");
+    if (!vel.u || !vel.v || !vel.w || vel.u->size() != g.count(Placement::FaceX) ||
+        vel.v->size() != g.count(Placement::FaceY) || vel.w->size() != g.count(Placement::FaceZ))
+        throw std::logic_error("advect: velocity arrays have the wrong size");
+    if (mask && mask->size() != q.size()) throw std::logic_error("advect: mask has the wrong size");
+    // Cubic cells (the live scenes) take the fast lattice; stretched layers the layout's sampler.
+    if (UniformLattice::usable(g))
+        advectWith<CubicLattice>(g, p, q, vel, far, outside, dt, scheme, out, mask);
+    else
+        advectWith<LayoutLattice>(g, p, q, vel, far, outside, dt, scheme, out, mask);
 }
 
 }  // namespace gale::sim

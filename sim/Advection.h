@@ -5,9 +5,11 @@
 /// Layout. A MacGrid is the AirDomain's GridLayout (GridLayout.h: cells, the four placements of
 /// MAC values, index space, the one staggered sampler) plus the terrain traces stop at. Traces
 /// run in world metres (a trace moves by u dt metres) and read values through the layout's
-/// sampler at GridLayout::isFromWs of each point, so cubic cells and stretched layers (level
-/// heights that grow upwards) take the same path: the sampler's vertical weights come from the
-/// world heights of the samples.
+/// sampler at GridLayout::isFromWs of each point, so stretched layers (level heights that grow
+/// upwards) are read like cubic ones: the sampler's vertical weights come from the world heights
+/// of the samples. A layout of cubic cells takes a fast lattice instead (UniformLattice.h: the
+/// same interpolation and clamping without the per-sample layout branches), equal to the general
+/// path to round-off; the choice is made once per advect() or traceBack() call.
 ///
 /// Schemes (AdvectionScheme):
 ///  - SemiLagrangian: Stam 1999 ("Stable fluids"), with a second-order (explicit midpoint, RK2)
