@@ -361,6 +361,7 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
         DomainSpec spec;
         spec.voxelSize_m = domain.voxelSize_m() * double(1 << l);
         spec.top_m = domain.wsTop_m();
+        spec.closedSidesY = domain.closedSidesY();
         spec.memoryLimit_bytes = 1e18;  // 1/8 of the finest level's arrays per level: counted there
         const AirDomain coarse(domain.terrain(), spec);
         previous =
