@@ -75,7 +75,13 @@ struct Row {
     /// at the crest and at the windward foot (dz = 0.25 H), and the RMS of model minus measured
     /// u / U_inf over every measured point, the foot's included.
     double crestUinf = NAN, footUinf = NAN, rmsUinf = NAN;
+    /// Ridge only: measured lee deficits (x > 0, speed-up < 0), of them the model's of the same
+    /// sign, and of them within LEE_DEFICIT_TOLERANCE of the measurement.
+    int leePoints = 0, leeSameSign = 0, leeWithin = 0;
 };
+
+/// The target for the lee deficits: within 0.15 of the measured speed-up.
+constexpr double LEE_DEFICIT_TOLERANCE = 0.15;
 
 // ---- the ridge of Cao and Tamura (2006), scaled to H = 40 m (app/bench/CaoTamuraRidge.h) -------
 
@@ -133,6 +139,11 @@ Row runRidge(bool momentum, int cellsPerH, const std::vector<Measured>& data, in
         if (m.xOverH <= -2.5 + 1e-9) continue;  // the reference itself
         const double model = u(m.xOverH, m.dzOverH) / u(-2.5, m.dzOverH) - 1.0;
         sum2 += (model - m.speedup) * (model - m.speedup), ++n;
+        if (m.xOverH > 0 && m.speedup < 0) {
+            ++r.leePoints;
+            if (model < 0) ++r.leeSameSign;
+            if (std::abs(model - m.speedup) <= LEE_DEFICIT_TOLERANCE) ++r.leeWithin;
+        }
         if (std::abs(m.xOverH) < 1e-9 && std::abs(m.dzOverH - 0.25) < std::abs(crestDz - 0.25))
             crestDz = m.dzOverH, r.crestSpeedup = model;
         if (std::abs(m.xOverH - 2.5) < 1e-9 && std::abs(m.dzOverH - 1.0) < std::abs(leeDz - 1.0))
@@ -296,11 +307,13 @@ int runBenchModels(const BenchModelsOptions& opt) {
         "\nRidge against the free stream (u / U_inf at dz = 0.25 H; measured: foot %.3f, "
         "crest %.3f)\n",
         MEASURED_FOOT_UINF_025H, MEASURED_CREST_UINF_025H);
-    std::printf("%-16s %-9s %8s %8s %14s\n", "model", "res.", "foot", "crest", "RMS u/U_inf");
+    std::printf("%-16s %-9s %8s %8s %14s   %s\n", "model", "res.", "foot", "crest", "RMS u/U_inf",
+                "lee deficits: points, same sign, within 0.15");
     for (const Row& r : rows)
         if (!std::isnan(r.rmsUinf))
-            std::printf("%-16s %-9s %8.3f %8.3f %14.3f\n", r.model.c_str(), r.resolution.c_str(),
-                        r.footUinf, r.crestUinf, r.rmsUinf);
+            std::printf("%-16s %-9s %8.3f %8.3f %14.3f   %d, %d, %d\n", r.model.c_str(),
+                        r.resolution.c_str(), r.footUinf, r.crestUinf, r.rmsUinf, r.leePoints,
+                        r.leeSameSign, r.leeWithin);
 
     // The pseudo-time step's effect on the momentum model's steady state (docs/validation.md):
     // a semi-Lagrangian fixed point carries a streamwise numerical viscosity of about
