@@ -144,6 +144,9 @@ void addModels(CLI::App& bench, VerbTable& verbs) {
                      "The validation data (default: tests/data/validation/"
                      "cao-tamura-2006-ridge.csv in the source tree)");
     verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
+    verb->add_flag("--crest", o->crestStudy,
+                   "Instead: the crest experiments on the ridge (potential flow, Euler, eddy "
+                   "viscosity, wall stress, box height; docs/validation.md section 3)");
     verb->footer(EXIT_CODES_FOOTER);
     verbs.add(verb, [o] { return runBench([o] { return runBenchModels(*o); }); });
 }

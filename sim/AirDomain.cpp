@@ -85,7 +85,8 @@ std::vector<double> AirDomain::stretchedLevels_m(double z0, double top, double f
     return z;
 }
 
-AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec) {
+AirDomain::AirDomain(const Heightfield& hf, const DomainSpec& spec)
+    : mClosedSidesY(spec.closedSidesY) {
     using detail::num;
     // --- validate everything before allocating anything ------------------------------------
     if (hf.nx < 2 || hf.ny < 2)

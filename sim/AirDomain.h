@@ -65,6 +65,12 @@ struct DomainSpec {
     /// The rest of the run the estimate and limit count: an unsteady run's arrays and the
     /// process's resident bytes before the domain (sim/MemoryEstimate.h).
     RunMemory run = {};
+    /// true: the two sides of constant y (the box's y = min and y = max planes) are free-slip
+    /// walls (no flow through them, no potential prescribed on them) instead of open: the
+    /// symmetry planes of a two-dimensional case a few cells across, such as a wind tunnel's
+    /// ridge with the wind along x. Open sides there would let the flow go round the ridge
+    /// sideways (docs/validation.md, section 3). No scene key sets it.
+    bool closedSidesY = false;
 };
 
 class AirDomain : public LayoutAccessors<AirDomain> {
@@ -165,6 +171,8 @@ class AirDomain : public LayoutAccessors<AirDomain> {
     size_t cellIndex(int i, int j, int k) const { return mLayout.cellIndex(i, j, k); }
 
     const Heightfield& terrain() const { return *mTerrain; }
+    /// DomainSpec::closedSidesY: the y sides are free-slip walls.
+    bool closedSidesY() const { return mClosedSidesY; }
     std::shared_ptr<const Heightfield> terrainShared() const { return mTerrain; }
 
     struct Vdb;  ///< the OpenVDB mask (defined in AirDomain.cpp; see VdbIO.h)
@@ -178,6 +186,7 @@ class AirDomain : public LayoutAccessors<AirDomain> {
     std::vector<uint8_t> mAir;
     std::shared_ptr<const Heightfield> mTerrain;
     std::shared_ptr<Vdb> mVdb;
+    bool mClosedSidesY = false;
 };
 
 }  // namespace gale::sim

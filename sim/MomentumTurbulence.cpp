@@ -89,6 +89,12 @@ void SurfaceLayerSettings::validate() const {
     if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
         throw ParameterError("wind.roughness_m", num(roughness_m), "must be > 0 m and finite");
     validateWallAndMixing(displacementHeight_m, mixingLengthMax_m);
+    if (wallStress && !eddyViscosity)
+        throw std::logic_error("SurfaceLayerSettings: the wall stress needs the eddy viscosity");
+    if (balanced && !(eddyViscosity && wallStress))
+        throw std::logic_error(
+            "SurfaceLayerSettings: a balanced profile needs the eddy viscosity and the wall "
+            "stress");
     if (balanced) {
         balanced->validate();
         if (!(balanced->referenceHeight_m > displacementHeight_m + roughness_m))
@@ -151,7 +157,7 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
     tbb::parallel_for(1, nz + 1, [&](int k) {
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
-                if (!D.isAir(i, j, k - 1)) continue;
+                if (!D.isAir(i, j, k - 1) || !s.eddyViscosity) continue;
                 const double zE = L.zFace_m(k) - mGroundCell[G.column(Placement::Cell, i, j)];
                 const double below = 0.5 * L.dz_m(k - 1), above = 0.5 * L.dz_m(std::min(k, nz - 1));
                 const double l = surface::discreteMixingLengthBetween_m(zE, below, above,
@@ -398,10 +404,11 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                         wallH = wallHeight_m(L, kl, g);
                         const double speed = (c == 0 ? speedX : speedY)[col];
                         const double cw = surface::KAPPA / surface::logFactor(0.5 * wallH, z0, d);
-                        wallC = cw * cw * speed;  // tau_w = wallC * u, m/s
+                        // tau_w = wallC * u, m/s (0: the free-slip diagnostic)
+                        wallC = mSettings.wallStress ? cw * cw * speed : 0.0;
                         // The reported u* skips slivers (a wall face under half its layer high
                         // sits below the log law's range and reports the clamp, not the flow).
-                        if (wallH >= 0.5 * L.dz_m(kl))
+                        if (wallH >= 0.5 * L.dz_m(kl) && mSettings.wallStress)
                             (c == 0 ? frictionX : frictionY)[col] = cw * speed;
                     }
                     s.wallH[size_t(i)] = wallH, s.wallC[size_t(i)] = wallC;

@@ -75,6 +75,12 @@ struct SurfaceLayerSettings {
     /// own profile and roughness are not used) is held in equilibrium by the top stress and the
     /// body force. Unset: a stress-free top and no force.
     std::optional<AmbientWind> balanced;
+    /// Diagnostics (no scene key reaches them; docs/validation.md, the crest experiments):
+    /// false turns the mixing-length eddy viscosity off (nu_t = the molecular viscosity) or the
+    /// wall function's drag off (a free-slip ground). validate() throws std::logic_error for the
+    /// wall stress without the eddy viscosity, or either off with a balanced profile.
+    bool eddyViscosity = true;
+    bool wallStress = true;
 
     /// Throws gale::ParameterError naming the scene key (wind.roughness_m, ...).
     void validate() const;

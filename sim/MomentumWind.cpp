@@ -72,6 +72,8 @@ void MomentumSettings::validate() const {
         throw std::logic_error("MomentumSettings::residualTolerance must be > 0, got " +
                                num(residualTolerance));
     validateWallAndMixing(displacementHeight_m, mixingLengthMax_m);
+    if (wallStress && !eddyViscosity)
+        throw std::logic_error("MomentumSettings: the wall stress needs the eddy viscosity");
 }
 
 int residualCyclePeriod(const std::vector<double>& residuals, int window, double& correlation) {
@@ -227,11 +229,13 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
     us.dt_s = lv.dt_s;
     us.openTop = true;
     us.projection = settings.projection;
-    us.surfaceLayer.enabled = true;
+    us.surfaceLayer.enabled = settings.eddyViscosity || settings.wallStress;
     us.surfaceLayer.roughness_m = ambient.roughness_m;
     us.surfaceLayer.displacementHeight_m = settings.displacementHeight_m;
     us.surfaceLayer.mixingLengthMax_m = settings.mixingLengthMax_m;
-    us.surfaceLayer.balanced = ambient;
+    us.surfaceLayer.eddyViscosity = settings.eddyViscosity;
+    us.surfaceLayer.wallStress = settings.wallStress;
+    if (settings.eddyViscosity && settings.wallStress) us.surfaceLayer.balanced = ambient;
     UnsteadyWindSolver solver(domain, start.field, us, uRef);
     if (initial) solver.resetState(prolong(*initial, start.field));
     LevelResult out;
@@ -338,7 +342,7 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
                                      const MomentumSettings& settings) {
     settings.validate();
     ambient.validate();
-    if (ambient.profile != WindProfile::LogLaw)
+    if (ambient.profile != WindProfile::LogLaw && (settings.eddyViscosity || settings.wallStress))
         throw ParameterError("wind.profile",
                              "\"" + std::string(windProfileName(ambient.profile)) + "\"",
                              "\"log\" for solver.model = \"momentum\" (its inflow and wall "
@@ -355,6 +359,7 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
         DomainSpec spec;
         spec.voxelSize_m = domain.voxelSize_m() * double(1 << l);
         spec.top_m = domain.wsTop_m();
+        spec.closedSidesY = domain.closedSidesY();
         spec.memoryLimit_bytes = 1e18;  // 1/8 of the finest level's arrays per level: counted there
         const AirDomain coarse(domain.terrain(), spec);
         previous =

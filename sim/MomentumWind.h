@@ -86,6 +86,14 @@ struct MomentumSettings {
     bool averageCycles = true;
     /// Steps the mean covers at least (a whole number of periods, at least one), >= 1.
     int averageMinSteps = 24;
+    /// Diagnostics (no scene key reaches them; docs/validation.md, the crest experiments):
+    /// false turns off the mixing-length eddy viscosity (then also the wall stress must be off)
+    /// or the log-law wall stress (a free-slip ground). Either off also drops the balance force
+    /// and top stress of the ambient profile (they balance exactly the stresses turned off); both
+    /// off is the Euler equations, for which the wind may have any profile. validate() throws
+    /// std::logic_error for the wall stress without the eddy viscosity.
+    bool eddyViscosity = true;
+    bool wallStress = true;
     static constexpr int COARSE_MIN_CELLS_XY = 16;
     static constexpr int COARSE_MIN_CELLS_Z = 8;
 
@@ -180,8 +188,9 @@ inline constexpr double MOMENTUM_EXTRA_BYTES_PER_CELL =
 /// anything is allocated) counts the model's arrays.
 /// Throws gale::ParameterError naming the scene key for a bad wind or settings, or a wind whose
 /// profile is not the log law (wind.profile: the model's inflow and wall stress need the
-/// roughness); std::logic_error for a setting no scene key reaches (cfl, residualTolerance).
-/// Non-convergence is in the report, never thrown.
+/// roughness; the Euler diagnostic, both stresses off, takes any profile); std::logic_error for a
+/// setting no scene key reaches (cfl, residualTolerance). Non-convergence is in the report, never
+/// thrown.
 [[nodiscard]] MomentumWindResult solveMomentumWind(const AirDomain& domain,
                                                    const AmbientWind& ambient,
                                                    const MomentumSettings& settings);

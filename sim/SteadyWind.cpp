@@ -43,6 +43,7 @@ PoissonSystem SteadyWindSolver::makeSystem(const AirDomain& d, double r) {
     s.nx = d.nx(), s.ny = d.ny(), s.nz = d.nz();
     s.sides = {BoundaryKind::Dirichlet, BoundaryKind::Dirichlet, BoundaryKind::Dirichlet,
                BoundaryKind::Dirichlet, BoundaryKind::Neumann,   BoundaryKind::Dirichlet};
+    if (d.closedSidesY()) s.sides[SIDE_YMIN] = s.sides[SIDE_YMAX] = BoundaryKind::Neumann;
     s.weightX = d.openFractionsX();
     s.weightY = d.openFractionsY();
     s.weightZ = d.openFractionsZ();
@@ -95,6 +96,7 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
     const double h = D.voxelSize_m(), r = mRatio;
     const auto o = D.wsMin_m();
+    const bool closedY = D.closedSidesY();  // free-slip y sides: no flux, no potential
     const Heightfield& T = D.terrain();
 
     const GridLayout& G = D.layout();
@@ -127,7 +129,9 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
         for (int j = 0; j <= ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 const size_t f = S.faceYIndex(i, j, k);
-                V[f] = ey * speedAt(o[0] + (i + 0.5) * h, o[1] + j * h, zTop, dz, thY[f]);
+                V[f] = closedY && (j == 0 || j == ny)
+                           ? 0.0
+                           : ey * speedAt(o[0] + (i + 0.5) * h, o[1] + j * h, zTop, dz, thY[f]);
             }
     });
     // W stays 0: the ambient wind is horizontal.
@@ -150,8 +154,9 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
                                  zc = G.zCentre_m(k), side = G.dz_m(k) / h;
                     if (i == 0) b += 2.0 * side * thX[xm] * g(o[0], yc, zc);
                     if (i == nx - 1) b += 2.0 * side * thX[xp] * g(o[0] + nx * h, yc, zc);
-                    if (j == 0) b += 2.0 * side * thY[ym] * g(xc, o[1], zc);
-                    if (j == ny - 1) b += 2.0 * side * thY[yp] * g(xc, o[1] + ny * h, zc);
+                    if (j == 0 && !closedY) b += 2.0 * side * thY[ym] * g(xc, o[1], zc);
+                    if (j == ny - 1 && !closedY)
+                        b += 2.0 * side * thY[yp] * g(xc, o[1] + ny * h, zc);
                     if (k == nz - 1)
                         b += 2.0 * r * (h / G.dz_m(k)) * thZ[zp] * g(xc, yc, G.wsTop_m());
                 }
@@ -192,9 +197,9 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
                 const size_t f = S.faceYIndex(i, j, k);
                 if (j > 0 && j < ny && air(i, j - 1, k) && air(i, j, k)) {
                     V[f] += (P(i, j, k) - P(i, j - 1, k)) / h, okY[f] = 1;
-                } else if (j == 0 && air(i, 0, k)) {
+                } else if (j == 0 && air(i, 0, k) && !closedY) {
                     V[f] += 2.0 * (P(i, 0, k) - g(xc, o[1], zc)) / h, okY[f] = 1;
-                } else if (j == ny && air(i, ny - 1, k)) {
+                } else if (j == ny && air(i, ny - 1, k) && !closedY) {
                     V[f] += 2.0 * (g(xc, o[1] + ny * h, zc) - P(i, ny - 1, k)) / h, okY[f] = 1;
                 }
             }

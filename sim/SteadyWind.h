@@ -94,7 +94,8 @@ class SteadyWindSolver {
     double verticalRatio() const { return mRatio; }
 
     /// The PoissonSystem of a domain: weights theta_f * c_f, Dirichlet sides and top, Neumann
-    /// bottom (under the terrain). The unsteady projection uses verticalRatio = 1.
+    /// bottom (under the terrain) and Neumann y sides when the domain has closedSidesY (free-slip
+    /// walls of a two-dimensional case). The unsteady projection uses verticalRatio = 1.
     static PoissonSystem makeSystem(const AirDomain& domain, double verticalRatio);
 
   private:

@@ -126,8 +126,9 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
             for (int i = 0; i < nx; ++i)
                 mOkY[mSystem.faceYIndex(i, j, k)] = (j > 0 && j < ny)
                                                         ? (air(i, j - 1, k) && air(i, j, k))
-                                                    : j == 0 ? air(i, 0, k)
-                                                             : air(i, ny - 1, k);
+                                                    : domain.closedSidesY() ? 0
+                                                    : j == 0                ? air(i, 0, k)
+                                                                            : air(i, ny - 1, k);
     for (int k = 0; k <= nz; ++k)
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i)
@@ -226,6 +227,11 @@ double UnsteadyWindSolver::maxDivergenceScaled() const {
 void UnsteadyWindSolver::extrapolateClosedFaces() {
     detail::extrapolateFaces(mField.u_mps(), mOkX, mGrid, Placement::FaceX, EXTRAPOLATION_LAYERS);
     detail::extrapolateFaces(mField.v_mps(), mOkY, mGrid, Placement::FaceY, EXTRAPOLATION_LAYERS);
+    if (mDomain.closedSidesY())  // free-slip walls: nothing flows through them
+        for (int k = 0; k < mGrid.nz; ++k)
+            for (int i = 0; i < mGrid.nx; ++i)
+                mField.v_mps()[mGrid.faceYIndex(i, 0, k)] =
+                    mField.v_mps()[mGrid.faceYIndex(i, mGrid.ny, k)] = 0.0;
     detail::extrapolateFaces(mField.w_mps(), mOkZ, mGrid, Placement::FaceZ, EXTRAPOLATION_LAYERS);
 }
 

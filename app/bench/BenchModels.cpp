@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "app/bench/CaoTamuraRidge.h"
 #include "app/bench/ExactSolutions.h"
 #include "app/bench/SvgPlot.h"
 #include "app/io/AtomicFile.h"
@@ -28,8 +29,6 @@
 
 namespace gale::app {
 namespace {
-
-using gale::PI;
 
 /// One measured point of the validation line (tests/data/validation/README.md).
 struct Measured {
@@ -80,50 +79,33 @@ struct Row {
     /// Flat only: |u - log law| / log law of the field read (WindField::velocityAt_mps) 1 m and
     /// 2 m above the ground.
     double error1m = NAN, error2m = NAN;
+    /// Ridge only: measured lee deficits (x > 0, speed-up < 0), of them the model's of the same
+    /// sign, and of them within LEE_DEFICIT_TOLERANCE of the measurement.
+    int leePoints = 0, leeSameSign = 0, leeWithin = 0;
 };
 
-// ---- the ridge of Cao and Tamura (2006), scaled to H = 40 m ------------------------------------
+/// The target for the lee deficits: within 0.15 of the measured speed-up.
+constexpr double LEE_DEFICIT_TOLERANCE = 0.15;
 
-constexpr double RIDGE_H_M = 40.0;
-constexpr double RIDGE_B_M = 2.5 * RIDGE_H_M;  ///< half-width at the base
-constexpr double RIDGE_UPWIND_M = 10 * RIDGE_H_M, RIDGE_DOWNWIND_M = 20 * RIDGE_H_M;
-/// z0 of the least-squares log fit to the measured windward-foot profile (docs/validation.md).
-constexpr double RIDGE_Z0_M = 0.65;
+// ---- the ridge of Cao and Tamura (2006), scaled to H = 40 m (app/bench/CaoTamuraRidge.h) -------
+
 constexpr double MEASURED_CREST_SPEEDUP = 1.33;      ///< at dz = 0.25 H (the data)
 constexpr double MEASURED_LEE_FOOT_SPEEDUP = -0.32;  ///< at x = 2.5 H, dz = 1.0 H (the data)
-/// The slope of the same log fit, u / U_inf = A ln(z / z0) (docs/validation.md): the model's
-/// inflow (10 m/s at z = H, z0 above) is that fit, so its U_inf is 10 m/s / (A ln(H / z0)).
-constexpr double RIDGE_FIT_SLOPE = 0.137;
 /// Measured u / U_inf nearest dz = 0.25 H (the data): windward foot (dz 0.241 H), crest (0.248 H).
 constexpr double MEASURED_FOOT_UINF_025H = 0.377, MEASURED_CREST_UINF_025H = 0.884;
-
-double ridgeHeight_m(double xFromCrest_m) {
-    if (std::abs(xFromCrest_m) > RIDGE_B_M) return 0.0;
-    const double c = std::cos(PI * xFromCrest_m / (2 * RIDGE_B_M));
-    return RIDGE_H_M * c * c;
-}
 
 /// Runs one model on the ridge at H / h = cellsPerH (momentum: pseudo-time step cfl), compares
 /// with the measured line.
 Row runRidge(bool momentum, int cellsPerH, const std::vector<Measured>& data, int maxIterations,
              double cfl = 2.0) {
-    const double h = RIDGE_H_M / cellsPerH;
-    const double spacing = h / 2, length = RIDGE_UPWIND_M + RIDGE_DOWNWIND_M;
-    const int nx = int(std::lround(length / spacing)) + 1, ny = 7;  // 3 cells across
-    std::vector<float> z(size_t(nx) * ny);
-    for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i)
-            z[size_t(j) * nx + i] = float(ridgeHeight_m(i * spacing - RIDGE_UPWIND_M));
-    const sim::Heightfield terrain = sim::makeHeightfield(nx, ny, spacing, std::move(z));
+    const double h = ridge::H_M / cellsPerH;
+    const sim::Heightfield terrain = ridge::terrain(h);
     sim::DomainSpec spec;
     spec.voxelSize_m = h;
-    spec.top_m = 6 * RIDGE_H_M;
+    spec.top_m = 6 * ridge::H_M;
     spec.momentumModel = momentum;
-    sim::AmbientWind wind;
-    wind.profile = sim::WindProfile::LogLaw;
-    wind.speed_mps = 10.0;
-    wind.referenceHeight_m = RIDGE_H_M;
-    wind.roughness_m = RIDGE_Z0_M;
+    spec.closedSidesY = true;  // a two-dimensional ridge: the tunnel's side walls, free slip
+    const sim::AmbientWind wind = ridge::wind(/*uniform=*/false);
     const auto t0 = Clock::now();
     const sim::AirDomain domain(terrain, spec);
     sim::SolverSettings start;
@@ -150,9 +132,9 @@ Row runRidge(bool momentum, int cellsPerH, const std::vector<Measured>& data, in
                          l.converged ? "converged" : "not converged");
     const double y = terrain.sizeY_m() / 2;
     auto u = [&](double xOverH, double dzOverH) {
-        const double x = xOverH * RIDGE_H_M;
-        return res.field.velocityAt_mps(x + RIDGE_UPWIND_M, y,
-                                        ridgeHeight_m(x) + dzOverH * RIDGE_H_M)[0];
+        const double x = xOverH * ridge::H_M;
+        return res.field.velocityAt_mps(x + ridge::UPWIND_M, y,
+                                        ridge::height_m(x) + dzOverH * ridge::H_M)[0];
     };
     double sum2 = 0;
     int n = 0;
@@ -161,6 +143,11 @@ Row runRidge(bool momentum, int cellsPerH, const std::vector<Measured>& data, in
         if (m.xOverH <= -2.5 + 1e-9) continue;  // the reference itself
         const double model = u(m.xOverH, m.dzOverH) / u(-2.5, m.dzOverH) - 1.0;
         sum2 += (model - m.speedup) * (model - m.speedup), ++n;
+        if (m.xOverH > 0 && m.speedup < 0) {
+            ++r.leePoints;
+            if (model < 0) ++r.leeSameSign;
+            if (std::abs(model - m.speedup) <= LEE_DEFICIT_TOLERANCE) ++r.leeWithin;
+        }
         if (std::abs(m.xOverH) < 1e-9 && std::abs(m.dzOverH - 0.25) < std::abs(crestDz - 0.25))
             crestDz = m.dzOverH, r.crestSpeedup = model;
         if (std::abs(m.xOverH - 2.5) < 1e-9 && std::abs(m.dzOverH - 1.0) < std::abs(leeDz - 1.0))
@@ -169,7 +156,7 @@ Row runRidge(bool momentum, int cellsPerH, const std::vector<Measured>& data, in
     r.error = std::sqrt(sum2 / std::max(n, 1));
     r.errorName = "RMS speed-up error, " + std::to_string(n) + " points";
     // Against the free stream: the model's U_inf is its inflow fit's, not fitted to the hill.
-    const double uInf = wind.speed_mps / (RIDGE_FIT_SLOPE * std::log(RIDGE_H_M / RIDGE_Z0_M));
+    const double uInf = ridge::freeStream_mps(/*uniform=*/false);
     double sumInf = 0;
     for (const Measured& m : data) {
         const double d = u(m.xOverH, m.dzOverH) / uInf - m.uOverUinf;
@@ -268,6 +255,7 @@ Row runHemisphere(int cellsPerRadius) {
 }  // namespace
 
 int runBenchModels(const BenchModelsOptions& opt) {
+    if (opt.crestStudy) return runCrestStudy(/*cellsPerH=*/5);
     const std::string csvPath =
         opt.validationCsv.empty() ? std::string(GALE_VALIDATION_CSV) : opt.validationCsv;
     const std::vector<Measured> data = readValidation(csvPath);
@@ -295,7 +283,7 @@ int runBenchModels(const BenchModelsOptions& opt) {
     }
 
     std::printf("Both steady models: error against run time (docs/validation.md).\n");
-    std::printf("%-16s %-26s %-9s %14s %6s %5s %9s %10s %6s %6s  %s\n", "model", "case", "res.",
+    std::printf("%-16s %-26s %-12s %11s %6s %5s %9s %10s %6s %6s  %s\n", "model", "case", "res.",
                 "cells", "iters", "conv", "seconds", "error", "crest", "lee", "error measure");
     bool ok = true;
     std::ostringstream csv;
@@ -308,7 +296,7 @@ int runBenchModels(const BenchModelsOptions& opt) {
         std::snprintf(cells, sizeof cells, "%dx%dx%d", r.nx, r.ny, r.nz);
         const std::string crest = std::isnan(r.crestSpeedup) ? "" : formatFixed(r.crestSpeedup, 2);
         const std::string lee = std::isnan(r.leeSpeedup) ? "" : formatFixed(r.leeSpeedup, 2);
-        std::printf("%-16s %-26s %-9s %14s %6d %5s %9.2f %10.3e %6s %6s  %s\n", r.model.c_str(),
+        std::printf("%-16s %-26s %-12s %11s %6d %5s %9.2f %10.3e %6s %6s  %s\n", r.model.c_str(),
                     r.testCase.c_str(), r.resolution.c_str(), cells, r.iterations,
                     r.converged ? "yes" : "NO", r.seconds, r.error, crest.c_str(), lee.c_str(),
                     r.errorName.c_str());
@@ -341,11 +329,13 @@ int runBenchModels(const BenchModelsOptions& opt) {
         "\nRidge against the free stream (u / U_inf at dz = 0.25 H; measured: foot %.3f, "
         "crest %.3f)\n",
         MEASURED_FOOT_UINF_025H, MEASURED_CREST_UINF_025H);
-    std::printf("%-16s %-9s %8s %8s %14s\n", "model", "res.", "foot", "crest", "RMS u/U_inf");
+    std::printf("%-16s %-9s %8s %8s %14s   %s\n", "model", "res.", "foot", "crest", "RMS u/U_inf",
+                "lee deficits: points, same sign, within 0.15");
     for (const Row& r : rows)
         if (!std::isnan(r.rmsUinf))
-            std::printf("%-16s %-9s %8.3f %8.3f %14.3f\n", r.model.c_str(), r.resolution.c_str(),
-                        r.footUinf, r.crestUinf, r.rmsUinf);
+            std::printf("%-16s %-9s %8.3f %8.3f %14.3f   %d, %d, %d\n", r.model.c_str(),
+                        r.resolution.c_str(), r.footUinf, r.crestUinf, r.rmsUinf, r.leePoints,
+                        r.leeSameSign, r.leeWithin);
 
     // The pseudo-time step's effect on the momentum model's steady state (docs/validation.md):
     // a semi-Lagrangian fixed point carries a streamwise numerical viscosity of about

@@ -22,7 +22,16 @@ struct BenchModelsOptions {
     bool quick = false;              ///< the coarsest resolution of each case: a CI smoke run
     /// The validation data (cao-tamura-2006-ridge.csv); empty: the copy in the source tree.
     std::string validationCsv;
+    /// Instead of the table: the crest experiments on the ridge (runCrestStudy at H / h = 5).
+    bool crestStudy = false;
 };
+
+/// The crest experiments of docs/validation.md, section 3: the Cao and Tamura ridge at H / h =
+/// cellsPerH (> 0) solved by potential flow, the Euler equations, the momentum model with the eddy
+/// viscosity alone and with the wall stress, at two box heights; prints per case the crest's
+/// u / U_inf and speed-up at 0.25, 0.48 and 0.98 H and the closure's nu_t there against kappa u* z.
+/// Returns EXIT_OK when every solve converged, EXIT_UNMET otherwise. Throws what the solvers throw.
+int runCrestStudy(int cellsPerH);
 
 /// Runs the study. Returns EXIT_OK when every momentum solve converged and stayed finite,
 /// EXIT_UNMET otherwise (the table is written either way). Throws InputError (exit 2) when the
