@@ -32,6 +32,8 @@ struct BenchModelsOptions {
 /// cellsPerH (> 0) solved by potential flow, the Euler equations, the momentum model with the eddy
 /// viscosity alone and with the wall stress, at two box heights; prints per case the crest's
 /// u / U_inf and speed-up at 0.25, 0.48 and 0.98 H and the closure's nu_t there against kappa u* z.
+/// Then a sensitivity: the model with its inflow's log profile re-fitted so that its windward foot
+/// matches the measured foot below H, and the crest it gives.
 /// Returns EXIT_OK when every solve converged, EXIT_UNMET otherwise. Throws what the solvers throw.
 int runCrestStudy(int cellsPerH);
 
