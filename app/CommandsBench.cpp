@@ -147,6 +147,10 @@ void addModels(CLI::App& bench, VerbTable& verbs) {
     verb->add_flag("--crest", o->crestStudy,
                    "Instead: the crest experiments on the ridge (potential flow, Euler, eddy "
                    "viscosity, wall stress, box height; docs/validation.md section 3)");
+    verb->add_flag("--jackson-hunt", o->jacksonHunt,
+                   "Instead: the low cos^2 ridges (H / L = 0.025, 0.05, 0.1) against Jackson and "
+                   "Hunt (1975), in a 2-D box with free-slip side walls (docs/validation.md "
+                   "section 2)");
     verb->footer(EXIT_CODES_FOOTER);
     verbs.add(verb, [o] { return runBench([o] { return runBenchModels(*o); }); });
 }
