@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/bench/BenchModels.h"
@@ -31,6 +32,24 @@ struct CrestCase {
 
 /// Heights above the crest the study reports (the measured crest profile's, docs/validation.md).
 constexpr double CREST_DZ_OVER_H[3] = {0.25, 0.48, 0.98};
+
+/// The crest's columns of both tables at CREST_DZ_OVER_H: u / U_inf and the speed-up against the
+/// same run's windward foot (x = -2.5 H, the same height above the ground), each "a / b / c".
+/// u(xOverH, dz_m) is the field's streamwise speed (m/s) dz_m above the local ground.
+template <class Speed>
+std::pair<std::string, std::string> crestColumns(const Speed& u, double uInf_mps) {
+    std::string uinf, speedup;
+    char buf[32];
+    for (double dzH : CREST_DZ_OVER_H) {
+        const double dz = dzH * ridge::H_M;
+        std::snprintf(buf, sizeof buf, "%s%.3f", uinf.empty() ? "" : " / ", u(0, dz) / uInf_mps);
+        uinf += buf;
+        std::snprintf(buf, sizeof buf, "%s%.3f", speedup.empty() ? "" : " / ",
+                      u(0, dz) / u(-2.5, dz) - 1.0);
+        speedup += buf;
+    }
+    return {uinf, speedup};
+}
 /// The pseudo-time steps per level at most (the set-up's 205 steps converge well within it).
 constexpr int CREST_MAX_ITERATIONS = 1000;
 
@@ -119,15 +138,11 @@ int runCrestStudy(int cellsPerH) {
         // The inflow fit's friction velocity: u* = kappa U(H) / ln(H / z0).
         const double uStar =
             sim::surface::frictionVelocity_mps(ridge::REFERENCE_SPEED_MPS, ridge::H_M, ridge::Z0_M);
-        std::string uinf, speedup, nu;
+        const auto [uinf, speedup] = crestColumns(u, uInf);
+        std::string nu;
         char buf[32];
         for (double dzH : CREST_DZ_OVER_H) {
             const double dz = dzH * ridge::H_M;
-            std::snprintf(buf, sizeof buf, "%s%.3f", uinf.empty() ? "" : " / ", u(0, dz) / uInf);
-            uinf += buf;
-            std::snprintf(buf, sizeof buf, "%s%.3f", speedup.empty() ? "" : " / ",
-                          u(0, dz) / u(-2.5, dz) - 1.0);
-            speedup += buf;
             // The mixing-length closure's nu_t = l^2 |du/dz| from the field's own shear over the
             // crest (the dominant strain there), against the log layer's kappa u* z.
             const double shear = (u(0, dz + 0.5 * h) - u(0, dz - 0.5 * h)) / h;
@@ -175,16 +190,7 @@ int runCrestStudy(int cellsPerH) {
             sx += std::log(z), sy += target, sxx += std::log(z) * std::log(z);
             sxy += std::log(z) * target;
         }
-        std::string uinf, speedup;
-        char buf[32];
-        for (double dzH : CREST_DZ_OVER_H) {
-            const double dz = dzH * ridge::H_M;
-            std::snprintf(buf, sizeof buf, "%s%.3f", uinf.empty() ? "" : " / ", u(0, dz) / uInf);
-            uinf += buf;
-            std::snprintf(buf, sizeof buf, "%s%.3f", speedup.empty() ? "" : " / ",
-                          u(0, dz) / u(-2.5, dz) - 1.0);
-            speedup += buf;
-        }
+        const auto [uinf, speedup] = crestColumns(u, uInf);
         std::printf("%-5d %9.2f %8.4f %6d %5s %8.3f   %-23s   %-23s\n", fit, inflow.speed_mps,
                     inflow.roughness_m, r.steps, r.converged ? "yes" : "NO", std::sqrt(sumSq / 5),
                     uinf.c_str(), speedup.c_str());

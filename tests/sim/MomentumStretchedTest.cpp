@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "MomentumTestCases.h"
 #include "sim/AirDomain.h"
 #include "sim/Heightfield.h"
 #include "sim/MomentumTurbulence.h"
@@ -20,35 +21,7 @@
 namespace gale::sim {
 namespace {
 
-AmbientWind logWind(double speed_mps, double z0_m = 0.03) {
-    AmbientWind a;
-    a.profile = WindProfile::LogLaw;
-    a.speed_mps = speed_mps;
-    a.referenceHeight_m = 10.0;
-    a.roughness_m = z0_m;
-    return a;
-}
-
-/// Flat ground at groundZ_m under a 120 m x 8 m box (2 m spacing).
-Heightfield flatGround(double groundZ_m) {
-    TerrainSpec t;
-    t.kind = TerrainKind::Flat;
-    t.sizeX_m = 120, t.sizeY_m = 8, t.spacing_m = 2.0;
-    Heightfield hf = makeTerrain(t);
-    for (float& z : hf.height_m) z = float(groundZ_m);
-    return hf;
-}
-
-/// A two-dimensional Gaussian ridge across the wind (axis along y): height H, e-folding
-/// half-width sigma, crest at x = 150 m, in a 500 m long box three cells wide.
-Heightfield ridge(double height_m, double sigma_m, double cell_m) {
-    TerrainSpec t;
-    t.kind = TerrainKind::Ridge;
-    t.axis_deg = 90;
-    t.sizeX_m = 500, t.sizeY_m = 3 * cell_m, t.spacing_m = cell_m / 2;
-    t.height_m = height_m, t.radius_m = sigma_m, t.centerX_m = 150, t.centerY_m = 0;
-    return makeTerrain(t);
-}
+using testcases::flatGround, testcases::logWind, testcases::ridge;
 
 /// Stretched layers: h horizontally, the first layer first_m thick, growing by ratio.
 DomainSpec layers(double h_m, double first_m, double ratio = 1.2) {
