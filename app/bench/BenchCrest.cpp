@@ -24,8 +24,8 @@ namespace {
 /// One experiment: which model, which inflow, which stresses, which top.
 struct CrestCase {
     std::string name;
-    bool momentum = false;  ///< false: mass-consistent (a_h = a_v)
-    ridge::Inflow inflow = ridge::Inflow::Published;
+    bool momentum = false;                            ///< false: mass-consistent (a_h = a_v)
+    ridge::Inflow inflow = ridge::Inflow::Published;  ///< the approach flow (CaoTamuraRidge.h)
     bool eddyViscosity = true, wallStress = true;
     double topOverH = 6.0;    ///< the box's top, in ridge heights
     bool closedSides = true;  ///< free-slip y sides (DomainSpec::closedSidesY); false: open
@@ -131,7 +131,8 @@ int runCrestStudy(int cellsPerH) {
         const int steps = r.steps;
         const bool converged = r.converged;
         const double seconds = secondsSince(t0);
-        ok = ok && converged;
+        // The open-sided rows are diagnostics of a wrong set-up: their wake need not settle.
+        if (c.closedSides) ok = ok && converged;
         auto u = [&](double xOverH, double dz_m) {
             const double x = xOverH * ridge::H_M;
             return field.velocityAt_mps(x + ridge::UPWIND_M, y, ridge::height_m(x) + dz_m)[0];
