@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "app/bench/BenchModels.h"
@@ -38,14 +39,21 @@ double ridgeHeight_m(double H_m, double xFromCrest_m) {
     return H_m * c * c;
 }
 
-/// The ridge of height H_m sampled every CELL_M / 2 m, 3 cells across.
-sim::Heightfield terrain(double H_m) {
+/// Where the ridge sits against the grid: the whole ground raised by base_m (m, vertical) and the
+/// crest moved downwind by shift_m (m); both zero in the main table.
+struct GridOffset {
+    double base_m = 0, shift_m = 0;
+};
+
+/// The ridge of height H_m sampled every CELL_M / 2 m, 3 cells across, placed at offset.
+sim::Heightfield terrain(double H_m, GridOffset offset) {
     const double spacing = CELL_M / 2;
     const int nx = int(std::lround(LENGTH_M / spacing)) + 1, ny = 7;
     std::vector<float> z(size_t(nx) * ny);
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i)
-            z[size_t(j) * nx + i] = float(ridgeHeight_m(H_m, i * spacing - CREST_X_M));
+            z[size_t(j) * nx + i] =
+                float(offset.base_m + ridgeHeight_m(H_m, i * spacing - CREST_X_M - offset.shift_m));
     return sim::makeHeightfield(nx, ny, spacing, std::move(z));
 }
 
@@ -57,11 +65,11 @@ struct JhRun {
     double seconds = 0;
 };
 
-JhRun solve(double H_m, bool momentum) {
-    const sim::Heightfield hf = terrain(H_m);
+JhRun solve(double H_m, bool momentum, GridOffset offset = {}) {
+    const sim::Heightfield hf = terrain(H_m, offset);
     sim::DomainSpec spec;
     spec.voxelSize_m = CELL_M;
-    spec.top_m = TOP_M;
+    spec.top_m = TOP_M + offset.base_m;
     spec.momentumModel = momentum;
     spec.closedSidesY = true;  // a two-dimensional ridge: free-slip side walls
     sim::AmbientWind wind;
@@ -81,14 +89,15 @@ JhRun solve(double H_m, bool momentum) {
     r.seconds = secondsSince(t0);
     r.iterations = res.report.iterations;
     r.converged = res.report.converged;
-    const double y = hf.sizeY_m() / 2, zCrest = ridgeHeight_m(H_m, 0.0);
+    const double y = hf.sizeY_m() / 2, zCrest = offset.base_m + ridgeHeight_m(H_m, 0.0);
+    const double xCrest = CREST_X_M + offset.shift_m;
     auto speed = [&](double x, double z) {
         const auto u = res.field.velocityAt_mps(x, y, z);
         return std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
     };
     for (int k = 0; k < 3; ++k) {
-        const double upwind = speed(REFERENCE_X_M, DZ_M[k]);
-        r.speedup[k] = (speed(CREST_X_M, zCrest + DZ_M[k]) - upwind) / upwind;
+        const double upwind = speed(REFERENCE_X_M, offset.base_m + DZ_M[k]);
+        r.speedup[k] = (speed(xCrest, zCrest + DZ_M[k]) - upwind) / upwind;
     }
     return r;
 }
@@ -115,6 +124,29 @@ int runJacksonHuntStudy() {
                     m.speedup[0], m.speedup[0] / hl, m.speedup[1], m.speedup[1] / hl, m.speedup[2],
                     m.speedup[2] / hl, mc.speedup[0], m.iterations, m.converged ? "yes" : "NO",
                     m.seconds);
+        std::fflush(stdout);
+    }
+    // Does the crest's place in its cell set the coefficient at 6 m? The same ridges with the
+    // whole ground raised by a quarter, a half and three quarters of a cell (the crest and the
+    // sampled heights move against the cell centres; the ridge's shape does not change), and
+    // the middle ridge moved downwind by a quarter and a half cell.
+    std::printf(
+        "\nThe momentum model's Delta S / (H/L) with the ridge moved against the grid (ground "
+        "raised by base, crest moved downwind by shift)\n");
+    std::printf("%6s %7s %7s %18s %8s %8s %8s %6s %5s\n", "H/L", "base m", "shift m",
+                "crest in its cell", "6 m", "10 m", "20 m", "iters", "conv");
+    std::vector<std::pair<double, GridOffset>> moved;
+    for (double H : {5.0, 10.0, 20.0})
+        for (double base : {0.0, 0.25, 0.5, 0.75}) moved.push_back({H, {base * CELL_M, 0.0}});
+    for (double shift : {0.25, 0.5}) moved.push_back({10.0, {0.0, shift * CELL_M}});
+    for (const auto& [H, offset] : moved) {
+        const JhRun m = solve(H, /*momentum=*/true, offset);
+        const double hl = H / L_M, crestZ = offset.base_m + H;
+        ok = ok && m.converged && std::isfinite(m.speedup[0]);
+        std::printf("%6.3f %7.1f %7.1f %18.2f %8.2f %8.2f %8.2f %6d %5s\n", hl, offset.base_m,
+                    offset.shift_m, crestZ / CELL_M - std::floor(crestZ / CELL_M),
+                    m.speedup[0] / hl, m.speedup[1] / hl, m.speedup[2] / hl, m.iterations,
+                    m.converged ? "yes" : "NO");
         std::fflush(stdout);
     }
     return ok ? EXIT_OK : EXIT_UNMET;

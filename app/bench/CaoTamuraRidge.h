@@ -15,13 +15,30 @@ namespace gale::app::ridge {
 
 constexpr double H_M = 40.0;
 constexpr double B_M = 2.5 * H_M;  ///< half-width at the base
-constexpr double UPWIND_M = 10 * H_M, DOWNWIND_M = 20 * H_M;
-/// z0 of the least-squares log fit to the measured windward-foot profile (docs/validation.md).
-constexpr double Z0_M = 0.65;
-/// The slope of the same log fit, u / U_inf = A ln(z / z0) (docs/validation.md): the model's
-/// inflow (10 m/s at z = H, z0 above) is that fit, so its U_inf is 10 m/s / (A ln(H / z0)).
+/// The box along the wind: the published simulation set-up of this case (Exawind
+/// wall_stress_model, complex_terrain/2d_ridge) runs from -8.1 H to 24.4 H; whole ridge heights
+/// keep the crest on a cell face at every H / h the bench uses.
+constexpr double UPWIND_M = 8 * H_M, DOWNWIND_M = 24 * H_M;
+constexpr double TOP_OVER_H = 6.0;  ///< the box's top above the flat ground, as published (6 H)
+/// The published set-up's roughness of the ground and of the inflow's boundary layer: 4e-6 m
+/// at the tunnel's H = 0.04 m, z0 / H = 1e-4.
+constexpr double PUBLISHED_Z0_M = 1e-4 * H_M;
+/// History, not the validation: z0 of the least-squares log fit to the measured windward-foot
+/// profile, u / U_inf = FIT_SLOPE ln(z / z0) (docs/validation.md, section 3), with 10 m/s at z = H;
+/// its U_inf is 10 m/s / (FIT_SLOPE ln(H / z0)).
+constexpr double FOOT_FIT_Z0_M = 0.65;
 constexpr double FIT_SLOPE = 0.137;
-constexpr double REFERENCE_SPEED_MPS = 10.0;  ///< the inflow's speed at z = H
+constexpr double REFERENCE_SPEED_MPS = 10.0;  ///< the inflow's speed at its reference height
+
+/// Heights above the crest where the measured crest profile is reported (dz / H).
+constexpr double CREST_DZ_OVER_H[3] = {0.25, 0.48, 0.98};
+
+/// Which inflow a run uses.
+enum class Inflow {
+    Published,  ///< log law, z0 = PUBLISHED_Z0_M, 10 m/s at the top (6 H): U_inf = 10 m/s
+    FootFit,    ///< history: the log fit to the measured foot, 10 m/s at z = H
+    Uniform,    ///< 10 m/s at every height (the potential-flow and Euler diagnostics)
+};
 
 /// Ground height (m) of the ridge at xFromCrest_m (m, along the wind), z_s = H cos^2(pi x / 2b).
 inline double height_m(double xFromCrest_m) {
@@ -42,20 +59,36 @@ inline sim::Heightfield terrain(double h_m) {
     return sim::makeHeightfield(nx, ny, spacing, std::move(z));
 }
 
-/// The inflow: the log fit (10 m/s at z = H, z0 = Z0_M), or a uniform 10 m/s (the potential-flow
-/// and Euler diagnostics).
-inline sim::AmbientWind wind(bool uniform) {
+/// The inflow's ambient wind (speed in m/s, heights above the local ground in metres); its
+/// roughness_m is also the ground's z0 in the momentum model.
+inline sim::AmbientWind wind(Inflow inflow) {
     sim::AmbientWind w;
-    w.profile = uniform ? sim::WindProfile::Uniform : sim::WindProfile::LogLaw;
+    w.profile = inflow == Inflow::Uniform ? sim::WindProfile::Uniform : sim::WindProfile::LogLaw;
     w.speed_mps = REFERENCE_SPEED_MPS;
-    w.referenceHeight_m = H_M;
-    w.roughness_m = Z0_M;
+    w.referenceHeight_m = inflow == Inflow::Published ? TOP_OVER_H * H_M : H_M;
+    w.roughness_m = inflow == Inflow::FootFit ? FOOT_FIT_Z0_M : PUBLISHED_Z0_M;
     return w;
 }
 
-/// The free-stream speed U_inf (m/s) of the inflow: the log fit's, or the uniform speed.
-inline double freeStream_mps(bool uniform) {
-    return uniform ? REFERENCE_SPEED_MPS : REFERENCE_SPEED_MPS / (FIT_SLOPE * std::log(H_M / Z0_M));
+/// The free-stream speed U_inf (m/s) the measured u / U_inf is compared with: the published
+/// inflow's speed at the top (its reference), the foot fit's U_inf, or the uniform speed.
+inline double freeStream_mps(Inflow inflow) {
+    if (inflow == Inflow::FootFit)
+        return REFERENCE_SPEED_MPS / (FIT_SLOPE * std::log(H_M / FOOT_FIT_Z0_M));
+    return REFERENCE_SPEED_MPS;
+}
+
+/// A short label of the inflow for the bench's tables.
+inline const char* inflowName(Inflow inflow) {
+    switch (inflow) {
+        case Inflow::Published:
+            return "published";
+        case Inflow::FootFit:
+            return "foot fit (history)";
+        case Inflow::Uniform:
+            return "uniform";
+    }
+    return "";
 }
 
 }  // namespace gale::app::ridge
