@@ -27,7 +27,8 @@ struct LiveStepScene {
 struct BenchLiveStepOptions {
     std::vector<std::string> scenes;  ///< scene files with wind.kind = "unsteady"
     int steps = 30;                   ///< timed steps per scene (after one untimed warm-up step)
-    std::string jsonPath;             ///< if set, the rows as JSON (atomically)
+    std::string advection;  ///< a scheme's name replacing every scene's unsteady.advection, or ""
+    std::string jsonPath;   ///< if set, the rows as JSON (atomically)
     /// Builds a scene (app/bench cannot read scenes itself); throws what scene loading throws.
     std::function<LiveStepScene(const std::string& path)> loader;
 };
