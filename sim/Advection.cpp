@@ -71,6 +71,11 @@ struct LayoutLattice {
         const Vec3d s = g.sampleFaces(U, V, W, is);
         u[0] = s[0], u[1] = s[1], u[2] = s[2];
     }
+    /// sampleFaces at sample (i, j, k) of placement p, whose world position is ws.
+    void sampleFacesAt(Placement, int, int, int, const double* U, const double* V, const double* W,
+                       const double* ws, double* u, double* layer_m) const {
+        sampleFaces(U, V, W, ws, u, layer_m);
+    }
     double sample(Placement p, const double* q, const double* ws, double* lo, double* hi) const {
         return g.sample(p, q, g.isFromWs({ws[0], ws[1], ws[2]}), lo, hi);
     }
@@ -85,6 +90,13 @@ struct CubicLattice {
                      double* layer_m) const {
         *layer_m = h_m;
         lattice.sampleFaces(U, V, W, ws, u);
+    }
+    /// At a sample of the lattice the components come from its neighbours directly
+    /// (UniformLattice::facesAtSample: 1, 2 or 4 reads each instead of 8 and a stencil).
+    void sampleFacesAt(Placement p, int i, int j, int k, const double* U, const double* V,
+                       const double* W, const double*, double* u, double* layer_m) const {
+        *layer_m = h_m;
+        lattice.facesAtSample(p, i, j, k, U, V, W, u);
     }
     double sample(Placement p, const double* q, const double* ws, double* lo, double* hi) const {
         return lattice.sample(p, q, ws, lo, hi);
@@ -132,6 +144,12 @@ struct FaceVelocitySampler {
         }
         lattice.sampleFaces(U, V, W, ws, u, layer_m);
     }
+    /// operator() at sample (i, j, k) of placement p, whose world position is ws (metres).
+    void atSample(Placement p, int i, int j, int k, const double* ws, double* u,
+                  double* layer_m) const {
+        if (far && box.outside(ws)) return (*this)(ws, u, layer_m);
+        lattice.sampleFacesAt(p, i, j, k, U, V, W, ws, u, layer_m);
+    }
     const MacGrid& g;
     Lattice lattice;
     BoxSides box;
@@ -153,11 +171,17 @@ struct TraceStart {
     bool above;
 };
 
+/// The TraceStart at world point x0 (metres); with a sample (p, i, j, k) that lies at x0 the
+/// velocity there is read from the sample's neighbours (FaceVelocitySampler::atSample).
 template <class Lattice>
 TraceStart traceStart(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs,
-                      const double* x0, double groundTop_m) {
+                      const double* x0, double groundTop_m, const Placement* p = nullptr, int i = 0,
+                      int j = 0, int k = 0) {
     TraceStart s{};
-    velocityWs(x0, s.u, &s.layer_m);
+    if (p)
+        velocityWs.atSample(*p, i, j, k, x0, s.u, &s.layer_m);
+    else
+        velocityWs(x0, s.u, &s.layer_m);
     // Only a trace that starts above the surface is stopped by it (samples inside cut cells may
     // sit below the bilinear surface; they are traced freely until they emerge).
     s.above = x0[2] > groundTop_m || aboveGround_m(g, x0) >= 0.0;
@@ -240,7 +264,7 @@ std::vector<TraceStart> traceStarts(const MacGrid& g, Placement p, const MacVelo
                 const size_t idx = g.index(p, i, j, k);
                 if (mask && !(*mask)[idx]) continue;
                 const Vec3d x0 = g.wsPosition(p, i, j, k);
-                starts[idx] = traceStart(g, velocityWs, x0.data(), groundTop);
+                starts[idx] = traceStart(g, velocityWs, x0.data(), groundTop, &p, i, j, k);
             }
     });
     return starts;
@@ -271,7 +295,8 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                 const Vec3d x0 = g.wsPosition(p, i, j, k);
                 double dep[3];
                 traceWs(g, velocityWs, x0.data(),
-                        starts ? (*starts)[idx] : traceStart(g, velocityWs, x0.data(), groundTop),
+                        starts ? (*starts)[idx]
+                               : traceStart(g, velocityWs, x0.data(), groundTop, &p, i, j, k),
                         dt, groundTop, dep);
                 if (outside && velocityWs.box.outside(dep)) {
                     out[idx] = outside({dep[0], dep[1], dep[2]});
