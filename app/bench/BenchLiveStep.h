@@ -34,7 +34,8 @@ struct BenchLiveStepOptions {
 };
 
 /// Prints one row per scene: box, steps, CPU ms per step, wall ms per step, the CPU split over
-/// the phases, projection and viscosity iterations, the CPU/wall ratio and the load average.
+/// the phases, projection and viscosity iterations, the largest scaled divergence after a step's
+/// projection (StepReport::maxDivergenceScaled, dimensionless), and the load average.
 /// Returns EXIT_OK (a measurement, no target judged: the 30 Hz target is printed beside it).
 /// Throws std::runtime_error if the JSON cannot be written.
 int runBenchLiveStep(const BenchLiveStepOptions& options);
