@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "base/ParameterError.h"
@@ -164,7 +165,7 @@ constexpr int TERRAIN_BISECTIONS = 12;
 /// What a trace needs at its start point that does not depend on the direction of the trace:
 /// the velocity there (m/s), the thickness of its layer (m) and whether it lies on or above the
 /// terrain surface. The forward and backward passes of MacCormack and BFECC start from the same
-/// samples, so they compute it once (TraceStarts).
+/// samples, so the forward pass computes it and keeps it for the others.
 struct TraceStart {
     double u[3];
     double layer_m;
@@ -248,37 +249,17 @@ void traceWs(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs, c
     for (int a = 0; a < 3; ++a) dep[a] = x[a];
 }
 
-/// The TraceStart of every sample of one placement (index as the placement's array; masked-out
-/// samples are left default), computed once per advect() and shared by its passes; groundTop:
-/// terrainTop_m(g).
-template <class Lattice>
-std::vector<TraceStart> traceStarts(const MacGrid& g, Placement p, const MacVelocity& vel,
-                                    const FarField& far, const std::vector<uint8_t>* mask,
-                                    double groundTop) {
-    const auto n = g.dims(p);
-    std::vector<TraceStart> starts(g.count(p));
-    const FaceVelocitySampler<Lattice> velocityWs(g, vel, far);
-    tbb::parallel_for(0, n[2], [&](int k) {
-        for (int j = 0; j < n[1]; ++j)
-            for (int i = 0; i < n[0]; ++i) {
-                const size_t idx = g.index(p, i, j, k);
-                if (mask && !(*mask)[idx]) continue;
-                const Vec3d x0 = g.wsPosition(p, i, j, k);
-                starts[idx] = traceStart(g, velocityWs, x0.data(), groundTop, &p, i, j, k);
-            }
-    });
-    return starts;
-}
-
 /// One semi-Lagrangian pass; optionally records the min/max of the interpolation neighbours and
-/// whether the departure point left the box. `starts`: traceStarts() of this placement, or null
-/// to compute each on the way; groundTop: terrainTop_m(g).
+/// whether the departure point left the box. `starts`: the TraceStart of every sample of this
+/// placement (index as its array), or null to compute each on the way; `record` (with null
+/// starts): where to keep the ones computed, for the scheme's later passes (masked-out samples
+/// are not written). groundTop: terrainTop_m(g).
 template <class Lattice>
 void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                     const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
                     double dt, std::vector<double>& out, const std::vector<uint8_t>* mask,
-                    std::vector<double>* lo, std::vector<double>* hi,
-                    const std::vector<TraceStart>* starts, double groundTop) {
+                    std::vector<double>* lo, std::vector<double>* hi, const TraceStart* starts,
+                    TraceStart* record, double groundTop) {
     const auto n = g.dims(p);
     out.resize(q.size());
     if (lo) lo->resize(q.size()), hi->resize(q.size());
@@ -294,10 +275,13 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                 }
                 const Vec3d x0 = g.wsPosition(p, i, j, k);
                 double dep[3];
-                traceWs(g, velocityWs, x0.data(),
-                        starts ? (*starts)[idx]
-                               : traceStart(g, velocityWs, x0.data(), groundTop, &p, i, j, k),
-                        dt, groundTop, dep);
+                TraceStart start;
+                if (starts)
+                    start = starts[idx];
+                else
+                    start = traceStart(g, velocityWs, x0.data(), groundTop, &p, i, j, k);
+                if (record) record[idx] = start;
+                traceWs(g, velocityWs, x0.data(), start, dt, groundTop, dep);
                 if (outside && velocityWs.box.outside(dep)) {
                     out[idx] = outside({dep[0], dep[1], dep[2]});
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;  // no limiter on inflow
@@ -318,16 +302,18 @@ void advectWith(const MacGrid& g, Placement p, const std::vector<double>& q, con
     const double groundTop = terrainTop_m(g);  // a scan of the heightfield: once per call
     if (scheme == AdvectionScheme::SemiLagrangian) {
         semiLagrangian<Lattice>(g, p, q, vel, far, outside, dt, out, mask, nullptr, nullptr,
-                                nullptr, groundTop);
+                                nullptr, nullptr, groundTop);
         return;
     }
-    // Every pass starts its traces from the same samples through the same frozen velocity.
-    const std::vector<TraceStart> starts = traceStarts<Lattice>(g, p, vel, far, mask, groundTop);
+    // Every pass starts its traces from the same samples through the same frozen velocity: the
+    // forward pass computes each sample's start and keeps it for the others. Default-initialised
+    // (not zeroed): a masked-out sample's entry is never written nor read.
+    const std::unique_ptr<TraceStart[]> starts(new TraceStart[q.size()]);
     std::vector<double> fwd, back, lo, hi;
-    semiLagrangian<Lattice>(g, p, q, vel, far, outside, dt, fwd, mask, &lo, &hi, &starts,
-                            groundTop);
+    semiLagrangian<Lattice>(g, p, q, vel, far, outside, dt, fwd, mask, &lo, &hi, nullptr,
+                            starts.get(), groundTop);
     semiLagrangian<Lattice>(g, p, fwd, vel, far, outside, -dt, back, mask, nullptr, nullptr,
-                            &starts, groundTop);
+                            starts.get(), nullptr, groundTop);
     out.resize(q.size());
     if (scheme == AdvectionScheme::MacCormack) {
         // Selle et al. 2008: phi^{n+1} = phi_f + (phi^n - phi_b) / 2, limited.
@@ -343,7 +329,7 @@ void advectWith(const MacGrid& g, Placement p, const std::vector<double>& q, con
     tbb::parallel_for(size_t(0), q.size(),
                       [&](size_t idx) { corrected[idx] = q[idx] + 0.5 * (q[idx] - back[idx]); });
     semiLagrangian<Lattice>(g, p, corrected, vel, far, outside, dt, out, mask, nullptr, nullptr,
-                            &starts, groundTop);
+                            starts.get(), nullptr, groundTop);
     tbb::parallel_for(size_t(0), q.size(), [&](size_t idx) {
         const double v = out[idx];
         out[idx] = std::isfinite(v) ? std::clamp(v, lo[idx], hi[idx]) : fwd[idx];
