@@ -8,7 +8,8 @@
 /// base index with the placement's strides (every lattice has at least 2 samples per axis, so the
 /// upper sample is always the next one). Its answers equal the general sampler's to
 /// round-off (a multiplication by 1/h in place of a division by h), which
-/// tests/sim/AdvectionUniformLatticeTest.cpp checks.
+/// tests/sim/AdvectionUniformLatticeTest.cpp checks. At a sample of a lattice (where every trace
+/// starts) facesAtSample reads the velocity from the sample's neighbours without a stencil.
 
 #include <algorithm>
 #include <cstddef>
