@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -113,6 +114,9 @@ TEST(BenchLiveStep, AdvectionOptionReplacesTheScenesSchemeAndNamesItInTheRow) {
     EXPECT_EQ(rows[0].at("scene").get<std::string>(), "calm (maccormack)");
     EXPECT_EQ(rows[0].at("steps").get<int>(), 2);
     EXPECT_GT(rows[0].at("cpu_ms_per_step").get<double>(), 0.0);
+    // The projection leaves some divergence, never a negative or non-finite one.
+    const double div = rows[0].at("max_divergence_scaled").get<double>();
+    EXPECT_TRUE(std::isfinite(div) && div >= 0.0) << div;
 }
 
 TEST(BenchLiveStep, UnknownAdvectionSchemeIsBadInput) {
