@@ -31,6 +31,7 @@
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
 #include "coupling/UnsteadyFieldWind.h"
+#include "sim/Advection.h"
 
 namespace gale::app {
 namespace {
@@ -176,9 +177,10 @@ void addStability(CLI::App& bench, VerbTable& verbs) {
 }
 
 /// A scene's unsteady solver as `gale view` builds it (the step limited to an output frame), for
-/// `gale bench unsteady --live`. Throws what scene loading throws, and std::invalid_argument
-/// (exit 2, naming FILE:LINE of wind.kind) when the scene's wind is not unsteady.
-LiveStepScene loadLiveStepScene(const std::string& path) {
+/// `gale bench unsteady --live`; a non-empty `advection` (a scheme's name) replaces the scene's
+/// unsteady.advection. Throws what scene loading throws, and std::invalid_argument (exit 2,
+/// naming FILE:LINE of wind.kind) when the scene's wind is not unsteady.
+LiveStepScene loadLiveStepScene(const std::string& path, const std::string& advection) {
     struct Owned {
         Scene scene;
         BuiltScene built;
@@ -192,6 +194,8 @@ LiveStepScene loadLiveStepScene(const std::string& path) {
                                     ": bench unsteady --live needs \"unsteady\" (got \"" +
                                     windKindName(owned->scene.wind.kind) + "\")");
     limitUnsteadyStepToAFrame(owned->scene);  // as gale view does
+    if (!advection.empty())
+        owned->scene.unsteady.settings.advection = sim::advectionSchemeFromName(advection);
     BuildOptions build;
     build.progress = [](const std::string& text) {
         std::fprintf(stderr, "gale: %s\n", text.c_str());
@@ -200,7 +204,9 @@ LiveStepScene loadLiveStepScene(const std::string& path) {
     auto* unsteady = dynamic_cast<coupling::UnsteadyFieldWind*>(owned->built.wind.get());
     if (!unsteady)
         throw std::logic_error("bench unsteady --live: the unsteady scene built no solver");
-    return {std::filesystem::path(path).stem().string(), &unsteady->solver(), owned};
+    std::string name = std::filesystem::path(path).stem().string();
+    if (!advection.empty()) name += " (" + advection + ")";
+    return {name, &unsteady->solver(), owned};
 }
 
 void addUnsteady(CLI::App& bench, VerbTable& verbs) {
@@ -213,7 +219,9 @@ void addUnsteady(CLI::App& bench, VerbTable& verbs) {
         [live](BenchUnsteadyOptions& options) {
             if (live->scenes.empty()) return runBenchUnsteady(options);
             live->jsonPath = options.jsonPath;
-            live->loader = loadLiveStepScene;
+            live->loader = [live](const std::string& path) {
+                return loadLiveStepScene(path, live->advection);
+            };
             return runBenchLiveStep(*live);
         });
     verb->add_option("--out", o->outputFolder,
@@ -222,6 +230,10 @@ void addUnsteady(CLI::App& bench, VerbTable& verbs) {
     verb->add_option("--live", live->scenes,
                      "Only the live-wind step: CPU ms per step and its parts of this unsteady "
                      "scene's solver as gale view runs it (repeatable)");
+    verb->add_option("--advection", live->advection,
+                     "With --live: step every scene with this advection scheme instead of its "
+                     "unsteady.advection")
+        ->check(CLI::IsMember({"semi_lagrangian", "maccormack", "bfecc"}));
     verb->add_option("--steps", live->steps, "Timed steps per --live scene")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));

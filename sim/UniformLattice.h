@@ -8,7 +8,8 @@
 /// base index with the placement's strides (every lattice has at least 2 samples per axis, so the
 /// upper sample is always the next one). Its answers equal the general sampler's to
 /// round-off (a multiplication by 1/h in place of a division by h), which
-/// tests/sim/AdvectionUniformLatticeTest.cpp checks.
+/// tests/sim/AdvectionUniformLatticeTest.cpp checks. At a sample of a lattice (where every trace
+/// starts) facesAtSample reads the velocity from the sample's neighbours without a stencil.
 
 #include <algorithm>
 #include <cstddef>
@@ -59,20 +60,30 @@ class UniformLattice {
     /// The face and cell-centre stencils along `axis` at world coordinate ws_m (metres), clamped
     /// to each lattice like latticeStencil. A NaN coordinate clamps to the first sample.
     AxisPair axis(int axis, double ws_m) const {
+        const double c = indexCoordinate(axis, ws_m);
+        return {faceStencil(axis, c), cellStencil(axis, c)};
+    }
+
+    /// Index coordinate (cells) along `axis` of world coordinate ws_m (metres).
+    double indexCoordinate(int axis, double ws_m) const { return (ws_m - mMin[axis]) * mInvH; }
+
+    /// The stencil at index coordinate c on the face lattice of `axis` (samples at 0 .. n).
+    AxisStencil faceStencil(int axis, double c) const {
         const int n = mN[axis];
-        const double c = (ws_m - mMin[axis]) * mInvH;  // index coordinate, cells
-        AxisPair s;
-        // Face lattice: samples at 0 .. n.
         const double f = c > 0.0 ? (c < n ? c : double(n)) : 0.0;
         int i = int(f);
         if (i > n - 1) i = n - 1;
-        s.face = {i, i + 1, f - i};
-        // Cell-centre lattice: samples at 0.5 .. n - 0.5 (lattice coordinate c - 0.5).
+        return {i, i + 1, f - i};
+    }
+
+    /// The stencil at index coordinate c on the cell-centre lattice of `axis` (samples at
+    /// 0.5 .. n - 0.5, lattice coordinate c - 0.5).
+    AxisStencil cellStencil(int axis, double c) const {
+        const int n = mN[axis];
         const double e = c - 0.5 > 0.0 ? (c - 0.5 < n - 1 ? c - 0.5 : double(n - 1)) : 0.0;
         int j = int(e);
         if (j > n - 2) j = n - 2;
-        s.cell = {j, j + 1, e - j};
-        return s;
+        return {j, j + 1, e - j};
     }
 
     /// The three MAC components (same units as u, v, w) at world point ws_m (metres): u from its
@@ -86,14 +97,35 @@ class UniformLattice {
         out[2] = blendAt(2, w, x.cell, y.cell, z.face);
     }
 
+    /// The three MAC components (same units as u, v, w) at sample (i, j, k) of placement p (index
+    /// space; the sample must lie in p's lattice): what sampleFaces gives at that sample's world
+    /// position, from the samples themselves instead of a stencil. A component on p's own
+    /// placement is the sample's value; along an axis where the component sits half a cell off,
+    /// its two neighbours are averaged (one at a box side, where the lattice clamps), so each
+    /// component is 1, 2 or 4 reads. Equal to sampleFaces to round-off (the weights here are
+    /// exactly 1/2, there 1/2 up to the rounding of the world coordinate).
+    void facesAtSample(Placement p, int i, int j, int k, const double* u, const double* v,
+                       const double* w, double* out) const {
+        switch (p) {  // the placement as a constant, so the loops below unroll to straight reads
+            case Placement::FaceX:
+                return facesAt<0>(i, j, k, u, v, w, out);
+            case Placement::FaceY:
+                return facesAt<1>(i, j, k, u, v, w, out);
+            case Placement::FaceZ:
+                return facesAt<2>(i, j, k, u, v, w, out);
+            case Placement::Cell:
+                return facesAt<3>(i, j, k, u, v, w, out);
+        }
+    }
+
     /// Trilinear sample of q (placement p) at world point ws_m (metres), as GridLayout::sample at
     /// isFromWs(ws_m); lo/hi (both or neither) receive the min/max of the 8 values used.
     double sample(Placement p, const double* q, const double* ws_m, double* lo = nullptr,
                   double* hi = nullptr) const {
-        const AxisPair x = axis(0, ws_m[0]), y = axis(1, ws_m[1]), z = axis(2, ws_m[2]);
-        const AxisStencil& sx = p == Placement::FaceX ? x.face : x.cell;
-        const AxisStencil& sy = p == Placement::FaceY ? y.face : y.cell;
-        const AxisStencil& sz = p == Placement::FaceZ ? z.face : z.cell;
+        // One stencil per axis: the placement's own lattice along it.
+        const AxisStencil sx = stencilOn(p == Placement::FaceX, 0, ws_m[0]);
+        const AxisStencil sy = stencilOn(p == Placement::FaceY, 1, ws_m[1]);
+        const AxisStencil sz = stencilOn(p == Placement::FaceZ, 2, ws_m[2]);
         if (!lo) return blendAt(int(p), q, sx, sy, sz);
         const size_t Y = mStrideY[int(p)], Z = mStrideZ[int(p)];
         const double* c = q + size_t(sx.i0) + Y * size_t(sy.i0) + Z * size_t(sz.i0);
@@ -103,6 +135,38 @@ class UniformLattice {
     }
 
   private:
+    /// facesAtSample for placement P (Placement as an integer).
+    template <int P>
+    void facesAt(int i, int j, int k, const double* u, const double* v, const double* w,
+                 double* out) const {
+        const int at[3] = {i, j, k};
+        const double* q[3] = {u, v, w};
+        for (int c = 0; c < 3; ++c) {
+            size_t base = 0, step[3] = {0, 0, 0};
+            const size_t stride[3] = {1, mStrideY[c], mStrideZ[c]};
+            for (int a = 0; a < 3; ++a) {
+                const bool compFace = a == c, sampleFace = a == P;
+                int low = at[a], high = at[a];
+                if (sampleFace && !compFace)  // a face between two cell centres (clamped)
+                    low = std::max(at[a] - 1, 0), high = std::min(at[a], mN[a] - 1);
+                else if (compFace && !sampleFace)  // a cell centre between two faces
+                    high = at[a] + 1;
+                base += size_t(low) * stride[a];
+                step[a] = size_t(high - low) * stride[a];
+            }
+            // At most two axes are off: the component's own and the sample's face axis. An axis
+            // that is not off has a step of 0, so its "pair" is one value twice (exact).
+            const size_t offA = step[c], offB = P < 3 ? step[P < 3 ? P : 0] : 0;
+            const double* b = q[c] + base;
+            const double s0 = 0.5 * (b[0] + b[offA]), s1 = 0.5 * (b[offB] + b[offB + offA]);
+            out[c] = 0.5 * (s0 + s1);
+        }
+    }
+
+    AxisStencil stencilOn(bool faces, int axis, double ws_m) const {
+        const double c = indexCoordinate(axis, ws_m);
+        return faces ? faceStencil(axis, c) : cellStencil(axis, c);
+    }
     double blendAt(int p, const double* q, const AxisStencil& x, const AxisStencil& y,
                    const AxisStencil& z) const {
         const size_t Y = mStrideY[p], Z = mStrideZ[p];

@@ -5,6 +5,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -41,6 +42,7 @@ struct LiveRow {
     double cpu_ms = 0, wall_ms = 0;                                               ///< per step
     double advection = 0, forcing = 0, viscosity = 0, projection = 0, other = 0;  ///< wall shares
     double projectionIterations = 0, viscosityIterations = 0;                     ///< per step
+    double maxDivergence = 0;  ///< largest StepReport::maxDivergenceScaled of the timed steps
     double load = 0;
 };
 
@@ -59,6 +61,7 @@ LiveRow measure(const LiveStepScene& scene, int steps) {
         projection_s += r.projection_s, total_s += r.total_s;
         row.projectionIterations += r.projection.iterations;
         row.viscosityIterations += r.viscosityIterations;
+        row.maxDivergence = std::max(row.maxDivergence, r.maxDivergenceScaled);
     }
     row.cpu_ms = 1e3 * (processCpu_s() - cpu0_s) / steps;
     row.wall_ms = msSince(wall0) / steps;
@@ -80,9 +83,9 @@ int runBenchLiveStep(const BenchLiveStepOptions& opt) {
         "live-wind step (scene as gale view builds it; CPU ms: the process's CPU time per step, "
         "all threads; parts: the step's wall-time shares; target %.0f Hz = %.1f ms a step)\n",
         kTargetStepHz, 1e3 / kTargetStepHz);
-    std::printf("%-22s %-12s %5s %8s %8s %7s %7s %7s %7s %7s %7s %7s %6s\n", "scene", "box",
+    std::printf("%-22s %-12s %5s %8s %8s %7s %7s %7s %7s %7s %7s %7s %8s %6s\n", "scene", "box",
                 "steps", "CPU ms", "wall ms", "advect", "force", "visc", "project", "other",
-                "p its", "v its", "load");
+                "p its", "v its", "max div", "load");
     nlohmann::json rows = nlohmann::json::array();
     for (const std::string& path : opt.scenes) {
         std::fprintf(stderr, "bench unsteady: live step, %s...\n", path.c_str());
@@ -92,10 +95,10 @@ int runBenchLiveStep(const BenchLiveStepOptions& opt) {
             std::to_string(r.nx) + "x" + std::to_string(r.ny) + "x" + std::to_string(r.nz);
         std::printf(
             "%-22s %-12s %5d %8.1f %8.1f %6.0f%% %6.0f%% %6.0f%% %6.0f%% %6.0f%% %7.1f "
-            "%7.1f %6.1f\n",
+            "%7.1f %8.1e %6.1f\n",
             r.name.c_str(), box.c_str(), r.steps, r.cpu_ms, r.wall_ms, 100 * r.advection,
             100 * r.forcing, 100 * r.viscosity, 100 * r.projection, 100 * r.other,
-            r.projectionIterations, r.viscosityIterations, r.load);
+            r.projectionIterations, r.viscosityIterations, r.maxDivergence, r.load);
         rows.push_back({{"scene", r.name},
                         {"box", {r.nx, r.ny, r.nz}},
                         {"steps", r.steps},
@@ -108,6 +111,7 @@ int runBenchLiveStep(const BenchLiveStepOptions& opt) {
                         {"share_other", r.other},
                         {"projection_iterations", r.projectionIterations},
                         {"viscosity_iterations", r.viscosityIterations},
+                        {"max_divergence_scaled", r.maxDivergence},
                         {"load_average", r.load}});
     }
     if (!opt.jsonPath.empty()) {

@@ -27,13 +27,15 @@ struct LiveStepScene {
 struct BenchLiveStepOptions {
     std::vector<std::string> scenes;  ///< scene files with wind.kind = "unsteady"
     int steps = 30;                   ///< timed steps per scene (after one untimed warm-up step)
-    std::string jsonPath;             ///< if set, the rows as JSON (atomically)
+    std::string advection;  ///< a scheme's name replacing every scene's unsteady.advection, or ""
+    std::string jsonPath;   ///< if set, the rows as JSON (atomically)
     /// Builds a scene (app/bench cannot read scenes itself); throws what scene loading throws.
     std::function<LiveStepScene(const std::string& path)> loader;
 };
 
 /// Prints one row per scene: box, steps, CPU ms per step, wall ms per step, the CPU split over
-/// the phases, projection and viscosity iterations, the CPU/wall ratio and the load average.
+/// the phases, projection and viscosity iterations, the largest scaled divergence after a step's
+/// projection (StepReport::maxDivergenceScaled, dimensionless), and the load average.
 /// Returns EXIT_OK (a measurement, no target judged: the 30 Hz target is printed beside it).
 /// Throws std::runtime_error if the JSON cannot be written.
 int runBenchLiveStep(const BenchLiveStepOptions& options);

@@ -1,9 +1,11 @@
 // Live wind in `gale view` (under xvfb-run, as View.*): a scripted click drops a whirlwind where
 // the cursor meets the terrain and the grass there answers within a few frames; and `gale bench
-// view --quick` gives a row for every example scene.
+// view --quick` gives a row for every example scene; `gale bench unsteady --live --advection`
+// steps a scene with the scheme it names.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -99,6 +101,30 @@ TEST(View, LiveWindInputThatCannotBeReadIsBadInput) {
     EXPECT_NE(r.err.find("--input: entry '1:tornado:3,4': unknown action 'tornado'"),
               std::string::npos)
         << r.err;
+}
+
+TEST(BenchLiveStep, AdvectionOptionReplacesTheScenesSchemeAndNamesItInTheRow) {
+    TempDir dir;
+    writeFile(dir / "calm.toml", kCalmScene);
+    const RunResult r = runGale({"bench", "unsteady", "--live", dir / "calm.toml", "--advection",
+                                 "maccormack", "--steps", "2", "--json", dir / "live.json"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json rows = nlohmann::json::parse(readFile(dir / "live.json")).at("live_step");
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_EQ(rows[0].at("scene").get<std::string>(), "calm (maccormack)");
+    EXPECT_EQ(rows[0].at("steps").get<int>(), 2);
+    EXPECT_GT(rows[0].at("cpu_ms_per_step").get<double>(), 0.0);
+    // The projection leaves some divergence, never a negative or non-finite one.
+    const double div = rows[0].at("max_divergence_scaled").get<double>();
+    EXPECT_TRUE(std::isfinite(div) && div >= 0.0) << div;
+}
+
+TEST(BenchLiveStep, UnknownAdvectionSchemeIsBadInput) {
+    const RunResult r =
+        runGale({"bench", "unsteady", "--live",
+                 sourcePath("tests/data/live/live_box_64x64x24.toml"), "--advection", "upwind"});
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("--advection"), std::string::npos) << r.err;
 }
 
 TEST(BenchView, QuickRunGivesARowForEveryExampleScene) {

@@ -96,6 +96,37 @@ TEST(UniformLattice, SamplesEveryPlacementAsTheLayoutSamplerToRoundOff) {
     std::printf("largest difference of a sample: %.3g\n", worst);
 }
 
+TEST(UniformLattice, VelocityAtEverySampleFromItsNeighboursEqualsTheStencilSample) {
+    // The trace starts read the velocity at the samples themselves (facesAtSample); the oracle is
+    // the layout's general sampler at each sample's world position, every sample of every
+    // placement, the box's side faces (where the cell-centre lattices clamp) included.
+    const GridLayout g(NX, NY, NZ, H_M, WS_MIN_M);
+    const UniformLattice lattice(g);
+    std::mt19937 rng(13);
+    const std::vector<double> u = randomField(g.count(Placement::FaceX), rng),
+                              v = randomField(g.count(Placement::FaceY), rng),
+                              w = randomField(g.count(Placement::FaceZ), rng);
+    double worst = 0.0;
+    for (Placement p : {Placement::FaceX, Placement::FaceY, Placement::FaceZ, Placement::Cell}) {
+        const auto n = g.dims(p);
+        for (int k = 0; k < n[2]; ++k)
+            for (int j = 0; j < n[1]; ++j)
+                for (int i = 0; i < n[0]; ++i) {
+                    double fast[3];
+                    lattice.facesAtSample(p, i, j, k, u.data(), v.data(), w.data(), fast);
+                    const Vec3d ref = g.sampleFaces(u.data(), v.data(), w.data(),
+                                                    g.isFromWs(g.wsPosition(p, i, j, k)));
+                    for (int a = 0; a < 3; ++a) {
+                        worst = std::max(worst, std::abs(fast[a] - ref[size_t(a)]));
+                        ASSERT_NEAR(fast[a], ref[size_t(a)], SAMPLE_TOLERANCE)
+                            << "placement " << int(p) << " sample " << i << " " << j << " " << k
+                            << " component " << a;
+                    }
+                }
+    }
+    std::printf("largest difference of a velocity at a sample: %.3g\n", worst);
+}
+
 TEST(UniformLattice, ExtremeAndNonFiniteCoordinatesClampToTheBoxSamples) {
     const GridLayout g(NX, NY, NZ, H_M, WS_MIN_M);
     const UniformLattice lattice(g);
