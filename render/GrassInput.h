@@ -106,7 +106,7 @@ struct GrassParams {
     /// Level of detail (render/TerrainChunks.h): shells are dropped, thinning out first, where
     /// the shells that remain are at most this many pixels apart on screen; 0 draws every shell
     /// everywhere. >= 0.
-    float lodPixels = 2.0f;
+    float lodPixels = 3.0f;
 };
 
 /// An RGBA8 image, rows top-down.

@@ -4,13 +4,18 @@
 
 #include "render/RenderBench.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "render/CameraMath.h"
 #include "render/GlContext.h"
+#include "render/GlUtil.h"
 #include "render/GrassTexture.h"
 #include "render/ImageIO.h"
 #include "render/RenderLimits.h"
@@ -75,6 +80,23 @@ Lighting makeBenchLighting(int lights) {
     return lighting;
 }
 
+Camera benchCamera() {
+    Camera camera;
+    camera.wsPosition_m = glm::vec3(0.0f, -2.0f, 9.0f);
+    camera.wsTarget_m = glm::vec3(0.0f, 0.0f, 0.0f);
+    camera.fovY_deg = 45.0f;
+    camera.near_m = 0.5f;
+    camera.far_m = 200.0f;
+    return camera;
+}
+
+GrassTexture benchTexture() {
+    GrassTextureSpec spec;
+    spec.size = kTextureSize;
+    spec.seed = 2002;
+    return generateGrassTexture(spec);
+}
+
 }  // namespace
 
 TerrainMesh makeFlatGridMesh(int verticesPerSide, float size_m, float tile_m) {
@@ -120,17 +142,9 @@ ShellFillResult measureShellFill(const ShellFillCase& c) {
     grass.shells = c.layers - 1;
     grass.tile_m = kTile_m;
     grass.lodPixels = 0.0f;  // the table measures N full layers: no level of detail
-    GrassTextureSpec spec;
-    spec.size = kTextureSize;
-    spec.seed = 2002;
-    renderer.setGrass(grass, generateGrassTexture(spec));
+    renderer.setGrass(grass, benchTexture());
     renderer.setLighting(makeBenchLighting(c.lights));
-    Camera camera;
-    camera.wsPosition_m = glm::vec3(0.0f, -2.0f, 9.0f);
-    camera.wsTarget_m = glm::vec3(0.0f, 0.0f, 0.0f);
-    camera.fovY_deg = 45.0f;
-    camera.near_m = 0.5f;
-    camera.far_m = 200.0f;
+    const Camera camera = benchCamera();
     GrassWind wind = makeBenchWind(mesh);
 
     ShellFillResult result;
@@ -193,6 +207,218 @@ ShellFillResult measureShellFill(const ShellFillCase& c) {
     }
     result.coverage = static_cast<double>(covered) / (static_cast<double>(c.width) * c.height);
     return result;
+}
+
+namespace {
+
+double processCpu_ms() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+/// One row of the profile: a fragment variant of shaders/profile.frag and the fixed-function state
+/// it is drawn with; fragment < 0 is the full shell renderer.
+struct ProfileVariant {
+    const char* name;
+    int fragment;
+    GLenum minFilter;
+    GLenum magFilter;
+    bool depthTest;
+    bool bottomFirst;
+};
+
+constexpr GLenum kTrilinear = GL_LINEAR_MIPMAP_LINEAR;
+constexpr ProfileVariant kProfileVariants[] = {
+    {"flat colour, no texture, no alpha test", 0, kTrilinear, GL_LINEAR, true, false},
+    {"flat colour, alpha test on a pixel hash", 1, kTrilinear, GL_LINEAR, true, false},
+    {"nearest texel of level 0 (no MIP level)", 2, GL_NEAREST, GL_NEAREST, true, false},
+    {"nearest texel, nearest MIP level", 2, GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST, true, false},
+    {"bilinear, level 0 (no MIP level)", 2, GL_LINEAR, GL_LINEAR, true, false},
+    {"bilinear, nearest MIP level", 2, GL_LINEAR_MIPMAP_NEAREST, GL_LINEAR, true, false},
+    {"nearest texel, two MIP levels blended", 2, GL_NEAREST_MIPMAP_LINEAR, GL_NEAREST, true, false},
+    {"trilinear: the trivial fill", 2, kTrilinear, GL_LINEAR, true, false},
+    {"trilinear, MIP level from the shader (textureLod)", 3, kTrilinear, GL_LINEAR, true, false},
+    {"trilinear, times the vertex light", 4, kTrilinear, GL_LINEAR, true, false},
+    {"trilinear, plus 30 multiply-adds", 5, kTrilinear, GL_LINEAR, true, false},
+    {"trilinear, two fetches", 6, kTrilinear, GL_LINEAR, true, false},
+    {"trilinear, depth test off", 2, kTrilinear, GL_LINEAR, false, false},
+    {"trilinear, bottom layer first", 2, kTrilinear, GL_LINEAR, true, true},
+    {"full renderer (bend, 3 lights)", -1, kTrilinear, GL_LINEAR, true, false},
+};
+constexpr size_t kBaselineVariant = 7;
+static_assert(kProfileVariants[kBaselineVariant].fragment == 2 &&
+                  kProfileVariants[kBaselineVariant].minFilter == kTrilinear,
+              "the baseline row is the trilinear fill");
+
+}  // namespace
+
+std::vector<FillProfileRow> profileShellFill(const FillProfileCase& c) {
+    if (c.width < 1 || c.width > 16384 || c.height < 1 || c.height > 16384 || c.layers < 1 ||
+        c.layers > kMaxShells + 1 || c.frames < 1) {
+        throw std::invalid_argument(
+            "FillProfileCase: need width and height in 1..16384, layers in 1.." +
+            std::to_string(kMaxShells + 1) + " and frames >= 1, got " + std::to_string(c.width) +
+            " x " + std::to_string(c.height) + ", " + std::to_string(c.layers) + ", " +
+            std::to_string(c.frames));
+    }
+    auto context = createOsMesaContext(c.width, c.height);
+    // The full renderer, on the benchmark's own scene (measureShellFill's set-up).
+    ShellRenderer renderer(*context);
+    const TerrainMesh mesh = makeFlatGridMesh(17, kFieldSize_m, kTile_m);
+    renderer.setTerrain(mesh);
+    GrassParams grass;
+    grass.height_m = kGrassHeight_m;
+    grass.shells = c.layers - 1;
+    grass.tile_m = kTile_m;
+    grass.lodPixels = 0.0f;
+    const GrassTexture texture = benchTexture();
+    renderer.setGrass(grass, texture);
+    renderer.setLighting(makeBenchLighting(3));
+    const Camera camera = benchCamera();
+    GrassWind wind = makeBenchWind(mesh);
+    setFrameIntensities(wind, 0);
+
+    // The profile's own layers: the same mesh, texture and camera.
+    context->makeCurrent();
+    std::vector<float> vertices;  // position, normal, uv
+    for (size_t v = 0; v < mesh.wsPosition_m.size(); ++v) {
+        const glm::vec3& p = mesh.wsPosition_m[v];
+        const glm::vec3& n = mesh.wsNormal[v];
+        vertices.insert(vertices.end(), {p.x, p.y, p.z, n.x, n.y, n.z, mesh.uv[v].x, mesh.uv[v].y});
+    }
+    std::vector<uint32_t> indices;
+    for (int j = 0; j + 1 < mesh.ny; ++j) {
+        for (int i = 0; i + 1 < mesh.nx; ++i) {
+            const auto a = static_cast<uint32_t>(j * mesh.nx + i);
+            const auto nx = static_cast<uint32_t>(mesh.nx);
+            indices.insert(indices.end(), {a, a + 1, a + nx + 1, a, a + nx + 1, a + nx});
+        }
+    }
+    GLuint name = 0;
+    glGenVertexArrays(1, &name);
+    const detail::VertexArray vao(name);
+    glGenBuffers(1, &name);
+    const detail::Buffer vbo(name);
+    glGenBuffers(1, &name);
+    const detail::Buffer ibo(name);
+    glBindVertexArray(vao.get());
+    glBindBuffer(GL_ARRAY_BUFFER, vbo.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
+                 vertices.data(), GL_STATIC_DRAW);
+    const GLsizei stride = 8 * sizeof(float);
+    for (GLuint attribute = 0; attribute < 3; ++attribute) {
+        glEnableVertexAttribArray(attribute);
+        glVertexAttribPointer(attribute, attribute == 2 ? 2 : 3, GL_FLOAT, GL_FALSE, stride,
+                              reinterpret_cast<const void*>(size_t(3 * attribute) * sizeof(float)));
+    }
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo.get());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)), indices.data(),
+                 GL_STATIC_DRAW);
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glGenTextures(1, &name);
+    const detail::Texture grassTexture(name);
+    glBindTexture(GL_TEXTURE_2D, grassTexture.get());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (size_t l = 0; l < texture.levels.size(); ++l) {
+        const Image& level = texture.levels[l];
+        glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(l), GL_RGBA8, level.width, level.height, 0,
+                     GL_RGBA, GL_UNSIGNED_BYTE, level.rgba.data());
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL,
+                    static_cast<GLint>(texture.levels.size()) - 1);
+    glBindTexture(GL_TEXTURE_2D, 0);
+
+    constexpr size_t kVariants = std::size(kProfileVariants);
+    std::vector<detail::Program> programs(kVariants);
+    std::vector<detail::Sampler> samplers(kVariants);
+    const glm::mat4 clip =
+        clipFromWorld(camera, static_cast<float>(c.width) / static_cast<float>(c.height));
+    for (size_t k = 0; k < kVariants; ++k) {
+        const ProfileVariant& v = kProfileVariants[k];
+        if (v.fragment < 0) continue;
+        programs[k] = detail::Program(
+            detail::linkProgramFiles("profile.vert", "profile.frag",
+                                     "#define FRAGMENT " + std::to_string(v.fragment) + "\n"));
+        const GLuint p = programs[k].get();
+        glUseProgram(p);
+        glUniformMatrix4fv(glGetUniformLocation(p, "uClipFromWorld"), 1, GL_FALSE,
+                           glm::value_ptr(clip));
+        glUniform1i(glGetUniformLocation(p, "uShells"), c.layers - 1);
+        glUniform1f(glGetUniformLocation(p, "uShellSpacing"),
+                    c.layers > 1 ? kGrassHeight_m / static_cast<float>(c.layers - 1) : 0.0f);
+        glUniform1i(glGetUniformLocation(p, "uBottomFirst"), v.bottomFirst ? 1 : 0);
+        glUniform1i(glGetUniformLocation(p, "uGrass"), 0);
+        glGenSamplers(1, &name);
+        samplers[k] = detail::Sampler(name);
+        glSamplerParameteri(name, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(v.minFilter));
+        glSamplerParameteri(name, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(v.magFilter));
+        glSamplerParameteri(name, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glSamplerParameteri(name, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    }
+    glUseProgram(0);
+    detail::checkGlError("profileShellFill setup");
+
+    const auto drawVariant = [&](size_t k) {
+        const ProfileVariant& v = kProfileVariants[k];
+        if (v.fragment < 0) {
+            renderer.draw(camera, wind);
+            return;
+        }
+        context->makeCurrent();
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, c.width, c.height);
+        if (v.depthTest)
+            glEnable(GL_DEPTH_TEST);
+        else
+            glDisable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        glClearColor(ShellRenderer::kSkyColor[0], ShellRenderer::kSkyColor[1],
+                     ShellRenderer::kSkyColor[2], 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glUseProgram(programs[k].get());
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, grassTexture.get());
+        glBindSampler(0, samplers[k].get());
+        glBindVertexArray(vao.get());
+        glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_INT,
+                                nullptr, c.layers);
+        glBindVertexArray(0);
+        glBindSampler(0, 0);
+        glUseProgram(0);
+        glFinish();
+    };
+    for (size_t k = 0; k < kVariants; ++k) drawVariant(k);  // warm-up: compiles llvmpipe's code
+    std::vector<std::vector<double>> cpu_ms(kVariants);
+    std::vector<std::vector<double>> wall_ms(kVariants);
+    for (int f = 0; f < c.frames; ++f) {
+        for (size_t k = 0; k < kVariants; ++k) {
+            const double cpuStart_ms = processCpu_ms();
+            const auto wallStart = Clock::now();
+            drawVariant(k);
+            wall_ms[k].push_back(
+                std::chrono::duration<double, std::milli>(Clock::now() - wallStart).count());
+            cpu_ms[k].push_back(processCpu_ms() - cpuStart_ms);
+        }
+    }
+    detail::checkGlError("profileShellFill");
+    std::vector<FillProfileRow> rows;
+    for (size_t k = 0; k < kVariants; ++k) {
+        rows.push_back({kProfileVariants[k].name, median(cpu_ms[k]), median(wall_ms[k]),
+                        k == kBaselineVariant});
+    }
+    return rows;
 }
 
 }  // namespace gale::render

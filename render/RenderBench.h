@@ -5,6 +5,7 @@
 /// alpha-tested fill of the same geometry in the same run. The table and CLI live in app/.
 
 #include <string>
+#include <vector>
 
 #include "render/GrassInput.h"
 
@@ -44,5 +45,29 @@ TerrainMesh makeFlatGridMesh(int verticesPerSide, float size_m, float tile_m);
 /// std::chrono around glFinish, after c.warmupFrames untimed frames) and reports frames per
 /// second. Throws std::invalid_argument on a bad case, std::runtime_error on GL failures.
 ShellFillResult measureShellFill(const ShellFillCase& c);
+
+/// The fill profile: where a shell fragment's time goes on this GL. The benchmark's flat field and
+/// grass texture drawn as `layers` full-screen layers, once per variant, each changing one thing
+/// from the trivial fill (filter, fetches, arithmetic, alpha test, depth test, order), plus the
+/// full renderer.
+struct FillProfileCase {
+    int width = 640;   ///< framebuffer, pixels, 1..16384
+    int height = 480;  ///< pixels, 1..16384
+    int layers = 17;   ///< layers including the ground, 1..kMaxShells + 1
+    int frames = 8;    ///< timed rounds; every round draws every variant once, >= 1
+};
+
+struct FillProfileRow {
+    std::string name;       ///< what the variant changes
+    double cpu_ms = 0.0;    ///< median process CPU time per frame (all threads: llvmpipe's too), ms
+    double wall_ms = 0.0;   ///< median wall time per frame (draw to glFinish), ms
+    bool baseline = false;  ///< the trivial fill: trilinear fetch and alpha test
+};
+
+/// Runs the profile in a fresh headless context: one untimed round, then c.frames rounds that
+/// draw every variant once each (so load from other processes hits all alike), each frame cleared
+/// and finished. Rows come in a fixed order, exactly one with `baseline` set. Throws
+/// std::invalid_argument on a bad case, std::runtime_error on GL failures.
+std::vector<FillProfileRow> profileShellFill(const FillProfileCase& c);
 
 }  // namespace gale::render

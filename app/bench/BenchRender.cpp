@@ -44,6 +44,49 @@ constexpr PaperRow kPaperRows[] = {
 constexpr double kTargetRatioToPaper = 2.0;
 constexpr double kTargetRatioToTrivial = 0.7;
 
+/// `gale bench render --profile`: the fill profile's table (CPU ms per frame and its ratio to the
+/// trilinear fill), and its JSON.
+int runFillProfile(const BenchRenderOptions& options) {
+    render::FillProfileCase c;
+    c.frames = options.quick ? 2 : options.frames;
+    const std::vector<render::FillProfileRow> rows = render::profileShellFill(c);
+    double baseline_ms = 0.0;
+    for (const render::FillProfileRow& row : rows)
+        if (row.baseline) baseline_ms = row.cpu_ms;
+    std::printf(
+        "Where a shell fragment's time goes: the benchmark's flat field, %d layers at %d x %d, "
+        "median of %d rounds (every round draws every variant once)\n",
+        c.layers, c.width, c.height, c.frames);
+    std::printf(
+        "cpu ms = process CPU time per frame, all of llvmpipe's threads (steadier than wall time "
+        "on a loaded machine)\n\n");
+    std::printf("%-52s  %9s  %9s  %12s\n", "variant", "cpu ms", "wall ms", "cpu / trivial");
+    nlohmann::json jsonRows = nlohmann::json::array();
+    for (const render::FillProfileRow& row : rows) {
+        const double ratio = baseline_ms > 0.0 ? row.cpu_ms / baseline_ms : 0.0;
+        std::printf("%-52s  %9.2f  %9.2f  %12.2f\n", row.name.c_str(), row.cpu_ms, row.wall_ms,
+                    ratio);
+        jsonRows.push_back({{"variant", row.name},
+                            {"cpu_ms", row.cpu_ms},
+                            {"wall_ms", row.wall_ms},
+                            {"cpu_ratio_to_trivial", ratio},
+                            {"baseline", row.baseline}});
+    }
+    if (options.quick) std::printf("(quick run: %d rounds, not a measurement)\n", c.frames);
+    if (!options.jsonPath.empty()) {
+        nlohmann::json doc;
+        doc["benchmark"] = "render_profile";
+        doc["layers"] = c.layers;
+        doc["width"] = c.width;
+        doc["height"] = c.height;
+        doc["rounds"] = c.frames;
+        doc["rows"] = jsonRows;
+        writeTextAtomic(options.jsonPath, doc.dump(2) + "\n");
+        std::fprintf(stderr, "bench render: wrote %s\n", options.jsonPath.c_str());
+    }
+    return EXIT_OK;
+}
+
 }  // namespace
 
 int runBenchRender(const BenchRenderOptions& options) {
@@ -51,6 +94,7 @@ int runBenchRender(const BenchRenderOptions& options) {
         throw std::invalid_argument("bench render: --frames must be >= 1, got " +
                                     std::to_string(options.frames));
     }
+    if (options.profile) return runFillProfile(options);
     const int frames = options.quick ? 2 : options.frames;
     const int warmup = options.quick ? 1 : 2;
 

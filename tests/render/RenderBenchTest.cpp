@@ -1,6 +1,9 @@
 // The fill-rate measurement behind `gale bench render` (paper Table 2 layout).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <vector>
+
 #include "render/RenderBench.h"
 
 namespace gale::render {
@@ -41,6 +44,36 @@ TEST(RenderBench, RejectsBadCase) {
     c.layers = 9;
     c.lights = 17;
     EXPECT_THROW(measureShellFill(c), std::invalid_argument);
+}
+
+TEST(FillProfile, EveryVariantIsTimedAndOneIsTheTrivialFill) {
+    FillProfileCase c;
+    c.width = 32;
+    c.height = 24;
+    c.layers = 3;
+    c.frames = 1;
+    const std::vector<FillProfileRow> rows = profileShellFill(c);
+    ASSERT_GE(rows.size(), 10u);
+    int baselines = 0;
+    for (const FillProfileRow& row : rows) {
+        EXPECT_FALSE(row.name.empty());
+        EXPECT_TRUE(std::isfinite(row.cpu_ms) && row.cpu_ms >= 0.0) << row.name;
+        EXPECT_TRUE(std::isfinite(row.wall_ms) && row.wall_ms > 0.0) << row.name;
+        if (row.baseline) {
+            ++baselines;
+            EXPECT_NE(row.name.find("trilinear"), std::string::npos);
+        }
+    }
+    EXPECT_EQ(baselines, 1);
+}
+
+TEST(FillProfile, RejectsBadCase) {
+    FillProfileCase c;
+    c.layers = 0;
+    EXPECT_THROW(profileShellFill(c), std::invalid_argument);
+    c.layers = 17;
+    c.frames = 0;
+    EXPECT_THROW(profileShellFill(c), std::invalid_argument);
 }
 
 TEST(RenderBench, FlatGridHasUpNormalsAndTiledUv) {
