@@ -54,11 +54,36 @@
 
 namespace gale::sim {
 
+/// The advection of the pseudo-time step (docs/validation.md, "Pseudo-time step and its error").
+enum class PseudoTimeAdvection {
+    /// The unsteady solver's semi-Lagrangian step: stable at any cfl, but its fixed point carries
+    /// a streamwise numerical viscosity that grows with the step (the steady state depends on cfl).
+    SemiLagrangian,
+    /// Explicit Eulerian upwind with van Leer slopes (sim/MomentumAdvection.h): a steady residual
+    /// without dt, stable for eulerianCfl <= EULERIAN_MAX_CFL.
+    Eulerian,
+};
+
+/// "semi_lagrangian", "eulerian" and back; fromName throws gale::ParameterError
+/// (solver.momentum_advection) listing the valid names.
+const char* pseudoTimeAdvectionName(PseudoTimeAdvection a);
+PseudoTimeAdvection pseudoTimeAdvectionFromName(const std::string& name);
+
 struct MomentumSettings {
-    /// Pseudo-time step: dt = cfl h / U_max (U_max the start field's largest face speed), > 0.
-    /// The semi-Lagrangian step is stable at any cfl; larger steps converge in fewer iterations
-    /// with a larger splitting error.
+    PseudoTimeAdvection advection = PseudoTimeAdvection::SemiLagrangian;
+    /// Semi-Lagrangian pseudo-time step: dt = cfl h / U_max (U_max the start field's largest face
+    /// speed), > 0. Stable at any cfl; larger steps converge in fewer iterations with a larger
+    /// error.
     double cfl = 2.0;
+    /// Eulerian pseudo-time step: dt = eulerianCfl / R, R = eulerianRate_ps() of each level's
+    /// start field (max over faces of |u| / h + |v| / h + |w| / dz), in (0, EULERIAN_MAX_CFL];
+    /// below the limit by a margin for the iterate's speeds above the start's.
+    double eulerianCfl = 0.4;
+    /// With the Eulerian step: the incremental pressure correction (Goda 1979; UnsteadySettings::
+    /// incrementalPressure), which takes the implicit stress step's action on the pressure
+    /// gradient out of the fixed point. Off: on a cliff it diverges within 30 steps at any step
+    /// size (docs/validation.md, "Pseudo-time step and its error"). A diagnostic, no scene key.
+    bool incrementalPressure = false;
     int maxIterations = 300;          ///< pseudo-time steps at most, >= 1
     double residualTolerance = 1e-4;  ///< converged when the RMS momentum residual is <= this, > 0
     double displacementHeight_m = 0.0;  ///< d of the log law (about 2/3 of tall grass), m, >= 0
