@@ -12,6 +12,9 @@
 /// of the step a steady solution: the projection's potential is then -dt times the pressure (up to
 /// the splitting error of the advection, O(dt), which the report's dt lets a reader judge;
 /// docs/validation.md derives it: a streamwise numerical viscosity of about cfl U h / 2).
+/// MomentumSettings::advection = Eulerian replaces the semi-Lagrangian advection by an explicit
+/// Eulerian step (sim/MomentumAdvection.h) whose steady residual contains no dt, with the step
+/// dt = eulerianCfl / (|u| / h + |v| / h + |w| / dz)_max below its stability limit of 1/2.
 /// Coarse-grid start (MomentumSettings::coarseLevels): the same iteration on boxes of 2h, 4h, ...
 /// cells first, where a step costs 1/8, 1/64, ... and the wind's first crossing of the box is
 /// made; each finer level starts from the coarser level's correction to the mass-consistent
@@ -82,7 +85,8 @@ struct MomentumSettings {
     /// With the Eulerian step: the incremental pressure correction (Goda 1979; UnsteadySettings::
     /// incrementalPressure), which takes the implicit stress step's action on the pressure
     /// gradient out of the fixed point. Off: on a cliff it diverges within 30 steps at any step
-    /// size (docs/validation.md, "Pseudo-time step and its error"). A diagnostic, no scene key.
+    /// size (docs/validation.md, "Pseudo-time step and its error"). A diagnostic, no scene key;
+    /// its 24 B per cell (the summed gradient) are not in MOMENTUM_EXTRA_BYTES_PER_CELL.
     bool incrementalPressure = false;
     int maxIterations = 300;          ///< pseudo-time steps at most, >= 1
     double residualTolerance = 1e-4;  ///< converged when the RMS momentum residual is <= this, > 0
