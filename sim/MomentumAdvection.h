@@ -27,14 +27,15 @@
 /// eulerianRate_ps() measures.
 ///
 /// Boundaries. A neighbour outside the box through an x or y side or the top reads `outside`
-/// (the far field: the inflow's values where air enters; on an outflow side the upwind stencil
-/// never reaches out, and the limiter's downstream neighbour is the far field, clamped to the
-/// box, i.e. zero gradient). Below the box's bottom the lowest sample is repeated. Faces the
-/// solver does not update (mask 0: inside the terrain, or between a solid and an air cell) hold
-/// the values the solver extrapolates into them after every projection (the face above's), so the
-/// stencil sees zero gradient into the ground; the ground's stress is the wall function's, not
-/// the advection's, and no velocity crosses a closed face because closed faces are never
-/// updated here.
+/// (the far field: the inflow's values where air enters). On an outflow side the upwind stencil
+/// needs no value from outside; only the limiter's downstream slope reads the far field there
+/// (the momentum model's start field held at the box side), so an outflow face is advected by
+/// its own upwind values and needs no boundary condition. Below the box's bottom the lowest sample
+/// is repeated. Faces the solver does not update (mask 0: inside the terrain, or between a solid
+/// and an air cell) hold the values the solver extrapolates into them after every projection (the
+/// face above's), so the stencil sees zero gradient into the ground; the ground's stress is the
+/// wall function's, not the advection's, and no velocity crosses a closed face because closed faces
+/// are never updated here.
 
 #include <array>
 #include <cstdint>
