@@ -157,6 +157,11 @@ void addModels(CLI::App& bench, VerbTable& verbs) {
                    "Instead: the low cos^2 ridges (H / L = 0.025, 0.05, 0.1) against Jackson and "
                    "Hunt (1975), in a 2-D box with free-slip side walls (docs/validation.md "
                    "section 2)");
+    verb->add_flag(
+        "--pseudo-time", o->pseudoTime,
+        "Instead: the momentum model's steady state on a gentle and a steep ridge "
+        "against its pseudo-time step, semi-Lagrangian and Eulerian (docs/validation.md, "
+        "\"Pseudo-time step and its error\")");
     verb->footer(EXIT_CODES_FOOTER);
     verbs.add(verb, [o] { return runBench([o] { return runBenchModels(*o); }); });
 }

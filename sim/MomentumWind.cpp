@@ -14,6 +14,7 @@
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
 #include "sim/Format.h"
+#include "sim/MomentumAdvection.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
 
@@ -55,9 +56,24 @@ Change changeOver(const std::vector<double>& a, const std::vector<double>& b,
 
 }  // namespace
 
+const char* pseudoTimeAdvectionName(PseudoTimeAdvection a) {
+    return a == PseudoTimeAdvection::Eulerian ? "eulerian" : "semi_lagrangian";
+}
+
+PseudoTimeAdvection pseudoTimeAdvectionFromName(const std::string& name) {
+    for (PseudoTimeAdvection a :
+         {PseudoTimeAdvection::SemiLagrangian, PseudoTimeAdvection::Eulerian})
+        if (name == pseudoTimeAdvectionName(a)) return a;
+    throw ParameterError("solver.momentum_advection", "\"" + name + "\"",
+                         "one of \"semi_lagrangian\", \"eulerian\"");
+}
+
 void MomentumSettings::validate() const {
     if (!(cfl > 0.0) || !std::isfinite(cfl))
         throw std::logic_error("MomentumSettings::cfl must be > 0 and finite, got " + num(cfl));
+    if (!(eulerianCfl > 0.0) || !(eulerianCfl <= EULERIAN_MAX_CFL))
+        throw std::logic_error("MomentumSettings::eulerianCfl must be in (0, " +
+                               num(EULERIAN_MAX_CFL) + "], got " + num(eulerianCfl));
     if (maxIterations < 1)
         throw ParameterError("solver.momentum_max_iterations", std::to_string(maxIterations),
                              "must be >= 1");
@@ -223,11 +239,21 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
         for (double x : *a) uMax = std::max(uMax, std::abs(x));
     if (!(uMax > 0.0) || !std::isfinite(uMax)) uMax = uRef;
     const double h = domain.voxelSize_m();
-    lv.dt_s = settings.cfl * h / uMax;
+    const bool eulerian = settings.advection == PseudoTimeAdvection::Eulerian;
+    if (eulerian) {
+        const MacGrid grid(domain.layout(), &domain.terrain());
+        const WindField& F = start.field;
+        const double rate = eulerianRate_ps(grid, {&F.u_mps(), &F.v_mps(), &F.w_mps()});
+        lv.dt_s = settings.eulerianCfl / (rate > 0.0 && std::isfinite(rate) ? rate : uMax / h);
+    } else {
+        lv.dt_s = settings.cfl * h / uMax;
+    }
 
     UnsteadySettings us;
     us.dt_s = lv.dt_s;
     us.openTop = true;
+    us.eulerianAdvection = eulerian;
+    us.incrementalPressure = eulerian && settings.incrementalPressure;
     us.projection = settings.projection;
     us.surfaceLayer.enabled = settings.eddyViscosity || settings.wallStress;
     us.surfaceLayer.roughness_m = ambient.roughness_m;

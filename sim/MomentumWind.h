@@ -12,6 +12,9 @@
 /// of the step a steady solution: the projection's potential is then -dt times the pressure (up to
 /// the splitting error of the advection, O(dt), which the report's dt lets a reader judge;
 /// docs/validation.md derives it: a streamwise numerical viscosity of about cfl U h / 2).
+/// MomentumSettings::advection = Eulerian replaces the semi-Lagrangian advection by an explicit
+/// Eulerian step (sim/MomentumAdvection.h) whose steady residual contains no dt, with the step
+/// dt = eulerianCfl / (|u| / h + |v| / h + |w| / dz)_max below its stability limit of 1/2.
 /// Coarse-grid start (MomentumSettings::coarseLevels): the same iteration on boxes of 2h, 4h, ...
 /// cells first, where a step costs 1/8, 1/64, ... and the wind's first crossing of the box is
 /// made; each finer level starts from the coarser level's correction to the mass-consistent
@@ -54,11 +57,37 @@
 
 namespace gale::sim {
 
+/// The advection of the pseudo-time step (docs/validation.md, "Pseudo-time step and its error").
+enum class PseudoTimeAdvection {
+    /// The unsteady solver's semi-Lagrangian step: stable at any cfl, but its fixed point carries
+    /// a streamwise numerical viscosity that grows with the step (the steady state depends on cfl).
+    SemiLagrangian,
+    /// Explicit Eulerian upwind with van Leer slopes (sim/MomentumAdvection.h): a steady residual
+    /// without dt, stable for eulerianCfl <= EULERIAN_MAX_CFL.
+    Eulerian,
+};
+
+/// "semi_lagrangian", "eulerian" and back; fromName throws gale::ParameterError
+/// (solver.momentum_advection) listing the valid names.
+const char* pseudoTimeAdvectionName(PseudoTimeAdvection a);
+PseudoTimeAdvection pseudoTimeAdvectionFromName(const std::string& name);
+
 struct MomentumSettings {
-    /// Pseudo-time step: dt = cfl h / U_max (U_max the start field's largest face speed), > 0.
-    /// The semi-Lagrangian step is stable at any cfl; larger steps converge in fewer iterations
-    /// with a larger splitting error.
+    PseudoTimeAdvection advection = PseudoTimeAdvection::SemiLagrangian;
+    /// Semi-Lagrangian pseudo-time step: dt = cfl h / U_max (U_max the start field's largest face
+    /// speed), > 0. Stable at any cfl; larger steps converge in fewer iterations with a larger
+    /// error.
     double cfl = 2.0;
+    /// Eulerian pseudo-time step: dt = eulerianCfl / R, R = eulerianRate_ps() of each level's
+    /// start field (max over faces of |u| / h + |v| / h + |w| / dz), in (0, EULERIAN_MAX_CFL];
+    /// below the limit by a margin for the iterate's speeds above the start's.
+    double eulerianCfl = 0.4;
+    /// With the Eulerian step: the incremental pressure correction (Goda 1979; UnsteadySettings::
+    /// incrementalPressure), which takes the implicit stress step's action on the pressure
+    /// gradient out of the fixed point. Off: on a cliff it diverges within 30 steps at any step
+    /// size (docs/validation.md, "Pseudo-time step and its error"). A diagnostic, no scene key;
+    /// its 24 B per cell (the summed gradient) are not in MOMENTUM_EXTRA_BYTES_PER_CELL.
+    bool incrementalPressure = false;
     int maxIterations = 300;          ///< pseudo-time steps at most, >= 1
     double residualTolerance = 1e-4;  ///< converged when the RMS momentum residual is <= this, > 0
     double displacementHeight_m = 0.0;  ///< d of the log law (about 2/3 of tall grass), m, >= 0

@@ -14,6 +14,7 @@
 #include "base/ParameterError.h"
 #include "sim/FaceExtrapolation.h"
 #include "sim/Format.h"
+#include "sim/MomentumAdvection.h"
 #include "sim/SteadyWind.h"
 #include "sim/Viscosity.h"
 
@@ -478,8 +479,12 @@ StepReport UnsteadyWindSolver::step(double dt) {
         const std::vector<uint8_t>* masks[3] = {&mOkX, &mOkY, &mOkZ};
         for (int c = 0; c < 3; ++c) {
             const OutsideValue outside = [&, c](const Vec3d& p) { return farField_mps(p, t1)[c]; };
-            advect(mGrid, Placement(c), *src[c], vel, far, outside, dt, mSettings.advection,
-                   *dst[c], masks[c]);
+            if (mSettings.eulerianAdvection)
+                (void)advectEulerian(mGrid, Placement(c), *src[c], vel, outside, dt, *dst[c],
+                                     masks[c]);
+            else
+                advect(mGrid, Placement(c), *src[c], vel, far, outside, dt, mSettings.advection,
+                       *dst[c], masks[c]);
         }
     }
     rep.advection_s = since(t);
@@ -504,6 +509,21 @@ StepReport UnsteadyWindSolver::step(double dt) {
     if (forcing) rep.forcingEnergy_m5ps2 = kineticEnergy_m5ps2() - keBeforeForces;
     rep.forcing_s += since(t);
 
+    // Incremental pressure (Goda 1979): add the summed projection corrections before the stress
+    // step; the projection below then adds only the increment, recorded as after - before.
+    std::vector<double>* comps[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
+    const std::vector<uint8_t>* okMasks[3] = {&mOkX, &mOkY, &mOkZ};
+    auto addGradPsi = [&](double sign) {
+        for (int c = 0; c < 3; ++c) {
+            if (mGradPsi[c].empty()) mGradPsi[c].assign(comps[c]->size(), 0.0);
+            for (size_t f = 0; f < mGradPsi[c].size(); ++f)
+                if ((*okMasks[c])[f]) mGradPsi[c][f] += sign * (*comps[c])[f];
+        }
+    };
+    if (mSettings.incrementalPressure && !mGradPsi[0].empty())
+        for (int c = 0; c < 3; ++c)
+            for (size_t f = 0; f < mGradPsi[c].size(); ++f) (*comps[c])[f] += mGradPsi[c][f];
+
     // 4. viscosity: the surface layer's stresses, or a constant viscosity.
     if (mStress) {
         t = Clock::now();
@@ -521,7 +541,9 @@ StepReport UnsteadyWindSolver::step(double dt) {
 
     // 5. projection.
     t = Clock::now();
+    if (mSettings.incrementalPressure) addGradPsi(-1.0);
     rep.projection = project(mSettings.projection, dt);
+    if (mSettings.incrementalPressure) addGradPsi(+1.0);
     rep.projection_s = since(t);
 
     mTime_s = t1;

@@ -68,6 +68,13 @@ namespace gale::sim {
 
 struct UnsteadySettings {
     AdvectionScheme advection = AdvectionScheme::SemiLagrangian;
+    /// The steady momentum model's explicit Eulerian step (sim/MomentumAdvection.h) instead of
+    /// `advection`; stable only for dt within EULERIAN_MAX_CFL (the caller's choice of dt).
+    bool eulerianAdvection = false;
+    /// Incremental pressure correction (Goda 1979), for the steady momentum model: the last
+    /// projections' summed gradient is added before the stress step and the projection solves
+    /// for the increment, so a fixed point's stress does not act on the pressure gradient.
+    bool incrementalPressure = false;
     double dt_s = 0.0;            ///< fixed step, seconds; 0: adaptive from cfl
     double cfl = 2.0;             ///< adaptive: cellRate_ps() dt (max |u| dt / h on cubes), > 0
     double maxDt_s = 1.0;         ///< adaptive: longest step, seconds (used in calm air), > 0
@@ -203,7 +210,8 @@ class UnsteadyWindSolver {
         mOkZ;  // faces the projection updates (between air cells or on the box)
     PoissonSystem mSystem;
     PoissonSolver mPoisson;
-    std::vector<double> mPsi;                  // projection potential (m^2/s), warm start
+    std::vector<double> mPsi;         // projection potential (m^2/s), warm start
+    std::vector<double> mGradPsi[3];  // incrementalPressure: sum of the projections' corrections
     std::unique_ptr<TurbulentStress> mStress;  // surface-layer stresses, when enabled
     std::vector<std::array<double, 2>> mAxes;
     std::vector<uint8_t> mSeeded;

@@ -271,6 +271,7 @@ Row runHemisphere(int cellsPerRadius) {
 int runBenchModels(const BenchModelsOptions& opt) {
     if (opt.crestStudy) return runCrestStudy(/*cellsPerH=*/5);
     if (opt.jacksonHunt) return runJacksonHuntStudy();
+    if (opt.pseudoTime) return runPseudoTimeStudy();
     const std::string csvPath =
         opt.validationCsv.empty() ? std::string(GALE_VALIDATION_CSV) : opt.validationCsv;
     const std::vector<Measured> data = readValidation(csvPath);

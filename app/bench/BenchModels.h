@@ -26,6 +26,8 @@ struct BenchModelsOptions {
     bool crestStudy = false;
     /// Instead of the table: the low ridges of Jackson and Hunt (1975) (runJacksonHuntStudy).
     bool jacksonHunt = false;
+    /// Instead of the table: the steady state against the pseudo-time step (runPseudoTimeStudy).
+    bool pseudoTime = false;
 };
 
 /// The crest experiments of docs/validation.md, section 3: the Cao and Tamura ridge at H / h =
@@ -43,6 +45,14 @@ int runCrestStudy(int cellsPerH);
 /// 20 m above the crest against the upwind column, and Delta S / (H / L). Returns EXIT_OK when
 /// every momentum solve converged, EXIT_UNMET otherwise. Throws what the solvers throw.
 int runJacksonHuntStudy();
+
+/// The steady state against the pseudo-time step (docs/validation.md, "Pseudo-time step and its
+/// error"): a gentle (H = 8 m, sigma = 50 m) and a steep (H = 40 m, sigma = 40 m) Gaussian ridge
+/// in a 2-D box (4 m cells), each with the semi-Lagrangian step at several cfl and the Eulerian
+/// step at several steps below its limit; prints u 10 m above the lee's ground and the crest, the
+/// iterations and the spread of the lee value per scheme. Returns EXIT_OK when every solve
+/// converged, EXIT_UNMET otherwise. Throws what the solvers throw.
+int runPseudoTimeStudy();
 
 /// Runs the study. Returns EXIT_OK when every momentum solve converged and stayed finite,
 /// EXIT_UNMET otherwise (the table is written either way). Throws InputError (exit 2) when the

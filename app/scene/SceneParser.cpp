@@ -257,6 +257,13 @@ void readSolver(Context& ctx, Section s) {
         static_cast<int>(s.integer("momentum_max_iterations", v.momentum.maxIterations, 1, 100000));
     v.momentum.coarseLevels =
         static_cast<int>(s.integer("momentum_coarse_levels", v.momentum.coarseLevels, 0, 8));
+    const std::string advection =
+        s.string("momentum_advection", sim::pseudoTimeAdvectionName(v.momentum.advection));
+    try {
+        v.momentum.advection = sim::pseudoTimeAdvectionFromName(advection);
+    } catch (const ParameterError& e) {
+        s.failParameter(e);
+    }
     s.finish();
 }
 
