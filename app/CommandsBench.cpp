@@ -162,6 +162,9 @@ void addModels(CLI::App& bench, VerbTable& verbs) {
         "Instead: the momentum model's steady state on a gentle and a steep ridge "
         "against its pseudo-time step, semi-Lagrangian and Eulerian (docs/validation.md, "
         "\"Pseudo-time step and its error\")");
+    verb->add_flag("--eulerian-ridge", o->eulerianRidge,
+                   "The table also solves the Cao and Tamura ridge with the Eulerian pseudo-time "
+                   "step (solver.momentum_advection = \"eulerian\")");
     verb->footer(EXIT_CODES_FOOTER);
     verbs.add(verb, [o] { return runBench([o] { return runBenchModels(*o); }); });
 }

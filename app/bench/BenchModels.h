@@ -28,6 +28,9 @@ struct BenchModelsOptions {
     bool jacksonHunt = false;
     /// Instead of the table: the steady state against the pseudo-time step (runPseudoTimeStudy).
     bool pseudoTime = false;
+    /// The table also solves the ridge with the Eulerian pseudo-time step
+    /// (solver.momentum_advection = "eulerian"), beside the default semi-Lagrangian one.
+    bool eulerianRidge = false;
 };
 
 /// The crest experiments of docs/validation.md, section 3: the Cao and Tamura ridge at H / h =

@@ -20,7 +20,9 @@ namespace gale::app::test {
 namespace {
 
 // Still air over flat ground, looked at from above: only a dropped source moves the grass. The
-// camera's centre ray meets the ground at its target, (16, 16), where the click goes.
+// camera's centre ray meets the ground at its target, (16, 16), where the click goes. Every shell
+// is drawn (lod_pixels = 0): in so small a window the level of detail would leave the grass 27 m
+// below the camera as flat ground, and this test is about the wind reaching the grass.
 const char* const kCalmScene = R"([terrain]
 kind = "flat"
 size_m = [32.0, 32.0]
@@ -30,6 +32,7 @@ spacing_m = 0.5
 height_m = 0.5
 shells = 8
 tile_m = 2.0
+lod_pixels = 0.0
 
 [grass.generated]
 size = 64
