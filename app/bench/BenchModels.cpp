@@ -128,7 +128,7 @@ Row runRidge(bool momentum, int cellsPerH, const std::vector<Measured>& data, in
     r.model = momentum ? "momentum" : "mass_consistent";
     r.testCase = inflow == ridge::Inflow::Published ? "ridge (Cao, Tamura 2006)"
                                                     : "ridge, foot-fit inflow (history)";
-    if (advection == sim::PseudoTimeAdvection::Eulerian) r.testCase += ", Eulerian step";
+    if (advection == sim::PseudoTimeAdvection::Eulerian) r.testCase = "ridge, Eulerian step";
     r.resolution = "H/h=" + std::to_string(cellsPerH);
     r.nx = domain.nx(), r.ny = domain.ny(), r.nz = domain.nz();
     r.iterations = res.report.iterations;
