@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/bench/BenchModels.h"
+#include "app/bench/RidgeBox.h"
 #include "app/io/Errors.h"
 #include "app/io/Timing.h"
 #include "base/Numbers.h"
@@ -67,15 +68,9 @@ struct JhRun {
 
 JhRun solve(double H_m, bool momentum, GridOffset offset = {}) {
     const sim::Heightfield hf = terrain(H_m, offset);
-    sim::DomainSpec spec;
-    spec.voxelSize_m = CELL_M;
-    spec.top_m = TOP_M + offset.base_m;
-    spec.momentumModel = momentum;
-    spec.closedSidesY = true;  // a two-dimensional ridge: free-slip side walls
-    sim::AmbientWind wind;
-    wind.profile = sim::WindProfile::LogLaw;
-    wind.speed_mps = SPEED_MPS, wind.referenceHeight_m = REFERENCE_HEIGHT_M;
-    wind.roughness_m = Z0_M;
+    // A two-dimensional ridge: free-slip side walls.
+    const sim::DomainSpec spec = ridgebox::spec(CELL_M, TOP_M + offset.base_m, momentum);
+    const sim::AmbientWind wind = ridgebox::logLaw(SPEED_MPS, REFERENCE_HEIGHT_M, Z0_M);
     const auto t0 = Clock::now();
     const sim::AirDomain domain(hf, spec);
     sim::SolverSettings start;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/bench/BenchModels.h"
+#include "app/bench/RidgeBox.h"
 #include "app/io/Errors.h"
 #include "app/io/Timing.h"
 #include "sim/MomentumAdvection.h"
@@ -49,15 +50,8 @@ struct Run {
 /// One momentum solve; step: the semi-Lagrangian cfl or the Eulerian eulerianCfl.
 Run solve(const sim::Heightfield& hf, double leeX_m, sim::PseudoTimeAdvection advection,
           double step, int maxIterations, bool incremental = false) {
-    sim::DomainSpec spec;
-    spec.voxelSize_m = CELL_M;
-    spec.top_m = TOP_M;
-    spec.momentumModel = true;
-    spec.closedSidesY = true;
-    sim::AmbientWind wind;
-    wind.profile = sim::WindProfile::LogLaw;
-    wind.speed_mps = SPEED_MPS, wind.referenceHeight_m = REFERENCE_HEIGHT_M;
-    wind.roughness_m = Z0_M;
+    const sim::DomainSpec spec = ridgebox::spec(CELL_M, TOP_M, true);
+    const sim::AmbientWind wind = ridgebox::logLaw(SPEED_MPS, REFERENCE_HEIGHT_M, Z0_M);
     const auto t0 = Clock::now();
     const sim::AirDomain domain(hf, spec);
     sim::MomentumSettings ms;
