@@ -26,7 +26,6 @@ constexpr double CREST_X_M = 150.0;                ///< the crest's distance fro
 constexpr double Z0_M = 0.03, SPEED_MPS = 10.0, REFERENCE_HEIGHT_M = 10.0;  ///< the log inflow
 constexpr double PROBE_HEIGHT_M = 10.0;      ///< the lee probe's height above the ground
 constexpr double RESIDUAL_TOLERANCE = 1e-5;  ///< tight, so the fixed point is what is read
-constexpr int MAX_ITERATIONS = 4000;         ///< pseudo-time steps per level at most
 
 /// A Gaussian ridge: H exp(-x^2 / (2 sigma^2)) about the crest, sampled every CELL_M / 2.
 sim::Heightfield terrain(double H_m, double sigma_m) {
