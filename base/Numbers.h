@@ -16,6 +16,8 @@ inline constexpr double MIB = 1024.0 * 1024.0;
 
 /// Degrees to radians.
 inline constexpr double radiansFromDegrees(double deg) { return deg * (PI / 180.0); }
+/// Radians to degrees.
+inline constexpr double degreesFromRadians(double rad) { return rad * (180.0 / PI); }
 
 /// `v` with `digits` significant digits, shortest form ("%.*g": 0.5, 1e-06, 12.3, nan, inf): the
 /// form of numbers in messages, reports and tables.
