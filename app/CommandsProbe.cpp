@@ -14,10 +14,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -26,6 +24,7 @@
 #include "app/io/Errors.h"
 #include "app/io/Interrupt.h"
 #include "app/io/OutputFolder.h"
+#include "app/scene/ProbePoints.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneField.h"
 #include "base/Numbers.h"
@@ -39,8 +38,6 @@ namespace {
 
 /// Below this horizontal speed (m/s) the from-direction is undefined and left empty.
 constexpr double CALM_MPS = 1e-9;
-/// Longest probe file read, bytes: a probe table is a list of masts, not a point cloud.
-constexpr std::streamoff MAX_PROBE_FILE_BYTES = 16 * 1024 * 1024;
 
 struct ProbeOptions {
     std::string scenePath;
@@ -51,9 +48,7 @@ struct ProbeOptions {
 };
 
 struct ProbePoint {
-    std::string name;
-    int line = 0;
-    double x = 0, y = 0;  ///< scene (DEM) coordinates, metres
+    ProbeInput in;  ///< as given (name, line, DEM coordinates, height, kept columns)
     double localX = 0, localY = 0;
     double z = 0;                         ///< world (local frame) z, metres
     double agl = 0;                       ///< height above the ground, metres
@@ -63,111 +58,41 @@ struct ProbePoint {
     std::string reason;
 };
 
-std::vector<std::string> splitCsv(const std::string& line) {
-    std::vector<std::string> cells;
-    std::string cell;
-    std::istringstream in(line);
-    while (std::getline(in, cell, ',')) {
-        const auto a = cell.find_first_not_of(" \t\r");
-        const auto b = cell.find_last_not_of(" \t\r");
-        cells.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
-    }
-    if (!line.empty() && line.back() == ',') cells.push_back("");
-    return cells;
-}
-
 std::string fmt(double v, const char* f = "%.4f") {
     char buf[64];
     std::snprintf(buf, sizeof buf, f, v);
     return buf;
 }
 
-/// Reads the probe CSV: a header naming x, y and height_agl_m or z_m (name optional), then one
-/// point per line. A point the field cannot answer (outside the terrain, not above the ground,
-/// above the domain's top) is kept with its reason; throws InputError "FILE:LINE: reason" for a
-/// line it cannot read, and "FILE: ..." when no point can be answered.
-std::vector<ProbePoint> readPoints(const std::string& path, const sim::Heightfield& field,
-                                   const Georeference& geo, double top_m) {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) throw InputError(path + ": cannot read the probe points (no such file?)");
-    if (in.tellg() > MAX_PROBE_FILE_BYTES)
-        throw InputError(path + ": too large for a probe table (at most 16 MiB)");
-    in.seekg(0);
-    std::string line;
-    int lineNo = 0;
-    auto fail = [&](const std::string& reason) -> void {
-        throw InputError(path + ":" + std::to_string(lineNo) + ": " + reason);
-    };
-    int cx = -1, cy = -1, ch = -1, cz = -1, cn = -1;
-    size_t columns = 0;
+/// Places the table's points over the terrain. A point the field cannot answer (outside the
+/// terrain, not above the ground, above the domain's top) is kept with its reason and a warning
+/// line; throws InputError naming the first when no point can be answered.
+std::vector<ProbePoint> placePoints(const ProbeTable& table, const sim::Heightfield& field,
+                                    const Georeference& geo, double top_m) {
     std::vector<ProbePoint> points;
-    while (std::getline(in, line)) {
-        ++lineNo;
-        if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
-        const std::vector<std::string> cells = splitCsv(line);
-        if (columns == 0) {
-            for (size_t i = 0; i < cells.size(); ++i) {
-                const std::string& c = cells[i];
-                int* slot = c == "x"              ? &cx
-                            : c == "y"            ? &cy
-                            : c == "height_agl_m" ? &ch
-                            : c == "z_m"          ? &cz
-                            : c == "name"         ? &cn
-                                                  : nullptr;
-                if (!slot)
-                    fail("unknown column '" + c + "' (expected name, x, y, height_agl_m or z_m)");
-                *slot = static_cast<int>(i);
-            }
-            if (cx < 0 || cy < 0) fail("the header must name columns x and y");
-            if ((ch < 0) == (cz < 0))
-                fail(
-                    "the header must name exactly one of height_agl_m (above the ground) or z_m "
-                    "(absolute)");
-            columns = cells.size();
-            continue;
-        }
-        if (cells.size() != columns)
-            fail("expected " + std::to_string(columns) + " values, got " +
-                 std::to_string(cells.size()));
-        auto number = [&](int col, const char* what) {
-            const std::string& t = cells[static_cast<size_t>(col)];
-            char* end = nullptr;
-            const double v = std::strtod(t.c_str(), &end);
-            if (t.empty() || *end != '\0' || !std::isfinite(v))
-                fail(std::string(what) + ": not a finite number (got '" + t + "')");
-            return v;
-        };
+    for (const ProbeInput& in : table.points) {
         ProbePoint p;
-        p.line = lineNo;
-        p.name = cn >= 0 ? cells[static_cast<size_t>(cn)] : "p" + std::to_string(points.size() + 1);
-        p.x = number(cx, "x");
-        p.y = number(cy, "y");
-        p.localX = p.x - geo.originX_m;
-        p.localY = p.y - geo.originY_m;
-        const double height = number(ch >= 0 ? ch : cz, ch >= 0 ? "height_agl_m" : "z_m");
+        p.in = in;
+        p.localX = in.x_m - geo.originX_m;
+        p.localY = in.y_m - geo.originY_m;
         const double x0 = field.originX_m, y0 = field.originY_m;
         if (p.localX < x0 || p.localX > x0 + field.sizeX_m() || p.localY < y0 ||
             p.localY > y0 + field.sizeY_m()) {
             char box[256];
             std::snprintf(
                 box, sizeof box,
-                "point (%.3f, %.3f) is outside the terrain (x %.3f .. %.3f, y %.3f .. %.3f)", p.x,
-                p.y, geo.demX_m(x0), geo.demX_m(x0 + field.sizeX_m()), geo.demY_m(y0),
+                "point (%.3f, %.3f) is outside the terrain (x %.3f .. %.3f, y %.3f .. %.3f)",
+                in.x_m, in.y_m, geo.demX_m(x0), geo.demX_m(x0 + field.sizeX_m()), geo.demY_m(y0),
                 geo.demY_m(y0 + field.sizeY_m()));
             p.reason = box;
-            (ch >= 0 ? p.agl : p.z) = height;
-            p.zKnown = cz >= 0, p.aglKnown = ch >= 0;
+            (table.heightAboveGround ? p.agl : p.z) = in.height_m;
+            p.zKnown = !table.heightAboveGround, p.aglKnown = table.heightAboveGround;
             points.push_back(p);
             continue;
         }
         const double ground = field.sample(p.localX, p.localY);
-        if (ch >= 0) {
-            p.agl = height;
-            p.z = ground + p.agl;
-        } else {
-            p.z = height;
-            p.agl = p.z - ground;
-        }
+        p.agl = table.heightAboveGround ? in.height_m : in.height_m - ground;
+        p.z = table.heightAboveGround ? ground + in.height_m : in.height_m;
         if (!(p.agl > 0.0))
             p.reason = "point is not above the ground (ground at " + fmt(ground, "%.3f") +
                        " m, point at " + fmt(p.z, "%.3f") + " m)";
@@ -176,18 +101,16 @@ std::vector<ProbePoint> readPoints(const std::string& path, const sim::Heightfie
                        " m; raise solver.top_m)";
         points.push_back(p);
     }
-    if (points.empty())
-        throw InputError(path + ": no probe points (a header, then one point per line)");
     const auto answered = std::count_if(points.begin(), points.end(),
                                         [](const ProbePoint& p) { return p.reason.empty(); });
     if (answered == 0)
         throw InputError(
-            path + ":" + std::to_string(points.front().line) + ": " + points.front().reason +
+            table.where(points.front().in) + ": " + points.front().reason +
             (points.size() > 1 ? " (and so is every other point: nothing to probe)" : ""));
     for (const ProbePoint& p : points)
         if (!p.reason.empty())
-            std::fprintf(stderr, "probe: warning: %s:%d: %s: %s; its row has no values\n",
-                         path.c_str(), p.line, p.name.c_str(), p.reason.c_str());
+            std::fprintf(stderr, "probe: warning: %s: %s: %s; its row has no values\n",
+                         table.where(p.in).c_str(), p.in.name.c_str(), p.reason.c_str());
     return points;
 }
 
@@ -226,13 +149,21 @@ class ProbeSampler {
     std::vector<glm::vec3> mOut;
 };
 
-std::string csvHeader(bool series) {
-    return std::string(series ? "t_s," : "") +
-           "name,x,y,z_m,height_agl_m,u_mps,v_mps,w_mps,speed_mps,from_deg,speedup,read,reason\n";
+/// The output's columns: [t_s,] name, x, y, z_m, height_agl_m, u_mps, v_mps, w_mps, speed_mps,
+/// from_deg, speedup, read, reason, then the input's kept columns.
+ProbeOutput outputTable(bool series, const ProbeTable& table) {
+    ProbeOutput out;
+    if (series) out.columns.push_back("t_s");
+    for (const char* c : {"name", "x", "y", "z_m", "height_agl_m", "u_mps", "v_mps", "w_mps",
+                          "speed_mps", "from_deg", "speedup", "read", "reason"})
+        out.columns.push_back(c);
+    out.xColumn = series ? 2 : 1, out.yColumn = out.xColumn + 1;
+    for (const std::string& c : table.extraColumns) out.columns.push_back(c);
+    return out;
 }
 
-/// One CSV row per point for the field at time t_s (NaN: steady, no time column).
-void appendRows(std::string& csv, const std::vector<ProbePoint>& points, ProbeSampler& sampler,
+/// One row per point for the field at time t_s (NaN: steady, no time column).
+void appendRows(ProbeOutput& out, const std::vector<ProbePoint>& points, ProbeSampler& sampler,
                 const sim::WindField& field, const sim::AmbientWind& ambient,
                 const std::string& referenceName, double t_s) {
     std::vector<std::optional<glm::vec3>> vel;
@@ -243,33 +174,40 @@ void appendRows(std::string& csv, const std::vector<ProbePoint>& points, ProbeSa
     };
     double refSpeed = -1.0;
     for (size_t i = 0; i < points.size(); ++i)
-        if (!referenceName.empty() && points[i].name == referenceName && vel[i])
+        if (!referenceName.empty() && points[i].in.name == referenceName && vel[i])
             refSpeed = speedOf(*vel[i]);
+    auto num = [](double v, int decimals = 4) { return ProbeCell{v, "", decimals}; };
     for (size_t i = 0; i < points.size(); ++i) {
         const ProbePoint& p = points[i];
-        if (!std::isnan(t_s)) csv += fmt(t_s) + ",";
-        csv += p.name + "," + fmt(p.x) + "," + fmt(p.y) + ",";
+        std::vector<ProbeCell> row;
+        if (!std::isnan(t_s)) row.push_back(num(t_s));
+        row.push_back({std::nullopt, p.in.name});
+        row.push_back(num(p.in.x_m)), row.push_back(num(p.in.y_m));
+        row.push_back(p.zKnown ? num(p.z) : ProbeCell{});
+        row.push_back(p.aglKnown ? num(p.agl) : ProbeCell{});
         if (!vel[i]) {
-            // The point as given; no values, the reason instead (quoted: it holds commas).
-            std::string reason = p.reason;
-            std::replace(reason.begin(), reason.end(), '"', '\'');
-            csv += (p.zKnown ? fmt(p.z) : std::string()) + "," +
-                   (p.aglKnown ? fmt(p.agl) : std::string()) + ",,,,,,,,\"" + reason + "\"\n";
-            continue;
+            for (int k = 0; k < 7; ++k) row.push_back({});  // u .. read: no values
+            row.push_back({std::nullopt, p.reason});
+        } else {
+            const glm::vec3& v = *vel[i];
+            const double speed = speedOf(v);
+            const double horizontal = std::hypot(double(v.x), double(v.y));
+            const double ref = referenceName.empty() ? ambient.speedAt_mps(p.agl) : refSpeed;
+            row.push_back(num(v.x)), row.push_back(num(v.y)), row.push_back(num(v.z));
+            row.push_back(num(speed));
+            if (horizontal > CALM_MPS) {
+                sim::AmbientWind a;
+                a.direction_deg = degreesFromRadians(std::atan2(double(v.y), double(v.x)));
+                row.push_back(num(a.from_deg(), 2));
+            } else {
+                row.push_back({});
+            }
+            row.push_back(ref > 0.0 ? num((speed - ref) / ref) : ProbeCell{});
+            row.push_back({std::nullopt, read[i]});
+            row.push_back({});
         }
-        const glm::vec3& v = *vel[i];
-        const double speed = speedOf(v);
-        const double horizontal = std::hypot(double(v.x), double(v.y));
-        const double ref = referenceName.empty() ? ambient.speedAt_mps(p.agl) : refSpeed;
-        std::string from;
-        if (horizontal > CALM_MPS) {
-            sim::AmbientWind a;
-            a.direction_deg = degreesFromRadians(std::atan2(double(v.y), double(v.x)));
-            from = fmt(a.from_deg(), "%.2f");
-        }
-        csv += fmt(p.z) + "," + fmt(p.agl) + "," + fmt(v.x) + "," + fmt(v.y) + "," + fmt(v.z) +
-               "," + fmt(speed) + "," + from + "," +
-               (ref > 0.0 ? fmt((speed - ref) / ref) : std::string()) + "," + read[i] + ",\n";
+        for (const std::string& e : p.in.extra) row.push_back({std::nullopt, e});
+        out.rows.push_back(std::move(row));
     }
 }
 
@@ -296,29 +234,42 @@ void checkVdbProvenance(const std::string& path, const FieldProvenance& scene) {
 int runProbe(const ProbeOptions& o) {
     SceneRunOptions sceneOptions;
     sceneOptions.scenePath = o.scenePath;
+    // A signal stops the run at once with one line and nothing written, except while the
+    // momentum model steps (deferred there: it stops between two pseudo-time steps).
+    InterruptScope interrupt("while probing: nothing written");
     const Scene scene = loadScene(sceneOptions);
     const SceneTerrain terrain = buildTerrain(scene);
     checkSceneFieldInputs(scene);
     std::unique_ptr<sim::AirDomain> domain = buildSceneDomain(scene, terrain.field);
+    const ProbeTable table = readProbeTable(o.pointsPath, terrain.georef);
     const std::vector<ProbePoint> points =
-        readPoints(o.pointsPath, terrain.field, terrain.georef, domain->wsTop_m());
+        placePoints(table, terrain.field, terrain.georef, domain->wsTop_m());
     if (!o.reference.empty()) {
-        const auto ref = std::find_if(points.begin(), points.end(),
-                                      [&](const ProbePoint& p) { return p.name == o.reference; });
-        if (ref == points.end())
+        const auto named = std::count_if(points.begin(), points.end(), [&](const ProbePoint& p) {
+            return p.in.name == o.reference;
+        });
+        if (named == 0)
             throw InputError("--reference: no point named '" + o.reference + "' in " +
                              o.pointsPath);
+        if (named > 1)
+            throw InputError("--reference: " + std::to_string(named) + " points are named '" +
+                             o.reference + "' in " + o.pointsPath +
+                             ": the reference must be one point");
+        const auto ref = std::find_if(points.begin(), points.end(), [&](const ProbePoint& p) {
+            return p.in.name == o.reference;
+        });
         if (!ref->reason.empty())
-            throw InputError("--reference: point '" + o.reference + "' (" + o.pointsPath + ":" +
-                             std::to_string(ref->line) + ") has no wind: " + ref->reason);
+            throw InputError("--reference: point '" + o.reference + "' (" + table.where(ref->in) +
+                             ") has no wind: " + ref->reason);
     }
+    if (!o.outPath.empty()) checkProbeOutputPath(o.outPath);  // before any work
     const std::filesystem::path outFolder = std::filesystem::path(o.outPath).parent_path();
     const std::string outFolderText = outFolder.empty() ? "." : outFolder.string();
     if (!o.outPath.empty()) (void)checkOutputFolder(outFolderText, "-o", "probe", 0);
     const sim::AmbientWind& ambient = scene.wind.ambient;
     const bool series =
         o.vdbPaths.size() > 1 || (o.vdbPaths.empty() && scene.wind.kind == WindKind::Unsteady);
-    std::string csv = csvHeader(series);
+    ProbeOutput out = outputTable(series, table);
     ProbeSampler sampler(points, nearGroundOf(scene));
     bool ok = true;
     if (!o.vdbPaths.empty()) {
@@ -332,12 +283,12 @@ int runProbe(const ProbeOptions& o) {
             } catch (const std::runtime_error& e) {
                 throw InputError(e.what());
             }
-            appendRows(csv, points, sampler, field, ambient, o.reference,
+            appendRows(out, points, sampler, field, ambient, o.reference,
                        series ? (std::isnan(t_s) ? 0.0 : t_s) : std::nan(""));
         }
     } else {
-        InterruptScope interrupt("while solving: nothing written");
-        interrupt.defer();  // the momentum model stops between pseudo-time steps, see below
+        // The momentum model stops between pseudo-time steps; anything else stops at once.
+        if (scene.solver.model == sim::SteadyModel::Momentum) interrupt.defer();
         std::fprintf(stderr, "probe: solving the wind (%d x %d x %d cells)...\n", domain->nx(),
                      domain->ny(), domain->nz());
         for (const std::string& line : describeSceneField(scene, *domain))
@@ -348,17 +299,18 @@ int runProbe(const ProbeOptions& o) {
                          interruptSignalName(), sf.summary().c_str());
             return interruptExitCode();
         }
+        interrupt.exitAtOnce("while probing: nothing written");
         // What solve prints, and the verdict it gives (exit 3 when it did not converge).
         std::fprintf(stderr, "probe: %s\n", sf.summary().c_str());
         ok = sf.converged();
         if (!ok) std::fprintf(stderr, "probe: %s\n", sf.report.message.c_str());
         if (!series) {
-            appendRows(csv, points, sampler, sf.field, ambient, o.reference, std::nan(""));
+            appendRows(out, points, sampler, sf.field, ambient, o.reference, std::nan(""));
         } else {
             const UnsteadyStepping stepping = unsteadySteppingOf(scene);
             sim::UnsteadyWindSolver solver(*sf.domain, sf.field, stepping.settings,
                                            stepping.referenceSpeed_mps);
-            appendRows(csv, points, sampler, solver.field(), ambient, o.reference, solver.time_s());
+            appendRows(out, points, sampler, solver.field(), ambient, o.reference, solver.time_s());
             const double every = scene.unsteady.outputEvery_s, duration = scene.unsteady.duration_s;
             const int outputs = int(std::ceil(duration / every - 1e-9));
             bool converged = true, finite = true;
@@ -375,7 +327,7 @@ int runProbe(const ProbeOptions& o) {
                     return interruptExitCode();
                 }
                 if (!finite) break;
-                appendRows(csv, points, sampler, solver.field(), ambient, o.reference,
+                appendRows(out, points, sampler, solver.field(), ambient, o.reference,
                            solver.time_s());
             }
             std::fprintf(stderr, "probe: unsteady, %d steps to t = %.2f s, %s\n", steps,
@@ -387,10 +339,16 @@ int runProbe(const ProbeOptions& o) {
         }
     }
     if (o.outPath.empty()) {
-        std::fputs(csv.c_str(), stdout);
+        const std::string csv = probeCsv(out);
+        if (std::fwrite(csv.data(), 1, csv.size(), stdout) != csv.size() ||
+            std::fflush(stdout) != 0)
+            throw std::runtime_error("stdout: cannot write the probe table");
     } else {
         prepareOutputFolder(outFolderText, "-o");
-        writeTextAtomic(o.outPath, csv);
+        if (isVectorOutput(o.outPath))
+            writeProbeVector(o.outPath, out, terrain.georef);
+        else
+            writeTextAtomic(o.outPath, probeCsv(out));
         std::printf("probe: %zu points%s to %s\n", points.size(), series ? " (time series)" : "",
                     o.outPath.c_str());
     }
