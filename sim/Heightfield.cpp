@@ -7,6 +7,7 @@
 
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
+#include "sim/Interpolation.h"
 
 namespace gale::sim {
 namespace {
@@ -75,7 +76,7 @@ double valueNoise(uint32_t seed, int o, double x, double y) {
     const double v00 = latticeValue(seed, o, ix, iy), v10 = latticeValue(seed, o, ix + 1, iy);
     const double v01 = latticeValue(seed, o, ix, iy + 1),
                  v11 = latticeValue(seed, o, ix + 1, iy + 1);
-    return (v00 * (1 - tx) + v10 * tx) * (1 - ty) + (v01 * (1 - tx) + v11 * tx) * ty;
+    return bilinearWeighted(v00, v10, v01, v11, tx, ty);
 }
 
 // Height of the procedural terrain at world (x, y), metres.
@@ -144,8 +145,7 @@ double Heightfield::sample(double wsX_m, double wsY_m) const {
     const int i = std::min(static_cast<int>(fx), nx - 2),
               j = std::min(static_cast<int>(fy), ny - 2);
     const double tx = fx - i, ty = fy - j;
-    return (at(i, j) * (1 - tx) + at(i + 1, j) * tx) * (1 - ty) +
-           (at(i, j + 1) * (1 - tx) + at(i + 1, j + 1) * tx) * ty;
+    return bilinearWeighted<double>(at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1), tx, ty);
 }
 
 std::array<double, 3> Heightfield::normalAt(int i, int j) const {
