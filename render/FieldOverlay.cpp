@@ -343,9 +343,9 @@ void FieldOverlay::draw(const Camera& camera, const FieldOverlayData& data) {
     Impl& m = *mImpl;
     const float aspect = float(m.context.width()) / float(m.context.height());
     const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
-    ScreenScale screen{
-        camera.wsPosition_m,
-        2.0f * std::tan(0.5f * camera.fovY_deg * float(PI) / 180.0f) / float(m.context.height())};
+    ScreenScale screen{camera.wsPosition_m,
+                       2.0f * std::tan(0.5f * float(radiansFromDegrees(camera.fovY_deg))) /
+                           float(m.context.height())};
 
     m.begin();
     glEnable(GL_DEPTH_TEST);

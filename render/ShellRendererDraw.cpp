@@ -2,6 +2,7 @@
 /// The shell renderer's frames: culling and the level of detail per terrain chunk
 /// (render/TerrainChunks.h), the instanced shell draws, and the benchmark's fill baseline.
 
+#include "base/Numbers.h"
 #include "render/ShellRendererImpl.h"
 
 namespace gale::render {
@@ -62,7 +63,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     const int bottom = options.terrain ? 0 : 1;
     // Level of detail (render/TerrainChunks.h): D1 = 2 S f / P, f the focal length in pixels.
     const float focal_px = static_cast<float>(m.context.height()) /
-                           (2.0f * std::tan(0.5f * glm::radians(camera.fovY_deg)));
+                           (2.0f * std::tan(0.5f * float(radiansFromDegrees(camera.fovY_deg))));
     const float d1_m =
         m.grass.lodPixels > 0.0f && shells > 0
             ? 2.0f * (m.grass.height_m / static_cast<float>(shells)) * focal_px / m.grass.lodPixels

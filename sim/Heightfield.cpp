@@ -12,7 +12,6 @@
 namespace gale::sim {
 namespace {
 
-using gale::PI;
 constexpr int MAX_SAMPLES_PER_SIDE = 16384;
 
 struct KindName {
@@ -83,7 +82,7 @@ double valueNoise(uint32_t seed, int o, double x, double y) {
 double proceduralHeight(const TerrainSpec& s, double x, double y) {
     const double dx = x - s.centerX_m, dy = y - s.centerY_m;
     const double r2 = dx * dx + dy * dy;
-    const double a = s.axis_deg * PI / 180.0;
+    const double a = radiansFromDegrees(s.axis_deg);
     // Distance from the feature's axis line (ridge, valley).
     const double across = -dx * std::sin(a) + dy * std::cos(a);
     const double sigma2 = s.radius_m * s.radius_m;

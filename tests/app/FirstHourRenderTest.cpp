@@ -9,6 +9,7 @@
 #include "AppTestSupport.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
+#include "base/Numbers.h"
 #include "coupling/LiveWind.h"
 #include "render/CameraMath.h"
 #include "render/ImageIO.h"
@@ -89,7 +90,7 @@ TEST(FirstHourRender, FromTheDefaultCameraBladesAtTheBottomOfTheFrameAreWiderTha
         ASSERT_TRUE(hit.has_value()) << side_m << " m: the bottom of the frame shows no ground";
         const double distance_m = glm::length(*hit - ray.wsOrigin_m);
         const double pixel_m =
-            2.0 * distance_m * std::tan(0.5 * camera.fovY_deg * M_PI / 180.0) / double(h);
+            2.0 * distance_m * std::tan(0.5 * radiansFromDegrees(camera.fovY_deg)) / double(h);
         // A blade's cross-section: one texel of the grass texture.
         const double blade_m = scene.grass.params.tile_m / double(built.texture.levels[0].width);
         EXPECT_GT(blade_m, pixel_m)

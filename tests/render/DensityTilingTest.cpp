@@ -140,7 +140,7 @@ TEST(AperiodicTiling, TheTextureNoLongerRepeatsOneTileOver) {
     spec.size = 64;
     spec.seed = 11;
     const Image texture = generateGrassTexture(spec).levels[0];
-    const float fov_deg = float(2.0 * std::atan(0.2) * 180.0 / gale::PI);
+    const float fov_deg = float(gale::degreesFromRadians(2.0 * std::atan(0.2)));
     TopView plain(128, texture, 1.0f, 0, false), aperiodic(128, texture, 1.0f, 0, true);
     const double repeat = shiftDifference(plain.draw(fov_deg), 32);
     const double broken = shiftDifference(aperiodic.draw(fov_deg), 32);
