@@ -1,5 +1,6 @@
 #pragma once
 /// \file UniformLattice.h
+/// \internal Included only by sim/ and tests/sim (docs/architecture.md lists sim's public headers).
 /// The staggered sampler of a layout with cubic cells (GridLayout::uniformZ()), specialised for
 /// the advection's traces: the same trilinear interpolation as GridLayout::sample and
 /// GridLayout::sampleFaces, the same clamping to each placement's lattice, but with 1/h
