@@ -59,11 +59,11 @@ TEST(FirstHourRender, ASceneWithoutLightsRendersInDaylightNotNearBlack) {
         luma[oldDefault] = meanLuma(render::readImageRgba8(dir / (name + "/frame_0000.png")));
     }
     // Sunlit grass: the mean is well off black (a third of full scale)...
-    constexpr double kMinMeanLuma = 85.0;
-    EXPECT_GT(luma[0], kMinMeanLuma) << "old default " << luma[1];
+    constexpr double MIN_MEAN_LUMA = 85.0;
+    EXPECT_GT(luma[0], MIN_MEAN_LUMA) << "old default " << luma[1];
     // ...and far brighter than the grey ambient alone that lit such scenes before.
-    constexpr double kMinGainOverAmbient = 1.5;
-    EXPECT_GT(luma[0], kMinGainOverAmbient * luma[1])
+    constexpr double MIN_GAIN_OVER_AMBIENT = 1.5;
+    EXPECT_GT(luma[0], MIN_GAIN_OVER_AMBIENT * luma[1])
         << "default " << luma[0] << ", ambient alone " << luma[1];
 }
 
