@@ -175,7 +175,7 @@ int runView(const ViewOptions& options) {
         std::snprintf(buf, sizeof buf, "solve %s %d it res %.1e",
                       r.converged ? "ok" : "NOT CONVERGED", r.iterations, r.relativeResidual);
         solveLine = buf;
-        std::fprintf(stderr, "gale: steady wind %s\n", buf);
+        std::fprintf(stderr, "gale: steady wind: %s\n", built.fieldSummary.c_str());
     }
 
     window->makeCurrent();

@@ -13,6 +13,7 @@
 #include "app/io/Timing.h"
 #include "app/scene/Dem.h"
 #include "app/scene/Heightmap.h"
+#include "app/scene/SceneField.h"
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
 #include "coupling/FieldSampling.h"
@@ -45,19 +46,6 @@ constexpr double MIN_EYE_HEIGHT_M = 1.7;
 
 [[noreturn]] void failAt(const Scene& scene, const std::string& key, const std::string& reason) {
     throw SceneError(scene.where(key) + ": " + reason);
-}
-
-/// What the grass reads below the first solved faces: the log law of the wall stress for the
-/// momentum model, the free-slip tangential law for the mass-consistent one
-/// (coupling/NearGround.h).
-coupling::NearGround nearGroundOf(const Scene& scene) {
-    coupling::NearGround n;
-    if (scene.solver.model == sim::SteadyModel::Momentum) {
-        n.model = coupling::NearGroundModel::LogLaw;
-        n.roughness_m = scene.wind.ambient.roughness_m;
-        n.displacement_m = scene.solver.momentum.displacementHeight_m;
-    }
-    return n;
 }
 
 }  // namespace
@@ -150,19 +138,22 @@ std::string describeDomain(const sim::AirDomain& d) {
     return buf;
 }
 
-/// The scene's air domain over the built terrain, summarised in built.domainSummary; a bad
-/// [solver] value becomes a SceneError at its key.
+/// The scene's air domain over the built terrain (app/scene/SceneField.h), summarised in
+/// built.domainSummary and built.fieldPlan, with the checks the solve would make before solving.
 std::unique_ptr<sim::AirDomain> buildDomain(const Scene& scene, BuiltScene& built) {
-    std::unique_ptr<sim::AirDomain> domain;
-    try {
-        domain = std::make_unique<sim::AirDomain>(built.heightfield, scene.solver.domain);
-    } catch (const std::invalid_argument& e) {
-        rethrowAsSceneError(scene, "solver", e);
-    }
+    checkSceneFieldInputs(scene);
+    std::unique_ptr<sim::AirDomain> domain = buildSceneDomain(scene, built.heightfield);
     built.domainSummary = describeDomain(*domain);
     built.domainEstimate_bytes = double(domain->memoryEstimate_bytes());
     built.domainVdbFile_bytes = sim::vdbWindFile_bytes(domain->nx(), domain->ny(), domain->nz());
+    built.fieldPlan = describeSceneField(scene, *domain);
     return domain;
+}
+
+/// The composition's options for a build: progress lines when the build shows progress (render
+/// and view print "gale: ..."), nothing otherwise.
+SceneFieldOptions fieldOptions(const BuildOptions& options) {
+    return options.progress ? verbFieldOptions("gale") : SceneFieldOptions{};
 }
 
 /// Metres above the ground where the grass reads the field: wind.sample_height_m, or the grass
@@ -176,18 +167,12 @@ double sampleHeightOf(const Scene& scene) {
 /// mode).
 void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
     const auto start = Clock::now();
-    const std::unique_ptr<sim::AirDomain> domain = buildDomain(scene, built);
+    std::unique_ptr<sim::AirDomain> domain = buildDomain(scene, built);
     if (!options.solveWind) return;
     if (options.progress) options.progress("solving the steady wind: " + built.domainSummary);
-    sim::SteadyModelResult result;
-    try {
-        result = sim::solveSteadyModel(*domain, scene.wind.ambient, scene.solver.model,
-                                       scene.solver.weights, scene.solver.settings,
-                                       scene.solver.momentum);
-    } catch (const std::invalid_argument& e) {
-        rethrowAsSceneError(scene, "wind", e);
-    }
+    SceneField result = solveSceneField(scene, std::move(domain), fieldOptions(options));
     built.solve = result.report;
+    built.fieldSummary = result.summary();
     // Kept alive in the wind source for views of the field (coupling/FieldOverlayBuilder).
     auto field = std::make_shared<const sim::WindField>(std::move(result.field));
     const std::vector<glm::vec3> velocity =
@@ -228,18 +213,14 @@ void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltSce
     if (!options.solveWind) return;
     if (options.progress)
         options.progress("solving the steady wind (initial state): " + built.domainSummary);
-    sim::SteadyWindResult result;
-    try {
-        result = sim::solveSteadyWind(*domain, scene.wind.ambient, scene.solver.weights,
-                                      scene.solver.settings);
-    } catch (const std::invalid_argument& e) {
-        rethrowAsSceneError(scene, "wind", e);
-    }
+    SceneField result = solveSceneField(scene, std::move(domain), fieldOptions(options));
     built.solve = result.report;
+    built.fieldSummary = result.summary();
+    const UnsteadyStepping stepping = unsteadySteppingOf(scene);
     try {
         built.wind = std::make_unique<coupling::UnsteadyFieldWind>(
-            built.mesh, std::move(domain), result.field, scene.unsteady.settings,
-            scene.wind.ambient.speed_mps, scene.wind.response, sampleHeightOf(scene));
+            built.mesh, std::move(result.domain), result.field, stepping.settings,
+            stepping.referenceSpeed_mps, scene.wind.response, sampleHeightOf(scene));
     } catch (const std::invalid_argument& e) {
         rethrowAsSceneError(scene, "unsteady", e);
     }
