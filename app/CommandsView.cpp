@@ -310,7 +310,7 @@ int runView(const ViewOptions& options) {
                     renderer.setShellCount(std::max(0, renderer.shellCount() - 1));
                     break;
                 case render::Key::RightBracket:
-                    renderer.setShellCount(std::min(render::kMaxShells, renderer.shellCount() + 1));
+                    renderer.setShellCount(std::min(render::MAX_SHELLS, renderer.shellCount() + 1));
                     break;
                 case render::Key::S: {
                     const std::string path =

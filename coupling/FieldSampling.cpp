@@ -10,6 +10,7 @@
 
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
+#include "sim/Interpolation.h"
 
 namespace gale::coupling {
 namespace {
@@ -31,8 +32,8 @@ void forEachPoint(size_t count, F&& f) {
 // ComponentRead::flags: the stencil lies outside the box (the component reads zero).
 constexpr uint32_t OUTSIDE = 8;
 
-// The planned trilinear read: the same eight faces and the same arithmetic, in the same order, as
-// GridLayout's blendStencils, so the value is bit for bit the one it gives.
+// The planned trilinear read: the same eight faces in the same order, and the same
+// sim::trilinearBlend, as GridLayout's blendStencils, so the value is bit for bit the one it gives.
 inline double blendPlanned(const double* a, const GrassSampler::ComponentRead& r, size_t strideY,
                            size_t strideZ) {
     if (r.flags & OUTSIDE) return 0.0;
@@ -43,10 +44,7 @@ inline double blendPlanned(const double* a, const GrassSampler::ComponentRead& r
     const double* p01 = p00 + dz;
     const double* p11 = p10 + dz;
     const double c[8] = {p00[0], p00[dx], p10[0], p10[dx], p01[0], p01[dx], p11[0], p11[dx]};
-    const double c00 = c[0] + (c[1] - c[0]) * r.t[0], c10 = c[2] + (c[3] - c[2]) * r.t[0];
-    const double c01 = c[4] + (c[5] - c[4]) * r.t[0], c11 = c[6] + (c[7] - c[6]) * r.t[0];
-    const double c0 = c00 + (c10 - c00) * r.t[1], c1 = c01 + (c11 - c01) * r.t[1];
-    return c0 + (c1 - c0) * r.t[2];
+    return sim::trilinearBlend(c, r.t[0], r.t[1], r.t[2]);
 }
 
 }  // namespace

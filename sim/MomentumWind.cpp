@@ -285,7 +285,7 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
         // No convergence before the inflow has crossed the box once at the ambient speed: a small
         // disturbance (a low hill) changes the field little per step from the start, so the
         // residual alone would stop before the wake has formed. A calm wind has nothing to carry.
-        const double dirRad = ambient.direction_deg * gale::PI / 180.0;
+        const double dirRad = gale::radiansFromDegrees(ambient.direction_deg);
         const double crossing_m = std::abs(std::cos(dirRad)) * domain.nx() * h +
                                   std::abs(std::sin(dirRad)) * domain.ny() * h;
         lv.minIterations = ambient.speed_mps > 0.0
