@@ -13,10 +13,4 @@ constexpr int MAX_LIGHTS = 16;
 /// Most shells above the ground (GrassParams::shells); the bend table has MAX_SHELLS + 1 columns.
 constexpr int MAX_SHELLS = 256;
 
-/// The names these two had before constants were UPPER_CASE everywhere (docs/architecture.md),
-/// kept only for app/scene/SceneParser and app/bench/BenchView, which are being rewritten; remove
-/// them once those say MAX_LIGHTS and MAX_SHELLS.
-constexpr int kMaxLights = MAX_LIGHTS;
-constexpr int kMaxShells = MAX_SHELLS;
-
 }  // namespace gale::render

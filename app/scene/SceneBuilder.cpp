@@ -186,7 +186,7 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
             // The front travels with the ambient wind at its reference height (at least 0.5 m/s,
             // so a calm scene still has a finite arrival time).
             spec.convection_mps = std::max(0.5, scene.wind.ambient.speed_mps);
-            const double a = scene.wind.ambient.direction_deg * PI / 180.0;
+            const double a = radiansFromDegrees(scene.wind.ambient.direction_deg);
             spec.wsDirection = glm::vec3(std::cos(a), std::sin(a), 0.0f);
             auto wind = std::make_unique<coupling::SteadyGustWind>(built.mesh, velocity, spec,
                                                                    gustCurve(scene));
@@ -258,7 +258,7 @@ SceneTerrain buildTerrain(const Scene& scene) {
 sim::Heightfield buildHeightfield(const Scene& scene) { return buildTerrain(scene).field; }
 
 double bladeVisibleDistance_m(float texel_m, int height_px, float fovY_deg) {
-    return texel_m * height_px / (2.0 * std::tan(0.5 * fovY_deg * PI / 180.0));
+    return texel_m * height_px / (2.0 * std::tan(radiansFromDegrees(0.5 * fovY_deg)));
 }
 
 render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera& base,
@@ -269,8 +269,8 @@ render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera
     const double cy = field.originY_m + 0.5 * field.sizeY_m();
     if (!keepTarget) camera.wsTarget_m = glm::vec3(cx, cy, field.sample(cx, cy) * 0.5 + minZ * 0.5);
     if (keepPosition) return camera;
-    const double halfFov = 0.5 * camera.fovY_deg * PI / 180.0;
-    const double azimuth = 235.0 * PI / 180.0;  // from the south-west
+    const double halfFov = radiansFromDegrees(0.5 * camera.fovY_deg);
+    const double azimuth = radiansFromDegrees(235.0);  // from the south-west
     auto place = [&](double distance, double elevation) {
         const glm::dvec3 target(camera.wsTarget_m);
         camera.wsPosition_m =
@@ -283,7 +283,7 @@ render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera
         0.5 * std::sqrt(field.sizeX_m() * field.sizeX_m() + field.sizeY_m() * field.sizeY_m() +
                         (maxZ - minZ) * (maxZ - minZ));
     double distance = std::max(1.0, 0.8 * radius / std::sin(halfFov));
-    double elevation = DEFAULT_ELEVATION_DEG * PI / 180.0;
+    double elevation = radiansFromDegrees(DEFAULT_ELEVATION_DEG);
     // The frame's bottom edge meets ground at the target's height at the slant distance
     // h / sin(elevation + fov / 2), h = distance sin(elevation) the camera's height above it.
     auto nearestGround_m = [&] {
@@ -293,7 +293,7 @@ render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera
         // Too far to show a blade: stand closer and lower, looking at the ground at the centre,
         // so the near grass at the bottom of the frame has blades wider than a pixel.
         if (!keepTarget) camera.wsTarget_m.z = float(field.sample(cx, cy));
-        elevation = CLOSE_ELEVATION_DEG * PI / 180.0;
+        elevation = radiansFromDegrees(CLOSE_ELEVATION_DEG);
         distance = BLADE_VISIBLE_MARGIN * bladeVisible_m * std::sin(elevation + halfFov) /
                    std::sin(elevation);
     }

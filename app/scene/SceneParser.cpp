@@ -24,10 +24,10 @@
 
 namespace gale::app {
 
-static_assert(MAX_SHELLS <= render::kMaxShells,
+static_assert(MAX_SHELLS <= render::MAX_SHELLS,
               "the parser must not allow more shells than the renderer draws");
 
-int maxLights() { return render::kMaxLights; }
+int maxLights() { return render::MAX_LIGHTS; }
 
 namespace {
 
