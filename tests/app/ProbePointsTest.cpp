@@ -13,6 +13,7 @@
 
 #include "AppTestSupport.h"
 #include "GeoTestSupport.h"
+#include "ProbeTestSupport.h"
 
 namespace gale::app {
 namespace {
@@ -22,48 +23,8 @@ using test::TempDir;
 /// Probe output is printed with 4 decimals: half a unit of the last one.
 constexpr double PRINTED_TOLERANCE = 5e-5;
 
-const char* FLAT_SCENE = R"(
-[terrain]
-kind = "flat"
-size_m = [20.0, 20.0]
-spacing_m = 1.0
-[wind]
-kind = "solved"
-speed_mps = 5.0
-reference_height_m = 10.0
-profile = "log"
-roughness_m = 0.03
-[solver]
-voxel_size_m = 1.0
-top_m = 40.0
-)";
-
-/// The cells of an RFC 4180 CSV (quotes doubled inside quoted cells).
-std::vector<std::vector<std::string>> parseCsv(const std::string& text) {
-    std::vector<std::vector<std::string>> rows(1, std::vector<std::string>(1));
-    bool quoted = false;
-    for (size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        if (quoted) {
-            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"')
-                rows.back().back() += '"', ++i;
-            else if (c == '"')
-                quoted = false;
-            else
-                rows.back().back() += c;
-        } else if (c == '"') {
-            quoted = true;
-        } else if (c == ',') {
-            rows.back().emplace_back();
-        } else if (c == '\n') {
-            rows.emplace_back(1);
-        } else {
-            rows.back().back() += c;
-        }
-    }
-    if (rows.back().size() == 1 && rows.back()[0].empty()) rows.pop_back();
-    return rows;
-}
+using test::parseCsv;
+const char* FLAT_SCENE = test::FLAT_PROBE_SCENE;
 
 TEST(ProbePoints, ACsvWithABomCrLinesQuotesAndExtraColumnsRoundTrips) {
     TempDir dir;

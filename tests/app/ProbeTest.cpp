@@ -13,6 +13,7 @@
 
 #include "AppTestSupport.h"
 #include "GeoTestSupport.h"
+#include "ProbeTestSupport.h"
 #include "app/scene/SceneBuilder.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
@@ -27,45 +28,8 @@ constexpr double LOG_LAW_RELATIVE_TOLERANCE = 0.01;
 /// Probe output is printed with 4 decimals: half a unit of the last one.
 constexpr double PRINTED_TOLERANCE = 5e-5;
 
-/// The CSV's rows as maps from column name to text.
-std::vector<std::map<std::string, std::string>> readCsv(const std::string& text) {
-    std::istringstream in(text);
-    std::string line;
-    std::vector<std::string> header;
-    std::vector<std::map<std::string, std::string>> rows;
-    while (std::getline(in, line)) {
-        std::vector<std::string> cells;
-        std::string cell;
-        std::istringstream ls(line);
-        while (std::getline(ls, cell, ',')) cells.push_back(cell);
-        if (!line.empty() && line.back() == ',') cells.push_back("");
-        if (header.empty()) {
-            header = cells;
-            continue;
-        }
-        std::map<std::string, std::string> row;
-        for (size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
-        rows.push_back(row);
-    }
-    return rows;
-}
-
-const char* FLAT_SCENE = R"(
-[terrain]
-kind = "flat"
-size_m = [20.0, 20.0]
-spacing_m = 1.0
-[wind]
-kind = "solved"
-speed_mps = 5.0
-reference_height_m = 10.0
-from_deg = 270.0
-profile = "log"
-roughness_m = 0.03
-[solver]
-voxel_size_m = 0.5
-top_m = 70.0
-)";
+using test::readCsv;
+const char* FLAT_SCENE = test::FLAT_PROBE_SCENE;
 
 TEST(Probe, FlatGroundWithALogProfileGivesTheLogLawAt2And10And50Metres) {
     TempDir dir;

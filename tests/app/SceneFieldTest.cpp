@@ -21,6 +21,7 @@
 
 #include "AppTestSupport.h"
 #include "GeoTestSupport.h"
+#include "ProbeTestSupport.h"
 #include "app/scene/LoadScene.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneField.h"
@@ -38,33 +39,7 @@ constexpr double PRINTED_TOLERANCE = 5e-5;
 /// doubles to float rounding (relative 6e-8 of speeds under 20 m/s) plus the printed rounding.
 constexpr double FLOAT_FACES_TOLERANCE_MPS = 1e-4;
 
-/// RFC 4180 rows (quoted cells may hold commas) as maps from column name to text.
-std::vector<std::map<std::string, std::string>> readCsv(const std::string& text) {
-    std::vector<std::map<std::string, std::string>> rows;
-    std::vector<std::string> header;
-    std::istringstream in(text);
-    std::string line;
-    while (std::getline(in, line)) {
-        std::vector<std::string> cells(1);
-        bool quoted = false;
-        for (char c : line) {
-            if (c == '"')
-                quoted = !quoted;
-            else if (c == ',' && !quoted)
-                cells.emplace_back();
-            else
-                cells.back() += c;
-        }
-        if (header.empty()) {
-            header = cells;
-            continue;
-        }
-        std::map<std::string, std::string> row;
-        for (size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
-        rows.push_back(row);
-    }
-    return rows;
-}
+using test::readCsv;
 
 /// The line of `text` that starts with `prefix`, or "".
 std::string lineStarting(const std::string& text, const std::string& prefix) {
