@@ -6,6 +6,14 @@
 #   app/io/     no other app/ header
 #   app/scene/  no app/bench/ header and none of the verbs' (app/*.h)
 #   app/bench/  no app/scene/ header and none of the verbs'
+#   validation/ sim/ and base/ only: no GL, GLFW, GLM, OpenImageIO; no coupling/, render/, app/
+# and the tests, each module's tests including only what that module may include, plus the
+# oracles of validation/ for the modules above which validation/ sits (sim/, coupling/):
+#   tests/sim/         no coupling/, render/ or app/ header (validation/ allowed: its oracles)
+#   tests/render/      no OpenVDB; no sim/, coupling/, validation/ or app/ header
+#   tests/coupling/    no app/ header
+#   tests/validation/  no coupling/, render/ or app/ header
+# tests/app, tests/reliability and tests/fuzz test the program and may include all of it.
 set(violations "")
 set(counts "")
 
@@ -34,6 +42,12 @@ check(coupling "coupling/*.[ch]*" "app/")
 check(app_io "app/io/*.[ch]*" "app/(scene|bench)/|app/[A-Za-z]+\\.h")
 check(app_scene "app/scene/*.[ch]*" "app/bench/|app/[A-Za-z]+\\.h")
 check(app_bench "app/bench/*.[ch]*" "app/scene/|app/[A-Za-z]+\\.h")
+check(validation "validation/*.[ch]*"
+      "GL/|GLFW/|glm/|OpenImageIO/|EGL/|coupling/|render/|app/")
+check(tests_sim "tests/sim/*.[ch]*" "coupling/|render/|app/")
+check(tests_render "tests/render/*.[ch]*" "openvdb/|nanovdb/|sim/|coupling/|validation/|app/")
+check(tests_coupling "tests/coupling/*.[ch]*" "app/")
+check(tests_validation "tests/validation/*.[ch]*" "coupling/|render/|app/")
 
 if(violations)
     string(REPLACE ";" "\n  " text "${violations}")

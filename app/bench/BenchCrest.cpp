@@ -11,15 +11,17 @@
 #include <vector>
 
 #include "app/bench/BenchModels.h"
-#include "app/bench/CaoTamuraRidge.h"
 #include "app/io/Errors.h"
 #include "app/io/Timing.h"
 #include "sim/MomentumWind.h"
 #include "sim/SteadyWind.h"
 #include "sim/SurfaceLayer.h"
+#include "validation/CaoTamuraRidge.h"
 
 namespace gale::app {
 namespace {
+
+namespace ridge = validation::ridge;
 
 /// One experiment: which model, which inflow, which stresses, which top.
 struct CrestCase {
@@ -86,7 +88,7 @@ CrestSolve solveCase(const CrestCase& c, const sim::Heightfield& terrain, double
     return out;
 }
 
-/// The measured windward-foot profile below H (tests/data/validation/cao-tamura-2006-ridge.csv,
+/// The measured windward-foot profile below H (validation/data/cao-tamura-2006-ridge.csv,
 /// x = -2.5 H): dz / H and u / U_inf.
 constexpr double FOOT_DZ_OVER_H[5] = {0.103, 0.241, 0.490, 0.738, 1.000};
 constexpr double FOOT_U_OVER_UINF[5] = {0.251, 0.377, 0.448, 0.533, 0.562};

@@ -10,7 +10,7 @@
 
 #include "base/Numbers.h"
 
-namespace gale::exact {
+namespace gale::validation::exact {
 
 /// A hemisphere of radius R on flat ground at (cx, cy, 0) in a uniform wind U along +x. By
 /// symmetry about the ground plane it is half of the sphere in a free stream (potential flow):
@@ -64,4 +64,4 @@ inline double lambOseenSpeed_mps(double circulation_m2ps, double rc2_m2, double 
     return circulation_m2ps / (2.0 * PI * r_m) * -std::expm1(-r_m * r_m / rc2_m2);
 }
 
-}  // namespace gale::exact
+}  // namespace gale::validation::exact
