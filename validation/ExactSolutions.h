@@ -1,8 +1,8 @@
 #pragma once
 /// \file ExactSolutions.h
 /// The exact flows that the benchmarks and the tests measure the solvers against, in one place.
-/// Header-only and standard library only, so any test executable may include it. Units: metres,
-/// seconds, m/s; positions in world space.
+/// Header-only, the standard library and base/ only: it knows nothing of the solvers it judges.
+/// Units: metres, seconds, m/s; positions in world space.
 
 #include <array>
 #include <cmath>

@@ -1,7 +1,7 @@
 #pragma once
 /// \file RidgeBox.h
 /// The two-dimensional ridge box and log-law inflow the ridge studies of `gale bench models`
-/// share (BenchJacksonHunt.cpp, BenchModelsPseudoTime.cpp).
+/// share (JacksonHuntStudy.cpp, PseudoTimeStudy.cpp).
 
 #include "sim/AirDomain.h"
 #include "sim/AmbientWind.h"

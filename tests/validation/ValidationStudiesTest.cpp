@@ -7,9 +7,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "validation/AcceptanceLimits.h"
 #include "validation/CaoTamuraStudy.h"
+#include "validation/CrestStudy.h"
 #include "validation/HemisphereStudy.h"
 #include "validation/JacksonHuntStudy.h"
 #include "validation/LambOseenStudy.h"
@@ -108,6 +110,29 @@ TEST(CaoTamuraStudy, MassConsistentModelGivesThePagesRmsAndNoLeeDeficit) {
                 s.leeSameSign);
     EXPECT_NEAR(s.rmsSpeedupError, L::FIGURE_CT_MC_RMS, L::CT_RMS_BAND);
     EXPECT_EQ(s.leeSameSign, 0);  // free slip: nothing slows the air behind the ridge
+}
+
+/// The crest's u / U_inf and speed-up of one experiment against the page's figures.
+void expectCrest(const CrestCase& c, const double (&uinf)[3], const double (&speedup)[3]) {
+    const CrestStudy r = runCrest({c, /*cellsPerH=*/5, std::nullopt});
+    std::printf("crest, %s: u/U_inf %.3f / %.3f / %.3f, speed-up %.3f / %.3f / %.3f, %d steps\n",
+                c.name.c_str(), r.crestUinf[0], r.crestUinf[1], r.crestUinf[2], r.crestSpeedup[0],
+                r.crestSpeedup[1], r.crestSpeedup[2], r.steps);
+    EXPECT_TRUE(r.converged) << c.name;
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(r.crestUinf[i], uinf[i], L::CREST_UINF_BAND) << c.name << ", height " << i;
+        EXPECT_NEAR(r.crestSpeedup[i], speedup[i], L::CT_SPEEDUP_BAND) << c.name << ", " << i;
+    }
+}
+
+TEST(CrestStudy, PotentialFlowMassConsistentAndEulerCrestsAreThePages) {
+    using ridge::Inflow;
+    expectCrest({"potential flow", false, Inflow::Uniform, false, false},
+                L::FIGURE_CREST_POTENTIAL_UINF, L::FIGURE_CREST_POTENTIAL_SPEEDUP);
+    expectCrest({"mass-consistent", false, Inflow::Published, false, false},
+                L::FIGURE_CREST_MASS_CONSISTENT_UINF, L::FIGURE_CREST_MASS_CONSISTENT_SPEEDUP);
+    expectCrest({"Euler", true, Inflow::Published, false, false}, L::FIGURE_CREST_EULER_UINF,
+                L::FIGURE_CREST_EULER_SPEEDUP);
 }
 
 /// The gentle ridge's lee speed with one pseudo-time step (at most 872 steps at the quick size).
