@@ -147,8 +147,8 @@ void addModels(CLI::App& bench, VerbTable& verbs) {
         ->capture_default_str();
     verb->add_flag("--quick", o->quick, "The coarsest resolution of each case (a CI smoke run)");
     verb->add_option("--data", o->validationCsv,
-                     "The validation data (default: tests/data/validation/"
-                     "cao-tamura-2006-ridge.csv in the source tree)");
+                     "The validation data (default: validation/data/"
+                     "cao-tamura-2006-ridge.csv as built into the program)");
     verb->add_option("--json", o->jsonPath, "Also write the table as JSON");
     verb->add_flag("--crest", o->crestStudy,
                    "Instead: the crest experiments on the ridge (potential flow, Euler, eddy "

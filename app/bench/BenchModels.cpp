@@ -13,8 +13,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include "app/bench/CaoTamuraRidge.h"
-#include "app/bench/ExactSolutions.h"
 #include "app/bench/SvgPlot.h"
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
@@ -22,42 +20,27 @@
 #include "base/Numbers.h"
 #include "sim/MomentumWind.h"
 #include "sim/SteadyWind.h"
-
-#ifndef GALE_VALIDATION_CSV
-#define GALE_VALIDATION_CSV ""
-#endif
+#include "validation/CaoTamuraStudy.h"
+#include "validation/HemisphereStudy.h"
 
 namespace gale::app {
 namespace {
 
-/// One measured point of the validation line (tests/data/validation/README.md).
-struct Measured {
-    double xOverH = 0, dzOverH = 0, speedup = 0;
-    double uOverUinf = 0;  ///< the measurement itself, u / U_inf
-};
+using validation::RidgeMeasurement;
+namespace ridge = validation::ridge;
 
-std::vector<Measured> readValidation(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError("--data: " + path + ": cannot read the validation data");
-    std::string line;
-    std::getline(in, line);  // header
-    std::vector<Measured> out;
-    int lineNo = 1;
-    while (std::getline(in, line)) {
-        ++lineNo;
-        std::vector<std::string> f;
-        std::stringstream ss(line);
-        for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
-        if (f.size() < 6 || f[5].empty()) continue;  // no reference below the lowest foot point
-        try {
-            out.push_back({std::stod(f[0]), std::stod(f[2]), std::stod(f[5]), std::stod(f[3])});
-        } catch (const std::exception&) {
-            throw InputError(path + ":" + std::to_string(lineNo) +
-                             ": expected numbers in x_over_H, dz_over_H, speedup");
-        }
+/// The validation line: the copy embedded in the program, or the file given by --data.
+std::vector<RidgeMeasurement> readValidation(const std::string& path) {
+    try {
+        if (path.empty()) return validation::caoTamuraMeasurements();
+        std::ifstream in(path);
+        if (!in) throw InputError("--data: " + path + ": cannot read the validation data");
+        std::ostringstream text;
+        text << in.rdbuf();
+        return validation::parseRidgeMeasurements(text.str(), path);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(e.what());
     }
-    if (out.empty()) throw InputError(path + ": no measured speed-ups");
-    return out;
 }
 
 /// One row of the table.
@@ -89,98 +72,44 @@ struct Row {
     double rmsWindward = NAN, rmsLee = NAN;
 };
 
-/// The target for the lee deficits: within 0.15 of the measured speed-up.
-constexpr double LEE_DEFICIT_TOLERANCE = 0.15;
+using validation::MEASURED_CREST_SPEEDUP;
+using validation::MEASURED_CREST_UINF_025H;
+using validation::MEASURED_FOOT_UINF_025H;
+using validation::MEASURED_LEE_FOOT_SPEEDUP;
 
-// ---- the ridge of Cao and Tamura (2006), scaled to H = 40 m (app/bench/CaoTamuraRidge.h) -------
-
-constexpr double MEASURED_CREST_SPEEDUP = 1.33;      ///< at dz = 0.25 H (the data)
-constexpr double MEASURED_LEE_FOOT_SPEEDUP = -0.32;  ///< at x = 2.5 H, dz = 1.0 H (the data)
-/// Measured u / U_inf nearest dz = 0.25 H (the data): windward foot (dz 0.241 H), crest (0.248 H).
-constexpr double MEASURED_FOOT_UINF_025H = 0.377, MEASURED_CREST_UINF_025H = 0.884;
+// ---- the ridge of Cao and Tamura (2006), scaled to H = 40 m (validation/CaoTamuraStudy.h) ------
 
 /// Runs one model on the ridge at H / h = cellsPerH (momentum: pseudo-time step cfl) with the
 /// given inflow (the published one unless stated), compares with the measured line.
-Row runRidge(bool momentum, int cellsPerH, const std::vector<Measured>& data, int maxIterations,
-             double cfl = 2.0, ridge::Inflow inflow = ridge::Inflow::Published,
+Row runRidge(bool momentum, int cellsPerH, const std::vector<RidgeMeasurement>& data,
+             int maxIterations, double cfl = 2.0, ridge::Inflow inflow = ridge::Inflow::Published,
              sim::PseudoTimeAdvection advection = sim::PseudoTimeAdvection::SemiLagrangian) {
-    const double h = ridge::H_M / cellsPerH;
-    const sim::Heightfield terrain = ridge::terrain(h);
-    sim::DomainSpec spec;
-    spec.voxelSize_m = h;
-    spec.top_m = ridge::TOP_OVER_H * ridge::H_M;
-    spec.momentumModel = momentum;
-    spec.closedSidesY = true;  // a two-dimensional ridge: the tunnel's side walls, free slip
-    const sim::AmbientWind wind = ridge::wind(inflow);
-    const auto t0 = Clock::now();
-    const sim::AirDomain domain(terrain, spec);
-    sim::SolverSettings start;
-    start.maxIterations = 200;
-    sim::MomentumSettings ms;
-    ms.cfl = cfl;
-    ms.advection = advection;
-    ms.maxIterations = maxIterations;
-    const sim::SteadyModelResult res = sim::solveSteadyModel(
-        domain, wind, momentum ? sim::SteadyModel::Momentum : sim::SteadyModel::MassConsistent,
-        sim::MassConsistentWeights{}, start, ms);
+    validation::CaoTamuraOptions o;
+    o.momentum = momentum, o.cellsPerH = cellsPerH, o.maxIterations = maxIterations;
+    o.cfl = cfl, o.inflow = inflow, o.advection = advection;
+    const validation::CaoTamuraStudy s = validation::runCaoTamura(o, data);
     Row r;
-    r.seconds = secondsSince(t0);
+    r.seconds = s.seconds;
     r.model = momentum ? "momentum" : "mass_consistent";
     r.testCase = inflow == ridge::Inflow::Published ? "ridge (Cao, Tamura 2006)"
                                                     : "ridge, foot-fit inflow (history)";
     if (advection == sim::PseudoTimeAdvection::Eulerian) r.testCase = "ridge, Eulerian step";
     r.resolution = "H/h=" + std::to_string(cellsPerH);
-    r.nx = domain.nx(), r.ny = domain.ny(), r.nz = domain.nz();
-    r.iterations = res.report.iterations;
-    r.converged = res.report.converged;
-    if (momentum) r.cfl = advection == sim::PseudoTimeAdvection::Eulerian ? ms.eulerianCfl : cfl;
-    if (res.momentum)
-        for (const sim::MomentumLevel& l : res.momentum->levels)
-            std::fprintf(stderr, "  level %d (%g m): %d steps, residual %.2e, %s\n", l.level,
-                         l.voxelSize_m, l.iterations, l.momentumResidual,
-                         l.converged ? "converged" : "not converged");
-    const double y = terrain.sizeY_m() / 2;
-    auto u = [&](double xOverH, double dzOverH) {
-        const double x = xOverH * ridge::H_M;
-        return res.field.velocityAt_mps(x + ridge::UPWIND_M, y,
-                                        ridge::height_m(x) + dzOverH * ridge::H_M)[0];
-    };
-    double sum2 = 0, sumLee2 = 0;
-    int n = 0, nLee = 0;
-    double crestDz = 1e9, leeDz = 1e9;
-    for (const Measured& m : data) {
-        if (m.xOverH <= -2.5 + 1e-9) continue;  // the reference itself
-        const double model = u(m.xOverH, m.dzOverH) / u(-2.5, m.dzOverH) - 1.0;
-        sum2 += (model - m.speedup) * (model - m.speedup), ++n;
-        if (m.xOverH > 0) sumLee2 += (model - m.speedup) * (model - m.speedup), ++nLee;
-        if (m.xOverH > 0 && m.speedup < 0) {
-            ++r.leePoints;
-            if (model < 0) ++r.leeSameSign;
-            if (std::abs(model - m.speedup) <= LEE_DEFICIT_TOLERANCE) ++r.leeWithin;
-        }
-        if (std::abs(m.xOverH) < 1e-9 && std::abs(m.dzOverH - 0.25) < std::abs(crestDz - 0.25))
-            crestDz = m.dzOverH, r.crestSpeedup = model;
-        if (std::abs(m.xOverH - 2.5) < 1e-9 && std::abs(m.dzOverH - 1.0) < std::abs(leeDz - 1.0))
-            leeDz = m.dzOverH, r.leeSpeedup = model;
-    }
-    r.error = std::sqrt(sum2 / std::max(n, 1));
-    r.rmsLee = std::sqrt(sumLee2 / std::max(nLee, 1));
-    r.rmsWindward = std::sqrt((sum2 - sumLee2) / std::max(n - nLee, 1));
-    r.errorName = "RMS speed-up error, " + std::to_string(n) + " points";
-    // Against the free stream: the model's U_inf is its inflow's (the published inflow's speed
-    // at the top), not taken from the hill data.
-    const double uInf = ridge::freeStream_mps(inflow);
-    double sumInf = 0;
-    for (const Measured& m : data) {
-        const double d = u(m.xOverH, m.dzOverH) / uInf - m.uOverUinf;
-        sumInf += d * d;
-    }
-    r.rmsUinf = std::sqrt(sumInf / double(data.size()));
-    r.crestUinf = u(0.0, 0.25) / uInf, r.footUinf = u(-2.5, 0.25) / uInf;
-    for (int i = 0; i < 3; ++i) {
-        const double dz = ridge::CREST_DZ_OVER_H[i];
-        r.crestSpeedups[i] = u(0.0, dz) / u(-2.5, dz) - 1.0;
-    }
+    r.nx = s.nx, r.ny = s.ny, r.nz = s.nz;
+    r.iterations = s.iterations;
+    r.converged = s.converged;
+    r.cfl = s.cfl;
+    for (const validation::CaoTamuraStudy::Level& l : s.levels)
+        std::fprintf(stderr, "  level %d (%g m): %d steps, residual %.2e, %s\n", l.level,
+                     l.voxelSize_m, l.iterations, l.momentumResidual,
+                     l.converged ? "converged" : "not converged");
+    r.error = s.rmsSpeedupError;
+    r.rmsLee = s.rmsLee, r.rmsWindward = s.rmsWindward;
+    r.errorName = "RMS speed-up error, " + std::to_string(s.points) + " points";
+    r.crestSpeedup = s.crestSpeedup, r.leeSpeedup = s.leeSpeedup;
+    r.leePoints = s.leePoints, r.leeSameSign = s.leeSameSign, r.leeWithin = s.leeWithin;
+    r.rmsUinf = s.rmsUinf, r.crestUinf = s.crestUinf, r.footUinf = s.footUinf;
+    for (int i = 0; i < 3; ++i) r.crestSpeedups[i] = s.crestSpeedups[i];
     return r;
 }
 
@@ -232,39 +161,14 @@ Row runFlat(double h, std::optional<double> first_m = std::nullopt) {
 // ---- hemisphere: exact potential flow (mass-consistent) -----------------------------------------
 
 Row runHemisphere(int cellsPerRadius) {
-    const exact::HemisphereFlow flow{1.0, 1.0, 3.0, 3.0};
-    sim::TerrainSpec ts;
-    ts.kind = sim::TerrainKind::Hemisphere;
-    ts.sizeX_m = ts.sizeY_m = 6.0;
-    ts.spacing_m = flow.R_m / 128;
-    ts.radius_m = flow.R_m;
-    ts.centerX_m = ts.centerY_m = 3.0;
-    const sim::Heightfield hf = sim::makeTerrain(ts);
-    sim::AmbientWind ambient;
-    ambient.profile = sim::WindProfile::Uniform;
-    ambient.speed_mps = flow.U_mps;
-    const sim::BoundaryPotential farField = [&](double x, double y, double z) {
-        return flow.phi(x, y, z);
-    };
-    const auto t0 = Clock::now();
-    const sim::AirDomain domain(hf, sim::DomainSpec{flow.R_m / cellsPerRadius, /*top_m=*/3.0});
-    sim::SteadyWindSolver solver(domain);
-    sim::SolverSettings set;
-    set.maxIterations = 200;
-    const sim::SteadyWindResult res = solver.solve(ambient, set, farField);
+    const validation::HemisphereStudy s = validation::runHemisphere({cellsPerRadius});
     Row r;
-    r.seconds = secondsSince(t0);
+    r.seconds = s.seconds;
     r.model = "mass_consistent", r.testCase = "hemisphere potential flow";
     r.resolution = "R/h=" + std::to_string(cellsPerRadius);
-    r.nx = domain.nx(), r.ny = domain.ny(), r.nz = domain.nz();
-    r.iterations = res.report.iterations, r.converged = res.report.converged;
-    double e2 = 0, n2 = 0;
-    for (const auto& p : flow.nearPoints()) {
-        const auto u = res.field.velocityAt_mps(p[0], p[1], p[2]);
-        const auto ue = flow.velocity(p[0], p[1], p[2]);
-        for (int q = 0; q < 3; ++q) e2 += (u[q] - ue[q]) * (u[q] - ue[q]), n2 += ue[q] * ue[q];
-    }
-    r.error = std::sqrt(e2 / n2);
+    r.nx = s.nx, r.ny = s.ny, r.nz = s.nz;
+    r.iterations = s.iterations, r.converged = s.converged;
+    r.error = s.nearL2;
     r.errorName = "near-surface L2 / |u|, 193 points 0.1 R up";
     return r;
 }
@@ -275,9 +179,7 @@ int runBenchModels(const BenchModelsOptions& opt) {
     if (opt.crestStudy) return runCrestStudy(/*cellsPerH=*/5);
     if (opt.jacksonHunt) return runJacksonHuntStudy();
     if (opt.pseudoTime) return runPseudoTimeStudy();
-    const std::string csvPath =
-        opt.validationCsv.empty() ? std::string(GALE_VALIDATION_CSV) : opt.validationCsv;
-    const std::vector<Measured> data = readValidation(csvPath);
+    const std::vector<RidgeMeasurement> data = readValidation(opt.validationCsv);
     const std::vector<int> ridgeRes = opt.quick ? std::vector<int>{5} : std::vector<int>{5, 10};
     // Pseudo-time steps per level at most: the quick run is a smoke test of the table.
     const int ridgeIterations = opt.quick ? 300 : 1000;

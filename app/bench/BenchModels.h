@@ -3,10 +3,10 @@
 /// `gale bench models`: error against run time of both steady models (docs/validation.md,
 /// "Error against run time"). Each model is measured where an exact or measured answer exists:
 ///   - mass-consistent: the hemisphere's exact potential flow (near-surface L2 error at the 193
-///     fixed points 0.1 R up of app/bench/ExactSolutions.h);
+///     fixed points 0.1 R up of validation/ExactSolutions.h);
 ///   - momentum: the neutral log law over flat rough ground (largest relative error of u from 1 m
 ///     to 50 m against u*/kappa ln(z / z0));
-///   - both: the steep ridge of Cao and Tamura (2006) (tests/data/validation), RMS of the
+///   - both: the steep ridge of Cao and Tamura (2006) (validation/data), RMS of the
 ///     fractional speed-up over the measured points off the windward foot, and the crest's
 ///     speed-up at 0.25 H against the measured 1.33;
 /// each at two or three resolutions, with iterations and wall time. Table to stdout, CSV and a
@@ -20,7 +20,8 @@ struct BenchModelsOptions {
     std::string outputFolder = ".";  ///< models.csv and models.svg go here
     std::string jsonPath;            ///< if set, the table as JSON (atomically)
     bool quick = false;              ///< the coarsest resolution of each case: a CI smoke run
-    /// The validation data (cao-tamura-2006-ridge.csv); empty: the copy in the source tree.
+    /// The validation data (cao-tamura-2006-ridge.csv); empty: the copy embedded in the program
+    /// (validation/ValidationData.h).
     std::string validationCsv;
     /// Instead of the table: the crest experiments on the ridge (runCrestStudy at H / h = 5).
     bool crestStudy = false;

@@ -14,8 +14,8 @@
 #include "app/io/Timing.h"
 #include "base/Numbers.h"
 #include "sim/AirDomain.h"
-#include "sim/PoissonTerrains.h"
 #include "sim/SteadyWind.h"
+#include "validation/PoissonTerrains.h"
 
 namespace gale::app {
 namespace {
@@ -57,15 +57,16 @@ int runBenchRough(const BenchRoughOptions& opt) {
                 "iterations", "residual", "setup s", "solve s", "cpu s", "cpu ns/c/it");
     nlohmann::json rows = nlohmann::json::array();
     bool ok = true;
-    for (sim::RoughTerrainKind kind :
-         {sim::RoughTerrainKind::Fractal, sim::RoughTerrainKind::SharpFeatures}) {
-        const sim::Heightfield terrain = sim::makeRoughTerrain(kind, size_m, PIXEL_M, RELIEF_M);
+    for (validation::RoughTerrainKind kind :
+         {validation::RoughTerrainKind::Fractal, validation::RoughTerrainKind::SharpFeatures}) {
+        const sim::Heightfield terrain =
+            validation::makeRoughTerrain(kind, size_m, PIXEL_M, RELIEF_M);
         // Each resolution with cubic cells, then with stretched layers from h / 4 (growing by 1.2
         // to 2 h; docs/solver.md, "Stretched layers").
         for (double h : voxels_m)
             for (bool stretched : {false, true}) {
                 std::fprintf(stderr, "bench rough: %s at %.0f m%s...\n",
-                             sim::roughTerrainName(kind), h, stretched ? ", stretched" : "");
+                             validation::roughTerrainName(kind), h, stretched ? ", stretched" : "");
                 sim::DomainSpec spec;
                 spec.voxelSize_m = h;
                 spec.memoryLimit_bytes = 8e9;
@@ -93,12 +94,12 @@ int runBenchRough(const BenchRoughOptions& opt) {
                 std::printf(
                     "%-15s %7.1f %8.2f %14s %10zu %9.0f %9.1f %7d %10d %11.2e %9.2f %9.2f %9.2f "
                     "%12.1f%s\n",
-                    sim::roughTerrainName(kind), h, first_m, cells, domain.activeCellCount(),
+                    validation::roughTerrainName(kind), h, first_m, cells, domain.activeCellCount(),
                     estimate_MiB, estimate_MiB / (boxCells / 1e6), rep.levels, rep.iterations,
                     rep.relativeResidual, setup_s, rep.solveSeconds, cpu_s, cpuPerCellIteration_ns,
                     met ? "" : "  MISSED");
                 rows.push_back(
-                    {{"terrain", sim::roughTerrainName(kind)},
+                    {{"terrain", validation::roughTerrainName(kind)},
                      {"voxel_size_m", h},
                      {"first_cell_m", first_m},
                      {"memory_estimate_bytes", domain.memoryEstimate_bytes()},

@@ -2,8 +2,8 @@
 /// \file BenchRough.h
 /// `gale bench rough`: the steady solve's iterations on rough, real-like terrains as the cells
 /// halve (docs/solver.md, "Rough terrain"): the fractal and the sharp-feature heightmap of
-/// sim/PoissonTerrains.h, 1280 m square with 10 m pixels, at 20, 10 and 5 m cells (quick: a 320 m
-/// square). Table to stdout, progress lines to stderr.
+/// validation/PoissonTerrains.h, 1280 m square with 10 m pixels, at 20, 10 and 5 m cells (quick: a
+/// 320 m square). Table to stdout, progress lines to stderr.
 
 #include <string>
 

@@ -23,13 +23,13 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "app/bench/ExactSolutions.h"
 #include "app/bench/SvgPlot.h"
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/io/Timing.h"
 #include "base/Numbers.h"
 #include "sim/SteadyWind.h"
+#include "validation/ExactSolutions.h"
 
 namespace gale::app {
 

@@ -11,17 +11,18 @@
 #include <sstream>
 #include <vector>
 
-#include "app/bench/ExactSolutions.h"
 #include "app/bench/SvgPlot.h"
-#include "app/bench/TranslatingVortex.h"
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/io/Timing.h"
 #include "base/Numbers.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
-#include "sim/UnsteadyStability.h"
 #include "sim/UnsteadyWind.h"
+#include "validation/AcceptanceLimits.h"
+#include "validation/ExactSolutions.h"
+#include "validation/LambOseenStudy.h"
+#include "validation/UnsteadyStability.h"
 
 namespace gale::app {
 namespace {
@@ -90,7 +91,7 @@ AccuracyRow lambOseen(sim::AdvectionScheme scheme, int cellsPerCore, double cour
                  rt = std::sqrt(rc2);
     const double z = hf.sample(half, half) + 0.5 * LID_CELLS * h;
     for (double r = 0.25 * rt; r <= 2.0 * rt + 1e-9; r += 0.25 * rt) {
-        const double exact = gale::exact::lambOseenSpeed_mps(G, rc2, r);
+        const double exact = validation::exact::lambOseenSpeed_mps(G, rc2, r);
         const double got =
             sim::circulationAround(solver.grid(), solver.velocity(), {half, half}, r, z) /
             (2 * PI * r);
@@ -162,19 +163,15 @@ TimingRow timeSteps(int n, int nz, sim::AdvectionScheme scheme, int steps) {
 }  // namespace
 
 // ---- stability suite ---------------------------------------------------------------------------
-// The bench's own rules (the library measures, it does not judge); the tests in
-// tests/sim/UnsteadyStabilityTest.cpp hold the same limits with their reasons.
+// The bench's rules are validation/AcceptanceLimits.h's, which the tests hold too (the library
+// measures, it does not judge).
 
-/// Largest max|div u| h / U accepted after a projection (the projection solves to 1e-7).
-constexpr double DIVERGENCE_LIMIT = 1e-4;
-/// Unforced energy may not grow beyond the projection's round-off.
-constexpr double ENERGY_GROWTH_LIMIT = 1e-3;
-/// The CFL cases start from an exact steady solution; 12 steps move them 4-6% (near the ground).
-constexpr double STEADY_DEVIATION_LIMIT = 0.1;
+using validation::limits::BURGERS_CORE_LIMIT;
+using validation::limits::DIVERGENCE_LIMIT;
+using validation::limits::ENERGY_GROWTH_LIMIT;
+using validation::limits::STEADY_DEVIATION_LIMIT;
 /// Semi-Lagrangian at fixed CFL is first order in h.
-constexpr double MIN_H_ORDER = 0.7;
-/// Burgers' balanced core stays within 10% of r_c over one strain time.
-constexpr double BURGERS_CORE_LIMIT = 0.1;
+constexpr double MIN_H_ORDER = validation::limits::MIN_VORTEX_H_ORDER;
 
 int runBenchStability(const BenchStabilityOptions& opt) {
     bool all = true;
@@ -182,9 +179,9 @@ int runBenchStability(const BenchStabilityOptions& opt) {
     std::printf("%-24s %5s %7s %7s %11s %11s %8s %9s %9s %9s %6s %7s  %s\n", "case", "steps",
                 "dt s", "CFL", "KE start", "KE end", "KE %", "forcing", "deviation", "max div",
                 "finite", "wall s", "verdict");
-    for (const std::string& n : sim::stabilityCaseNames(opt.quick)) {
+    for (const std::string& n : validation::stabilityCaseNames(opt.quick)) {
         std::fprintf(stderr, "bench stability: %s...\n", n.c_str());
-        const sim::StabilityRun r = sim::runStabilityCase(n);
+        const validation::StabilityRun r = validation::runStabilityCase(n);
         const bool cflCase = n.rfind("cfl", 0) == 0;
         std::string why;
         if (!r.finite) why += "NaN/Inf; ";
@@ -222,7 +219,7 @@ int runBenchStability(const BenchStabilityOptions& opt) {
         "steady potential flow, an exact steady Euler solution\n");
 
     // Translating inviscid Lamb-Oseen against its exact Galilean solution.
-    using TV = sim::TranslatingVortexSpec;
+    using TV = validation::TranslatingVortexSpec;
     std::printf(
         "\ntranslating Lamb-Oseen (r_c %.0f m, peak %.0f m/s, wind %.0f m/s, t = %.0f s, no "
         "viscosity): "
@@ -234,24 +231,23 @@ int runBenchStability(const BenchStabilityOptions& opt) {
     double hOrder = 0.0;
     auto study = [&](const char* what, const std::vector<std::pair<int, double>>& runs,
                      double* lastOrder) {
-        double prev = 0.0;
-        for (const auto& [cells, courant] : runs) {
+        for (const auto& [cells, courant] : runs)
             std::fprintf(stderr,
                          "bench stability: translating vortex, %d cells per core, CFL %.1f...\n",
                          cells, courant);
-            const sim::StabilityRun r = sim::runTranslatingVortex(cells, courant);
-            const double e = exact::translatingVortexError(r);
-            const double order = prev > 0 ? std::log2(prev / e) : NAN;
-            if (prev > 0 && lastOrder) *lastOrder = order;
-            prev = e;
-            std::printf("%-14s %9d %6.2f %7d %9.4f %8.2f %+9.2f%% %8.2f\n", what, cells, courant,
-                        r.steps, e, order,
+        validation::LambOseenOptions lo;
+        lo.runs = runs;
+        const validation::LambOseenStudy s = validation::runLambOseen(lo);
+        if (lastOrder && s.rows.size() > 1) *lastOrder = s.lastOrder();
+        for (const validation::LambOseenStudy::Row& r : s.rows) {
+            std::printf("%-14s %9d %6.2f %7d %9.4f %8.2f %+9.2f%% %8.2f\n", what, r.cellsPerCore,
+                        r.courant, r.steps, r.error, r.order,
                         100.0 * (r.keEnd_m5ps2 - r.keStart_m5ps2) / r.keStart_m5ps2, r.wall_s);
             vortexRows.push_back({{"refine", what},
-                                  {"cells_per_core", cells},
-                                  {"cfl", courant},
+                                  {"cells_per_core", r.cellsPerCore},
+                                  {"cfl", r.courant},
                                   {"steps", r.steps},
-                                  {"error", e},
+                                  {"error", r.error},
                                   {"kinetic_energy_start_m5ps2", r.keStart_m5ps2},
                                   {"kinetic_energy_end_m5ps2", r.keEnd_m5ps2},
                                   {"wall_s", r.wall_s}});
@@ -268,7 +264,7 @@ int runBenchStability(const BenchStabilityOptions& opt) {
                 orderOk ? "ok" : "MISSED");
 
     // Burgers' vortex: held by strain against viscosity.
-    using B = sim::BurgersSpec;
+    using B = validation::BurgersSpec;
     const int burgersCells = opt.quick ? 4 : 8;
     const double aT = B::STRAIN_PER_S * B::TIME_S;
     std::printf(
@@ -288,9 +284,9 @@ int runBenchStability(const BenchStabilityOptions& opt) {
         const std::string label =
             std::string(variants[variant]) + (exactPressure ? "" : ", p = 0 sides");
         std::fprintf(stderr, "bench stability: Burgers vortex, %s...\n", label.c_str());
-        const sim::StabilityRun r =
-            sim::runBurgersVortex(sim::BurgersVariant(variant), burgersCells, exactPressure);
-        const double core = sim::burgersCoreRadius_m(r) / B::CORE_M;
+        const validation::StabilityRun r = validation::runBurgersVortex(
+            validation::BurgersVariant(variant), burgersCells, exactPressure);
+        const double core = validation::burgersCoreRadius_m(r) / B::CORE_M;
         if (v == 0) balanced = core;
         std::printf(
             "%-27s core %.3f (exact %.3f)  KE %.4g -> %.4g (%+.2f%%)  steps %d  wall %.2f s\n",

@@ -1,7 +1,7 @@
 #pragma once
 /// \file BenchUnsteady.h
 /// The unsteady wind's benchmarks (docs/unsteady.md has the method and the measured tables):
-///  - `gale bench stability`: the named extreme cases of sim/UnsteadyStability.h as a table
+///  - `gale bench stability`: the named extreme cases of validation/UnsteadyStability.h as a table
 ///    (case, steps, dt, CFL, kinetic energy budget, deviation from the steady start, divergence,
 ///    finiteness), the translating Lamb-Oseen vortex's errors and orders (h at fixed CFL, dt at
 ///    fixed h) and Burgers' vortex core, judged by the bench's own rules;

@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "app/bench/ExactSolutions.h"
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
 #include "coupling/FieldSampling.h"
@@ -20,10 +19,13 @@
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/SurfaceLayer.h"
+#include "validation/ExactSolutions.h"
 
 using namespace gale;
 
 namespace {
+
+namespace exact = gale::validation::exact;
 
 // --- the hemisphere: potential flow past a sphere, exact --------------------------------------
 
@@ -32,7 +34,7 @@ constexpr double RADIUS_M = 16.0;
 // The ground sits this fraction of a cell above the box's bottom face: cut, between the faces.
 constexpr double GROUND_OFFSET_CELLS = 0.3;
 
-// The exact flow (app/bench/ExactSolutions.h) over ground lifted to zb.
+// The exact flow (validation/ExactSolutions.h) over ground lifted to zb.
 struct Hemisphere {
     exact::HemisphereFlow flow{RADIUS_M, 1.0, 3.0 * RADIUS_M, 3.0 * RADIUS_M};
     double zb = 0.0;  // ground height, metres

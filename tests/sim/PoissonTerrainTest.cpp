@@ -11,12 +11,16 @@
 
 #include "sim/AirDomain.h"
 #include "sim/PoissonSolver.h"
-#include "sim/PoissonTerrains.h"
 #include "sim/SteadyWind.h"
 #include "tests/sim/SimTestUtil.h"
+#include "validation/PoissonTerrains.h"
 
 namespace gale::sim {
 namespace {
+
+using validation::makeRoughTerrain;
+using validation::RoughTerrainKind;
+using validation::roughTerrainName;
 
 /// The V-cycle is a fixed linear map applied in double precision: <a, M^-1 b> and <b, M^-1 a> may
 /// differ by round-off only (the issue asks for 1e-10 relative).

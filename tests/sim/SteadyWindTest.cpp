@@ -12,15 +12,17 @@
 #include <string>
 
 #include "SimTestUtil.h"
-#include "app/bench/ExactSolutions.h"
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/VdbIO.h"
+#include "validation/ExactSolutions.h"
 
 namespace gale::sim {
 namespace {
+
+namespace exact = gale::validation::exact;
 
 using test::tight;
 using test::uniformWind;
@@ -167,7 +169,7 @@ HemisphereError hemisphereError(int cellsPerRadius) {
     const double R = 1.0, c = 3.0;
     AirDomain domain(test::centredHemisphere(R, c),
                      DomainSpec{R / cellsPerRadius, /*top_m=*/3.0 * R, /*memoryLimit_bytes=*/2e9});
-    const gale::exact::HemisphereFlow flow{R, /*U_mps=*/1.0, c, c};
+    const gale::validation::exact::HemisphereFlow flow{R, /*U_mps=*/1.0, c, c};
     auto phi = [&](double x, double y, double z) { return flow.phi(x, y, z); };
     const SteadyWindResult res = solveSteadyWind(domain, uniformWind(1.0, 0.0), {}, tight(), phi);
     EXPECT_TRUE(res.report.converged) << res.report.message;

@@ -12,16 +12,22 @@
 #include <string>
 
 #include "SimTestUtil.h"
-#include "app/bench/ExactSolutions.h"
 #include "base/ParameterError.h"
 #include "sim/AirDomain.h"
-#include "sim/PoissonTerrains.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
 #include "sim/VdbIO.h"
+#include "validation/ExactSolutions.h"
+#include "validation/PoissonTerrains.h"
 
 namespace gale::sim {
 namespace {
+
+using validation::makeRoughTerrain;
+using validation::RoughTerrainKind;
+using validation::roughTerrainName;
+
+namespace exact = gale::validation::exact;
 
 using test::tight;
 using test::uniformWind;
@@ -77,7 +83,7 @@ HemisphereRun hemisphere(int cellsPerRadius, double firstCellFraction,
     if (firstCellFraction > 0.0) spec.firstCell_m = firstCellFraction * h;
     if (firstCellFraction > 0.0) spec.maxCell_m = maxCellFraction * h;
     const AirDomain domain(test::centredHemisphere(R, c), spec);
-    const gale::exact::HemisphereFlow flow{R, /*U_mps=*/1.0, c, c};
+    const gale::validation::exact::HemisphereFlow flow{R, /*U_mps=*/1.0, c, c};
     auto phi = [&](double x, double y, double z) { return flow.phi(x, y, z); };
     const SteadyWindResult res = solveSteadyWind(domain, uniformWind(1.0, 0.0), {}, tight(), phi);
     EXPECT_TRUE(res.report.converged) << res.report.message;

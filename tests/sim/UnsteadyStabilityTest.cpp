@@ -3,24 +3,33 @@
 // net outflow (computed here from the open fractions) below the projection's tolerance, kinetic
 // energy (computed here) that does not grow without forcing, and for the cases that start from a
 // steady potential flow (an exact steady Euler solution) a field that stays near where it started.
-// The vortex studies compare with exact solutions (app/bench/ExactSolutions.h and
+// The vortex studies compare with exact solutions (validation/ExactSolutions.h and
 // TranslatingVortex.h, not the code under test) and contrasts between variants.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "app/bench/TranslatingVortex.h"
-#include "sim/UnsteadyStability.h"
+#include "validation/AcceptanceLimits.h"
+#include "validation/TranslatingVortex.h"
+#include "validation/UnsteadyStability.h"
 
 namespace gale::sim {
 namespace {
 
-/// The projection solves to 1e-7 relative; its worst cell's net outflow stays far below this
-/// (measured <= 2e-7 U).
-constexpr double DIVERGENCE_TOLERANCE = 1e-4;
-/// Without forcing the energy may not grow; the projection's tolerance leaves round-off.
-constexpr double ENERGY_GROWTH_TOLERANCE = 1e-3;
+namespace exact = gale::validation::exact;
+using validation::burgersCoreRadius_m;
+using validation::BurgersSpec;
+using validation::BurgersVariant;
+using validation::runBurgersVortex;
+using validation::runStabilityCase;
+using validation::runTranslatingVortex;
+using validation::stabilityCaseNames;
+using validation::StabilityRun;
+
+// The suite's limits and their reasons: validation/AcceptanceLimits.h (the bench uses them too).
+constexpr double DIVERGENCE_TOLERANCE = validation::limits::DIVERGENCE_LIMIT;
+constexpr double ENERGY_GROWTH_TOLERANCE = validation::limits::ENERGY_GROWTH_LIMIT;
 
 /// Kinetic energy per unit density, 1/2 sum_f theta_f u_f^2 h^3, of a field on the run's domain.
 double kineticEnergy(const StabilityRun& run, const WindField& f) {
@@ -60,6 +69,41 @@ bool allFinite(const WindField& f) {
     return true;
 }
 
+/// max |u_f| dt / h over every face of a field (one component per face): the CFL of a step of
+/// dt on that field, computed here from the field and the run's own step, not the solver's report.
+double fieldCfl(const StabilityRun& run, const WindField& f) {
+    double m = 0.0;
+    for (const auto* a : {&f.u_mps(), &f.v_mps(), &f.w_mps()})
+        for (double x : *a) m = std::max(m, std::abs(x));
+    return m * run.dt_s / run.domain->voxelSize_m();
+}
+
+/// The deviation from the start over the ridge only: every face of the air cells within
+/// RIDGE_LAYERS cells above the lowest air cell of each column that the ridge raises (its lowest
+/// air cell above the box's bottom row), where a semi-Lagrangian trace at a large step crosses
+/// cut cells. sqrt(sum theta (u - u_start)^2 / sum theta u_start^2) over those faces; a
+/// box-wide RMS dilutes the same error with the far field's untouched faces.
+constexpr int RIDGE_LAYERS = 4;
+double ridgeDeviation(const StabilityRun& run) {
+    const AirDomain& d = *run.domain;
+    const WindField& f = run.solver->field();
+    double num = 0.0, den = 0.0;
+    auto add = [&](double theta, double u, double u0) {
+        num += theta * (u - u0) * (u - u0), den += theta * u0 * u0;
+    };
+    for (int j = 0; j < d.ny(); ++j)
+        for (int i = 0; i < d.nx(); ++i) {
+            int k0 = 0;
+            while (k0 < d.nz() && !d.isAir(i, j, k0)) ++k0;
+            if (k0 == 0 || k0 >= d.nz()) continue;  // flat ground or no air: not the ridge
+            for (int k = k0; k < std::min(d.nz(), k0 + RIDGE_LAYERS); ++k) {
+                add(d.openFractionX(i, j, k), f.u(i, j, k), run.start.u(i, j, k));
+                add(d.openFractionZ(i, j, k), f.w(i, j, k), run.start.w(i, j, k));
+            }
+        }
+    return den > 0 ? std::sqrt(num / den) : std::sqrt(num);
+}
+
 double maxOutflowScaled(const StabilityRun& run) {
     const AirDomain& d = *run.domain;
     const WindField& f = run.solver->field();
@@ -73,25 +117,24 @@ double maxOutflowScaled(const StabilityRun& run) {
     return m / run.referenceSpeed_mps;
 }
 
-/// Per case: the deviation from the starting field allowed (0: not checked) and whether energy
-/// may grow (forcing).
+/// Per case: whether energy may grow (forcing).
 struct Oracle {
-    double maxDeviation;
     bool forced;
 };
 
-/// The CFL cases start from the potential flow over a smooth ridge, an exact steady solution:
-/// after 12 steps the field is within 5.5% of it (measured; the error sits in the four cell layers
-/// of cut cells next to the ridge, < 0.2% above eight cells), so 10% catches a real regression.
-/// The cliff and the spike have corners where the potential flow is singular: their discrete
-/// start is no smooth solution, and only finiteness, divergence and energy are judged there.
-constexpr double STEADY_DEVIATION_TOLERANCE = 0.1;
+/// The CFL cases start from the potential flow over a smooth ridge, an exact steady solution,
+/// and are judged where a large step matters, over the ridge (ridgeDeviation): after 12 steps
+/// the faces there are within 8.7 % (cfl5) and 4.9 % (cfl20) of the start (measured); 15 %, under
+/// twice the larger, fails a trace that loses the terrain's cut cells (tens of per cent there),
+/// which a box-wide RMS (4-6 %, most faces far from the ridge) would dilute. The cliff and the
+/// spike have corners where the potential flow is singular: their discrete start is no smooth
+/// solution, and only finiteness, divergence and energy are judged there.
+constexpr double RIDGE_DEVIATION_TOLERANCE = 0.15;
+/// The potential flow over the 8 m ridge speeds the wind up by far less than this factor, so the
+/// computed CFL stays within it of the named one.
+constexpr double MAX_SPEED_UP = 2.0;
 
-Oracle oracleFor(const std::string& name) {
-    if (name == "step_gust") return {0.0, true};
-    if (name.rfind("cfl", 0) == 0) return {STEADY_DEVIATION_TOLERANCE, false};
-    return {0.0, false};
-}
+Oracle oracleFor(const std::string& name) { return {name == "step_gust"}; }
 
 class Stability : public ::testing::TestWithParam<std::string> {};
 
@@ -108,17 +151,21 @@ TEST_P(Stability, StaysFiniteDivergenceFreeAndWithinItsEnergyBudget) {
     if (!o.forced) {
         EXPECT_LE(ke1, ke0 * (1.0 + ENERGY_GROWTH_TOLERANCE));
     }
-    if (o.maxDeviation > 0) {
-        EXPECT_LE(dev, o.maxDeviation);
-    }
     if (r.name.rfind("cfl", 0) == 0) {
-        // The named CFL is U dt / h of the 10 m/s wind (the speed-up over the ridge only raises
-        // the reached one), and the box holds at least 10 U dt, so traces cross the terrain
-        // inside the box instead of all reading the far field.
+        // The named CFL is U dt / h of the 10 m/s wind, and the CFL the run reached, computed
+        // here from its start and final fields and its step (the speed-up over the ridge only
+        // raises it), is at least that; the box holds at least 10 U dt, so traces cross the
+        // terrain inside the box instead of all reading the far field.
         const double named = std::stod(r.name.substr(3)), h = r.domain->voxelSize_m();
+        const double reached = std::max(fieldCfl(r, r.start), fieldCfl(r, r.solver->field()));
+        std::printf("%-24s CFL computed here %.2f; deviation over the ridge %.3f\n", r.name.c_str(),
+                    reached, ridgeDeviation(r));
         EXPECT_NEAR(10.0 * r.dt_s / h, named, 1e-9);
-        EXPECT_GE(r.maxCfl, named);
+        EXPECT_GE(reached, named);
+        EXPECT_LE(reached, named * MAX_SPEED_UP);
         EXPECT_GE(r.domain->nx() * h, 10.0 * 10.0 * r.dt_s);
+        // Judged where the large step matters: the faces over the ridge.
+        EXPECT_LE(ridgeDeviation(r), RIDGE_DEVIATION_TOLERANCE);
     }
 }
 
@@ -146,9 +193,13 @@ TEST(TranslatingVortex, ConvergesToTheExactGalileanSolutionAsTheCellsHalveAtFixe
     const double e8 = exact::translatingVortexError(runTranslatingVortex(8, 1.0));
     std::printf("translating Lamb-Oseen, CFL 1: error %.4f (4 cells/core), %.4f (8), order %.2f\n",
                 e4, e8, std::log2(e4 / e8));
-    /// Semi-Lagrangian with trilinear interpolation at fixed CFL is first order (h^2 / dt ~ h).
-    constexpr double MIN_ORDER = 0.7;
-    EXPECT_GE(std::log2(e4 / e8), MIN_ORDER);
+    namespace L = validation::limits;  // each limit's reason is there
+    EXPECT_GE(std::log2(e4 / e8), L::MIN_VORTEX_H_ORDER);
+    // An order alone passes two equally wrong runs: the errors themselves, against the exact
+    // Galilean solution, stay below the figures the method reaches (docs/unsteady.md) plus
+    // their band.
+    EXPECT_LE(e4, L::FIGURE_VORTEX_ERROR_4 * (1 + L::VORTEX_ERROR_BAND));
+    EXPECT_LE(e8, L::FIGURE_VORTEX_ERROR_8 * (1 + L::VORTEX_ERROR_BAND));
 }
 
 TEST(BurgersVortex, CoreHoldsItsRadiusOnlyWhenStrainAndViscosityBalance) {
@@ -192,7 +243,7 @@ TEST(BurgersVortex, CoreHoldsItsRadiusOnlyWhenStrainAndViscosityBalance) {
     // balanced core settles a little wide (measured 1.050 at a t = 1, 1.066 when run on to
     // a t = 2) and the inviscid one contracts to 0.79 r_c, not 0.61. With p = 0 on the sides and
     // an open top the strain on the axis fell to 0.66 a and the energy by 24 % (docs/unsteady.md).
-    constexpr double CORE_TOLERANCE = 0.1;     // the balanced core within 10% of r_c
+    constexpr double CORE_TOLERANCE = validation::limits::BURGERS_CORE_LIMIT;
     constexpr double STRAIN_TOLERANCE = 0.05;  // the axial strain within 5% of a (measured 1.037)
     constexpr double ENERGY_TOLERANCE = 0.02;  // energy within 2% of the exact start's
     constexpr double MIN_CONTRAST = 0.1;  // each unbalanced variant at least 10% r_c away from it

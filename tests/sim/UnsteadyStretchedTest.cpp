@@ -11,14 +11,16 @@
 #include <vector>
 
 #include "SimTestUtil.h"
-#include "app/bench/ExactSolutions.h"
 #include "sim/Advection.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
+#include "validation/ExactSolutions.h"
 
 namespace gale::sim {
 namespace {
+
+namespace exact = gale::validation::exact;
 
 using test::uniformWind;
 

@@ -8,15 +8,17 @@
 #include <vector>
 
 #include "SimTestUtil.h"
-#include "app/bench/ExactSolutions.h"
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
 #include "sim/AirDomain.h"
 #include "sim/SteadyWind.h"
 #include "sim/UnsteadyWind.h"
+#include "validation/ExactSolutions.h"
 
 namespace gale::sim {
 namespace {
+
+namespace exact = gale::validation::exact;
 
 using test::tight;
 using test::uniformWind;
@@ -249,7 +251,7 @@ TEST(UnsteadyWind, LambOseenVortexDecaysAsTheExactViscousSolution) {
     const double G = w.circulation(), rc2 = r0 * r0 + 4 * nu * T;
     double maxErr = 0.0;
     for (double r = 2.0; r <= 12.0; r += 2.0) {
-        const double exact = gale::exact::lambOseenSpeed_mps(G, rc2, r);
+        const double exact = gale::validation::exact::lambOseenSpeed_mps(G, rc2, r);
         const double got = ringSpeed(solver, 36.0, 36.0, r, 2.0);
         maxErr = std::max(maxErr, std::abs(got - exact));
         std::printf("r = %4.1f m: v = %.4f m/s, exact %.4f m/s\n", r, got, exact);

@@ -11,7 +11,7 @@
 #include "sim/AmbientWind.h"
 #include "sim/Heightfield.h"
 
-namespace gale::app::ridge {
+namespace gale::validation::ridge {
 
 constexpr double H_M = 40.0;
 constexpr double B_M = 2.5 * H_M;  ///< half-width at the base
@@ -91,4 +91,4 @@ inline const char* inflowName(Inflow inflow) {
     return "";
 }
 
-}  // namespace gale::app::ridge
+}  // namespace gale::validation::ridge

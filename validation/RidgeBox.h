@@ -1,12 +1,12 @@
 #pragma once
 /// \file RidgeBox.h
 /// The two-dimensional ridge box and log-law inflow the ridge studies of `gale bench models`
-/// share (BenchJacksonHunt.cpp, BenchModelsPseudoTime.cpp).
+/// share (JacksonHuntStudy.cpp, PseudoTimeStudy.cpp).
 
 #include "sim/AirDomain.h"
 #include "sim/AmbientWind.h"
 
-namespace gale::app::ridgebox {
+namespace gale::validation::ridgebox {
 
 /// A box of cubic cells (voxelSize_m, top at top_m, metres) around a ridge whose axis runs along
 /// y, with free-slip side walls so the flow stays two-dimensional (DomainSpec::closedSidesY).
@@ -28,4 +28,4 @@ inline sim::AmbientWind logLaw(double speed_mps, double referenceHeight_m, doubl
     return w;
 }
 
-}  // namespace gale::app::ridgebox
+}  // namespace gale::validation::ridgebox

@@ -9,11 +9,11 @@
 #include <cstddef>
 #include <vector>
 
-#include "app/bench/ExactSolutions.h"
 #include "base/Numbers.h"
-#include "sim/UnsteadyStability.h"
+#include "validation/ExactSolutions.h"
+#include "validation/UnsteadyStability.h"
 
-namespace gale::exact {
+namespace gale::validation::exact {
 
 /// max over x of (1 - e^{-x^2}) / x: Lamb-Oseen's peak speed in units of Gamma / (2 pi r_c)
 /// (0.6382 at x = 1.1209), found on a fine grid rather than taken from the code under test.
@@ -30,8 +30,8 @@ inline double lambOseenPeakFactor() {
 /// at the run's final time t, with u_exact = U e_x + the Lamb-Oseen swirl about the axis carried
 /// from (START_X_M, START_Y_M) at U (any axisymmetric swirl is a steady Euler solution; Galilean
 /// invariance carries it).
-inline double translatingVortexError(const sim::StabilityRun& run) {
-    using S = sim::TranslatingVortexSpec;
+inline double translatingVortexError(const StabilityRun& run) {
+    using S = TranslatingVortexSpec;
     const double t = run.solver->time_s(), cx = S::START_X_M + S::WIND_MPS * t, cy = S::START_Y_M;
     const double gamma = S::PEAK_MPS * 2.0 * PI * S::CORE_M / lambOseenPeakFactor();
     const sim::MacGrid& g = run.solver->grid();
@@ -57,4 +57,4 @@ inline double translatingVortexError(const sim::StabilityRun& run) {
     return count ? std::sqrt(sum / double(count)) / S::PEAK_MPS : 0.0;
 }
 
-}  // namespace gale::exact
+}  // namespace gale::validation::exact

@@ -1,7 +1,7 @@
 /// \file PoissonTerrains.cpp
 /// The rough test terrains of PoissonTerrains.h (docs/solver.md, "Rough terrain").
 
-#include "sim/PoissonTerrains.h"
+#include "validation/PoissonTerrains.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,8 @@
 #include <string>
 #include <vector>
 
-namespace gale::sim {
+namespace gale::validation {
+using namespace gale::sim;  // Heightfield and its builders
 namespace {
 
 void requirePositive(double v, const char* name) {
@@ -99,4 +100,4 @@ Heightfield makeRoughTerrain(RoughTerrainKind kind, double size_m, double spacin
     return f;
 }
 
-}  // namespace gale::sim
+}  // namespace gale::validation

@@ -1,7 +1,7 @@
 /// \file UnsteadyStability.cpp
 /// The stability suite and the exact-solution vortex studies of the unsteady wind
 /// (UnsteadyStability.h): set-ups, runs and measurements; no verdicts.
-#include "sim/UnsteadyStability.h"
+#include "validation/UnsteadyStability.h"
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,8 @@
 #include "base/Numbers.h"
 #include "sim/SteadyWind.h"
 
-namespace gale::sim {
+namespace gale::validation {
+using namespace gale::sim;  // the solvers these cases set up and run
 namespace {
 
 using gale::PI;
@@ -429,4 +430,4 @@ double burgersCoreRadius_m(const StabilityRun& run) {
     return rPeak / LAMB_OSEEN_PEAK_CORES;
 }
 
-}  // namespace gale::sim
+}  // namespace gale::validation

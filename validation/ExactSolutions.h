@@ -1,8 +1,8 @@
 #pragma once
 /// \file ExactSolutions.h
 /// The exact flows that the benchmarks and the tests measure the solvers against, in one place.
-/// Header-only and standard library only, so any test executable may include it. Units: metres,
-/// seconds, m/s; positions in world space.
+/// Header-only, the standard library and base/ only: it knows nothing of the solvers it judges.
+/// Units: metres, seconds, m/s; positions in world space.
 
 #include <array>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include "base/Numbers.h"
 
-namespace gale::exact {
+namespace gale::validation::exact {
 
 /// A hemisphere of radius R on flat ground at (cx, cy, 0) in a uniform wind U along +x. By
 /// symmetry about the ground plane it is half of the sphere in a free stream (potential flow):
@@ -64,4 +64,4 @@ inline double lambOseenSpeed_mps(double circulation_m2ps, double rc2_m2, double 
     return circulation_m2ps / (2.0 * PI * r_m) * -std::expm1(-r_m * r_m / rc2_m2);
 }
 
-}  // namespace gale::exact
+}  // namespace gale::validation::exact

@@ -40,16 +40,16 @@
 #include "sim/UnsteadyWind.h"
 #include "sim/WindField.h"
 
-namespace gale::sim {
+namespace gale::validation {
 
 /// One case after its run: the solver (with the final field) and what was measured on the way.
 struct StabilityRun {
     std::string name, description;
-    std::unique_ptr<AirDomain> domain;  ///< declared before solver: outlives it
-    std::unique_ptr<UnsteadyWindSolver> solver;
+    std::unique_ptr<sim::AirDomain> domain;  ///< declared before solver: outlives it
+    std::unique_ptr<sim::UnsteadyWindSolver> solver;
     /// The field the case starts from once everything is seeded: the steady potential flow, or
     /// the field after the first step where a vortex is seeded in that step.
-    WindField start;
+    sim::WindField start;
     double referenceSpeed_mps = 1.0;  ///< U of the divergence scaling, m/s
     bool forced = false;              ///< gusts or forcing add energy
     int steps = 0;
@@ -106,9 +106,9 @@ StabilityRun runBurgersVortex(BurgersVariant variant, int cellsPerCore,
 /// the vertical axis through (axisX_m, axisY_m) with its stagnation plane at z = 0: the Euler
 /// balance (u . grad) u = -grad p / rho of u_r = -a r / 2, w = a z.
 double burgersStrainPressure_m2ps2(double a_per_s, double axisX_m, double axisY_m,
-                                   const Vec3d& wsPos_m);
+                                   const sim::Vec3d& wsPos_m);
 /// Core radius of the final swirl at mid-height, metres: the radius of the peak azimuthal speed
 /// (circulation around rings) divided by 1.1209 (Lamb-Oseen's peak), for the bench.
 double burgersCoreRadius_m(const StabilityRun& run);
 
-}  // namespace gale::sim
+}  // namespace gale::validation

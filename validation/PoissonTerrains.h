@@ -13,7 +13,7 @@
 
 #include "sim/Heightfield.h"
 
-namespace gale::sim {
+namespace gale::validation {
 
 enum class RoughTerrainKind {
     /// Fractional Brownian motion (six octaves of value noise, amplitude ratio 0.55), scaled so
@@ -33,7 +33,7 @@ const char* roughTerrainName(RoughTerrainKind kind);
 /// spans 0.25, the cliff 0.35, the gullies 0.3 and the mesa 0.5 of it. Throws std::invalid_argument
 /// naming the parameter when size_m, spacing_m or relief_m is not positive and finite, or size_m
 /// holds fewer than 16 samples per side.
-Heightfield makeRoughTerrain(RoughTerrainKind kind, double size_m, double spacing_m,
-                             double relief_m, uint32_t seed = 12);
+sim::Heightfield makeRoughTerrain(RoughTerrainKind kind, double size_m, double spacing_m,
+                                  double relief_m, uint32_t seed = 12);
 
-}  // namespace gale::sim
+}  // namespace gale::validation
