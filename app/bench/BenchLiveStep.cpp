@@ -20,7 +20,7 @@ namespace gale::app {
 namespace {
 
 /// The live-wind target of issue 13: 30 steps a second beside the renderer.
-constexpr double kTargetStepHz = 30.0;
+constexpr double TARGET_STEP_HZ = 30.0;
 
 /// CPU seconds of the whole process (all threads) so far.
 double processCpu_s() {
@@ -82,7 +82,7 @@ int runBenchLiveStep(const BenchLiveStepOptions& opt) {
     std::printf(
         "live-wind step (scene as gale view builds it; CPU ms: the process's CPU time per step, "
         "all threads; parts: the step's wall-time shares; target %.0f Hz = %.1f ms a step)\n",
-        kTargetStepHz, 1e3 / kTargetStepHz);
+        TARGET_STEP_HZ, 1e3 / TARGET_STEP_HZ);
     std::printf("%-22s %-12s %5s %8s %8s %7s %7s %7s %7s %7s %7s %7s %8s %6s\n", "scene", "box",
                 "steps", "CPU ms", "wall ms", "advect", "force", "visc", "project", "other",
                 "p its", "v its", "max div", "load");

@@ -33,7 +33,7 @@ struct PaperRow {
     double fps;  ///< GeForce3, 1.7 GHz Pentium (thesis 4.1)
 };
 
-constexpr PaperRow kPaperRows[] = {
+constexpr PaperRow PAPER_ROWS[] = {
     {1, 640, 480, 293.5}, {9, 640, 480, 47.0},   {17, 640, 480, 25.6}, {33, 640, 480, 13.4},
     {65, 640, 480, 6.9},  {1, 1024, 768, 130.8}, {9, 1024, 768, 22.8}, {17, 1024, 768, 12.4},
     {33, 1024, 768, 6.5}, {65, 1024, 768, 3.3},
@@ -41,8 +41,8 @@ constexpr PaperRow kPaperRows[] = {
 
 // Targets printed with the table: at least twice the paper's GeForce3, and the full shader at
 // least 0.7 of the trivial fill (the lighting should stay nearly free, as the thesis found).
-constexpr double kTargetRatioToPaper = 2.0;
-constexpr double kTargetRatioToTrivial = 0.7;
+constexpr double TARGET_RATIO_TO_PAPER = 2.0;
+constexpr double TARGET_RATIO_TO_TRIVIAL = 0.7;
 
 /// `gale bench render --profile`: the fill profile's table (CPU ms per frame and its ratio to the
 /// trilinear fill), and its JSON.
@@ -102,8 +102,8 @@ int runBenchRender(const BenchRenderOptions& options) {
     std::string rendererName;
     int index = 0;
     // One updating line with ETA on a terminal, one line per row in logs (app/io/Progress.h).
-    Progress progress("row", static_cast<int>(std::size(kPaperRows)));
-    for (const PaperRow& row : kPaperRows) {
+    Progress progress("row", static_cast<int>(std::size(PAPER_ROWS)));
+    for (const PaperRow& row : PAPER_ROWS) {
         ++index;
         const auto rowStart = Clock::now();
         render::ShellFillCase c;
@@ -140,13 +140,13 @@ int runBenchRender(const BenchRenderOptions& options) {
     nlohmann::json rows = nlohmann::json::array();
     for (size_t k = 0; k < results.size(); ++k) {
         const render::ShellFillResult& r = results[k];
-        const double paper = kPaperRows[k].fps;
+        const double paper = PAPER_ROWS[k].fps;
         const double vsPaper = r.fps / paper;
         const double vsTrivial = r.fps / r.baselineFps;
         const double nearestVsPaper = r.fullNearestFps / paper;
-        allPaper = allPaper && vsPaper >= kTargetRatioToPaper;
-        allPaperNearest = allPaperNearest && nearestVsPaper >= kTargetRatioToPaper;
-        allTrivial = allTrivial && vsTrivial >= kTargetRatioToTrivial;
+        allPaper = allPaper && vsPaper >= TARGET_RATIO_TO_PAPER;
+        allPaperNearest = allPaperNearest && nearestVsPaper >= TARGET_RATIO_TO_PAPER;
+        allTrivial = allTrivial && vsTrivial >= TARGET_RATIO_TO_TRIVIAL;
         const std::string resolution = std::to_string(r.width) + "x" + std::to_string(r.height);
         std::printf(
             "%6d  %-10s  %8ld  %9.1f  %8.1f  %8.2fx  %11.1f  %12.2f  %11.1f  %12.1f  %8.2fx  "
@@ -169,12 +169,12 @@ int runBenchRender(const BenchRenderOptions& options) {
                         {"coverage", r.coverage}});
     }
     std::printf("\ntargets: every row >= %.1fx paper: %s; every row >= %.2f of trivial: %s\n",
-                kTargetRatioToPaper, allPaper ? "met" : "MISSED", kTargetRatioToTrivial,
+                TARGET_RATIO_TO_PAPER, allPaper ? "met" : "MISSED", TARGET_RATIO_TO_TRIVIAL,
                 allTrivial ? "met" : "MISSED");
     std::printf(
         "with nearest texels (DrawOptions::nearestTexels, not the default look): every row >= "
         "%.1fx paper: %s\n",
-        kTargetRatioToPaper, allPaperNearest ? "met" : "missed");
+        TARGET_RATIO_TO_PAPER, allPaperNearest ? "met" : "missed");
     if (options.quick) std::printf("(quick run: %d frames per row, not a measurement)\n", frames);
 
     if (!options.jsonPath.empty()) {
@@ -187,8 +187,8 @@ int runBenchRender(const BenchRenderOptions& options) {
         doc["lights"] = 3;
         doc["base_mesh_triangles"] = 512;
         doc["rows"] = rows;
-        doc["targets"] = {{"ratio_to_paper_min", kTargetRatioToPaper},
-                          {"ratio_to_trivial_min", kTargetRatioToTrivial},
+        doc["targets"] = {{"ratio_to_paper_min", TARGET_RATIO_TO_PAPER},
+                          {"ratio_to_trivial_min", TARGET_RATIO_TO_TRIVIAL},
                           {"ratio_to_paper_met", allPaper},
                           {"ratio_to_paper_nearest_texels_met", allPaperNearest},
                           {"ratio_to_trivial_met", allTrivial}};

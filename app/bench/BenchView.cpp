@@ -28,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 
 /// The frame-rate target of issue 13: every example at 640 x 480 with 17 shells.
-constexpr double kTargetFps = 30.0;
+constexpr double TARGET_FPS = 30.0;
 
 struct ViewRow {
     std::string name;
@@ -116,7 +116,7 @@ nlohmann::json rowJson(const ViewRow& r) {
             {"present_ms", r.mean.present_ms},
             {"wind_step_ms", r.windStep_ms},
             {"wind_updates_per_s", r.windUpdates_per_s},
-            {"meets_target", r.fps >= kTargetFps}};
+            {"meets_target", r.fps >= TARGET_FPS}};
 }
 
 }  // namespace
@@ -168,7 +168,7 @@ int runBenchView(const BenchViewOptions& options) {
     bool allMet = true;
     nlohmann::json jsonRows = nlohmann::json::array();
     for (const ViewRow& r : rows) {
-        const bool met = r.fps >= kTargetFps;
+        const bool met = r.fps >= TARGET_FPS;
         allMet = allMet && met;
         std::printf("%-28s  %8zu  %7.1f  %8.1f  %7.2f  %7.2f  %7.1f  %8.2f  %9.1f  %8.1f  %s\n",
                     r.name.c_str(), r.vertices, r.fps, r.mean.total_ms(), r.mean.wind_ms,
@@ -176,7 +176,7 @@ int runBenchView(const BenchViewOptions& options) {
                     r.windUpdates_per_s, met ? "met" : "MISSED");
         jsonRows.push_back(rowJson(r));
     }
-    std::printf("\ntarget: every scene >= %.0f fps: %s\n", kTargetFps, allMet ? "met" : "MISSED");
+    std::printf("\ntarget: every scene >= %.0f fps: %s\n", TARGET_FPS, allMet ? "met" : "MISSED");
     if (options.quick) std::printf("(quick run: %d frames per scene, not a measurement)\n", frames);
 
     if (!options.jsonPath.empty()) {
@@ -190,7 +190,7 @@ int runBenchView(const BenchViewOptions& options) {
         doc["frames_per_scene"] = frames;
         doc["warmup_frames"] = warmup;
         doc["quick"] = options.quick;
-        doc["target_fps"] = kTargetFps;
+        doc["target_fps"] = TARGET_FPS;
         doc["target_met"] = allMet;
         doc["rows"] = jsonRows;
         writeTextAtomic(options.jsonPath, doc.dump(2) + "\n");
