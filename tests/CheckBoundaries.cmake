@@ -6,8 +6,6 @@
 #   app/io/     no other app/ header
 #   app/scene/  no app/bench/ header and none of the verbs' (app/*.h)
 #   app/bench/  no app/scene/ header and none of the verbs'
-#   sim/'s internal headers (a "/// \internal" line in the preamble) only in sim/ and tests/sim,
-#   and docs/architecture.md's table of sim's headers says which are internal, as they do
 #   validation/ sim/ and base/ only: no GL, GLFW, GLM, OpenImageIO; no coupling/, render/, app/
 # and the tests, each module's tests including only what that module may include, plus the
 # oracles of validation/ for the modules above which validation/ sits (sim/, coupling/):
@@ -16,6 +14,8 @@
 #   tests/coupling/    no app/ header
 #   tests/validation/  no coupling/, render/ or app/ header
 # tests/app, tests/reliability and tests/fuzz test the program and may include all of it.
+#   sim/'s internal headers (a "/// \internal" line in the preamble) only in sim/ and tests/sim,
+#   and docs/architecture.md's table of sim's headers says which are internal, as they do
 set(violations "")
 set(counts "")
 
