@@ -65,6 +65,62 @@ void checkRoomForSequence(const std::string& folder, const std::string& where, d
                          " (the first took " + formatBytes(fileBytes) + "); nothing was written");
 }
 
+/// Growth of the flow's kinetic energy over the run, against its initial state, beyond which
+/// vorticity confinement is taken to have run away: chosen, not measured, far above what a
+/// scene's gusts and whirlwinds add to a domain's ambient flow, far below the runaway's.
+constexpr double MAX_CONFINED_ENERGY_GROWTH = 4.0;
+
+/// "%.3g" of `v`.
+std::string formatNumber(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", v);
+    return text;
+}
+
+/// Whether `name` is a file of the sequence of `stem`: "<stem>_NNNN.vdb" (4 or more digits) or
+/// its Houdini twin "<stem>_houdini.NNNN.vdb".
+bool isSequenceFileOf(const std::string& name, const std::string& stem) {
+    const auto digitsBetween = [&](const std::string& head) {
+        const std::string tail = ".vdb";
+        if (name.size() < head.size() + 4 + tail.size() ||
+            name.compare(0, head.size(), head) != 0 ||
+            name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
+            return false;
+        const std::string digits =
+            name.substr(head.size(), name.size() - head.size() - tail.size());
+        return digits.find_first_not_of("0123456789") == std::string::npos;
+    };
+    return digitsBetween(stem + "_") || digitsBetween(stem + "_houdini.");
+}
+
+/// After this run's files are in place: removes the files of an earlier sequence of the same
+/// .vdb path that this run did not write (an earlier, longer run's tail, or what an interrupted
+/// run did not reach), so the folder never mixes two runs (docs/reliability.md). Says so.
+void removeEarlierSequence(const std::string& vdbPath, const std::vector<std::string>& written) {
+    namespace fs = std::filesystem;
+    const std::string folder = folderOf(vdbPath);
+    const std::string stem = fs::path(vdbPath).stem().string();
+    std::vector<std::string> kept;
+    for (const std::string& w : written) kept.push_back(fs::path(w).filename().string());
+    std::vector<std::string> removed;
+    std::error_code ec;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (!isSequenceFileOf(name, stem) || !it->is_regular_file(ec) ||
+            std::find(kept.begin(), kept.end(), name) != kept.end())
+            continue;
+        std::error_code rm;
+        if (fs::remove(it->path(), rm)) removed.push_back(name);
+    }
+    if (removed.empty()) return;
+    std::sort(removed.begin(), removed.end());
+    std::fprintf(stderr,
+                 "gale: note: removed %zu .vdb file%s of an earlier sequence in %s that this run "
+                 "did not write (%s .. %s), so the folder holds this run's sequence only\n",
+                 removed.size(), removed.size() == 1 ? "" : "s", folder.c_str(),
+                 removed.front().c_str(), removed.back().c_str());
+}
+
 }  // namespace
 
 int runUnsteadySolve(const SolveRequest& req) {
@@ -88,6 +144,7 @@ int runUnsteadySolve(const SolveRequest& req) {
     sim::SteadyWindSolver steadySolver(domain, req.weights);
     const sim::SteadyWindResult steady = steadySolver.solve(req.ambient, req.solver);
     sim::UnsteadyWindSolver solver(domain, steady.field, u.settings, req.ambient.speed_mps);
+    const double initialEnergy_m5ps2 = solver.kineticEnergy_m5ps2();
 
     nlohmann::json j;
     j["scene"] = req.sceneName;
@@ -185,6 +242,15 @@ int runUnsteadySolve(const SolveRequest& req) {
         progress.step(n, msSince(outputStart));
     }
     progress.finish();
+    // Vorticity confinement (Fedkiw, Stam, Jensen 2001) adds energy at vortex cores; a strength
+    // the grid cannot take grows the whole flow's energy (100 drove the peak from 6 to 255 m/s).
+    // The run still writes its files but is not a result: exit 3, with the reason.
+    double peakEnergy_m5ps2 = initialEnergy_m5ps2;
+    for (const auto& step : steps)
+        peakEnergy_m5ps2 = std::max(peakEnergy_m5ps2, step["kinetic_energy_m5ps2"].get<double>());
+    const bool confinementGrew =
+        s.vorticityConfinement > 0.0 && initialEnergy_m5ps2 > 0.0 &&
+        peakEnergy_m5ps2 > MAX_CONFINED_ENERGY_GROWTH * initialEnergy_m5ps2;
     // Stopped before the last output: the report says where. A signal after it (while the
     // report and files are moved into place) stops nothing: the run is complete.
     const bool stoppedEarly = interruptSignal() != 0 && int(frames.size()) <= outputs;
@@ -211,9 +277,22 @@ int runUnsteadySolve(const SolveRequest& req) {
                     {"all_converged", ok},
                     {"finite", finite},
                     {"mean_step_s", stepCount ? solveSeconds / stepCount : 0.0}};
+    const std::string energyNote =
+        confinementGrew ? "vorticity confinement " + formatNumber(s.vorticityConfinement) +
+                              " grew the kinetic energy " +
+                              formatNumber(peakEnergy_m5ps2 / initialEnergy_m5ps2) +
+                              "-fold (limit " + formatNumber(MAX_CONFINED_ENERGY_GROWTH) +
+                              "): the field is not a result; lower unsteady.vorticity_confinement"
+                        : std::string();
+    if (confinementGrew) j["summary"]["problem"] = energyNote;
     j["total_s"] = secondsSince(t0);
     if (!req.reportPath.empty()) writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
     staged.commit();
+    if (!req.vdbPath.empty()) {
+        std::vector<std::string> written = houdiniPaths;
+        for (const auto& f : frames) written.push_back(f["path"].get<std::string>());
+        removeEarlierSequence(req.vdbPath, written);
+    }
     if (stoppedEarly) {
         std::printf(
             "solve: interrupted (%s) at t = %.3g s after %d steps: wrote %zu complete .vdb files "
@@ -231,13 +310,14 @@ int runUnsteadySolve(const SolveRequest& req) {
         : ok    ? "all solves converged"
                 : "SOME SOLVES DID NOT CONVERGE",
         j["total_s"].get<double>(), stepCount ? solveSeconds / stepCount : 0.0);
+    if (confinementGrew) std::printf("solve: %s\n", energyNote.c_str());
     if (interruptSignal())
         return reportInterruptedWhileWriting(
             req.vdbPath.empty()
                 ? std::string()
                 : sequencePath(req.vdbPath, 0) + " .. " + frames.back()["path"].get<std::string>(),
             req.reportPath);
-    return ok ? EXIT_OK : EXIT_UNMET;
+    return ok && !confinementGrew ? EXIT_OK : EXIT_UNMET;
 }
 
 }  // namespace gale::app

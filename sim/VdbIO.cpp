@@ -91,6 +91,14 @@ void writeGridsAtomic(const std::string& path, const openvdb::GridCPtrVec& grids
     const fs::path target(path);
     const fs::path tmp =
         target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()));
+    // Only a regular file (or nothing) is replaced: the rename below would put a regular file in
+    // place of a device node such as /dev/null.
+    std::error_code statError;
+    const fs::file_status st = fs::status(target, statError);
+    if (fs::exists(st) && !fs::is_regular_file(st))
+        throw std::runtime_error("cannot write VDB file '" + path +
+                                 "': it exists and is not a regular file (a device, FIFO or "
+                                 "folder); gale replaces only regular files");
     // openvdb::io::File::write never looks at its stream after writing, so a full disk gave a
     // truncated file and no error: write the same archive to a stream we check.
     struct CheckedArchive : openvdb::io::File {
@@ -170,26 +178,116 @@ openvdb::FloatGrid::Ptr speedGrid(const WindField& f) {
     return grid;
 }
 
+namespace {
+
+/// A .vdb refused by readFaceVelocities's own checks, told apart from other std::runtime_errors
+/// (std::ios_base::failure is one) that OpenVDB's reading may throw.
+struct VdbRefused : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// A corrupt or foreign .vdb: gale's own words, never OpenVDB's exception text.
+[[noreturn]] void refuseVdb(const std::string& path, const std::string& reason) {
+    throw VdbRefused(path + ": " + reason);
+}
+
+/// Checks what a .vdb says about itself before its trees are read, so that a corrupt file costs
+/// bounded memory (docs/reliability.md): the file's size, and the face grid's own metadata (its
+/// voxel count, bounding box and in-memory bytes, which OpenVDB writes beside each grid) against
+/// what a field on `field`'s grid can hold. Throws std::runtime_error naming the file.
+void checkVdbAgainstField(const std::string& path, openvdb::io::File& file, const char* facesName,
+                          const WindField& field) {
+    const double nx = field.nx(), ny = field.ny(), nz = std::max(field.nz(), cubicLayers(field));
+    // A stretched file holds its native layers and a cubic resample: two fields; a margin of 2
+    // over sim::vdbWindFile_bytes, itself an upper bound of the measured files (0.46-0.74).
+    constexpr double FILE_BOUND_FACTOR = 4.0;
+    constexpr double FILE_BOUND_SLACK_BYTES = 1 << 20;
+    std::error_code ec;
+    const double fileBytes = double(std::filesystem::file_size(path, ec));
+    const double fileBound =
+        FILE_BOUND_FACTOR * vdbWindFile_bytes(nx, ny, nz) + FILE_BOUND_SLACK_BYTES;
+    if (!ec && fileBytes > fileBound)
+        refuseVdb(path, "holds " + std::to_string(static_cast<long long>(fileBytes)) +
+                            " bytes, more than a field of this scene's " +
+                            std::to_string(field.nx()) + " x " + std::to_string(field.ny()) +
+                            " x " + std::to_string(field.nz()) + " cells can take (" +
+                            std::to_string(static_cast<long long>(fileBound)) +
+                            "): not a field of this scene");
+    const openvdb::GridBase::Ptr meta = file.readGridMetadata(facesName);
+    const auto count =
+        meta->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT);
+    const auto lo =
+        meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
+    const auto hi =
+        meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
+    const auto bytes =
+        meta->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_MEM_BYTES);
+    if (!count || !lo || !hi || !bytes)
+        refuseVdb(path, std::string("grid '") + facesName +
+                            "' has no size metadata (file_voxel_count, file_bbox_min/max, "
+                            "file_mem_bytes); write it with gale solve");
+    const double faces = (nx + 1) * (ny + 1) * (nz + 1);
+    // The 8^3 leaves and the 16^3 and 32^3 internal nodes that cover the face grid, at the
+    // bytes OpenVDB allocates for a Vec3s tree (leaf: 512 values of 12 B and its masks; internal
+    // nodes: one 8-byte slot per child and two masks), doubled for the allocator.
+    const auto nodes = [&](double side) {
+        return std::ceil((nx + 1) / side) * std::ceil((ny + 1) / side) * std::ceil((nz + 1) / side);
+    };
+    constexpr double LEAF_BYTES = 512 * 12 + 160, NODE16_BYTES = 4096 * 8 + 1024,
+                     NODE32_BYTES = 32768 * 8 + 8192, MEMORY_MARGIN = 2.0;
+    const double memoryBound = MEMORY_MARGIN * (nodes(8) * LEAF_BYTES + nodes(128) * NODE16_BYTES +
+                                                nodes(4096) * NODE32_BYTES) +
+                               FILE_BOUND_SLACK_BYTES;
+    const openvdb::Vec3i a = lo->value(), b = hi->value();
+    const bool boxInside = a.x() >= -1 && a.y() >= -1 && a.z() >= -1 && b.x() <= nx + 1 &&
+                           b.y() <= ny + 1 && b.z() <= nz + 1;
+    if (count->value() < 0 || double(count->value()) > faces || !boxInside || bytes->value() < 0 ||
+        double(bytes->value()) > memoryBound)
+        refuseVdb(path, std::string("grid '") + facesName + "' claims " +
+                            std::to_string(count->value()) + " voxels in [" +
+                            std::to_string(a.x()) + ", " + std::to_string(a.y()) + ", " +
+                            std::to_string(a.z()) + "] .. [" + std::to_string(b.x()) + ", " +
+                            std::to_string(b.y()) + ", " + std::to_string(b.z()) + "] and " +
+                            std::to_string(bytes->value()) + " bytes, beyond the scene's " +
+                            std::to_string(static_cast<long long>(faces)) +
+                            " faces: a corrupt file, or not a field of this scene");
+}
+
+}  // namespace
+
 double readFaceVelocities(const std::string& path, WindField& field) {
     openvdb::initialize();
     const bool stretched = !field.layout().uniformZ();
     const char* facesName = stretched ? STRETCHED_FACES_GRID : CUBIC_FACES_GRID;
     openvdb::GridBase::Ptr base;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        refuseVdb(path,
+                  std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
     try {
         openvdb::io::File file(path);
-        file.open();
+        file.open(/*delayLoad=*/false);
         if (!file.hasGrid(facesName)) {
             file.close();
-            throw std::runtime_error(std::string("has no grid '") + facesName +
-                                     "' (write it with gale solve" +
-                                     (stretched ? ", stretched layers" : "") + ")");
+            refuseVdb(path, std::string("has no grid '") + facesName +
+                                "' (write it with gale solve" +
+                                (stretched ? ", stretched layers" : "") + ")");
         }
+        checkVdbAgainstField(path, file, facesName, field);
         base = file.readGrid(facesName);
         file.close();
-    } catch (const std::runtime_error& e) {
-        throw std::runtime_error(path + ": " + e.what());
-    } catch (const std::exception& e) {
-        throw std::runtime_error(path + ": not a readable .vdb (" + e.what() + ")");
+    } catch (const openvdb::Exception&) {
+        // OpenVDB's own text ("LookupError: Cannot read grid. Grid type  is not registered.")
+        // says nothing a user can act on.
+        refuseVdb(path, "not a readable .vdb file (corrupt, truncated, or not written by OpenVDB)");
+    } catch (const std::bad_alloc&) {
+        refuseVdb(path,
+                  "not a readable .vdb file (corrupt: its trees claim more memory than a "
+                  "field of this scene holds)");
+    } catch (const VdbRefused&) {
+        throw;  // ours, naming the file
+    } catch (const std::exception&) {
+        refuseVdb(path, "not a readable .vdb file (corrupt, truncated, or not written by OpenVDB)");
     }
     auto grid = openvdb::gridPtrCast<openvdb::Vec3SGrid>(base);
     if (!grid) throw std::runtime_error(path + ": grid '" + facesName + "' is not a Vec3s grid");
