@@ -3,6 +3,7 @@
 
 #include <openvdb/io/File.h>
 #include <openvdb/tools/SignedFloodFill.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -194,9 +195,10 @@ struct VdbRefused : std::runtime_error {
 /// Checks what a .vdb says about itself before its trees are read, so that a corrupt file costs
 /// bounded memory (docs/reliability.md): the file's size, and the face grid's own metadata (its
 /// voxel count, bounding box and in-memory bytes, which OpenVDB writes beside each grid) against
-/// what a field on `field`'s grid can hold. Throws std::runtime_error naming the file.
-void checkVdbAgainstField(const std::string& path, openvdb::io::File& file, const char* facesName,
-                          const WindField& field) {
+/// what a field on `field`'s grid can hold. Returns the bytes the face grid may take in memory.
+/// Throws std::runtime_error naming the file.
+double checkVdbAgainstField(const std::string& path, openvdb::io::File& file, const char* facesName,
+                            const WindField& field) {
     const double nx = field.nx(), ny = field.ny(), nz = std::max(field.nz(), cubicLayers(field));
     // A stretched file holds its native layers and a cubic resample: two fields; a margin of 2
     // over sim::vdbWindFile_bytes, itself an upper bound of the measured files (0.46-0.74).
@@ -251,7 +253,63 @@ void checkVdbAgainstField(const std::string& path, openvdb::io::File& file, cons
                             std::to_string(bytes->value()) + " bytes, beyond the scene's " +
                             std::to_string(static_cast<long long>(faces)) +
                             " faces: a corrupt file, or not a field of this scene");
+    return memoryBound;
 }
+
+/// Caps this process's address space (RLIMIT_AS) at what it maps at construction plus a budget,
+/// for its lifetime, so that a corrupt size field in a .vdb (a metadata string's length, a
+/// compressed chunk's length, a node count), which OpenVDB allocates as it reads, fails with
+/// std::bad_alloc instead of taking gigabytes. Nothing is capped under the sanitizers, which map
+/// their own shadow memory, or when the current size cannot be read. Only for a reading thread
+/// while no other thread allocates.
+class AddressSpaceCap {
+  public:
+    explicit AddressSpaceCap(double budget_bytes) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+        mUsable = false;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || \
+    __has_feature(thread_sanitizer)
+        mUsable = false;
+#endif
+#endif
+        if (mUsable) start();
+        widen(budget_bytes);
+    }
+    ~AddressSpaceCap() {
+        if (mCapped) ::setrlimit(RLIMIT_AS, &mOld);
+    }
+    AddressSpaceCap(const AddressSpaceCap&) = delete;
+    AddressSpaceCap& operator=(const AddressSpaceCap&) = delete;
+
+    /// Sets the cap to the mapping at construction plus `budget_bytes` (never above the limit
+    /// the process had).
+    void widen(double budget_bytes) {
+        if (!mUsable) return;
+        const double want = mBaseline_bytes + budget_bytes;
+        rlimit capped = mOld;
+        if (mOld.rlim_cur == RLIM_INFINITY || double(mOld.rlim_cur) > want)
+            capped.rlim_cur = static_cast<rlim_t>(want);
+        mCapped = ::setrlimit(RLIMIT_AS, &capped) == 0 || mCapped;
+    }
+
+  private:
+    void start() {
+        mUsable = false;
+        std::FILE* statm = std::fopen("/proc/self/statm", "r");
+        if (!statm) return;
+        unsigned long long pages = 0;
+        const bool read = std::fscanf(statm, "%llu", &pages) == 1;
+        std::fclose(statm);
+        if (!read || ::getrlimit(RLIMIT_AS, &mOld) != 0) return;
+        mBaseline_bytes = double(pages) * double(::sysconf(_SC_PAGESIZE));
+        mUsable = true;
+    }
+    bool mUsable = true;
+    double mBaseline_bytes = 0.0;
+    rlimit mOld{};
+    bool mCapped = false;
+};
 
 }  // namespace
 
@@ -264,7 +322,11 @@ double readFaceVelocities(const std::string& path, WindField& field) {
     if (!std::filesystem::is_regular_file(path, ec))
         refuseVdb(path,
                   std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
+    // The file's header, metadata and grid descriptors first, within a small budget; then the
+    // face grid's trees within what its checked metadata allows.
+    constexpr double READ_SLACK_BYTES = 256.0 * (1 << 20);
     try {
+        AddressSpaceCap cap(READ_SLACK_BYTES);
         openvdb::io::File file(path);
         file.open(/*delayLoad=*/false);
         if (!file.hasGrid(facesName)) {
@@ -273,7 +335,9 @@ double readFaceVelocities(const std::string& path, WindField& field) {
                                 "' (write it with gale solve" +
                                 (stretched ? ", stretched layers" : "") + ")");
         }
-        checkVdbAgainstField(path, file, facesName, field);
+        const double gridBytes = checkVdbAgainstField(path, file, facesName, field);
+        // The grid, OpenVDB's read buffers and a margin for the allocator's own mappings.
+        cap.widen(2.0 * gridBytes + READ_SLACK_BYTES);
         base = file.readGrid(facesName);
         file.close();
     } catch (const openvdb::Exception&) {
