@@ -71,12 +71,13 @@ void expectRefused(const std::vector<std::string>& args, const std::string& cwd,
     EXPECT_TRUE(after == before) << "before:\n" << names(before) << "after:\n" << names(after);
 }
 
-/// A 24 x 20 DEM of 2 m pixels in UTM 32N (a tilted plane), written by GDAL itself.
+/// A 24 x 20 DEM of 2 m pixels (pixelWidth_m wide) in UTM 32N (a tilted plane), written by GDAL.
 void writeDem(const std::string& path, const char* driver = "GTiff",
-              const std::string& srs = "EPSG:32632", double x0 = 612000.0, double y0 = 4830000.0) {
+              const std::string& srs = "EPSG:32632", double x0 = 612000.0, double y0 = 4830000.0,
+              double pixelWidth_m = 2.0) {
     app::test::TestRaster r;
     r.cols = 24, r.rows = 20;
-    const double gt[6] = {x0, 2.0, 0.0, y0, 0.0, -2.0};
+    const double gt[6] = {x0, pixelWidth_m, 0.0, y0, 0.0, -2.0};
     std::copy(gt, gt + 6, r.gt);
     r.srs = srs;
     r.value = [](int c, int row) { return 150.0 + 0.1 * c - 0.05 * row; };
@@ -380,6 +381,32 @@ TEST(EveryInput, AWebMercatorDemIsRefusedWithARunnableReprojection) {
     expectRefused(
         {"check", "s.toml"}, cwd.str(),
         {"dem.tif", "Mercator", "scale factor", "1.466", "gdalwarp -t_srs EPSG:32632 -r bilinear"});
+}
+
+TEST(EveryInput, ADemWithANegativePixelSizeGetsNoUnrunnableCommand) {
+    TempDir cwd;
+    writeDem(cwd / "dem.tif", "GTiff", "EPSG:32632", 612000.0, 4830000.0, -2.0);
+    writeFile(cwd / "s.toml",
+              std::string("[terrain]\nkind = \"dem\"\ndem = \"dem.tif\"\n") + DEM_SCENE_TAIL);
+    expectRefused({"check", "s.toml"}, cwd.str(), {"dem.tif", "not a positive size"});
+    const RunResult r = run({"check", "s.toml"}, cwd.str());
+    EXPECT_EQ(r.err.find("gdalwarp -tr -"), std::string::npos) << r.err;
+}
+
+TEST(EveryOutput, VorticityConfinementThatGrowsTheEnergyExitsThreeAndSaysSo) {
+    // epsilon = 100, the documented maximum, drove the peak speed from 6 to 255 m/s with exit 0.
+    TempDir cwd;
+    writeFile(cwd / "vc.toml",
+              "[terrain]\nkind = \"hemisphere\"\nsize_m = [8.0, 8.0]\nradius_m = 2.0\n"
+              "[wind]\nkind = \"unsteady\"\nspeed_mps = 2.0\n[solver]\nvoxel_size_m = 0.5\n"
+              "[unsteady]\noutput_every_s = 0.5\nduration_s = 1.0\nvorticity_confinement = 100\n");
+    const RunResult r = run({"solve", "vc.toml", "-o", "f/w.vdb"}, cwd.str());
+    EXPECT_EQ(r.exitCode, 3) << r.describe();
+    EXPECT_NE(r.out.find("solve: vorticity confinement 100 grew the kinetic energy"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(readFile(cwd / "f/w.json").find("lower unsteady.vorticity_confinement"),
+              std::string::npos);
 }
 
 }  // namespace
