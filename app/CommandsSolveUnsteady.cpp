@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -93,32 +94,73 @@ bool isSequenceFileOf(const std::string& name, const std::string& stem) {
     return digitsBetween(stem + "_") || digitsBetween(stem + "_houdini.");
 }
 
-/// After this run's files are in place: removes the files of an earlier sequence of the same
-/// .vdb path that this run did not write (an earlier, longer run's tail, or what an interrupted
-/// run did not reach), so the folder never mixes two runs (docs/reliability.md). Says so.
-void removeEarlierSequence(const std::string& vdbPath, const std::vector<std::string>& written) {
+/// The .vdb files (sequence and Houdini) an earlier run's report at `reportPath` lists, read
+/// before this run replaces it; empty when there is none or it cannot be read.
+std::vector<std::string> sequenceOfEarlierReport(const std::string& reportPath) {
+    namespace fs = std::filesystem;
+    // A report of 10 000 outputs is a few MiB; anything far larger is not one of ours.
+    constexpr std::uintmax_t MAX_REPORT_BYTES = 64u << 20;
+    std::error_code ec;
+    if (reportPath.empty() || !fs::is_regular_file(reportPath, ec) ||
+        fs::file_size(reportPath, ec) > MAX_REPORT_BYTES)
+        return {};
+    std::vector<std::string> paths;
+    try {
+        std::ifstream in(reportPath);
+        const nlohmann::json j = nlohmann::json::parse(in);
+        for (const auto& f : j.at("outputs").value("vdb_sequence", nlohmann::json::array()))
+            if (f.contains("path") && f["path"].is_string()) paths.push_back(f["path"]);
+        if (j.at("outputs").contains("houdini"))
+            for (const auto& p : j["outputs"]["houdini"].value("paths", nlohmann::json::array()))
+                if (p.is_string()) paths.push_back(p);
+    } catch (const std::exception&) {
+        return {};  // not an unsteady report of gale's: nothing is known to be an earlier run's
+    }
+    return paths;
+}
+
+/// After this run's files are in place: removes the files an earlier run of the same .vdb path
+/// wrote (as its report listed them) that this run did not write (an earlier, longer run's tail,
+/// or what an interrupted run did not reach), so the folder never mixes two runs
+/// (docs/reliability.md). Files named like the sequence that no report listed are left, with a
+/// note. Says what it did.
+void removeEarlierSequence(const std::string& vdbPath, const std::vector<std::string>& written,
+                           const std::vector<std::string>& earlier) {
     namespace fs = std::filesystem;
     const std::string folder = folderOf(vdbPath);
     const std::string stem = fs::path(vdbPath).stem().string();
-    std::vector<std::string> kept;
+    std::vector<std::string> kept, listed;
     for (const std::string& w : written) kept.push_back(fs::path(w).filename().string());
-    std::vector<std::string> removed;
+    for (const std::string& e : earlier)
+        if (folderOf(e) == folder) listed.push_back(fs::path(e).filename().string());
+    std::vector<std::string> removed, unknown;
     std::error_code ec;
     for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
         const std::string name = it->path().filename().string();
         if (!isSequenceFileOf(name, stem) || !it->is_regular_file(ec) ||
             std::find(kept.begin(), kept.end(), name) != kept.end())
             continue;
+        if (std::find(listed.begin(), listed.end(), name) == listed.end()) {
+            unknown.push_back(name);
+            continue;
+        }
         std::error_code rm;
         if (fs::remove(it->path(), rm)) removed.push_back(name);
     }
-    if (removed.empty()) return;
     std::sort(removed.begin(), removed.end());
-    std::fprintf(stderr,
-                 "gale: note: removed %zu .vdb file%s of an earlier sequence in %s that this run "
-                 "did not write (%s .. %s), so the folder holds this run's sequence only\n",
-                 removed.size(), removed.size() == 1 ? "" : "s", folder.c_str(),
-                 removed.front().c_str(), removed.back().c_str());
+    std::sort(unknown.begin(), unknown.end());
+    if (!removed.empty())
+        std::fprintf(stderr,
+                     "gale: note: removed %zu .vdb file%s of the earlier sequence in %s that this "
+                     "run did not write (%s .. %s), so the folder holds this run's sequence only\n",
+                     removed.size(), removed.size() == 1 ? "" : "s", folder.c_str(),
+                     removed.front().c_str(), removed.back().c_str());
+    if (!unknown.empty())
+        std::fprintf(stderr,
+                     "gale: note: %s holds %zu file%s named like this run's sequence that no "
+                     "earlier report lists (e.g. %s); they are left as they are\n",
+                     folder.c_str(), unknown.size(), unknown.size() == 1 ? "" : "s",
+                     unknown.front().c_str());
 }
 
 }  // namespace
@@ -184,6 +226,7 @@ int runUnsteadySolve(const SolveRequest& req) {
     // interrupted, the complete frames and a report that says where the run stopped).
     interrupt.defer();
     const std::unique_ptr<OutputLock> lock = prepareSolveOutputs(req);
+    const std::vector<std::string> earlierSequence = sequenceOfEarlierReport(req.reportPath);
     StagedFiles staged;
     const int outputs = int(std::ceil(u.duration_s / u.outputEvery_s - 1e-9));
     auto writeFrame = [&](int n) {
@@ -291,7 +334,7 @@ int runUnsteadySolve(const SolveRequest& req) {
     if (!req.vdbPath.empty()) {
         std::vector<std::string> written = houdiniPaths;
         for (const auto& f : frames) written.push_back(f["path"].get<std::string>());
-        removeEarlierSequence(req.vdbPath, written);
+        removeEarlierSequence(req.vdbPath, written, earlierSequence);
     }
     if (stoppedEarly) {
         std::printf(

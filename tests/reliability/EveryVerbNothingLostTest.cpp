@@ -283,14 +283,19 @@ TEST(EveryOutput, AnUnsteadyRunReplacesTheWholeOfAnEarlierLongerSequence) {
     const RunResult first = run({"solve", "long.toml", "-o", "f/w.vdb"}, cwd.str());
     ASSERT_EQ(first.exitCode, 0) << first.describe();
     ASSERT_EQ(listTree(cwd / "f").size(), 5u) << describeTree(listTree(cwd / "f"));
+    // A file named like the sequence that no report lists is someone else's: it stays.
+    writeFile(cwd / "f/w_0009.vdb", "not this sequence's\n");
     const RunResult second = run({"solve", "short.toml", "-o", "f/w.vdb"}, cwd.str());
     ASSERT_EQ(second.exitCode, 0) << second.describe();
-    EXPECT_NE(second.err.find("removed 2 .vdb files of an earlier sequence"), std::string::npos)
+    EXPECT_NE(second.err.find("removed 2 .vdb files of the earlier sequence"), std::string::npos)
+        << second.err;
+    EXPECT_NE(second.err.find("that no earlier report lists (e.g. w_0009.vdb)"), std::string::npos)
         << second.err;
     std::vector<std::string> left;
     for (const auto& [name, size] : listTree(cwd / "f")) left.push_back(name);
-    EXPECT_EQ(left, (std::vector<std::string>{"w.json", "w_0000.vdb", "w_0001.vdb"}))
+    EXPECT_EQ(left, (std::vector<std::string>{"w.json", "w_0000.vdb", "w_0001.vdb", "w_0009.vdb"}))
         << describeTree(listTree(cwd / "f"));
+    EXPECT_EQ(readFile(cwd / "f/w_0009.vdb"), "not this sequence's\n");
 }
 
 TEST(EveryInput, ACorruptOrForeignVdbGetsGalesOwnMessage) {
