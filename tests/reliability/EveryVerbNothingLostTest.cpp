@@ -7,11 +7,14 @@
 // as it was (outputs of a run that is allowed to write are checked by name).
 
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -296,6 +299,37 @@ TEST(EveryOutput, AnUnsteadyRunReplacesTheWholeOfAnEarlierLongerSequence) {
     EXPECT_EQ(left, (std::vector<std::string>{"w.json", "w_0000.vdb", "w_0001.vdb", "w_0009.vdb"}))
         << describeTree(listTree(cwd / "f"));
     EXPECT_EQ(readFile(cwd / "f/w_0009.vdb"), "not this sequence's\n");
+}
+
+TEST(EveryOutput, AnInterruptedUnsteadyRunOverALongerSequenceLeavesExactlyItsOwnFiles) {
+    TempDir cwd;
+    const std::string head =
+        "[terrain]\nkind = \"hemisphere\"\nsize_m = [8.0, 8.0]\nradius_m = 2.0\n"
+        "[wind]\nkind = \"unsteady\"\nspeed_mps = 2.0\n[solver]\nvoxel_size_m = 0.5\n"
+        "[unsteady]\noutput_every_s = 0.2\n";
+    writeFile(cwd / "earlier.toml", head + "duration_s = 2.0\n");  // 11 files
+    writeFile(cwd / "long.toml", head + "duration_s = 200.0\n");   // stopped after a few
+    const RunResult first = run({"solve", "earlier.toml", "-o", "f/w.vdb"}, cwd.str());
+    ASSERT_EQ(first.exitCode, 0) << first.describe();
+    RunOptions options;
+    options.cwd = cwd.str();
+    Child child({"solve", "long.toml", "-o", "f/w.vdb"}, options);
+    ASSERT_TRUE(waitFor([&] { return child.errSoFar().find(" 3/1000") != std::string::npos; },
+                        RUN_TIMEOUT_S))
+        << child.errSoFar();
+    child.signal(SIGTERM);
+    const RunResult r = child.wait(RUN_TIMEOUT_S);
+    ASSERT_EQ(r.exitCode, 128 + SIGTERM) << r.describe();
+    const nlohmann::json report = nlohmann::json::parse(readFile(cwd / "f/w.json"));
+    const auto& frames = report["outputs"]["vdb_sequence"];
+    ASSERT_LT(frames.size(), 11u) << "the run was not stopped before the earlier run's end";
+    EXPECT_NE(r.err.find("of the earlier sequence"), std::string::npos) << r.err;
+    std::set<std::string> expected{"w.json"};
+    for (const auto& f : frames)
+        expected.insert(fs::path(f["path"].get<std::string>()).filename().string());
+    std::set<std::string> found;
+    for (const auto& [rel, size] : listTree(cwd / "f")) found.insert(rel);
+    EXPECT_EQ(found, expected) << describeTree(listTree(cwd / "f"));
 }
 
 TEST(EveryInput, ACorruptOrForeignVdbGetsGalesOwnMessage) {
