@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -124,6 +125,49 @@ TEST(EveryInput, OutputsOverTheFilesGdalReadsBesideTheDemAreRefused) {
               std::string("[terrain]\nkind = \"dem\"\ndem = \"w_10m.asc\"\n") + DEM_SCENE_TAIL);
     expectRefused({"solve", "s.toml", "-o", "w.vdb", "--grid-height-m", "10"}, cwd.str(),
                   {"--grid-height-m w_10m", "(the DEM)"});
+}
+
+/// A 16-bit PNG DEM with its world file (.pgw) and its coordinate system in the .aux.xml GDAL
+/// writes beside it, as GDAL's PNG driver makes them. Returns "" or GDAL's error.
+std::string writePngDem(const std::string& path) {
+    app::ensureGdalRegistered();
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+    GDALDriver* png = GetGDALDriverManager()->GetDriverByName("PNG");
+    if (!mem || !png) return "no GDAL MEM or PNG driver";
+    GDALDataset* ds = mem->Create("", 24, 20, 1, GDT_UInt16, nullptr);
+    if (!ds) return CPLGetLastErrorMsg();
+    double gt[6] = {612000.0, 2.0, 0.0, 4830000.0, 0.0, -2.0};
+    ds->SetGeoTransform(gt);
+    OGRSpatialReference srs;
+    srs.SetFromUserInput("EPSG:32632");
+    ds->SetSpatialRef(&srs);
+    std::vector<uint16_t> heights(24 * 20);
+    for (size_t k = 0; k < heights.size(); ++k) heights[k] = uint16_t(150 + k % 24);
+    std::string result;
+    if (ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 24, 20, heights.data(), 24, 20, GDT_UInt16,
+                                       0, 0, nullptr) != CE_None)
+        result = CPLGetLastErrorMsg();
+    const char* options[] = {"WORLDFILE=YES", nullptr};
+    GDALDataset* out =
+        png->CreateCopy(path.c_str(), ds, FALSE, const_cast<char**>(options), nullptr, nullptr);
+    if (!out) result = CPLGetLastErrorMsg();
+    GDALClose(out);
+    GDALClose(ds);
+    return result;
+}
+
+TEST(EveryInput, TerrainExportOverAPngDemOrItsWorldFileIsRefused) {
+    TempDir cwd;
+    ASSERT_EQ(writePngDem(cwd / "dem.png"), "");
+    ASSERT_TRUE(fs::exists(cwd / "dem.wld") || fs::exists(cwd / "dem.pgw"))
+        << describeTree(listTree(cwd.str()));
+    const std::string world = fs::exists(cwd / "dem.wld") ? "dem.wld" : "dem.pgw";
+    writeFile(cwd / "s.toml",
+              std::string("[terrain]\nkind = \"dem\"\ndem = \"dem.png\"\n") + DEM_SCENE_TAIL);
+    expectRefused({"terrain", "s.toml", "-o", "dem.png"}, cwd.str(),
+                  {"-o: 'dem.png' is also", "terrain.dem (the DEM)"});
+    expectRefused({"solve", "s.toml", "-o", "w.vdb", "--report", world}, cwd.str(),
+                  {"terrain.dem (beside it, '" + world + "')"});
 }
 
 TEST(EveryInput, RenderOverItsOwnDensityMapIsRefusedBeforeAnyWork) {
