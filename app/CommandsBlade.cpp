@@ -19,7 +19,6 @@
 namespace gale::app {
 namespace {
 
-using gale::PI;
 constexpr double SVG_WIDTH = 520, SVG_HEIGHT = 440;
 constexpr double MARGIN_LEFT = 60, MARGIN_RIGHT = 30, MARGIN_TOP = 60, MARGIN_BOTTOM = 60;
 /// At most this many shell indices are labelled, so many shells stay legible.
@@ -85,7 +84,7 @@ std::string bladeSvg(const BladeOptions& o) {
     auto Y = [&](double n) { return y0 - scale * n; };
 
     const render::ShellOffset tip = shells.back();
-    const double tiltDeg = render::tipTilt_rad(o.intensity) * 180.0 / PI;
+    const double tiltDeg = degreesFromRadians(render::tipTilt_rad(o.intensity));
     const double segment = h / o.shells;
 
     std::ostringstream svg;

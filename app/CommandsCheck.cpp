@@ -1,9 +1,11 @@
 /// \file CommandsCheck.cpp
 /// `gale check`: validate a scene and say what a run would build and what it leaves out.
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "app/Cli.h"
@@ -37,6 +39,32 @@ std::string directionText(double direction_deg) {
 
 void line(const char* label, const std::string& text) {
     std::printf("%-9s %s\n", label, text.c_str());
+}
+
+/// Grid convergence beyond which check says how far the DEM's grid north is from true north.
+constexpr double CONVERGENCE_NOTE_DEG = 0.5;
+
+/// For a DEM scene: which north from_deg is measured from (the CRS's grid north, +y) and, when it
+/// is more than CONVERGENCE_NOTE_DEG off true north at the terrain's centre, by how much.
+void northNote(const BuiltScene& built) {
+    const Georeference& geo = built.georef;
+    if (!geo.georeferenced()) return;
+    const sim::Heightfield& f = built.heightfield;
+    const double cx = geo.demX_m(f.originX_m + 0.5 * f.sizeX_m());
+    const double cy = geo.demY_m(f.originY_m + 0.5 * f.sizeY_m());
+    const std::optional<double> g = gridNorthBearing_deg(geo, cx, cy);
+    std::string text = "from_deg is measured clockwise from the grid north (+y) of " + geo.crsName;
+    if (!g)
+        text += " (its angle to true north could not be computed)";
+    else if (std::abs(*g) > CONVERGENCE_NOTE_DEG)
+        text += "; at the terrain's centre grid north is " + formatFixed(std::abs(*g), 2) +
+                " deg " + (*g > 0 ? "east" : "west") +
+                " of true north: a wind from the true bearing T is from_deg = T " +
+                (*g > 0 ? "- " : "+ ") + formatFixed(std::abs(*g), 2) + " here";
+    else
+        text += " (within " + formatG(CONVERGENCE_NOTE_DEG, 2) +
+                " deg of true north at the terrain's centre)";
+    line("", text);
 }
 
 }  // namespace
@@ -111,19 +139,12 @@ int runCheck(const SceneRunOptions& options) {
     const sim::UnsteadySettings& us = scene.unsteady.settings;
     if (unsteady) {
         const sim::AmbientWind& a = scene.wind.ambient;
-        line("wind",
-             "unsteady field (docs/design.md 4.2): steady mass-consistent start and mean flow, " +
-                 formatG(a.speed_mps, 3) + " m/s at " + formatG(a.referenceHeight_m, 3) + " m " +
-                 directionText(a.direction_deg) + ", " + sim::windProfileName(a.profile) +
-                 " profile");
-        line("", "domain " + built.domainSummary);
-        line("", std::string("time stepping: ") + sim::advectionSchemeName(us.advection) +
-                     " advection, " +
-                     (us.dt_s > 0 ? "fixed dt " + formatG(us.dt_s, 3) + " s"
-                                  : "adaptive CFL " + formatG(us.cfl, 3) +
-                                        " (dt <= " + formatG(us.maxDt_s, 3) + " s)") +
-                     ", projection to " + formatG(us.projection.relativeTolerance, 3) +
-                     " (warm MGPCG), " + (us.openTop ? "open top" : "free-slip lid on top"));
+        line("wind", "unsteady field (docs/design.md 4.2): " + formatG(a.speed_mps, 3) +
+                         " m/s at " + formatG(a.referenceHeight_m, 3) + " m " +
+                         directionText(a.direction_deg) + ", " + sim::windProfileName(a.profile) +
+                         " profile");
+        northNote(built);
+        for (const std::string& l : built.fieldPlan) line("", l);
         line("", "gale solve plans " + formatG(plannedSequenceFiles(scene.unsteady), 12) +
                      " .vdb files (limit " + std::to_string(scene.unsteady.maxFiles) +
                      ", unsteady.max_files) and at least " +
@@ -172,14 +193,16 @@ int runCheck(const SceneRunOptions& options) {
     } else if (solved) {
         const sim::AmbientWind& a = scene.wind.ambient;
         const coupling::FieldWindSpec& r = scene.wind.response;
-        line("wind", "solved steady field (mass-consistent, docs/design.md 4.1): " +
-                         formatG(a.speed_mps, 3) + " m/s at " + formatG(a.referenceHeight_m, 3) +
-                         " m " + directionText(a.direction_deg) + ", " +
-                         sim::windProfileName(a.profile) + " profile" +
-                         (a.profile == sim::WindProfile::LogLaw
-                              ? " (z0 " + formatG(a.roughness_m, 3) + " m)"
-                              : ""));
-        line("", "domain " + built.domainSummary);
+        line(
+            "wind",
+            std::string("solved steady field (") + sim::steadyModelName(scene.solver.model) +
+                "): " + formatG(a.speed_mps, 3) + " m/s at " + formatG(a.referenceHeight_m, 3) +
+                " m " + directionText(a.direction_deg) + ", " + sim::windProfileName(a.profile) +
+                " profile" +
+                (a.profile == sim::WindProfile::LogLaw ? " (z0 " + formatG(a.roughness_m, 3) + " m)"
+                                                       : ""));
+        northNote(built);
+        for (const std::string& l : built.fieldPlan) line("", l);
         line("", std::string("blade response ") + coupling::bladeResponseName(r.response) +
                      ", bend speed " + formatG(r.bendSpeed_mps, 3) + " m/s" +
                      (scene.wind.gusts

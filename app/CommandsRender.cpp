@@ -153,12 +153,10 @@ int runRender(const SceneRunOptions& options) {
     for (const std::string& warning : built.warnings)
         std::fprintf(stderr, "gale: warning: %s\n", warning.c_str());
     if (built.solve) {
-        const sim::SolveReport& r = *built.solve;
-        std::fprintf(stderr,
-                     "gale: steady wind %s in %d iterations, relative residual %.2e, "
-                     "max |div u| h / U %.2e, %.0f ms\n",
-                     r.converged ? "converged" : "DID NOT CONVERGE", r.iterations,
-                     r.relativeResidual, r.maxDivergenceScaled, built.solve_ms);
+        // The composition's own summary (app/scene/SceneField.h): what ran and how it ended.
+        std::fprintf(stderr, "gale: steady wind: %s\n", built.fieldSummary.c_str());
+        if (!built.solve->converged)
+            std::fprintf(stderr, "gale: %s\n", built.solve->message.c_str());
     }
 
     // GL: a failure here is ours (or the machine's), not the user's: exit 1.
@@ -289,7 +287,9 @@ int runRender(const SceneRunOptions& options) {
                                 {"iterations", r.iterations},
                                 {"relative_residual", r.relativeResidual},
                                 {"max_divergence_scaled", r.maxDivergenceScaled},
-                                {"wall_ms", built.solve_ms}};
+                                {"wall_ms", built.solve_ms},
+                                {"what_ran", built.fieldPlan},
+                                {"summary", built.fieldSummary}};
     }
     report["width"] = out.width;
     report["height"] = out.height;

@@ -69,7 +69,7 @@ std::unique_ptr<OutputLock> prepareSolveOutputs(const SolveRequest& req) {
 }
 
 double writeStagedVdb(StagedFiles& staged, const sim::WindField& field, const std::string& path,
-                      const sim::VdbMetadata& meta) {
+                      const sim::VdbMetadata& meta, std::vector<std::string>* gridNames) {
     const std::string tmp = staged.add(path);
     try {
         field.writeVdb(tmp, meta);
@@ -80,68 +80,128 @@ double writeStagedVdb(StagedFiles& staged, const sim::WindField& field, const st
         if (at != std::string::npos) reason = reason.substr(at + 3);
         throw std::runtime_error(path + ": cannot write: " + reason);
     }
-    return staged.seal(path);
+    const double bytes = staged.seal(path);
+    if (gridNames) *gridNames = sim::vdbGridNames(tmp);
+    return bytes;
+}
+
+nlohmann::json vdbGridDescriptions(const std::vector<std::string>& names) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const std::string& name : names) {
+        const char* what = name == "velocity" ? " (vec3s, m/s, world axes, cell centres)"
+                           : name == "speed"  ? " (float, m/s, cell centres)"
+                           : name == "velocity_faces"
+                               ? " (vec3s, m/s, staggered: the MAC face velocities)"
+                           : name == "velocity_layers"
+                               ? " (vec3s, m/s, the MAC faces of the stretched layers; metadata "
+                                 "z_levels_m)"
+                               : "";
+        out.push_back(name + what);
+    }
+    return out;
+}
+
+nlohmann::json domainJson(const sim::AirDomain& domain, const Scene& scene) {
+    const auto o = domain.wsMin_m();
+    nlohmann::json j = {{"cells", {domain.nx(), domain.ny(), domain.nz()}},
+                        {"voxel_size_m", domain.voxelSize_m()},
+                        {"ws_min_m", {o[0], o[1], o[2]}},
+                        {"ws_top_m", domain.wsTop_m()},
+                        {"box_cells", domain.boxCellCount()},
+                        {"air_cells", domain.activeCellCount()},
+                        {"memory_estimate_bytes", domain.memoryEstimate_bytes()},
+                        {"memory_limit_bytes", scene.solver.domain.memoryLimit_bytes},
+                        {"domain_bytes", domain.memory_bytes()},
+                        {"vdb_mask_bytes", domain.vdbMemory_bytes()}};
+    const sim::GridLayout& g = domain.layout();
+    if (g.uniformZ()) {
+        j["layers"] = {{"kind", "cubic"}, {"count", domain.nz()}};
+    } else {
+        const sim::DomainSpec& spec = scene.solver.domain;
+        j["layers"] = {{"kind", "stretched"},
+                       {"count", domain.nz()},
+                       {"first_cell_m", g.dz_m(0)},
+                       {"stretch_ratio", spec.stretchRatio},
+                       {"max_cell_m", g.dz_m(domain.nz() - 1)},
+                       {"z_levels_m", g.zLevels_m()}};
+    }
+    // The standard grids' voxels: the cells for cubic cells, the cubic resample for layers.
+    j["vdb_voxels"] = {domain.nx(), domain.ny(), sim::vdbCubicLayers(domain.layout())};
+    return j;
+}
+
+nlohmann::json provenanceJson(const FieldProvenance& p) {
+    nlohmann::json j;
+    for (const auto& [key, value] : p.metadata()) j[key.substr(5)] = value;  // without "gale_"
+    return j;
+}
+
+int reportStoppedSolve(const SolveRequest& req, const SceneField& sf, nlohmann::json j) {
+    j["interrupted"] = true;
+    j["stopped_by"] = interruptSignalName();
+    j["outputs"] = nlohmann::json::object();  // no field: a stopped solve is no answer
+    if (!req.reportPath.empty()) {
+        const std::unique_ptr<OutputLock> lock = prepareSolveOutputs(req);
+        StagedFiles staged;
+        writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
+        staged.commit();
+    }
+    std::printf("solve: interrupted (%s): %s; no field written%s%s\n", interruptSignalName(),
+                sf.summary().c_str(), req.reportPath.empty() ? "" : ", the report says how far: ",
+                req.reportPath.c_str());
+    return interruptExitCode();
 }
 
 int runSolve(const SolveRequest& req) {
     if (req.unsteady) return runUnsteadySolve(req);
+    const Scene& scene = *req.scene;
     const auto t0 = Clock::now();
-    req.ambient.validate();
+    checkSceneFieldInputs(scene);
     InterruptScope interrupt("while building the air domain: nothing written");
     // No progress line before the domain has validated its inputs: bad input gets one line only.
-    const sim::AirDomain domain(req.terrain, req.domain);
+    std::unique_ptr<sim::AirDomain> domainPtr = buildSceneDomain(scene, req.terrain);
+    const sim::AirDomain& domain = *domainPtr;
     const double domainSeconds = secondsSince(t0);
-    interrupt.exitAtOnce("while solving: nothing written");
     std::fprintf(stderr, "solve: %d x %d x %d cells, %zu air, estimate %.0f MiB; solving...\n",
                  domain.nx(), domain.ny(), domain.nz(), domain.activeCellCount(),
                  domain.memoryEstimate_bytes() / MIB);
-    sim::SteadyWindResult res;
-    std::optional<sim::MomentumReport> momentum;
-    std::optional<sim::SteadyWindSolver>
-        solver;  // the mass-consistent model's, kept for its memory figure
-    if (req.model == sim::SteadyModel::Momentum) {
-        sim::SteadyModelResult m = sim::solveSteadyModel(domain, req.ambient, req.model,
-                                                         req.weights, req.solver, req.momentum);
-        res.field = std::move(m.field), res.report = m.report, momentum = std::move(m.momentum);
-    } else {
-        solver.emplace(domain, req.weights);
-        res = solver->solve(req.ambient, req.solver);
-    }
+    for (const std::string& line : describeSceneField(scene, domain))
+        std::fprintf(stderr, "solve: %s\n", line.c_str());
+    // The momentum model's pseudo-time steps poll for a signal and stop with a report of how far
+    // they got; the mass-consistent solve (seconds) stops at once with nothing written.
+    const bool momentum = scene.solver.model == sim::SteadyModel::Momentum;
+    if (momentum)
+        interrupt.defer();
+    else
+        interrupt.exitAtOnce("while solving: nothing written");
+    SceneField sf = solveSceneField(scene, std::move(domainPtr), verbFieldOptions("solve"));
     interrupt.defer();  // from here both files are completed, then the run stops
-    const sim::SolveReport& rep = res.report;
+    const sim::SolveReport& rep = sf.report;
+    const FieldProvenance provenance = fieldProvenance(scene, req.terrain);
 
     nlohmann::json j;
     j["scene"] = req.sceneName;
-    j["model"] = momentum ? "steady momentum model (sim/MomentumWind.h): RANS, mixing length "
-                            "(Blackadar 1962), log-law "
-                            "wall stress, pseudo-time stepping from the mass-consistent field"
-                          : "steady mass-consistent wind (Sherman 1978), cut cells (Batty, "
-                            "Bertails, Bridson 2007), MGPCG "
-                            "(McAdams, Sifakis, Teran 2010)";
-    if (momentum) j["momentum"] = momentumJson(*momentum, req.momentum);
-    const auto o = domain.wsMin_m();
-    j["domain"] = {{"cells", {domain.nx(), domain.ny(), domain.nz()}},
-                   {"voxel_size_m", domain.voxelSize_m()},
-                   {"ws_min_m", {o[0], o[1], o[2]}},
-                   {"ws_top_m", domain.wsTop_m()},
-                   {"box_cells", domain.boxCellCount()},
-                   {"air_cells", domain.activeCellCount()},
-                   {"memory_estimate_bytes", domain.memoryEstimate_bytes()},
-                   {"memory_limit_bytes", req.domain.memoryLimit_bytes},
-                   {"domain_bytes", domain.memory_bytes()},
-                   {"vdb_mask_bytes", domain.vdbMemory_bytes()},
-                   {"solver_bytes", solver ? solver->poisson().memory_bytes() : size_t(0)}};
-    j["ambient"] = {{"speed_mps", req.ambient.speed_mps},
-                    {"reference_height_m", req.ambient.referenceHeight_m},
-                    {"direction_deg", req.ambient.direction_deg},
+    j["model"] = sf.modelText;
+    j["what_ran"] = describeSceneField(scene, domain);
+    j["provenance"] = provenanceJson(provenance);
+    if (sf.momentum) j["momentum"] = momentumJson(*sf.momentum, scene.solver.momentum);
+    j["domain"] = domainJson(domain, scene);
+    j["domain"]["solver_bytes"] = sf.solverMemory_bytes;
+    const sim::AmbientWind& ambient = scene.wind.ambient;
+    j["ambient"] = {{"speed_mps", ambient.speed_mps},
+                    {"reference_height_m", ambient.referenceHeight_m},
+                    {"direction_deg", ambient.direction_deg},
                     {"direction_convention", "towards, counter-clockwise from +x"},
-                    {"profile", sim::windProfileName(req.ambient.profile)},
-                    {"roughness_m", req.ambient.roughness_m}};
-    j["weights"] = {{"alpha_h", req.weights.alphaH}, {"alpha_v", req.weights.alphaV}};
-    j["solver"] = {{"relative_tolerance", req.solver.relativeTolerance},
-                   {"max_iterations", req.solver.maxIterations},
-                   {"smoothing_sweeps", req.solver.smoothingSweeps},
-                   {"multigrid", req.solver.useMultigrid},
+                    {"profile", sim::windProfileName(ambient.profile)},
+                    {"roughness_m", ambient.roughness_m}};
+    j["weights"] = {{"alpha_h", scene.solver.weights.alphaH},
+                    {"alpha_v", scene.solver.weights.alphaV}};
+    const sim::SolverSettings& settings = scene.solver.settings;
+    j["solver"] = {{"model", sim::steadyModelName(scene.solver.model)},
+                   {"relative_tolerance", settings.relativeTolerance},
+                   {"max_iterations", settings.maxIterations},
+                   {"smoothing_sweeps", settings.smoothingSweeps},
+                   {"multigrid", settings.useMultigrid},
                    {"residual_norm", "max-norm of b - A x over max-norm of b"}};
     j["report"] = {{"converged", rep.converged},
                    {"iterations", rep.iterations},
@@ -150,22 +210,25 @@ int runSolve(const SolveRequest& req) {
                    {"max_div_u_h_over_U", rep.maxDivergenceScaled},
                    {"levels", rep.levels},
                    {"message", rep.message},
+                   {"summary", sf.summary()},
                    {"domain_s", domainSeconds},
                    {"setup_s", rep.setupSeconds},
-                   {"solve_s", rep.solveSeconds},
-                   {"assembly_s", res.assemblySeconds}};
+                   {"solve_s", rep.solveSeconds}};
+    if (sf.stopped()) return reportStoppedSolve(req, sf, j);
     const std::unique_ptr<OutputLock> lock = prepareSolveOutputs(req);
     StagedFiles staged;  // both files move into place together, or neither
     if (!req.vdbPath.empty()) {
         sim::VdbMetadata meta;
         meta.strings = {{"scene", req.sceneName}, {"converged", rep.converged ? "yes" : "no"}};
+        for (const auto& kv : provenance.metadata()) meta.strings.push_back(kv);
         meta.numbers = {{"iterations", double(rep.iterations)},
                         {"relative_residual", rep.relativeResidual},
                         {"max_div_u_h_over_U", rep.maxDivergenceScaled}};
-        writeStagedVdb(staged, res.field, req.vdbPath, meta);
+        std::vector<std::string> grids;
+        writeStagedVdb(staged, sf.field, req.vdbPath, meta, &grids);
         if (req.houdiniFps > 0.0) {
             const std::string path = houdiniPath(req.vdbPath, req.houdiniFps, 0.0);
-            sim::writeHoudiniVdb(path, res.field, req.terrain);
+            sim::writeHoudiniVdb(path, sf.field, req.terrain);
             j["outputs"]["houdini"] = {
                 {"paths", nlohmann::json::array({path})},
                 {"grids", {"vel (vec3s, m/s, y-up)", "surface (level set of the terrain, y-up)"}},
@@ -173,19 +236,21 @@ int runSolve(const SolveRequest& req) {
         }
         j["outputs"]["vdb"] = {
             {"path", req.vdbPath},
-            {"grids",
-             {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)",
-              "velocity_faces (vec3s, m/s, staggered: the MAC face velocities)"}},
+            {"grids", vdbGridDescriptions(grids)},
             {"placement",
-             "cell-centred averages of the MAC face velocities; voxel (i,j,k) "
-             "centre at ws_min_m + (i+0.5, j+0.5, k+0.5) * voxel_size_m"},
+             domain.layout().uniformZ()
+                 ? "cell-centred averages of the MAC face velocities; voxel (i,j,k) centre at "
+                   "ws_min_m + (i+0.5, j+0.5, k+0.5) * voxel_size_m"
+                 : "velocity and speed: a cubic resample (domain.vdb_voxels) sampled at voxel "
+                   "centres ws_min_m + (i+0.5, j+0.5, k+0.5) * voxel_size_m; velocity_layers: "
+                   "the MAC faces of the stretched layers, voxel k = layer k (domain.layers)"},
             {"grid_class", "GRID_UNKNOWN"},
             {"vector_type", "VEC_CONTRAVARIANT_RELATIVE"}};
     }
     for (const double height_m : req.gridHeights_m) {
         const std::string stem = rasterStem(req.vdbPath, height_m);
         const std::vector<std::string> paths =
-            writeWindRasters(res.field, req.terrain, req.georef, height_m, stem);
+            writeWindRasters(sf.field, req.terrain, req.georef, height_m, stem);
         j["outputs"]["rasters"].push_back(
             {{"height_agl_m", height_m},
              {"paths", paths},
@@ -198,13 +263,9 @@ int runSolve(const SolveRequest& req) {
     j["domain"]["peak_resident_bytes"] = peakResidentBytes();  // beside the estimate
     if (!req.reportPath.empty()) writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
     staged.commit();
-    std::printf(
-        "solve: %s in %d iterations, relative residual %.2e, max|div u| h/U %.2e, %.2f s (%d x %d "
-        "x %d cells, "
-        "%zu air)\n",
-        rep.converged ? "converged" : "DID NOT CONVERGE", rep.iterations, rep.relativeResidual,
-        rep.maxDivergenceScaled, j["total_s"].get<double>(), domain.nx(), domain.ny(), domain.nz(),
-        domain.activeCellCount());
+    std::printf("solve: %s (%d x %d x %d cells, %zu air, %.2f s in all)\n", sf.summary().c_str(),
+                domain.nx(), domain.ny(), domain.nz(), domain.activeCellCount(),
+                j["total_s"].get<double>());
     if (!rep.converged) std::printf("solve: %s\n", rep.message.c_str());
     if (interruptSignal()) return reportInterruptedWhileWriting(req.vdbPath, req.reportPath);
     return rep.converged ? EXIT_OK : EXIT_UNMET;
@@ -237,12 +298,7 @@ int runSolveVerb(const SolveVerbOptions& options) {
     if (!options.gridHeights_m.empty() && scene.wind.kind == WindKind::Unsteady)
         throw InputError(
             "--grid-height-m: rasters are written for steady scenes only (this scene is unsteady)");
-    request.ambient = scene.wind.ambient;
-    request.domain = scene.solver.domain;
-    request.weights = scene.solver.weights;
-    request.solver = scene.solver.settings;
-    request.model = scene.solver.model;
-    request.momentum = scene.solver.momentum;
+    request.scene = &scene;
     request.sceneName = scene.name;
     if (scene.wind.kind == WindKind::Unsteady)
         request.unsteady = UnsteadySolveRequest{scene.unsteady.settings, scene.unsteady.duration_s,

@@ -23,6 +23,7 @@
 #include "app/io/ProcessMemory.h"
 #include "app/io/Progress.h"
 #include "app/io/Timing.h"
+#include "app/scene/SceneField.h"
 #include "app/scene/SceneParser.h"
 #include "base/Numbers.h"
 #include "sim/AirDomain.h"
@@ -168,12 +169,13 @@ void removeEarlierSequence(const std::string& vdbPath, const std::vector<std::st
 int runUnsteadySolve(const SolveRequest& req) {
     const auto t0 = Clock::now();
     const UnsteadySolveRequest& u = *req.unsteady;
-    req.ambient.validate();
-    u.settings.validate();
+    const Scene& scene = *req.scene;
+    checkSceneFieldInputs(scene);
     InterruptScope interrupt("while building the air domain: nothing written");
     // No progress line before the domain and the sequence's size are checked: bad input gets one
     // line only.
-    const sim::AirDomain domain(req.terrain, req.domain);
+    std::unique_ptr<sim::AirDomain> domainPtr = buildSceneDomain(scene, req.terrain);
+    const sim::AirDomain& domain = *domainPtr;
     if (!req.vdbPath.empty())
         if (auto problem = sequenceBytesProblem(
                 u.limits, sim::vdbWindFile_bytes(domain.nx(), domain.ny(), domain.nz())))
@@ -182,10 +184,19 @@ int runUnsteadySolve(const SolveRequest& req) {
         stderr,
         "solve: %d x %d x %d cells, %zu air; steady solve (initial state and mean flow)...\n",
         domain.nx(), domain.ny(), domain.nz(), domain.activeCellCount());
+    for (const std::string& line : describeSceneField(scene, domain))
+        std::fprintf(stderr, "solve: %s\n", line.c_str());
     interrupt.exitAtOnce("during the steady solve: nothing written");
-    sim::SteadyWindSolver steadySolver(domain, req.weights);
-    const sim::SteadyWindResult steady = steadySolver.solve(req.ambient, req.solver);
-    sim::UnsteadyWindSolver solver(domain, steady.field, u.settings, req.ambient.speed_mps);
+    SceneField steady = solveSceneField(scene, std::move(domainPtr), verbFieldOptions("solve"));
+    if (steady.stopped()) {
+        std::printf("solve: interrupted during the steady start: %s; nothing written\n",
+                    steady.summary().c_str());
+        return interruptExitCode();
+    }
+    const UnsteadyStepping stepping = unsteadySteppingOf(scene);
+    sim::UnsteadyWindSolver solver(domain, steady.field, stepping.settings,
+                                   stepping.referenceSpeed_mps);
+    const FieldProvenance provenance = fieldProvenance(scene, req.terrain);
     const double initialEnergy_m5ps2 = solver.kineticEnergy_m5ps2();
 
     nlohmann::json j;
@@ -195,16 +206,15 @@ int runUnsteadySolve(const SolveRequest& req) {
         "(Stam 1999), " +
         std::string(sim::advectionSchemeName(u.settings.advection)) +
         " advection, projection on cut cells with warm-started MGPCG (McAdams, Sifakis, Teran "
-        "2010); "
-        "initial state and mean flow: the steady mass-consistent field (Sherman 1978)";
-    j["domain"] = {{"cells", {domain.nx(), domain.ny(), domain.nz()}},
-                   {"voxel_size_m", domain.voxelSize_m()},
-                   {"air_cells", domain.activeCellCount()},
-                   {"memory_estimate_bytes", domain.memoryEstimate_bytes()},
-                   {"memory_limit_bytes", req.domain.memoryLimit_bytes}};
+        "2010); initial state and mean flow: " +
+        steady.modelText;
+    j["what_ran"] = describeSceneField(scene, domain);
+    j["provenance"] = provenanceJson(provenance);
+    j["domain"] = domainJson(domain, scene);
     j["steady"] = {{"converged", steady.report.converged},
                    {"iterations", steady.report.iterations},
-                   {"max_div_u_h_over_U", steady.report.maxDivergenceScaled}};
+                   {"max_div_u_h_over_U", steady.report.maxDivergenceScaled},
+                   {"summary", steady.summary()}};
     const sim::UnsteadySettings& s = u.settings;
     j["settings"] = {{"advection", sim::advectionSchemeName(s.advection)},
                      {"dt_s", s.dt_s},
@@ -229,13 +239,16 @@ int runUnsteadySolve(const SolveRequest& req) {
     const std::vector<std::string> earlierSequence = sequenceOfEarlierReport(req.reportPath);
     StagedFiles staged;
     const int outputs = int(std::ceil(u.duration_s / u.outputEvery_s - 1e-9));
+    std::vector<std::string> gridNames;  // of the first file; every file holds the same
     auto writeFrame = [&](int n) {
         const std::string path = sequencePath(req.vdbPath, n);
         if (!req.vdbPath.empty()) {
             sim::VdbMetadata meta;
             meta.strings = {{"scene", req.sceneName}};
+            for (const auto& kv : provenance.metadata()) meta.strings.push_back(kv);
             meta.numbers = {{"time_s", solver.time_s()}};
-            const double bytes = writeStagedVdb(staged, solver.field(), path, meta);
+            const double bytes =
+                writeStagedVdb(staged, solver.field(), path, meta, n == 0 ? &gridNames : nullptr);
             if (n == 0)
                 checkRoomForSequence(folderOf(req.vdbPath), req.outputWhere, bytes, outputs);
             if (req.houdiniFps > 0.0) {
@@ -305,8 +318,12 @@ int runUnsteadySolve(const SolveRequest& req) {
     j["steps"] = steps;
     j["domain"]["peak_resident_bytes"] = peakResidentBytes();  // beside the estimate
     j["outputs"] = {{"vdb_sequence", frames},
-                    {"grids", {"velocity (vec3s, m/s, world axes)", "speed (float, m/s)"}},
-                    {"placement", "cell-centred averages of the MAC face velocities"}};
+                    {"grids", vdbGridDescriptions(gridNames)},
+                    {"placement", domain.layout().uniformZ()
+                                      ? "cell-centred averages of the MAC face velocities"
+                                      : "velocity and speed: a cubic resample "
+                                        "(domain.vdb_voxels); velocity_layers: the MAC faces "
+                                        "of the stretched layers"}};
     if (!houdiniPaths.empty())
         j["outputs"]["houdini"] = {
             {"paths", houdiniPaths},

@@ -214,7 +214,7 @@ int runView(const ViewOptions& options) {
         std::snprintf(buf, sizeof buf, "solve %s %d it res %.1e",
                       r.converged ? "ok" : "NOT CONVERGED", r.iterations, r.relativeResidual);
         solveLine = buf;
-        std::fprintf(stderr, "gale: steady wind %s\n", buf);
+        std::fprintf(stderr, "gale: steady wind: %s\n", built.fieldSummary.c_str());
     }
 
     window->makeCurrent();
@@ -349,7 +349,7 @@ int runView(const ViewOptions& options) {
                     renderer.setShellCount(std::max(0, renderer.shellCount() - 1));
                     break;
                 case render::Key::RightBracket:
-                    renderer.setShellCount(std::min(render::kMaxShells, renderer.shellCount() + 1));
+                    renderer.setShellCount(std::min(render::MAX_SHELLS, renderer.shellCount() + 1));
                     break;
                 case render::Key::S: {
                     const std::string path = nextScreenshotName(screenshotCount);

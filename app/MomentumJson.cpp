@@ -30,6 +30,9 @@ nlohmann::json momentumJson(const sim::MomentumReport& m, const sim::MomentumSet
                           {"converged", l.converged},
                           {"seconds", l.seconds}});
     return {
+        {"closure", "mixing_length"},
+        {"advection", sim::pseudoTimeAdvectionName(s.advection)},
+        {"stopped", m.stopped},
         {"converged", m.converged},
         {"finite", m.finite},
         {"iterations", m.iterations},

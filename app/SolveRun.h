@@ -5,6 +5,7 @@
 /// to app/.
 
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "app/io/AtomicFile.h"
 #include "app/io/OutputLock.h"
 #include "app/scene/Scene.h"
+#include "app/scene/SceneField.h"
 #include "app/scene/WindRaster.h"
 #include "sim/AirDomain.h"
 #include "sim/AmbientWind.h"
@@ -35,16 +37,11 @@ struct UnsteadySolveRequest {
 };
 
 struct SolveRequest {
-    sim::Heightfield terrain;
-    sim::AmbientWind ambient;
-    sim::DomainSpec domain;
-    sim::MassConsistentWeights weights;
-    sim::SolverSettings solver;
-    sim::SteadyModel model = sim::SteadyModel::MassConsistent;  ///< [solver] model
-    sim::MomentumSettings momentum;                             ///< model = momentum
-    std::string vdbPath;     ///< the field (grids "velocity" and "speed"); empty: not written
-    std::string reportPath;  ///< the JSON report; empty: not written
-    std::string sceneName;   ///< recorded in the report and the .vdb metadata
+    const Scene* scene = nullptr;  ///< its wind, solver and unsteady keys (app/scene/SceneField.h)
+    sim::Heightfield terrain;      ///< the scene's terrain (buildTerrain)
+    std::string vdbPath;           ///< the field (grids "velocity" and "speed"); empty: not written
+    std::string reportPath;        ///< the JSON report; empty: not written
+    std::string sceneName;         ///< recorded in the report and the .vdb metadata
     std::string outputWhere = "-o";  ///< where the output path came from, for messages
     /// Set for unsteady scenes: vdbPath is then the stem of a sequence, <stem>_0000.vdb ..., and
     /// the report lists every step (CFL, iterations, divergence, kinetic energy, timings).
@@ -83,9 +80,20 @@ std::string rasterStem(const std::string& vdbPath, double height_m);
 /// temporaries a killed run left there. Returns the lock (null when no .vdb is written).
 std::unique_ptr<OutputLock> prepareSolveOutputs(const SolveRequest& req);
 
-/// Writes `field` to the staged temporary of `path` and seals it; returns its size in bytes.
+/// Writes `field` to the staged temporary of `path` and seals it; returns its size in bytes and,
+/// when `gridNames` is given, the names of the grids the written file holds (read back from it).
 /// Throws std::runtime_error "PATH: cannot write: REASON".
 double writeStagedVdb(StagedFiles& staged, const sim::WindField& field, const std::string& path,
-                      const sim::VdbMetadata& meta);
+                      const sim::VdbMetadata& meta, std::vector<std::string>* gridNames = nullptr);
+
+/// The report's list of a .vdb's grids: each name with its type, units and placement.
+nlohmann::json vdbGridDescriptions(const std::vector<std::string>& names);
+
+/// The report's "domain": the cells, the box, the memory, the layers (cubic, or stretched with
+/// first cell, ratio, largest cell and every level height) and the standard grids' voxels.
+nlohmann::json domainJson(const sim::AirDomain& domain, const Scene& scene);
+
+/// The report's "provenance" (FieldProvenance without the "gale_" of its metadata keys).
+nlohmann::json provenanceJson(const FieldProvenance& provenance);
 
 }  // namespace gale::app

@@ -14,8 +14,10 @@ inline constexpr double PI = 3.14159265358979323846;
 /// MiB.
 inline constexpr double MIB = 1024.0 * 1024.0;
 
-/// Degrees to radians.
+/// Degrees to radians, and back: the one conversion of angles in gale (every `_deg` value a scene
+/// or a camera holds becomes radians here, and every angle printed in degrees comes back here).
 inline constexpr double radiansFromDegrees(double deg) { return deg * (PI / 180.0); }
+inline constexpr double degreesFromRadians(double rad) { return rad * (180.0 / PI); }
 
 /// `v` with `digits` significant digits, shortest form ("%.*g": 0.5, 1e-06, 12.3, nan, inf): the
 /// form of numbers in messages, reports and tables.

@@ -10,6 +10,7 @@
 
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
+#include "sim/Interpolation.h"
 
 namespace gale::coupling {
 namespace {
@@ -101,8 +102,7 @@ double MeshHeight::at(double x, double y) const {
     const int i = std::min(int(fx), mMesh.nx - 2), j = std::min(int(fy), mMesh.ny - 2);
     const double tx = fx - i, ty = fy - j;
     auto z = [&](int a, int b) { return double(mMesh.wsPosition_m[size_t(b) * mMesh.nx + a].z); };
-    return (1 - ty) * ((1 - tx) * z(i, j) + tx * z(i + 1, j)) +
-           ty * ((1 - tx) * z(i, j + 1) + tx * z(i + 1, j + 1));
+    return sim::bilinearWeighted(z(i, j), z(i + 1, j), z(i, j + 1), z(i + 1, j + 1), tx, ty);
 }
 
 glm::dvec3 rk2Step(const VelocityFn& velocity, const glm::dvec3& x, double dt_s) {

@@ -10,6 +10,7 @@
 
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
+#include "sim/Interpolation.h"
 
 namespace gale::coupling {
 namespace {
@@ -31,8 +32,8 @@ void forEachPoint(size_t count, F&& f) {
 // ComponentRead::flags: the stencil lies outside the box (the component reads zero).
 constexpr uint32_t OUTSIDE = 8;
 
-// The planned trilinear read: the same eight faces and the same arithmetic, in the same order, as
-// GridLayout's blendStencils, so the value is bit for bit the one it gives.
+// The planned trilinear read: the same eight faces in the same order, and the same
+// sim::trilinearBlend, as GridLayout's blendStencils, so the value is bit for bit the one it gives.
 inline double blendPlanned(const double* a, const GrassSampler::ComponentRead& r, size_t strideY,
                            size_t strideZ) {
     if (r.flags & OUTSIDE) return 0.0;
@@ -43,10 +44,7 @@ inline double blendPlanned(const double* a, const GrassSampler::ComponentRead& r
     const double* p01 = p00 + dz;
     const double* p11 = p10 + dz;
     const double c[8] = {p00[0], p00[dx], p10[0], p10[dx], p01[0], p01[dx], p11[0], p11[dx]};
-    const double c00 = c[0] + (c[1] - c[0]) * r.t[0], c10 = c[2] + (c[3] - c[2]) * r.t[0];
-    const double c01 = c[4] + (c[5] - c[4]) * r.t[0], c11 = c[6] + (c[7] - c[6]) * r.t[0];
-    const double c0 = c00 + (c10 - c00) * r.t[1], c1 = c01 + (c11 - c01) * r.t[1];
-    return c0 + (c1 - c0) * r.t[2];
+    return sim::trilinearBlend(c, r.t[0], r.t[1], r.t[2]);
 }
 
 }  // namespace
@@ -62,23 +60,72 @@ GrassSampler::GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_
     mNearGround = nearGround;
 }
 
+GrassSampler::GrassSampler(std::vector<glm::dvec3> wsPoints_m, const NearGround& nearGround) {
+    for (const glm::dvec3& p : wsPoints_m)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw std::invalid_argument("GrassSampler: a sample point is not finite");
+    validate(nearGround);
+    mPoint = std::move(wsPoints_m);
+    mHeight_m = 0.0;
+    mNearGround = nearGround;
+}
+
+size_t GrassSampler::vertexCount() const { return mPoint.empty() ? mVertex.size() : mPoint.size(); }
+
+glm::dvec3 GrassSampler::samplePoint_m(size_t v) const {
+    if (!mPoint.empty()) return mPoint[v];
+    const glm::vec3& p = mVertex[v];
+    return {p.x, p.y, double(p.z) + mHeight_m};
+}
+
+NearGroundReadKind GrassSampler::readKind(size_t v) const {
+    const VertexRead& r = mRead.at(v);
+    bool identity = true, zero = true;
+    for (int i = 0; i < 9; ++i) {
+        identity = identity && r.map[size_t(i)] == (i % 4 == 0 ? 1.0f : 0.0f);
+        zero = zero && r.map[size_t(i)] == 0.0f;
+    }
+    bool outside = true;
+    for (const ComponentRead& c : r.component) outside = outside && (c.flags & OUTSIDE) != 0;
+    if (outside) return NearGroundReadKind::OutsideBox;
+    if (zero) return NearGroundReadKind::Zero;
+    if (identity) return NearGroundReadKind::Field;
+    return mNearGround.model == NearGroundModel::LogLaw ? NearGroundReadKind::LogLaw
+                                                        : NearGroundReadKind::Tangential;
+}
+
+const char* nearGroundReadKindName(NearGroundReadKind kind) {
+    switch (kind) {
+        case NearGroundReadKind::Field:
+            return "field";
+        case NearGroundReadKind::Tangential:
+            return "tangential";
+        case NearGroundReadKind::LogLaw:
+            return "log_law";
+        case NearGroundReadKind::Zero:
+            return "zero";
+        default:
+            return "outside";
+    }
+}
+
 void GrassSampler::plan(const sim::WindField& field) {
     const sim::GridLayout& g = field.layout();
     // A field this large (32 GB per face array) is refused by the memory estimate long before.
     for (int c = 0; c < 3; ++c)
         if (g.count(sim::Placement(c)) > size_t(UINT32_MAX))
             throw std::length_error("GrassSampler: face array too large for a read plan");
-    mRead.resize(mVertex.size());
+    const size_t n = vertexCount();
+    mRead.resize(n);
     // The solved faces tested once for every vertex's search (the plan's main cost otherwise),
     // unless testing them all costs more than the vertices' own tests would; the reads are the
     // same either way.
     std::optional<SolvedFaces> solved;
     if (mNearGround.model != NearGroundModel::Interpolated &&
-        SolvedFaces::keptFaceCount(field) < mVertex.size() * FACE_TESTS_PER_PLANNED_VERTEX)
+        SolvedFaces::keptFaceCount(field) < n * FACE_TESTS_PER_PLANNED_VERTEX)
         solved.emplace(field);
-    forEachPoint(mVertex.size(), [&](size_t v) {
-        const glm::vec3& p = mVertex[v];
-        const glm::dvec3 grass(p.x, p.y, double(p.z) + mHeight_m);
+    forEachPoint(n, [&](size_t v) {
+        const glm::dvec3 grass = samplePoint_m(v);
         const NearGroundRead r = solved ? planNearGroundRead(*solved, grass, mNearGround)
                                         : planNearGroundRead(field, grass, mNearGround);
         VertexRead& out = mRead[v];
@@ -108,7 +155,8 @@ void GrassSampler::plan(const sim::WindField& field) {
 
 void GrassSampler::sample(const sim::WindField& field, std::vector<glm::vec3>& out) {
     const sim::WindField::Geometry geometry = field.geometry();
-    if (mRead.size() != mVertex.size() || mPlanGeometry != geometry) {
+    const size_t n = vertexCount();
+    if (mRead.size() != n || mPlanGeometry != geometry) {
         mRead.clear();  // a failed plan leaves none
         plan(field);
         mPlanGeometry = geometry;
@@ -121,8 +169,8 @@ void GrassSampler::sample(const sim::WindField& field, std::vector<glm::vec3>& o
         strideY[c] = size_t(d[0]);
         strideZ[c] = size_t(d[0]) * size_t(d[1]);
     }
-    out.resize(mVertex.size());
-    forEachPoint(mVertex.size(), [&](size_t v) {
+    out.resize(n);
+    forEachPoint(n, [&](size_t v) {
         const VertexRead& r = mRead[v];
         float u[3];
         for (int c = 0; c < 3; ++c)

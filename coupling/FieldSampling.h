@@ -27,6 +27,17 @@ namespace gale::coupling {
 /// step is then 24 face reads, the blends and one 3 x 3 product per vertex, with no coordinate
 /// conversion; it gives bit for bit what WindField::velocityComponentsAt_mps gives at the
 /// plan's points. Multithreaded; O(vertices). One sampler serves one caller at a time.
+/// How a sample point was read (GrassSampler::readKind; gale probe's `read` column).
+enum class NearGroundReadKind {
+    Field,       ///< the field's own interpolation: every face its stencils read is solved
+    Tangential,  ///< below the solved faces: the free-slip tangential law (mass-consistent)
+    LogLaw,      ///< below the solved faces: the log law of the wall stress (momentum model)
+    Zero,        ///< below the terrain, or at or below z0 + d of the log law: zero wind
+    OutsideBox,  ///< outside the field's box: zero wind
+};
+/// "field", "tangential", "log_law", "zero", "outside".
+const char* nearGroundReadKindName(NearGroundReadKind kind);
+
 class GrassSampler {
   public:
     /// Copies the vertex positions. Throws gale::ParameterError unless sampleHeight_m is finite
@@ -34,6 +45,12 @@ class GrassSampler {
     /// (validate).
     GrassSampler(const render::TerrainMesh& mesh, double sampleHeight_m,
                  const NearGround& nearGround = {});
+
+    /// Samples at arbitrary world points (metres; gale probe): each point is planned and read as
+    /// a mesh vertex's grass point is, so a probe at a vertex's grass point reads exactly what the
+    /// grass there reads. Throws std::invalid_argument for a non-finite point, gale::ParameterError
+    /// as the mesh constructor for bad nearGround parameters.
+    GrassSampler(std::vector<glm::dvec3> wsPoints_m, const NearGround& nearGround);
 
     /// World velocity, m/s, at every sample point into `out` (resized to the vertex count; its
     /// storage is reused). The first call for a field geometry makes the read plan (the cost of
@@ -46,7 +63,12 @@ class GrassSampler {
         return out;
     }
 
-    size_t vertexCount() const { return mVertex.size(); }
+    size_t vertexCount() const;  ///< the mesh's vertices, or the points given
+    /// The world point (metres) that sample v reads: the vertex raised by the sample height, or
+    /// the point given.
+    glm::dvec3 samplePoint_m(size_t v) const;
+    /// How sample v was read in the last sample() call's plan (std::out_of_range before one).
+    NearGroundReadKind readKind(size_t v) const;
     const NearGround& nearGround() const { return mNearGround; }
 
     /// One component's trilinear read: the face array index of its stencil's first face (lowest
@@ -65,7 +87,8 @@ class GrassSampler {
     };
 
   private:
-    std::vector<glm::vec3> mVertex;  // world metres
+    std::vector<glm::vec3> mVertex;  // world metres (the mesh constructor)
+    std::vector<glm::dvec3> mPoint;  // world metres (the point constructor)
     double mHeight_m;
     NearGround mNearGround;
     void plan(const sim::WindField& field);  // fills mRead for field's geometry

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "render/GrassInput.h"
+#include "sim/Interpolation.h"
 
 namespace gale::coupling {
 
@@ -80,9 +81,9 @@ inline std::vector<float> blendedIntensity(const render::GrassWind& wind) {
         double fx, fy;
         split(coord[v].x, columns, x0, x1, fx);
         split(coord[v].y, rows, y0, y1, fy);
-        const double bottom = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * fx;
-        const double top = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * fx;
-        out[v] = static_cast<float>(bottom + (top - bottom) * fy);
+        const double bottom = sim::linearBlend(at(x0, y0), at(x1, y0), fx);
+        const double top = sim::linearBlend(at(x0, y1), at(x1, y1), fx);
+        out[v] = static_cast<float>(sim::linearBlend(bottom, top, fy));
     }
     return out;
 }

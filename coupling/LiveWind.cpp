@@ -12,6 +12,7 @@
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
 #include "sim/Format.h"
+#include "sim/Interpolation.h"
 #include "sim/Vortices.h"
 
 namespace gale::coupling {
@@ -162,8 +163,7 @@ std::optional<glm::vec3> pickTerrain(const render::TerrainMesh& mesh, const glm:
             std::upper_bound(ys.begin(), ys.end(), y) - ys.begin() - 1, 0, mesh.ny - 2));
         const float tx = (x - xs[i]) / (xs[i + 1] - xs[i]), ty = (y - ys[j]) / (ys[j + 1] - ys[j]);
         auto z = [&](int a, int b) { return mesh.wsPosition_m[size_t(b) * mesh.nx + a].z; };
-        return (1 - ty) * ((1 - tx) * z(i, j) + tx * z(i + 1, j)) +
-               ty * ((1 - tx) * z(i, j + 1) + tx * z(i + 1, j + 1));
+        return sim::bilinearWeighted(z(i, j), z(i + 1, j), z(i, j + 1), z(i + 1, j + 1), tx, ty);
     };
     // March in steps of half the finest mesh spacing, then bisect the step that went under.
     const float step_m = 0.5f * std::min(xs[1] - xs[0], ys[1] - ys[0]);

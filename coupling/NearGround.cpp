@@ -14,6 +14,7 @@
 
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
+#include "sim/Interpolation.h"
 #include "sim/SurfaceLayer.h"
 
 namespace gale::coupling {
@@ -71,8 +72,8 @@ LatticeCoord latticeY(const sim::Heightfield& h, double wsY_m) {
 }
 
 double heightAt(const sim::Heightfield& h, const LatticeCoord& x, const LatticeCoord& y) {
-    return (h.at(x.i, y.i) * (1 - x.t) + h.at(x.i + 1, y.i) * x.t) * (1 - y.t) +
-           (h.at(x.i, y.i + 1) * (1 - x.t) + h.at(x.i + 1, y.i + 1) * x.t) * y.t;
+    return sim::bilinearWeighted<double>(h.at(x.i, y.i), h.at(x.i + 1, y.i), h.at(x.i, y.i + 1),
+                                         h.at(x.i + 1, y.i + 1), x.t, y.t);
 }
 
 // The ground at (x, y): its height and its unit normal from the heights `delta_m` away along x

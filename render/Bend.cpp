@@ -15,9 +15,9 @@ double tipTilt_rad(double intensity) {
     // with the drive and approaches, never reaches, the ground margin.
     const double x = 0.5 * PI * intensity;
     const double ax = std::abs(x);
-    if (ax <= kTipTiltKnee_rad) return x;
-    const double room = kMaxTipTilt_rad - kTipTiltKnee_rad;
-    const double tilt = kTipTiltKnee_rad + room * std::tanh((ax - kTipTiltKnee_rad) / room);
+    if (ax <= TIP_TILT_KNEE_RAD) return x;
+    const double room = MAX_TIP_TILT_RAD - TIP_TILT_KNEE_RAD;
+    const double tilt = TIP_TILT_KNEE_RAD + room * std::tanh((ax - TIP_TILT_KNEE_RAD) / room);
     return x < 0.0 ? -tilt : tilt;
 }
 

@@ -10,9 +10,9 @@
 ///
 /// The paper's tip tilt is theta_tip = (pi/2) I, which lays the tip below the ground for |I| > 1
 /// (an oscillator overshooting a gust drives I to 2 and beyond). Here the tip tilt is the paper's
-/// up to |I| = 1/2 and saturates smoothly above, never past kMaxTipTilt_rad = pi/2 -
-/// kGroundMargin_rad (tipTilt_rad, docs/render.md). Every segment then climbs at least
-/// kGroundMargin_rad above the vertex's tangent plane, so the whole blade stays above the ground
+/// up to |I| = 1/2 and saturates smoothly above, never past MAX_TIP_TILT_RAD = pi/2 -
+/// GROUND_MARGIN_RAD (tipTilt_rad, docs/render.md). Every segment then climbs at least
+/// GROUND_MARGIN_RAD above the vertex's tangent plane, so the whole blade stays above the ground
 /// wherever the ground rises less than that within a blade's reach.
 
 #include <vector>
@@ -33,15 +33,15 @@ struct ShellOffset {
 /// that rises by less than this angle (seen from the vertex) within one blade length: concave
 /// ground of curvature radius R >= height / (2 margin) (3.3 m for 1 m grass), or a crease whose
 /// faces turn by less than the margin.
-inline constexpr double kGroundMargin_rad = 0.15;
-/// The bound of |tip tilt|, radians: pi/2 - kGroundMargin_rad (about 81.4 degrees).
-inline constexpr double kMaxTipTilt_rad = 0.5 * PI - kGroundMargin_rad;
+inline constexpr double GROUND_MARGIN_RAD = 0.15;
+/// The bound of |tip tilt|, radians: pi/2 - GROUND_MARGIN_RAD (about 81.4 degrees).
+inline constexpr double MAX_TIP_TILT_RAD = 0.5 * PI - GROUND_MARGIN_RAD;
 /// The tip tilt below which the bend is the paper's exactly: (pi/2) * 1/2, radians.
-inline constexpr double kTipTiltKnee_rad = 0.25 * PI;
+inline constexpr double TIP_TILT_KNEE_RAD = 0.25 * PI;
 
-/// Tip tilt for intensity I, radians, signed like I: x = (pi/2) I up to |x| = kTipTiltKnee_rad,
+/// Tip tilt for intensity I, radians, signed like I: x = (pi/2) I up to |x| = TIP_TILT_KNEE_RAD,
 /// then knee + (max - knee) tanh((|x| - knee) / (max - knee)): continuous with its first and
-/// second derivatives at the knee, monotone, and at most kMaxTipTilt_rad for every finite I
+/// second derivatives at the knee, monotone, and at most MAX_TIP_TILT_RAD for every finite I
 /// (approached exponentially; equal to it in double from |I| of about 10).
 /// Requires a finite intensity (non-finite gives NaN; bendBlade checks).
 double tipTilt_rad(double intensity);

@@ -30,11 +30,11 @@ BendTables::BendTables()
 void BendTables::setBlade(int shells, float height_m, float stiffness) {
     if (shells == mShells && height_m == mHeight_m && stiffness == mStiffness) return;
     const int width = shells + 1;
-    std::vector<float> table(static_cast<size_t>(width) * kTiltLevels * 4u, 0.0f);
+    std::vector<float> table(static_cast<size_t>(width) * TILT_LEVELS * 4u, 0.0f);
     std::vector<ShellOffset> row(static_cast<size_t>(width));
-    for (int l = 0; l < kTiltLevels; ++l) {
+    for (int l = 0; l < TILT_LEVELS; ++l) {
         if (shells > 0) {
-            const double tilt = kMaxTipTilt_rad * (2.0 * l / (kTiltLevels - 1) - 1.0);
+            const double tilt = MAX_TIP_TILT_RAD * (2.0 * l / (TILT_LEVELS - 1) - 1.0);
             bendBladeByTiltInto(shells, height_m, tilt, stiffness, row.data());
         } else {
             row[0] = ShellOffset{0.0, 0.0};
@@ -51,7 +51,7 @@ void BendTables::setBlade(int shells, float height_m, float stiffness) {
     }
     glBindTexture(GL_TEXTURE_2D, mBend.get());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, kTiltLevels, 0, GL_RGBA, GL_FLOAT,
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, TILT_LEVELS, 0, GL_RGBA, GL_FLOAT,
                  table.data());
     glBindTexture(GL_TEXTURE_2D, 0);
     mShells = shells, mHeight_m = height_m, mStiffness = stiffness;
@@ -97,7 +97,7 @@ void DensityTables::setCuts(const Image& level0) {
     const std::vector<float> cuts = densityCuts(level0);
     glBindTexture(GL_TEXTURE_2D, mCuts.get());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, kDensityCuts, 1, 0, GL_RED, GL_FLOAT, cuts.data());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, DENSITY_CUTS, 1, 0, GL_RED, GL_FLOAT, cuts.data());
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 

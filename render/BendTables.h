@@ -6,7 +6,7 @@
 /// - The bend table: texel (i, l) holds (n_i, w_i, n_i - n_{i-1}, w_i - w_{i-1}), metres, of
 ///   shell i (the last two: segment i, whose direction is the strand tangent; (1, 0) for the
 ///   ground) for the tip tilt
-///   theta_l = -max + 2 max l / (L - 1), max = kMaxTipTilt_rad, L = kTiltLevels (render/Bend.h).
+///   theta_l = -max + 2 max l / (L - 1), max = MAX_TIP_TILT_RAD, L = TILT_LEVELS (render/Bend.h).
 ///   It depends on the blade alone (N, height, stiffness), so it is built when they change, not
 ///   per frame. The shader interpolates linearly between tilt rows: a blade between two rows is
 ///   within (L0 dtheta^2 / 8) of a length-preserving one (L0 the blade length), under 4e-6 of
@@ -31,10 +31,10 @@ namespace gale::render::detail {
 Texture newTableTexture(GLint filter);
 
 /// Tilt rows of the bend table; odd so that tilt 0 (no wind) is a row, exactly.
-constexpr int kTiltLevels = 513;
+constexpr int TILT_LEVELS = 513;
 /// Width of the group grid when the wind names none: groups beyond it wrap to the next row, so
 /// per-vertex grouping of a large mesh stays within GL_MAX_TEXTURE_SIZE.
-constexpr int kDefaultGroupColumns = 1024;
+constexpr int DEFAULT_GROUP_COLUMNS = 1024;
 
 class BendTables {
   public:

@@ -8,11 +8,11 @@ namespace {
 
 struct Glyph {
     char c;
-    const char* rows[kGlyphHeight_px];  // '#' lit, '.' blank
+    const char* rows[GLYPH_HEIGHT_PX];  // '#' lit, '.' blank
 };
 
 // Our own 5 x 8 glyphs. Rows 0-1 ascenders, 2-6 x-height, 7 descenders.
-constexpr Glyph kGlyphs[] = {
+constexpr Glyph GLYPHS[] = {
     {' ', {".....", ".....", ".....", ".....", ".....", ".....", ".....", "....."}},
     {'0', {".###.", "#...#", "#..##", "#.#.#", "##..#", "#...#", ".###.", "....."}},
     {'1', {"..#..", ".##..", "..#..", "..#..", "..#..", "..#..", ".###.", "....."}},
@@ -64,7 +64,7 @@ constexpr Glyph kGlyphs[] = {
 
 const Glyph* find(char c) {
     const char lower = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    for (const Glyph& g : kGlyphs)
+    for (const Glyph& g : GLYPHS)
         if (g.c == lower) return &g;
     return nullptr;
 }
@@ -74,14 +74,14 @@ const Glyph* find(char c) {
 bool hasGlyph(char c) { return find(c) != nullptr; }
 
 bool glyphPixel(char c, int x, int y) {
-    if (x < 0 || x >= kGlyphWidth_px || y < 0 || y >= kGlyphHeight_px) return false;
+    if (x < 0 || x >= GLYPH_WIDTH_PX || y < 0 || y >= GLYPH_HEIGHT_PX) return false;
     const Glyph* g = find(c);
     return g != nullptr && g->rows[y][x] == '#';
 }
 
 int textWidth_px(const std::string& text, int scale) {
     if (text.empty()) return 0;
-    return scale * (kGlyphAdvance_px * static_cast<int>(text.size()) - 1);
+    return scale * (GLYPH_ADVANCE_PX * static_cast<int>(text.size()) - 1);
 }
 
 std::vector<glm::ivec2> textPixels(const std::string& text, int scale) {
@@ -89,9 +89,9 @@ std::vector<glm::ivec2> textPixels(const std::string& text, int scale) {
     for (size_t k = 0; k < text.size(); ++k) {
         const Glyph* g = find(text[k]);
         if (g == nullptr) continue;
-        const int x0 = static_cast<int>(k) * kGlyphAdvance_px * scale;
-        for (int y = 0; y < kGlyphHeight_px; ++y)
-            for (int x = 0; x < kGlyphWidth_px; ++x)
+        const int x0 = static_cast<int>(k) * GLYPH_ADVANCE_PX * scale;
+        for (int y = 0; y < GLYPH_HEIGHT_PX; ++y)
+            for (int x = 0; x < GLYPH_WIDTH_PX; ++x)
                 if (g->rows[y][x] == '#') out.emplace_back(x0 + x * scale, y * scale);
     }
     return out;

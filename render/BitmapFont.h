@@ -10,9 +10,9 @@
 
 namespace gale::render {
 
-inline constexpr int kGlyphWidth_px = 5;
-inline constexpr int kGlyphHeight_px = 8;
-inline constexpr int kGlyphAdvance_px = 6;  ///< one blank column between characters
+inline constexpr int GLYPH_WIDTH_PX = 5;
+inline constexpr int GLYPH_HEIGHT_PX = 8;
+inline constexpr int GLYPH_ADVANCE_PX = 6;  ///< one blank column between characters
 
 /// True if font pixel (x, y) of `c` is lit; x in [0, 5) left to right, y in [0, 8) top down.
 /// Characters the font lacks are blank (they still take their cell).

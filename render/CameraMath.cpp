@@ -54,7 +54,8 @@ glm::mat4 clipFromCamera(const Camera& camera, float aspect) {
             "near_m " + formatG(camera.near_m) + ", far_m " + formatG(camera.far_m),
             "need 0 < near_m < far_m, both finite");
     }
-    return glm::perspective(glm::radians(camera.fovY_deg), aspect, camera.near_m, camera.far_m);
+    return glm::perspective(float(radiansFromDegrees(camera.fovY_deg)), aspect, camera.near_m,
+                            camera.far_m);
 }
 
 glm::mat4 clipFromWorld(const Camera& camera, float aspect) {

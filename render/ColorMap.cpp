@@ -9,11 +9,11 @@ namespace {
 /// matplotlib's viridis at t = k / 9, k = 0..9 (van der Walt and Smith 2015), as the hex codes
 /// matplotlib documents: #440154 #482878 #3e4989 #31688e #26828e #1f9e89 #35b779 #6ece58
 /// #b5de2b #fde725.
-constexpr unsigned kViridisStops[10] = {0x440154, 0x482878, 0x3e4989, 0x31688e, 0x26828e,
+constexpr unsigned VIRIDIS_STOPS[10] = {0x440154, 0x482878, 0x3e4989, 0x31688e, 0x26828e,
                                         0x1f9e89, 0x35b779, 0x6ece58, 0xb5de2b, 0xfde725};
 
 glm::vec3 stopColor(int k) {
-    const unsigned c = kViridisStops[k];
+    const unsigned c = VIRIDIS_STOPS[k];
     return glm::vec3(float((c >> 16) & 0xff), float((c >> 8) & 0xff), float(c & 0xff)) / 255.0f;
 }
 

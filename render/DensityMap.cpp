@@ -89,13 +89,13 @@ std::vector<float> densityCuts(const Image& level0) {
     std::array<size_t, 257> atLeast{};
     for (int a = 255; a >= 1; --a) atLeast[a] = atLeast[a + 1] + count[a];
     const size_t blades = atLeast[1];
-    std::vector<float> cuts(kDensityCuts, 0.0f);
+    std::vector<float> cuts(DENSITY_CUTS, 0.0f);
     if (blades == 0) return cuts;
     constexpr float NONE = 2.0f;  // above any alpha: nothing passes
     constexpr float HALF_STEP = 0.5f / 255.0f;
     cuts[0] = NONE;
-    for (int k = 1; k < kDensityCuts; ++k) {
-        const double want = double(k) / (kDensityCuts - 1) * double(blades);
+    for (int k = 1; k < DENSITY_CUTS; ++k) {
+        const double want = double(k) / (DENSITY_CUTS - 1) * double(blades);
         // The tallest cut that still keeps at least the wanted area.
         int a = 255;
         while (a > 1 && double(atLeast[a]) < want) --a;

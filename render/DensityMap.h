@@ -37,8 +37,8 @@ constexpr int MAX_DENSITY_MAP_SIDE_PX = 8192;
 /// caller's plan rectangle).
 DensityMap loadDensityMap(const std::string& path, glm::vec2 wsMin_m, glm::vec2 wsSize_m);
 
-/// Entries of the density cut table: entry k is the cut for density k / (kDensityCuts - 1).
-constexpr int kDensityCuts = 256;
+/// Entries of the density cut table: entry k is the cut for density k / (DENSITY_CUTS - 1).
+constexpr int DENSITY_CUTS = 256;
 
 /// The cut table of a grass texture's level 0 (alpha = blade height, 0 = ground): entry k is the
 /// alpha (in [0, 1], or 2 for none) such that the blade texels with alpha >= cut are a fraction

@@ -117,11 +117,11 @@ struct ScreenScale {
     }
 };
 
-/// `a` lengthened to kMinArrowLength_px on screen (at its base's distance) if it is shorter; a
+/// `a` lengthened to MIN_ARROW_LENGTH_PX on screen (at its base's distance) if it is shorter; a
 /// zero arrow stays zero (no direction to draw).
 OverlayArrow atLeastMinimumSize(OverlayArrow a, const ScreenScale& screen) {
     const float length = glm::length(a.wsVector_m);
-    const float min_m = kMinArrowLength_px * screen.at(a.wsBase_m);
+    const float min_m = MIN_ARROW_LENGTH_PX * screen.at(a.wsBase_m);
     if (length > 0.0f && length < min_m) a.wsVector_m *= min_m / length;
     return a;
 }
@@ -159,7 +159,7 @@ void pushMarker(std::vector<Vertex>& out, const OverlayMarker& m, const Camera& 
     if (glm::length(right) < 1e-3f) right = glm::vec3(1.0f, 0.0f, 0.0f);
     right = glm::normalize(right);
     const glm::vec3 up = glm::normalize(glm::cross(right, view));
-    const glm::vec4 color(kVortexMarkerColor[0], kVortexMarkerColor[1], kVortexMarkerColor[2],
+    const glm::vec4 color(VORTEX_MARKER_COLOR[0], VORTEX_MARKER_COLOR[1], VORTEX_MARKER_COLOR[2],
                           1.0f);
     const float halfWidth = 0.5f * (LINE_WIDTH_PX + 1.0f) * screen.at(m.wsPosition_m);
     const float r0 = std::max(0.0f, m.size_m - halfWidth), r1 = m.size_m + halfWidth;
@@ -238,7 +238,7 @@ void FieldOverlay::Impl::pushLegend(const FieldOverlayData& data) {
     for (float t : ticks)
         labelWidth = std::max(labelWidth, textWidth_px(tickLabel(t, step), scale));
     const int margin = LEGEND_MARGIN_PX * scale, barWidth = LEGEND_BAR_WIDTH_PX * scale;
-    const int textHeight = kGlyphHeight_px * scale;
+    const int textHeight = GLYPH_HEIGHT_PX * scale;
     // The heading: the quantity and where it is measured, above the unit; "a, b" parts of a line
     // on lines of their own, and at text scale 1 when scale 2 would take over a quarter of the
     // frame's width.
@@ -260,7 +260,7 @@ void FieldOverlay::Impl::pushLegend(const FieldOverlayData& data) {
         if (headingWidth <= context.width() / 4 || headingScale == 1) break;
         headingScale = 1;
     }
-    const int lineHeight = (kGlyphHeight_px + 2) * headingScale;
+    const int lineHeight = (GLYPH_HEIGHT_PX + 2) * headingScale;
     const int boxWidth = std::max(margin + barWidth + margin / 2 + 2 * scale + labelWidth + margin,
                                   headingWidth + 2 * margin);
     const int headingHeight = int(heading.size()) * lineHeight;
@@ -343,9 +343,9 @@ void FieldOverlay::draw(const Camera& camera, const FieldOverlayData& data) {
     Impl& m = *mImpl;
     const float aspect = float(m.context.width()) / float(m.context.height());
     const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
-    ScreenScale screen{
-        camera.wsPosition_m,
-        2.0f * std::tan(0.5f * camera.fovY_deg * float(PI) / 180.0f) / float(m.context.height())};
+    ScreenScale screen{camera.wsPosition_m,
+                       2.0f * std::tan(0.5f * float(radiansFromDegrees(camera.fovY_deg))) /
+                           float(m.context.height())};
 
     m.begin();
     glEnable(GL_DEPTH_TEST);
@@ -402,7 +402,7 @@ void FieldOverlay::drawText(const std::string& text, int x_px, int y_px, int sca
     if (backdrop)
         m.pushRect(float(x_px - 2 * scale), float(y_px - 2 * scale),
                    float(x_px + textWidth_px(text, scale) + 2 * scale),
-                   float(y_px + kGlyphHeight_px * scale + scale),
+                   float(y_px + GLYPH_HEIGHT_PX * scale + scale),
                    glm::vec4(0, 0, 0, BACKDROP_ALPHA));
     m.pushText(text, x_px, y_px, scale, glm::vec4(color, 1.0f));
     m.drawBatch(m.screen, glm::mat4(1.0f));

@@ -69,10 +69,10 @@ struct FieldOverlayData {
 };
 
 /// The shortest arrow drawn, in pixels on screen: a slow wind's arrows stay visible.
-inline constexpr float kMinArrowLength_px = 12.0f;
+inline constexpr float MIN_ARROW_LENGTH_PX = 12.0f;
 
 /// Colour of the vortex-core markers: red, which viridis never uses.
-inline constexpr float kVortexMarkerColor[3] = {0.93f, 0.16f, 0.16f};
+inline constexpr float VORTEX_MARKER_COLOR[3] = {0.93f, 0.16f, 0.16f};
 
 class FieldOverlay {
   public:
@@ -86,7 +86,7 @@ class FieldOverlay {
     /// Draws `data` over the current framebuffer without clearing it: world geometry depth-tested
     /// against what is there (the terrain hides what lies behind it), then the legend on top.
     /// The slice goes first and writes no depth, so arrows, streamlines and markers draw over
-    /// it; an arrow shorter on screen than kMinArrowLength_px is drawn that long (same base and
+    /// it; an arrow shorter on screen than MIN_ARROW_LENGTH_PX is drawn that long (same base and
     /// direction), and over a slice arrows are outlined in white so their colour never merges
     /// with the slice's.
     /// Throws gale::ParameterError (overlay.speed_max_mps) for speedMax <= 0, std::logic_error on

@@ -92,7 +92,7 @@ struct Footprint {
     int dx[3];
     int dy[3];
 };
-constexpr Footprint kFootprints[] = {
+constexpr Footprint FOOTPRINTS[] = {
     {1, {0, 0, 0}, {0, 0, 0}},  // single texel
     {2, {0, 1, 0}, {0, 0, 0}},  // horizontal pair
     {2, {0, 0, 0}, {0, 1, 0}},  // vertical pair
@@ -102,7 +102,7 @@ constexpr Footprint kFootprints[] = {
     {3, {0, 1, 2}, {0, 0, 0}},  // short horizontal line
     {3, {0, 0, 0}, {0, 1, 2}},  // short vertical line
 };
-constexpr uint32_t kFootprintCount = sizeof(kFootprints) / sizeof(kFootprints[0]);
+constexpr uint32_t FOOTPRINT_COUNT = sizeof(FOOTPRINTS) / sizeof(FOOTPRINTS[0]);
 
 }  // namespace
 
@@ -161,7 +161,7 @@ GrassTexture generateGrassTexture(const GrassTextureSpec& spec) {
     for (size_t attempt = 0; attempt < maxAttempts && covered < target; ++attempt) {
         const int x0 = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
         const int y0 = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
-        const Footprint& fp = kFootprints[rng.below(kFootprintCount)];
+        const Footprint& fp = FOOTPRINTS[rng.below(FOOTPRINT_COUNT)];
         // Stop short of overshooting the density by a whole footprint.
         if (covered + static_cast<size_t>(fp.count) > target + 2u) continue;
         paintBlade(x0, y0, fp);
@@ -173,7 +173,7 @@ GrassTexture generateGrassTexture(const GrassTextureSpec& spec) {
         for (size_t k = 0; k < texels && covered < target; ++k) {
             const size_t t = (start + k) % texels;
             if (image.rgba[t * 4u + 3] != 0) continue;
-            paintBlade(static_cast<int>(t % n), static_cast<int>(t / n), kFootprints[0]);
+            paintBlade(static_cast<int>(t % n), static_cast<int>(t / n), FOOTPRINTS[0]);
         }
     }
 

@@ -10,13 +10,12 @@
 namespace gale::render {
 namespace {
 
-using gale::PI;
 constexpr double DEG_PER_PIXEL = 0.3;
 constexpr double MAX_ELEVATION_DEG = 89.0;
 constexpr double ZOOM_PER_STEP = 0.85;
 
 glm::dvec3 offsetOf(double azimuth_deg, double elevation_deg, double distance_m) {
-    const double a = azimuth_deg * PI / 180.0, e = elevation_deg * PI / 180.0;
+    const double a = radiansFromDegrees(azimuth_deg), e = radiansFromDegrees(elevation_deg);
     return distance_m *
            glm::dvec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
 }
@@ -30,9 +29,10 @@ void OrbitCamera::reset() {
     mTarget_m = glm::dvec3(mHome.wsTarget_m);
     const glm::dvec3 d = glm::dvec3(mHome.wsPosition_m) - mTarget_m;
     mDistance_m = std::max(1e-3, glm::length(d));
-    mAzimuth_deg = std::atan2(d.y, d.x) * 180.0 / PI;
-    mElevation_deg = std::clamp(std::asin(std::clamp(d.z / mDistance_m, -1.0, 1.0)) * 180.0 / PI,
-                                -MAX_ELEVATION_DEG, MAX_ELEVATION_DEG);
+    mAzimuth_deg = degreesFromRadians(std::atan2(d.y, d.x));
+    mElevation_deg =
+        std::clamp(degreesFromRadians(std::asin(std::clamp(d.z / mDistance_m, -1.0, 1.0))),
+                   -MAX_ELEVATION_DEG, MAX_ELEVATION_DEG);
 }
 
 void OrbitCamera::orbit(double dx_px, double dy_px) {
@@ -49,7 +49,7 @@ void OrbitCamera::pan(double dx_px, double dy_px, int viewportHeight_px) {
     const glm::dvec3 right = glm::normalize(glm::cross(glm::dvec3(0, 0, 1), back));
     const glm::dvec3 up = glm::cross(back, right);
     // Metres per pixel at the target's distance.
-    const double perPixel = 2.0 * mDistance_m * std::tan(0.5 * mHome.fovY_deg * PI / 180.0) /
+    const double perPixel = 2.0 * mDistance_m * std::tan(0.5 * radiansFromDegrees(mHome.fovY_deg)) /
                             std::max(1, viewportHeight_px);
     mTarget_m += perPixel * (-dx_px * right + dy_px * up);
 }

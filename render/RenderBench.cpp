@@ -29,11 +29,11 @@ using Clock = std::chrono::steady_clock;
 // The benchmark scene: a 32 m field (larger than the view), 0.3 m grass, the texture repeating
 // every 2 m, the camera 9 m up looking slightly forward (as in the thesis' Figure 4.1, the field
 // fills the screen).
-constexpr float kFieldSize_m = 32.0f;
-constexpr float kGrassHeight_m = 0.3f;
-constexpr float kTile_m = 2.0f;
-constexpr int kTextureSize = 256;
-constexpr int kWindGroups = 8;
+constexpr float FIELD_SIZE_M = 32.0f;
+constexpr float GRASS_HEIGHT_M = 0.3f;
+constexpr float TILE_M = 2.0f;
+constexpr int TEXTURE_SIZE = 256;
+constexpr int WIND_GROUPS = 8;
 
 GrassWind makeBenchWind(const TerrainMesh& mesh) {
     // The paper's point source: wind blowing away from a source beside the field, groups by
@@ -47,18 +47,18 @@ GrassWind makeBenchWind(const TerrainMesh& mesh) {
         const glm::vec3 away = p - source_m;
         const float d = glm::length(away);
         vertex->wsDirection.push_back(d > 0.0f ? away / d : glm::vec3(0.0f));
-        const int g = std::min(kWindGroups - 1, static_cast<int>(d / maxDistance * kWindGroups));
+        const int g = std::min(WIND_GROUPS - 1, static_cast<int>(d / maxDistance * WIND_GROUPS));
         vertex->group.push_back(static_cast<uint32_t>(g));
     }
     GrassWind wind;
     wind.vertex = std::move(vertex);
     wind.revision = 1;
-    wind.groupIntensity.assign(kWindGroups, 0.0f);
+    wind.groupIntensity.assign(WIND_GROUPS, 0.0f);
     return wind;
 }
 
 void setFrameIntensities(GrassWind& wind, int frame) {
-    for (int g = 0; g < kWindGroups; ++g) {
+    for (int g = 0; g < WIND_GROUPS; ++g) {
         const float phase = 0.3f * static_cast<float>(frame) - 0.7f * static_cast<float>(g);
         wind.groupIntensity[static_cast<size_t>(g)] = 0.35f + 0.3f * std::sin(phase);
     }
@@ -92,7 +92,7 @@ Camera benchCamera() {
 
 GrassTexture benchTexture() {
     GrassTextureSpec spec;
-    spec.size = kTextureSize;
+    spec.size = TEXTURE_SIZE;
     spec.seed = 2002;
     return generateGrassTexture(spec);
 }
@@ -122,25 +122,25 @@ TerrainMesh makeFlatGridMesh(int verticesPerSide, float size_m, float tile_m) {
 }
 
 ShellFillResult measureShellFill(const ShellFillCase& c) {
-    if (c.layers < 1 || c.layers > kMaxShells + 1) {
+    if (c.layers < 1 || c.layers > MAX_SHELLS + 1) {
         throw std::invalid_argument("ShellFillCase.layers must be in 1.." +
-                                    std::to_string(kMaxShells + 1) + ", got " +
+                                    std::to_string(MAX_SHELLS + 1) + ", got " +
                                     std::to_string(c.layers));
     }
-    if (c.frames < 1 || c.warmupFrames < 0 || c.lights < 0 || c.lights > kMaxLights) {
+    if (c.frames < 1 || c.warmupFrames < 0 || c.lights < 0 || c.lights > MAX_LIGHTS) {
         throw std::invalid_argument(
             "ShellFillCase: need frames >= 1, warmupFrames >= 0, lights in "
             "0.." +
-            std::to_string(kMaxLights));
+            std::to_string(MAX_LIGHTS));
     }
     auto context = createOsMesaContext(c.width, c.height);
     ShellRenderer renderer(*context);
-    const TerrainMesh mesh = makeFlatGridMesh(c.gridVertices, kFieldSize_m, kTile_m);
+    const TerrainMesh mesh = makeFlatGridMesh(c.gridVertices, FIELD_SIZE_M, TILE_M);
     renderer.setTerrain(mesh);
     GrassParams grass;
-    grass.height_m = kGrassHeight_m;
+    grass.height_m = GRASS_HEIGHT_M;
     grass.shells = c.layers - 1;
-    grass.tile_m = kTile_m;
+    grass.tile_m = TILE_M;
     grass.lodPixels = 0.0f;  // the table measures N full layers: no level of detail
     renderer.setGrass(grass, benchTexture());
     renderer.setLighting(makeBenchLighting(c.lights));
@@ -200,9 +200,9 @@ ShellFillResult measureShellFill(const ShellFillCase& c) {
     const auto sky = [](float v) { return static_cast<int>(std::lround(v * 255.0f)); };
     long covered = 0;
     for (size_t p = 0; p < image.rgba.size(); p += 4) {
-        const bool isSky = std::abs(image.rgba[p] - sky(ShellRenderer::kSkyColor[0])) <= 1 &&
-                           std::abs(image.rgba[p + 1] - sky(ShellRenderer::kSkyColor[1])) <= 1 &&
-                           std::abs(image.rgba[p + 2] - sky(ShellRenderer::kSkyColor[2])) <= 1;
+        const bool isSky = std::abs(image.rgba[p] - sky(ShellRenderer::SKY_COLOR[0])) <= 1 &&
+                           std::abs(image.rgba[p + 1] - sky(ShellRenderer::SKY_COLOR[1])) <= 1 &&
+                           std::abs(image.rgba[p + 2] - sky(ShellRenderer::SKY_COLOR[2])) <= 1;
         if (!isSky) ++covered;
     }
     result.coverage = static_cast<double>(covered) / (static_cast<double>(c.width) * c.height);
@@ -234,49 +234,49 @@ struct ProfileVariant {
     bool bottomFirst;
 };
 
-constexpr GLenum kTrilinear = GL_LINEAR_MIPMAP_LINEAR;
-constexpr ProfileVariant kProfileVariants[] = {
-    {"flat colour, no texture, no alpha test", 0, kTrilinear, GL_LINEAR, true, false},
-    {"flat colour, alpha test on a pixel hash", 1, kTrilinear, GL_LINEAR, true, false},
+constexpr GLenum TRILINEAR = GL_LINEAR_MIPMAP_LINEAR;
+constexpr ProfileVariant PROFILE_VARIANTS[] = {
+    {"flat colour, no texture, no alpha test", 0, TRILINEAR, GL_LINEAR, true, false},
+    {"flat colour, alpha test on a pixel hash", 1, TRILINEAR, GL_LINEAR, true, false},
     {"nearest texel of level 0 (no MIP level)", 2, GL_NEAREST, GL_NEAREST, true, false},
     {"nearest texel, nearest MIP level", 2, GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST, true, false},
     {"bilinear, level 0 (no MIP level)", 2, GL_LINEAR, GL_LINEAR, true, false},
     {"bilinear, nearest MIP level", 2, GL_LINEAR_MIPMAP_NEAREST, GL_LINEAR, true, false},
     {"nearest texel, two MIP levels blended", 2, GL_NEAREST_MIPMAP_LINEAR, GL_NEAREST, true, false},
-    {"trilinear: the trivial fill", 2, kTrilinear, GL_LINEAR, true, false},
-    {"trilinear, MIP level from the shader (textureLod)", 3, kTrilinear, GL_LINEAR, true, false},
-    {"trilinear, times the vertex light", 4, kTrilinear, GL_LINEAR, true, false},
-    {"trilinear, plus 30 multiply-adds", 5, kTrilinear, GL_LINEAR, true, false},
-    {"trilinear, two fetches", 6, kTrilinear, GL_LINEAR, true, false},
-    {"trilinear, depth test off", 2, kTrilinear, GL_LINEAR, false, false},
-    {"trilinear, bottom layer first", 2, kTrilinear, GL_LINEAR, true, true},
-    {"full renderer (bend, 3 lights)", -1, kTrilinear, GL_LINEAR, true, false},
+    {"trilinear: the trivial fill", 2, TRILINEAR, GL_LINEAR, true, false},
+    {"trilinear, MIP level from the shader (textureLod)", 3, TRILINEAR, GL_LINEAR, true, false},
+    {"trilinear, times the vertex light", 4, TRILINEAR, GL_LINEAR, true, false},
+    {"trilinear, plus 30 multiply-adds", 5, TRILINEAR, GL_LINEAR, true, false},
+    {"trilinear, two fetches", 6, TRILINEAR, GL_LINEAR, true, false},
+    {"trilinear, depth test off", 2, TRILINEAR, GL_LINEAR, false, false},
+    {"trilinear, bottom layer first", 2, TRILINEAR, GL_LINEAR, true, true},
+    {"full renderer (bend, 3 lights)", -1, TRILINEAR, GL_LINEAR, true, false},
 };
-constexpr size_t kBaselineVariant = 7;
-static_assert(kProfileVariants[kBaselineVariant].fragment == 2 &&
-                  kProfileVariants[kBaselineVariant].minFilter == kTrilinear,
+constexpr size_t BASELINE_VARIANT = 7;
+static_assert(PROFILE_VARIANTS[BASELINE_VARIANT].fragment == 2 &&
+                  PROFILE_VARIANTS[BASELINE_VARIANT].minFilter == TRILINEAR,
               "the baseline row is the trilinear fill");
 
 }  // namespace
 
 std::vector<FillProfileRow> profileShellFill(const FillProfileCase& c) {
     if (c.width < 1 || c.width > 16384 || c.height < 1 || c.height > 16384 || c.layers < 1 ||
-        c.layers > kMaxShells + 1 || c.frames < 1) {
+        c.layers > MAX_SHELLS + 1 || c.frames < 1) {
         throw std::invalid_argument(
             "FillProfileCase: need width and height in 1..16384, layers in 1.." +
-            std::to_string(kMaxShells + 1) + " and frames >= 1, got " + std::to_string(c.width) +
+            std::to_string(MAX_SHELLS + 1) + " and frames >= 1, got " + std::to_string(c.width) +
             " x " + std::to_string(c.height) + ", " + std::to_string(c.layers) + ", " +
             std::to_string(c.frames));
     }
     auto context = createOsMesaContext(c.width, c.height);
     // The full renderer, on the benchmark's own scene (measureShellFill's set-up).
     ShellRenderer renderer(*context);
-    const TerrainMesh mesh = makeFlatGridMesh(17, kFieldSize_m, kTile_m);
+    const TerrainMesh mesh = makeFlatGridMesh(17, FIELD_SIZE_M, TILE_M);
     renderer.setTerrain(mesh);
     GrassParams grass;
-    grass.height_m = kGrassHeight_m;
+    grass.height_m = GRASS_HEIGHT_M;
     grass.shells = c.layers - 1;
-    grass.tile_m = kTile_m;
+    grass.tile_m = TILE_M;
     grass.lodPixels = 0.0f;
     const GrassTexture texture = benchTexture();
     renderer.setGrass(grass, texture);
@@ -337,13 +337,13 @@ std::vector<FillProfileRow> profileShellFill(const FillProfileCase& c) {
                     static_cast<GLint>(texture.levels.size()) - 1);
     glBindTexture(GL_TEXTURE_2D, 0);
 
-    constexpr size_t kVariants = std::size(kProfileVariants);
-    std::vector<detail::Program> programs(kVariants);
-    std::vector<detail::Sampler> samplers(kVariants);
+    constexpr size_t VARIANTS = std::size(PROFILE_VARIANTS);
+    std::vector<detail::Program> programs(VARIANTS);
+    std::vector<detail::Sampler> samplers(VARIANTS);
     const glm::mat4 clip =
         clipFromWorld(camera, static_cast<float>(c.width) / static_cast<float>(c.height));
-    for (size_t k = 0; k < kVariants; ++k) {
-        const ProfileVariant& v = kProfileVariants[k];
+    for (size_t k = 0; k < VARIANTS; ++k) {
+        const ProfileVariant& v = PROFILE_VARIANTS[k];
         if (v.fragment < 0) continue;
         programs[k] = detail::Program(
             detail::linkProgramFiles("profile.vert", "profile.frag",
@@ -354,7 +354,7 @@ std::vector<FillProfileRow> profileShellFill(const FillProfileCase& c) {
                            glm::value_ptr(clip));
         glUniform1i(glGetUniformLocation(p, "uShells"), c.layers - 1);
         glUniform1f(glGetUniformLocation(p, "uShellSpacing"),
-                    c.layers > 1 ? kGrassHeight_m / static_cast<float>(c.layers - 1) : 0.0f);
+                    c.layers > 1 ? GRASS_HEIGHT_M / static_cast<float>(c.layers - 1) : 0.0f);
         glUniform1i(glGetUniformLocation(p, "uBottomFirst"), v.bottomFirst ? 1 : 0);
         glUniform1i(glGetUniformLocation(p, "uGrass"), 0);
         glGenSamplers(1, &name);
@@ -368,7 +368,7 @@ std::vector<FillProfileRow> profileShellFill(const FillProfileCase& c) {
     detail::checkGlError("profileShellFill setup");
 
     const auto drawVariant = [&](size_t k) {
-        const ProfileVariant& v = kProfileVariants[k];
+        const ProfileVariant& v = PROFILE_VARIANTS[k];
         if (v.fragment < 0) {
             renderer.draw(camera, wind);
             return;
@@ -384,8 +384,8 @@ std::vector<FillProfileRow> profileShellFill(const FillProfileCase& c) {
         glDepthMask(GL_TRUE);
         glDisable(GL_BLEND);
         glDisable(GL_CULL_FACE);
-        glClearColor(ShellRenderer::kSkyColor[0], ShellRenderer::kSkyColor[1],
-                     ShellRenderer::kSkyColor[2], 1.0f);
+        glClearColor(ShellRenderer::SKY_COLOR[0], ShellRenderer::SKY_COLOR[1],
+                     ShellRenderer::SKY_COLOR[2], 1.0f);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glUseProgram(programs[k].get());
         glActiveTexture(GL_TEXTURE0);
@@ -399,11 +399,11 @@ std::vector<FillProfileRow> profileShellFill(const FillProfileCase& c) {
         glUseProgram(0);
         glFinish();
     };
-    for (size_t k = 0; k < kVariants; ++k) drawVariant(k);  // warm-up: compiles llvmpipe's code
-    std::vector<std::vector<double>> cpu_ms(kVariants);
-    std::vector<std::vector<double>> wall_ms(kVariants);
+    for (size_t k = 0; k < VARIANTS; ++k) drawVariant(k);  // warm-up: compiles llvmpipe's code
+    std::vector<std::vector<double>> cpu_ms(VARIANTS);
+    std::vector<std::vector<double>> wall_ms(VARIANTS);
     for (int f = 0; f < c.frames; ++f) {
-        for (size_t k = 0; k < kVariants; ++k) {
+        for (size_t k = 0; k < VARIANTS; ++k) {
             const double cpuStart_ms = processCpu_ms();
             const auto wallStart = Clock::now();
             drawVariant(k);
@@ -414,9 +414,9 @@ std::vector<FillProfileRow> profileShellFill(const FillProfileCase& c) {
     }
     detail::checkGlError("profileShellFill");
     std::vector<FillProfileRow> rows;
-    for (size_t k = 0; k < kVariants; ++k) {
-        rows.push_back({kProfileVariants[k].name, median(cpu_ms[k]), median(wall_ms[k]),
-                        k == kBaselineVariant});
+    for (size_t k = 0; k < VARIANTS; ++k) {
+        rows.push_back({PROFILE_VARIANTS[k].name, median(cpu_ms[k]), median(wall_ms[k]),
+                        k == BASELINE_VARIANT});
     }
     return rows;
 }

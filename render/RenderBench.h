@@ -17,7 +17,7 @@ struct ShellFillCase {
     int layers = 17;        ///< layers drawn including the ground (the paper's "shells"), 1..257
     int frames = 20;        ///< timed frames per pass
     int warmupFrames = 2;   ///< untimed frames before each pass
-    int lights = 3;         ///< point lights (the thesis used 3), 0..kMaxLights
+    int lights = 3;         ///< point lights (the thesis used 3), 0..MAX_LIGHTS
     int gridVertices = 17;  ///< base mesh is gridVertices^2 vertices: 17 -> 512 triangles
     std::string framePath;  ///< if set, the last full frame is written here (atomic)
 };
@@ -53,7 +53,7 @@ ShellFillResult measureShellFill(const ShellFillCase& c);
 struct FillProfileCase {
     int width = 640;   ///< framebuffer, pixels, 1..16384
     int height = 480;  ///< pixels, 1..16384
-    int layers = 17;   ///< layers including the ground, 1..kMaxShells + 1
+    int layers = 17;   ///< layers including the ground, 1..MAX_SHELLS + 1
     int frames = 8;    ///< timed rounds; every round draws every variant once, >= 1
 };
 

@@ -8,9 +8,9 @@ namespace gale::render {
 /// Most point lights the shell vertex shader evaluates (uniform arrays in shaders/shell.vert are
 /// sized by this; the thesis used 3). ShellRenderer::setLighting throws std::invalid_argument
 /// above it, and a scene naming more lights must be refused with that message.
-constexpr int kMaxLights = 16;
+constexpr int MAX_LIGHTS = 16;
 
-/// Most shells above the ground (GrassParams::shells); the bend table has kMaxShells + 1 columns.
-constexpr int kMaxShells = 256;
+/// Most shells above the ground (GrassParams::shells); the bend table has MAX_SHELLS + 1 columns.
+constexpr int MAX_SHELLS = 256;
 
 }  // namespace gale::render

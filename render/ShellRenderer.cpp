@@ -32,7 +32,7 @@ void ShellRenderer::Impl::init() {
     fillLoc.grass = uniform(fp, "uGrass");
 
     glUseProgram(fp);
-    glUniform1i(fillLoc.grass, kGrassUnit);
+    glUniform1i(fillLoc.grass, GRASS_UNIT);
     glUseProgram(0);
 
     GLuint name = 0;
@@ -58,25 +58,25 @@ void ShellRenderer::Impl::init() {
     glBindVertexArray(vao.get());
     glBindBuffer(GL_ARRAY_BUFFER, terrainVbo.get());
     const auto stride = static_cast<GLsizei>(sizeof(TerrainVertex));
-    glEnableVertexAttribArray(kPositionLoc);
-    glVertexAttribPointer(kPositionLoc, 3, GL_FLOAT, GL_FALSE, stride,
+    glEnableVertexAttribArray(POSITION_LOC);
+    glVertexAttribPointer(POSITION_LOC, 3, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(offsetof(TerrainVertex, position)));
-    glEnableVertexAttribArray(kNormalLoc);
-    glVertexAttribPointer(kNormalLoc, 3, GL_FLOAT, GL_FALSE, stride,
+    glEnableVertexAttribArray(NORMAL_LOC);
+    glVertexAttribPointer(NORMAL_LOC, 3, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(offsetof(TerrainVertex, normal)));
-    glEnableVertexAttribArray(kUvLoc);
-    glVertexAttribPointer(kUvLoc, 2, GL_FLOAT, GL_FALSE, stride,
+    glEnableVertexAttribArray(UV_LOC);
+    glVertexAttribPointer(UV_LOC, 2, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(offsetof(TerrainVertex, uv)));
     glBindBuffer(GL_ARRAY_BUFFER, windVbo.get());
     const auto windStride = static_cast<GLsizei>(sizeof(WindVertex));
-    glEnableVertexAttribArray(kWindDirLoc);
-    glVertexAttribPointer(kWindDirLoc, 3, GL_FLOAT, GL_FALSE, windStride,
+    glEnableVertexAttribArray(WIND_DIR_LOC);
+    glVertexAttribPointer(WIND_DIR_LOC, 3, GL_FLOAT, GL_FALSE, windStride,
                           reinterpret_cast<const void*>(offsetof(WindVertex, direction)));
-    glEnableVertexAttribArray(kGroupLoc);
-    glVertexAttribIPointer(kGroupLoc, 1, GL_UNSIGNED_INT, windStride,
+    glEnableVertexAttribArray(GROUP_LOC);
+    glVertexAttribIPointer(GROUP_LOC, 1, GL_UNSIGNED_INT, windStride,
                            reinterpret_cast<const void*>(offsetof(WindVertex, group)));
-    glEnableVertexAttribArray(kGroupCoordLoc);
-    glVertexAttribPointer(kGroupCoordLoc, 2, GL_FLOAT, GL_FALSE, windStride,
+    glEnableVertexAttribArray(GROUP_COORD_LOC);
+    glVertexAttribPointer(GROUP_COORD_LOC, 2, GL_FLOAT, GL_FALSE, windStride,
                           reinterpret_cast<const void*>(offsetof(WindVertex, groupCoord)));
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer.get());
     glBindVertexArray(0);
@@ -92,8 +92,8 @@ std::string shellVariantDefines(unsigned bits) {
     const auto line = [bits](const char* name, unsigned bit) {
         return std::string("#define ") + name + ((bits & bit) != 0u ? " 1\n" : " 0\n");
     };
-    return line("APERIODIC", kVariantAperiodic) + line("FADE", kVariantFade) +
-           line("DENSITY", kVariantDensity) + line("BLEND_GROUPS", kVariantBlend);
+    return line("APERIODIC", VARIANT_APERIODIC) + line("FADE", VARIANT_FADE) +
+           line("DENSITY", VARIANT_DENSITY) + line("BLEND_GROUPS", VARIANT_BLEND);
 }
 }  // namespace shell_detail
 
@@ -131,25 +131,25 @@ ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
                                                     {&loc.specularStrength, "uSpecularStrength"},
                                                     {&loc.shadowMin, "uShadowMin"}};
     for (const auto& [where, name] : names) *where = uniform(sp, name);
-    // The shader's light arrays must be exactly kMaxLights long.
+    // The shader's light arrays must be exactly MAX_LIGHTS long.
     GLint arraySize = 0;
     const GLuint index = glGetProgramResourceIndex(sp, GL_UNIFORM, "uLightPos[0]");
     if (index != GL_INVALID_INDEX) {
         const GLenum prop = GL_ARRAY_SIZE;
         glGetProgramResourceiv(sp, GL_UNIFORM, index, 1, &prop, 1, nullptr, &arraySize);
     }
-    if (arraySize != kMaxLights) {
+    if (arraySize != MAX_LIGHTS) {
         throw std::runtime_error("shaders/shell.vert: MAX_LIGHTS is " + std::to_string(arraySize) +
-                                 ", expected kMaxLights = " + std::to_string(kMaxLights) +
+                                 ", expected MAX_LIGHTS = " + std::to_string(MAX_LIGHTS) +
                                  " (render/RenderLimits.h)");
     }
     glUseProgram(sp);
-    glUniform1i(loc.grass, kGrassUnit);
-    glUniform1i(loc.bend, kBendUnit);
-    glUniform1i(loc.groups, kGroupUnit);
-    glUniform1i(loc.density, kDensityUnit);
-    glUniform1i(loc.densityCut, kDensityCutUnit);
-    glUniform1f(loc.maxTilt, static_cast<float>(kMaxTipTilt_rad));
+    glUniform1i(loc.grass, GRASS_UNIT);
+    glUniform1i(loc.bend, BEND_UNIT);
+    glUniform1i(loc.groups, GROUP_UNIT);
+    glUniform1i(loc.density, DENSITY_UNIT);
+    glUniform1i(loc.densityCut, DENSITY_CUT_UNIT);
+    glUniform1f(loc.maxTilt, static_cast<float>(MAX_TIP_TILT_RAD));
     glUseProgram(0);
     uploadLighting(*p);
     slot = std::move(p);
@@ -159,9 +159,9 @@ ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
 void ShellRenderer::Impl::uploadLighting(const ShellProgram& program) const {
     const ShellLocations& shellLoc = program.loc;
     const int count = static_cast<int>(lighting.lights.size());
-    std::vector<glm::vec3> pos(kMaxLights, glm::vec3(0.0f));
-    std::vector<glm::vec3> color(kMaxLights, glm::vec3(0.0f));
-    std::vector<glm::vec3> atten(kMaxLights, glm::vec3(1.0f, 0.0f, 0.0f));
+    std::vector<glm::vec3> pos(MAX_LIGHTS, glm::vec3(0.0f));
+    std::vector<glm::vec3> color(MAX_LIGHTS, glm::vec3(0.0f));
+    std::vector<glm::vec3> atten(MAX_LIGHTS, glm::vec3(1.0f, 0.0f, 0.0f));
     for (int l = 0; l < count; ++l) {
         pos[l] = lighting.lights[l].wsPosition_m;
         color[l] = lighting.lights[l].color;
@@ -169,9 +169,9 @@ void ShellRenderer::Impl::uploadLighting(const ShellProgram& program) const {
     }
     glUseProgram(program.program.get());
     glUniform1i(shellLoc.lightCount, count);
-    glUniform3fv(shellLoc.lightPos, kMaxLights, glm::value_ptr(pos[0]));
-    glUniform3fv(shellLoc.lightColor, kMaxLights, glm::value_ptr(color[0]));
-    glUniform3fv(shellLoc.lightAtten, kMaxLights, glm::value_ptr(atten[0]));
+    glUniform3fv(shellLoc.lightPos, MAX_LIGHTS, glm::value_ptr(pos[0]));
+    glUniform3fv(shellLoc.lightColor, MAX_LIGHTS, glm::value_ptr(color[0]));
+    glUniform3fv(shellLoc.lightAtten, MAX_LIGHTS, glm::value_ptr(atten[0]));
     glUniform3fv(shellLoc.ambient, 1, glm::value_ptr(lighting.ambient));
     glUniform1f(shellLoc.specularPower, lighting.specularPower);
     glUniform1f(shellLoc.specularStrength, lighting.specularStrength);
@@ -206,8 +206,8 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
     const std::vector<uint32_t>& group = wind.group();
     checkSize("wsDirection", direction.size());
     checkSize("group", group.size());
-    static const std::vector<glm::vec2> kNoCoord;
-    const std::vector<glm::vec2>& coord = wind.vertex ? wind.vertex->groupCoord : kNoCoord;
+    static const std::vector<glm::vec2> NO_COORD;
+    const std::vector<glm::vec2>& coord = wind.vertex ? wind.vertex->groupCoord : NO_COORD;
     const bool blends = !none && !coord.empty();
     if (blends) checkSize("vertex->groupCoord", coord.size());
 
@@ -330,9 +330,9 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
     if (!(params.height_m > 0.0f) || !std::isfinite(params.height_m)) {
         throw ParameterError("grass.height_m", formatG(params.height_m), "must be > 0 and finite");
     }
-    if (params.shells < 0 || params.shells > kMaxShells) {
+    if (params.shells < 0 || params.shells > MAX_SHELLS) {
         throw ParameterError("grass.shells", std::to_string(params.shells),
-                             "must be in 0.." + std::to_string(kMaxShells));
+                             "must be in 0.." + std::to_string(MAX_SHELLS));
     }
     if (!(params.lodPixels >= 0.0f) || !std::isfinite(params.lodPixels)) {
         throw ParameterError("grass.lod_pixels", formatG(params.lodPixels),
@@ -358,7 +358,7 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
     }
     Impl& m = *mImpl;
     m.context.makeCurrent();
-    glActiveTexture(GL_TEXTURE0 + kGrassUnit);
+    glActiveTexture(GL_TEXTURE0 + GRASS_UNIT);
     glBindTexture(GL_TEXTURE_2D, m.grassTexture.get());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     // Rows go up top-down, so texture v = 0 is the image's top row; the texture only tiles, so
@@ -390,10 +390,10 @@ void ShellRenderer::setDensityMap(const DensityMap& map) {
 }
 
 void ShellRenderer::setLighting(const Lighting& lighting) {
-    if (lighting.lights.size() > static_cast<size_t>(kMaxLights)) {
+    if (lighting.lights.size() > static_cast<size_t>(MAX_LIGHTS)) {
         throw ParameterError(
             "lighting.light", std::to_string(lighting.lights.size()) + " lights",
-            "must hold at most " + std::to_string(kMaxLights) + " lights (kMaxLights)");
+            "must hold at most " + std::to_string(MAX_LIGHTS) + " lights (MAX_LIGHTS)");
     }
     for (size_t l = 0; l < lighting.lights.size(); ++l) {
         const PointLight& light = lighting.lights[l];
@@ -432,9 +432,9 @@ void ShellRenderer::setLighting(const Lighting& lighting) {
 void ShellRenderer::setShellCount(int shells) {
     Impl& m = *mImpl;
     if (!m.haveGrass) throw std::logic_error("ShellRenderer::setShellCount before setGrass");
-    if (shells < 0 || shells > kMaxShells)
+    if (shells < 0 || shells > MAX_SHELLS)
         throw ParameterError("grass.shells", std::to_string(shells),
-                             "must be in 0.." + std::to_string(kMaxShells));
+                             "must be in 0.." + std::to_string(MAX_SHELLS));
     m.grass.shells = shells;
 }
 

@@ -47,7 +47,7 @@ class ShellRenderer {
     /// to be re-uploaded.
     void setTerrain(const TerrainMesh& mesh);
     /// Uploads the grass texture with its blade-keeping MIP chain (thesis 3.4; GL_TEXTURE_MAX_LEVEL
-    /// is the last level the chain kept). params.height_m > 0; params.shells in 0..kMaxShells
+    /// is the last level the chain kept). params.height_m > 0; params.shells in 0..MAX_SHELLS
     /// (0 draws the ground only, the paper's one-shell row); stiffness > 0. Texture levels must be
     /// square, halving from a power of two. Throws gale::ParameterError naming grass.height_m,
     /// grass.shells, grass.lod_pixels or grass.stiffness, std::logic_error for bad texture levels.
@@ -56,7 +56,7 @@ class ShellRenderer {
     /// (density 1 everywhere). Requires density.size() == width * height, values finite, width
     /// and height within GL_MAX_TEXTURE_SIZE; throws std::invalid_argument naming the field.
     void setDensityMap(const DensityMap& map);
-    /// At most kMaxLights point lights (RenderLimits.h); attenuation coefficients >= 0 with
+    /// At most MAX_LIGHTS point lights (RenderLimits.h); attenuation coefficients >= 0 with
     /// k_c + k_l + k_q > 0; specularPower >= 0; selfShadowMin in [0, 1]. Throws
     /// gale::ParameterError naming the scene key (lighting.light[l].attenuation,
     /// lighting.self_shadow_min, ...) otherwise.
@@ -74,7 +74,7 @@ class ShellRenderer {
     FrameStats draw(const Camera& camera, const GrassWind& wind);
     /// draw() with parts left out (the viewer's terrain and grass toggles); same preconditions.
     FrameStats draw(const Camera& camera, const GrassWind& wind, const DrawOptions& options);
-    /// Changes N without re-uploading the texture: 0..kMaxShells, else gale::ParameterError
+    /// Changes N without re-uploading the texture: 0..MAX_SHELLS, else gale::ParameterError
     /// (grass.shells).
     /// Requires setGrass first (std::logic_error otherwise).
     void setShellCount(int shells);
@@ -89,7 +89,7 @@ class ShellRenderer {
     FrameStats drawFillBaseline(const Camera& camera, bool nearestSampling = false);
 
     /// Sky (clear) colour, linear RGB in [0, 1].
-    static constexpr float kSkyColor[3] = {0.60f, 0.75f, 0.92f};
+    static constexpr float SKY_COLOR[3] = {0.60f, 0.75f, 0.92f};
 
   private:
     struct Impl;

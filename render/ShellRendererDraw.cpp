@@ -2,6 +2,7 @@
 /// The shell renderer's frames: culling and the level of detail per terrain chunk
 /// (render/TerrainChunks.h), the instanced shell draws, and the benchmark's fill baseline.
 
+#include "base/Numbers.h"
 #include "render/ShellRendererImpl.h"
 
 namespace gale::render {
@@ -16,10 +17,10 @@ void ShellRenderer::Impl::beginFrame() {
     glDisable(GL_BLEND);
     // Shells are seen from below on slopes and at grazing angles: no culling.
     glDisable(GL_CULL_FACE);
-    glClearColor(kSkyColor[0], kSkyColor[1], kSkyColor[2], 1.0f);
+    glClearColor(SKY_COLOR[0], SKY_COLOR[1], SKY_COLOR[2], 1.0f);
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glActiveTexture(GL_TEXTURE0 + kGrassUnit);
+    glActiveTexture(GL_TEXTURE0 + GRASS_UNIT);
     glBindTexture(GL_TEXTURE_2D, grassTexture.get());
 }
 
@@ -40,7 +41,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     const int groupCount = static_cast<int>(wind.groupIntensity.size());
     const int columns = m.windColumns > 0 ? m.windColumns
                         : m.windBlends    ? groupCount
-                                          : detail::kDefaultGroupColumns;
+                                          : detail::DEFAULT_GROUP_COLUMNS;
     m.tables->setBlade(m.grass.shells, m.grass.height_m, m.grass.stiffness);
     m.tables->setGroups(wind, columns, m.maxTextureSize);
     FrameStats stats;
@@ -48,13 +49,13 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
 
     const auto gpuStart = Clock::now();
     m.beginFrame();
-    glActiveTexture(GL_TEXTURE0 + kBendUnit);
+    glActiveTexture(GL_TEXTURE0 + BEND_UNIT);
     glBindTexture(GL_TEXTURE_2D, m.tables->bendTexture());
-    glActiveTexture(GL_TEXTURE0 + kGroupUnit);
+    glActiveTexture(GL_TEXTURE0 + GROUP_UNIT);
     glBindTexture(GL_TEXTURE_2D, m.tables->groupTexture());
-    glActiveTexture(GL_TEXTURE0 + kDensityUnit);
+    glActiveTexture(GL_TEXTURE0 + DENSITY_UNIT);
     glBindTexture(GL_TEXTURE_2D, m.density->mapTexture());
-    glActiveTexture(GL_TEXTURE0 + kDensityCutUnit);
+    glActiveTexture(GL_TEXTURE0 + DENSITY_CUT_UNIT);
     glBindTexture(GL_TEXTURE_2D, m.density->cutTexture());
     // The viewer's toggles: without grass the top shell is the ground; without terrain the
     // ground (shell 0) is left out.
@@ -62,7 +63,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     const int bottom = options.terrain ? 0 : 1;
     // Level of detail (render/TerrainChunks.h): D1 = 2 S f / P, f the focal length in pixels.
     const float focal_px = static_cast<float>(m.context.height()) /
-                           (2.0f * std::tan(0.5f * glm::radians(camera.fovY_deg)));
+                           (2.0f * std::tan(0.5f * float(radiansFromDegrees(camera.fovY_deg))));
     const float d1_m =
         m.grass.lodPixels > 0.0f && shells > 0
             ? 2.0f * (m.grass.height_m / static_cast<float>(shells)) * focal_px / m.grass.lodPixels
@@ -70,9 +71,9 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     // The program of each chunk (ShellVariantBits): the scene's choices, plus the fade where a
     // chunk reaches the distance at which one of its shells starts to thin out. Each program gets
     // this frame's uniforms the first time a chunk uses it.
-    const unsigned sceneBits = (m.grass.aperiodic ? kVariantAperiodic : 0u) |
-                               (m.density->active() ? kVariantDensity : 0u) |
-                               (m.windBlends && groupCount > 0 ? kVariantBlend : 0u);
+    const unsigned sceneBits = (m.grass.aperiodic ? VARIANT_APERIODIC : 0u) |
+                               (m.density->active() ? VARIANT_DENSITY : 0u) |
+                               (m.windBlends && groupCount > 0 ? VARIANT_BLEND : 0u);
     int lastShell = 0;  // the largest power of two <= shells (the one dropped last), 0 without
     while (shells > 0 && lastShell * 2 <= shells) lastShell = lastShell == 0 ? 1 : lastShell * 2;
     unsigned preparedPrograms = 0;  // bit k: variant k has this frame's uniforms
@@ -130,7 +131,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     }
     std::sort(visible.begin(), visible.end(),
               [](const Visible& a, const Visible& b) { return a.near_m < b.near_m; });
-    if (options.nearestTexels) glBindSampler(kGrassUnit, m.nearestSampler.get());
+    if (options.nearestTexels) glBindSampler(GRASS_UNIT, m.nearestSampler.get());
     glBindVertexArray(m.vao.get());
     for (const auto& [near_m, far_m, mesh] : visible) {
         const detail::ShellRange range = detail::shellRange(shells, d1_m, near_m);
@@ -142,7 +143,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         if (range.top < bottom) continue;
         const int count = (range.top - bottom) / range.stride + 1;
         const bool fades = detail::chunkMayFade(range, shells, d1_m, far_m);
-        const ShellLocations& loc = useProgram(sceneBits | (fades ? kVariantFade : 0u));
+        const ShellLocations& loc = useProgram(sceneBits | (fades ? VARIANT_FADE : 0u));
         glUniform1i(loc.topShell, range.top);
         glUniform1i(loc.shellStride, range.stride);
         glDrawElementsInstanced(
@@ -152,7 +153,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         stats.triangles += static_cast<long long>(mesh.count / 3) * count;
     }
     glBindVertexArray(0);
-    glBindSampler(kGrassUnit, 0);
+    glBindSampler(GRASS_UNIT, 0);
     glUseProgram(0);
     glFinish();
     stats.gpu_ms = msSince(gpuStart);
@@ -178,12 +179,12 @@ FrameStats ShellRenderer::drawFillBaseline(const Camera& camera, bool nearestSam
     glUniform1f(m.fillLoc.shellSpacing,
                 m.grass.shells > 0 ? m.grass.height_m / static_cast<float>(m.grass.shells) : 0.0f);
     // A sampler object overrides the texture's own filtering while it is bound to the unit.
-    if (nearestSampling) glBindSampler(kGrassUnit, m.nearestSampler.get());
+    if (nearestSampling) glBindSampler(GRASS_UNIT, m.nearestSampler.get());
     glBindVertexArray(m.vao.get());
     glDrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
                             m.grass.shells + 1);
     glBindVertexArray(0);
-    glBindSampler(kGrassUnit, 0);
+    glBindSampler(GRASS_UNIT, 0);
     glUseProgram(0);
     glFinish();
     stats.gpu_ms = msSince(gpuStart);

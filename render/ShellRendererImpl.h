@@ -38,19 +38,19 @@ inline bool finite3(const glm::vec3& v) {
 }
 
 // Vertex attribute locations shared with shaders/shell.vert and fill.vert.
-constexpr GLuint kPositionLoc = 0;
-constexpr GLuint kNormalLoc = 1;
-constexpr GLuint kUvLoc = 2;
-constexpr GLuint kWindDirLoc = 3;
-constexpr GLuint kGroupLoc = 4;
-constexpr GLuint kGroupCoordLoc = 5;
+constexpr GLuint POSITION_LOC = 0;
+constexpr GLuint NORMAL_LOC = 1;
+constexpr GLuint UV_LOC = 2;
+constexpr GLuint WIND_DIR_LOC = 3;
+constexpr GLuint GROUP_LOC = 4;
+constexpr GLuint GROUP_COORD_LOC = 5;
 
 // Texture units.
-constexpr GLint kGrassUnit = 0;
-constexpr GLint kBendUnit = 1;
-constexpr GLint kGroupUnit = 2;
-constexpr GLint kDensityUnit = 3;
-constexpr GLint kDensityCutUnit = 4;
+constexpr GLint GRASS_UNIT = 0;
+constexpr GLint BEND_UNIT = 1;
+constexpr GLint GROUP_UNIT = 2;
+constexpr GLint DENSITY_UNIT = 3;
+constexpr GLint DENSITY_CUT_UNIT = 4;
 
 /// Static per-vertex data, interleaved.
 struct TerrainVertex {
@@ -73,12 +73,12 @@ inline GLint uniform(GLuint program, const char* name) {
 /// Specialisations of shaders/shell.vert + shell.frag, one program per combination of these bits
 /// (a branch on a uniform costs both sides on llvmpipe; docs/render.md).
 enum ShellVariantBits : unsigned {
-    kVariantAperiodic = 1u,  ///< APERIODIC: the jittered-cell texture layout
-    kVariantFade = 2u,       ///< FADE: the level of detail thins shells near their drop distance
-    kVariantDensity = 4u,    ///< DENSITY: a density map thins the blades
-    kVariantBlend = 8u,      ///< BLEND_GROUPS: the four nearest groups blended per vertex
+    VARIANT_APERIODIC = 1u,  ///< APERIODIC: the jittered-cell texture layout
+    VARIANT_FADE = 2u,       ///< FADE: the level of detail thins shells near their drop distance
+    VARIANT_DENSITY = 4u,    ///< DENSITY: a density map thins the blades
+    VARIANT_BLEND = 8u,      ///< BLEND_GROUPS: the four nearest groups blended per vertex
 };
-constexpr unsigned kShellVariants = 16;
+constexpr unsigned SHELL_VARIANTS = 16;
 
 /// Mean colour (linear RGB in [0, 1]) of the blade texels (alpha > 0) of a texture level; of all
 /// texels if it has no blade.
@@ -106,7 +106,7 @@ struct ShellRenderer::Impl {
     GlContext& context;
 
     /// Compiled on first use (ShellVariantBits); index = bits.
-    std::array<std::unique_ptr<shell_detail::ShellProgram>, shell_detail::kShellVariants>
+    std::array<std::unique_ptr<shell_detail::ShellProgram>, shell_detail::SHELL_VARIANTS>
         shellPrograms;
     detail::Program fillProgram;
     detail::VertexArray vao;

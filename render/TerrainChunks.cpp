@@ -43,12 +43,12 @@ std::vector<uint32_t> stitchedLevel(int nx, int i0, int i1, int j0, int j1, int 
 }
 
 /// Cuts level `level` of `chunk` (rows j0..j1 of a grid nx wide, cells `step` quads tall, its
-/// index list in row order) into at most kChunkBands bands of whole cell rows, with their boxes.
+/// index list in row order) into at most CHUNK_BANDS bands of whole cell rows, with their boxes.
 void splitBands(TerrainChunk& chunk, int level, int nx, int j0, int j1, int step,
                 const std::vector<glm::vec3>& wsPosition_m, const std::vector<uint32_t>& indices) {
     const IndexRange all = chunk.levels[level];
     const int cellRows = (j1 - j0 + step - 1) / step;
-    const int bands = std::min(kChunkBands, cellRows);
+    const int bands = std::min(CHUNK_BANDS, cellRows);
     const int rowsPerBand = (cellRows + bands - 1) / bands;
     int count = 0;
     int current = -1;
@@ -89,10 +89,10 @@ std::vector<TerrainChunk> buildChunks(int nx, int ny, const std::vector<glm::vec
     const auto position = [&](int i, int j) -> const glm::vec3& {
         return wsPosition_m[static_cast<size_t>(j) * nx + i];
     };
-    for (int j0 = 0; j0 + 1 < ny; j0 += kChunkQuads) {
-        for (int i0 = 0; i0 + 1 < nx; i0 += kChunkQuads) {
-            const int i1 = std::min(i0 + kChunkQuads, nx - 1),
-                      j1 = std::min(j0 + kChunkQuads, ny - 1);
+    for (int j0 = 0; j0 + 1 < ny; j0 += CHUNK_QUADS) {
+        for (int i0 = 0; i0 + 1 < nx; i0 += CHUNK_QUADS) {
+            const int i1 = std::min(i0 + CHUNK_QUADS, nx - 1),
+                      j1 = std::min(j0 + CHUNK_QUADS, ny - 1);
             TerrainChunk chunk;
             chunk.wsMin_m = chunk.wsMax_m = position(i0, j0);
             for (int j = j0; j <= j1; ++j)
@@ -120,7 +120,7 @@ std::vector<TerrainChunk> buildChunks(int nx, int ny, const std::vector<glm::vec
     // range (the whole terrain in one draw, as the benchmark's fill baseline draws it).
     for (size_t c = 0; c < chunks.size(); ++c) {
         const auto [i0, i1, j0, j1] = spans[c];
-        for (int level = 1; level < kMeshLevels; ++level) {
+        for (int level = 1; level < MESH_LEVELS; ++level) {
             const int step = 1 << level;
             if ((i1 - i0) % step != 0 || (j1 - j0) % step != 0) break;
             const std::vector<uint32_t> own = stitchedLevel(nx, i0, i1, j0, j1, step);
@@ -219,10 +219,10 @@ int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float 
                perLodPixel * lodPixels * near_m;
     };
     int level = 0;
-    while (level + 1 < chunk.levelCount && cellFits(level + 1, kMeshCellPerLodPixel)) ++level;
+    while (level + 1 < chunk.levelCount && cellFits(level + 1, MESH_CELL_PER_LOD_PIXEL)) ++level;
     int flat = 0;
-    while (flat + 1 < chunk.levelCount && cellFits(flat + 1, kMeshFlatCellPerLodPixel) &&
-           chunk.levelError_m[flat + 1] * focal_px <= kMeshErrorPerLodPixel * lodPixels * near_m)
+    while (flat + 1 < chunk.levelCount && cellFits(flat + 1, MESH_FLAT_CELL_PER_LOD_PIXEL) &&
+           chunk.levelError_m[flat + 1] * focal_px <= MESH_ERROR_PER_LOD_PIXEL * lodPixels * near_m)
         ++flat;
     return std::max(level, flat);
 }
@@ -232,7 +232,7 @@ bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m) 
     int lastShell = 1;
     while (lastShell * 2 <= shells) lastShell *= 2;
     const int nearestDrop = range.top > 0 ? std::min(range.stride, lastShell) : lastShell;
-    return far_m >= kLodFadeStart * d1_m * static_cast<float>(nearestDrop);
+    return far_m >= LOD_FADE_START * d1_m * static_cast<float>(nearestDrop);
 }
 
 }  // namespace gale::render::detail

@@ -22,30 +22,30 @@
 namespace gale::render::detail {
 
 /// Quads per chunk side.
-constexpr int kChunkQuads = 32;
+constexpr int CHUNK_QUADS = 32;
 /// A shell starts thinning at this fraction of its drop distance.
-constexpr float kLodFadeStart = 0.7f;
+constexpr float LOD_FADE_START = 0.7f;
 /// Mesh levels per chunk: level l takes every 2^l-th vertex inside the chunk (l = 5: one coarse
 /// cell per 32-quad chunk).
-constexpr int kMeshLevels = 6;
+constexpr int MESH_LEVELS = 6;
 /// A chunk may always take a mesh level whose cells are at most this many times
 /// GrassParams::lodPixels across on screen (default 2 px: 8-pixel cells; the ground is smooth at
 /// that scale, and a software rasteriser pays per vertex and per small triangle).
-constexpr float kMeshCellPerLodPixel = 4.0f;
+constexpr float MESH_CELL_PER_LOD_PIXEL = 4.0f;
 /// Where the ground is flat at the chunk's scale, larger cells: a level whose surface stays within
-/// kMeshErrorPerLodPixel lodPixels (on screen, at the chunk's nearest point) of the full mesh's
-/// vertices, with cells up to kMeshFlatCellPerLodPixel lodPixels across (default 1 px and 64 px).
-/// The cap keeps the per-vertex wind and light sampled finely enough near the camera: a cell
+/// MESH_ERROR_PER_LOD_PIXEL lodPixels (on screen, at the chunk's nearest point) of the full mesh's
+/// vertices, with cells up to MESH_FLAT_CELL_PER_LOD_PIXEL lodPixels across (default 1 px and 64
+/// px). The cap keeps the per-vertex wind and light sampled finely enough near the camera: a cell
 /// 64 px wide at 7 m is 0.9 m of ground, finer than the gust fronts and whirlwind cores of the
 /// examples. Measured on examples/knoll.toml (docs/render.md, "Where a frame's time goes"): the
 /// full mesh near the camera was 70 % of the frame's triangles and half its rasteriser time.
-constexpr float kMeshErrorPerLodPixel = 0.5f;
-constexpr float kMeshFlatCellPerLodPixel = 32.0f;
+constexpr float MESH_ERROR_PER_LOD_PIXEL = 0.5f;
+constexpr float MESH_FLAT_CELL_PER_LOD_PIXEL = 32.0f;
 
 /// Row bands per chunk: each mesh level's index list is also cut into bands of whole rows, each
 /// with its own box, so a chunk that spans the distance where a shell is dropped draws that shell
 /// only over the bands that need it (the mesh level stays the chunk's, so no crack opens).
-constexpr int kChunkBands = 4;
+constexpr int CHUNK_BANDS = 4;
 
 /// A range of the terrain's index buffer.
 struct IndexRange {
@@ -66,20 +66,20 @@ struct TerrainChunk {
     /// levels[l], l < levelCount: the mesh taking every 2^l-th vertex inside the chunk, with the
     /// chunk's border always at full resolution (stitched), so neighbours at any levels share
     /// the same border and no crack opens. levels[0] is the full mesh.
-    IndexRange levels[kMeshLevels];
+    IndexRange levels[MESH_LEVELS];
     int levelCount = 1;
     /// levelError_m[l]: the largest vertical distance, metres, between a full-mesh vertex of the
     /// chunk and level l's surface above or below it (0 for level 0).
-    float levelError_m[kMeshLevels] = {};
+    float levelError_m[MESH_LEVELS] = {};
     /// bands[l][b], b < bandCount[l]: level l cut into bands of whole (coarse) rows, south first,
-    /// together exactly levels[l] (render/TerrainChunks.h, kChunkBands).
-    ChunkBand bands[kMeshLevels][kChunkBands];
-    int bandCount[kMeshLevels] = {};
+    /// together exactly levels[l] (render/TerrainChunks.h, CHUNK_BANDS).
+    ChunkBand bands[MESH_LEVELS][CHUNK_BANDS];
+    int bandCount[MESH_LEVELS] = {};
     float quad_m = 0.0f;                     ///< the longest quad side in the chunk (3-D), metres
     glm::vec3 wsMin_m{0.0f}, wsMax_m{0.0f};  ///< bounds of the ground, before the grass margin
 };
 
-/// Chunks of the nx x ny grid, kChunkQuads quads a side (fewer at the far edges), and their index
+/// Chunks of the nx x ny grid, CHUNK_QUADS quads a side (fewer at the far edges), and their index
 /// lists, appended to `indices`: every chunk's level 0 first (together one contiguous range, two
 /// triangles per quad of the whole grid, in the order of TerrainGrid.h within each chunk), then
 /// the coarser levels;
@@ -113,9 +113,9 @@ ShellRange shellRange(int shells, float d1_m, float distance_m);
 
 /// The mesh level of a chunk whose nearest ground point is `near_m` metres from the eye (focal_px
 /// the focal length in pixels), the coarser of two rules: the coarsest l < chunk.levelCount whose
-/// cells (2^l quad_m) span at most kMeshCellPerLodPixel lodPixels on screen at that distance; and
-/// the coarsest l whose cells span at most kMeshFlatCellPerLodPixel lodPixels and whose
-/// levelError_m, and that of every finer level, spans at most kMeshErrorPerLodPixel lodPixels. 0
+/// cells (2^l quad_m) span at most MESH_CELL_PER_LOD_PIXEL lodPixels on screen at that distance;
+/// and the coarsest l whose cells span at most MESH_FLAT_CELL_PER_LOD_PIXEL lodPixels and whose
+/// levelError_m, and that of every finer level, spans at most MESH_ERROR_PER_LOD_PIXEL lodPixels. 0
 /// when lodPixels is 0 (no level of detail).
 int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float near_m);
 
@@ -130,7 +130,7 @@ float meshLevelError(int nx, const std::vector<glm::vec3>& wsPosition_m,
 /// in for the dropped grass (shells.vert: between 0.7 and 1 of the drop distance of the shell
 /// dropped last, D1 times the largest power of two <= N). The nearest drop distance among the
 /// drawn shells above the ground is D1 stride (an odd multiple of the stride has no more trailing
-/// zero bits); thinning starts at kLodFadeStart of it. False when D1 is 0 (no level of detail) or
+/// zero bits); thinning starts at LOD_FADE_START of it. False when D1 is 0 (no level of detail) or
 /// N is 0. A chunk for which this is false can be drawn without the fade.
 bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m);
 

@@ -22,7 +22,7 @@
 #define DENSITY 0
 #endif
 
-// Must equal gale::render::kMaxLights (render/RenderLimits.h); ShellRenderer checks the array size.
+// Must equal gale::render::MAX_LIGHTS (render/RenderLimits.h); ShellRenderer checks the array size.
 #define MAX_LIGHTS 16
 
 layout(location = 0) in vec3 aPosition;  // vertex on the terrain

@@ -12,7 +12,6 @@
 namespace gale::sim {
 namespace {
 using detail::num;
-using gale::PI;
 
 /// An angle in degrees brought into [0, 360).
 double wrap360(double deg) {
@@ -74,7 +73,7 @@ double AmbientWind::speedAt_mps(double z) const {
 }
 
 std::array<double, 3> AmbientWind::velocityAt_mps(double z) const {
-    const double s = speedAt_mps(z), a = direction_deg * PI / 180.0;
+    const double s = speedAt_mps(z), a = radiansFromDegrees(direction_deg);
     return {s * std::cos(a), s * std::sin(a), 0.0};
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 /// \file FaceExtrapolation.h
+/// \internal Included only by sim/ and tests/sim (docs/architecture.md lists sim's public headers).
 /// Values for MAC faces that carry none (closed by the terrain), so that interpolating the field
 /// near the ground stays smooth. Shared by the steady and unsteady solvers.
 

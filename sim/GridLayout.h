@@ -33,6 +33,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "sim/Interpolation.h"
+
 namespace gale::sim {
 
 using Vec3d = std::array<double, 3>;
@@ -102,8 +104,8 @@ inline AxisStencil latticeStencil(double f, int n) {
 }
 
 /// Trilinear blend of a sample array (n0 * n1 * n2, index 0 fastest) on three axis stencils:
-/// along x, then y, then z. If lo/hi are given they receive the min/max of the 8 values (the
-/// MacCormack and BFECC limiter's bounds).
+/// along x, then y, then z (trilinearBlend, sim/Interpolation.h). If lo/hi are given they receive
+/// the min/max of the 8 values (the MacCormack and BFECC limiter's bounds).
 inline double blendStencils(const double* a, int n0, int n1, const AxisStencil& x,
                             const AxisStencil& y, const AxisStencil& z, double* lo = nullptr,
                             double* hi = nullptr) {
@@ -116,10 +118,7 @@ inline double blendStencils(const double* a, int n0, int n1, const AxisStencil& 
                          p01[x.i0], p01[x.i1], p11[x.i0], p11[x.i1]};
     if (lo) *lo = std::min({c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]});
     if (hi) *hi = std::max({c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]});
-    const double c00 = c[0] + (c[1] - c[0]) * x.t, c10 = c[2] + (c[3] - c[2]) * x.t;
-    const double c01 = c[4] + (c[5] - c[4]) * x.t, c11 = c[6] + (c[7] - c[6]) * x.t;
-    const double c0 = c00 + (c10 - c00) * y.t, c1 = c01 + (c11 - c01) * y.t;
-    return c0 + (c1 - c0) * z.t;
+    return trilinearBlend(c, x.t, y.t, z.t);
 }
 
 /// The box's geometry: indices (GridIndex), horizontal spacing, origin and the vertical levels.

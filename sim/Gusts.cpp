@@ -94,7 +94,7 @@ double GustEvent::envelopeAt(double t_s) const {
 }
 
 std::array<double, 3> GustEvent::velocityAt_mps(double t_s) const {
-    const double g = peak_mps * envelopeAt(t_s), a = direction_deg * PI / 180.0;
+    const double g = peak_mps * envelopeAt(t_s), a = radiansFromDegrees(direction_deg);
     return {g * std::cos(a), g * std::sin(a), 0.0};
 }
 

@@ -7,11 +7,11 @@
 
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
+#include "sim/Interpolation.h"
 
 namespace gale::sim {
 namespace {
 
-using gale::PI;
 constexpr int MAX_SAMPLES_PER_SIDE = 16384;
 
 struct KindName {
@@ -75,14 +75,14 @@ double valueNoise(uint32_t seed, int o, double x, double y) {
     const double v00 = latticeValue(seed, o, ix, iy), v10 = latticeValue(seed, o, ix + 1, iy);
     const double v01 = latticeValue(seed, o, ix, iy + 1),
                  v11 = latticeValue(seed, o, ix + 1, iy + 1);
-    return (v00 * (1 - tx) + v10 * tx) * (1 - ty) + (v01 * (1 - tx) + v11 * tx) * ty;
+    return bilinearWeighted(v00, v10, v01, v11, tx, ty);
 }
 
 // Height of the procedural terrain at world (x, y), metres.
 double proceduralHeight(const TerrainSpec& s, double x, double y) {
     const double dx = x - s.centerX_m, dy = y - s.centerY_m;
     const double r2 = dx * dx + dy * dy;
-    const double a = s.axis_deg * PI / 180.0;
+    const double a = radiansFromDegrees(s.axis_deg);
     // Distance from the feature's axis line (ridge, valley).
     const double across = -dx * std::sin(a) + dy * std::cos(a);
     const double sigma2 = s.radius_m * s.radius_m;
@@ -144,8 +144,7 @@ double Heightfield::sample(double wsX_m, double wsY_m) const {
     const int i = std::min(static_cast<int>(fx), nx - 2),
               j = std::min(static_cast<int>(fy), ny - 2);
     const double tx = fx - i, ty = fy - j;
-    return (at(i, j) * (1 - tx) + at(i + 1, j) * tx) * (1 - ty) +
-           (at(i, j + 1) * (1 - tx) + at(i + 1, j + 1) * tx) * ty;
+    return bilinearWeighted<double>(at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1), tx, ty);
 }
 
 std::array<double, 3> Heightfield::normalAt(int i, int j) const {

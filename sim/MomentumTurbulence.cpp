@@ -173,7 +173,8 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
     if (!s.balanced) return;
     const AmbientWind& A = *s.balanced;
     const double uStar = surface::frictionVelocity_mps(A.speed_mps, A.referenceHeight_m, z0, d);
-    const double dir = A.direction_deg * gale::PI / 180.0, e[2] = {std::cos(dir), std::sin(dir)};
+    const double dir = gale::radiansFromDegrees(A.direction_deg),
+                 e[2] = {std::cos(dir), std::sin(dir)};
     for (int c = 0; c < 2; ++c) {
         const Placement p = Placement(c);
         const int n0 = G.dims(p)[0], n1 = G.dims(p)[1];

@@ -200,7 +200,7 @@ void averageOverCycles(UnsteadyWindSolver& solver, const MomentumSettings& setti
     const int steps = period * std::max(1, (settings.averageMinSteps + period - 1) / period);
     std::vector<double> sum[3];
     for (int n = 1; n <= steps; ++n) {
-        if (!stepOnce(lv.iterations + n)) return;
+        if (!stepOnce(lv.iterations + n) || rep.stopped) return;
         const WindField& F = solver.field();
         const std::vector<double>* q[3] = {&F.u_mps(), &F.v_mps(), &F.w_mps()};
         for (int c = 0; c < 3; ++c) {
@@ -222,9 +222,24 @@ void averageOverCycles(UnsteadyWindSolver& solver, const MomentumSettings& setti
 
 /// The pseudo-time iteration on one level: from `initial` (nullptr: the mass-consistent field),
 /// with the mass-consistent field as the far field. Appends to rep's history (tagged with level).
+/// The surface layer of every pseudo-time step: the wind's roughness, the model's displacement
+/// and mixing length, the ambient log profile held in balance when both stresses are on.
+SurfaceLayerSettings momentumSurfaceLayer(const AmbientWind& ambient,
+                                          const MomentumSettings& settings) {
+    SurfaceLayerSettings s;
+    s.enabled = settings.eddyViscosity || settings.wallStress;
+    s.roughness_m = ambient.roughness_m;
+    s.displacementHeight_m = settings.displacementHeight_m;
+    s.mixingLengthMax_m = settings.mixingLengthMax_m;
+    s.eddyViscosity = settings.eddyViscosity;
+    s.wallStress = settings.wallStress;
+    if (settings.eddyViscosity && settings.wallStress) s.balanced = ambient;
+    return s;
+}
+
 LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
                          const MomentumSettings& settings, const LevelResult* initial, int level,
-                         MomentumReport& rep) {
+                         int levelCount, MomentumReport& rep) {
     const auto t0 = Clock::now();
     MomentumLevel lv;
     lv.level = level;
@@ -255,13 +270,7 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
     us.eulerianAdvection = eulerian;
     us.incrementalPressure = eulerian && settings.incrementalPressure;
     us.projection = settings.projection;
-    us.surfaceLayer.enabled = settings.eddyViscosity || settings.wallStress;
-    us.surfaceLayer.roughness_m = ambient.roughness_m;
-    us.surfaceLayer.displacementHeight_m = settings.displacementHeight_m;
-    us.surfaceLayer.mixingLengthMax_m = settings.mixingLengthMax_m;
-    us.surfaceLayer.eddyViscosity = settings.eddyViscosity;
-    us.surfaceLayer.wallStress = settings.wallStress;
-    if (settings.eddyViscosity && settings.wallStress) us.surfaceLayer.balanced = ambient;
+    us.surfaceLayer = momentumSurfaceLayer(ambient, settings);
     UnsteadyWindSolver solver(domain, start.field, us, uRef);
     if (initial) solver.resetState(prolong(*initial, start.field));
     LevelResult out;
@@ -276,7 +285,7 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
         // No convergence before the inflow has crossed the box once at the ambient speed: a small
         // disturbance (a low hill) changes the field little per step from the start, so the
         // residual alone would stop before the wake has formed. A calm wind has nothing to carry.
-        const double dirRad = ambient.direction_deg * gale::PI / 180.0;
+        const double dirRad = gale::radiansFromDegrees(ambient.direction_deg);
         const double crossing_m = std::abs(std::cos(dirRad)) * domain.nx() * h +
                                   std::abs(std::sin(dirRad)) * domain.ny() * h;
         lv.minIterations = ambient.speed_mps > 0.0
@@ -307,6 +316,11 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
         m.advection_s = sr.advection_s, m.stress_s = sr.viscosity_s,
         m.projection_s = sr.projection_s;
         rep.history.push_back(m);
+        if (settings.onStep && !settings.onStep(m, settings.maxIterations, levelCount)) {
+            rep.stopped = true;
+            lv.message = "stopped after pseudo-time step " + std::to_string(it) + " of level " +
+                         std::to_string(level);
+        }
         if (level == 0) {
             rep.maxDivergenceScaled = m.maxDivergenceScaled;
             rep.maxEddyViscosity_m2ps = sr.turbulence.maxEddyViscosity_m2ps;
@@ -324,6 +338,7 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
         const MomentumIteration& m = rep.history.back();
         lv.iterations = it;
         lv.momentumResidual = m.momentumResidual;
+        if (rep.stopped) break;
         if (m.momentumResidual <= settings.residualTolerance && m.projectionConverged &&
             it >= lv.minIterations) {
             lv.converged = true;
@@ -333,7 +348,7 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
             break;
         }
     }
-    if (level == 0 && lv.finite && !lv.converged && settings.averageCycles)
+    if (level == 0 && lv.finite && !lv.converged && !rep.stopped && settings.averageCycles)
         averageOverCycles(solver, settings, lv, rep, stepOnce);
     if (lv.message.empty() || rep.averagedSteps > 0)
         lv.message = "not converged: momentum residual " + num(lv.momentumResidual) + " > " +
@@ -364,8 +379,7 @@ int coarseLevelCount(const AirDomain& d, int maxLevels) {
 
 }  // namespace
 
-MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind& ambient,
-                                     const MomentumSettings& settings) {
+void validateMomentumWind(const AmbientWind& ambient, const MomentumSettings& settings) {
     settings.validate();
     ambient.validate();
     if (ambient.profile != WindProfile::LogLaw && (settings.eddyViscosity || settings.wallStress))
@@ -373,6 +387,13 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
                              "\"" + std::string(windProfileName(ambient.profile)) + "\"",
                              "\"log\" for solver.model = \"momentum\" (its inflow and wall "
                              "stress need the roughness)");
+    const SurfaceLayerSettings layer = momentumSurfaceLayer(ambient, settings);
+    if (layer.enabled) layer.validate();
+}
+
+MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind& ambient,
+                                     const MomentumSettings& settings) {
+    validateMomentumWind(ambient, settings);
     const auto t0 = Clock::now();
     MomentumWindResult res;
     MomentumReport& rep = res.report;
@@ -388,14 +409,27 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
         spec.closedSidesY = domain.closedSidesY();
         spec.memoryLimit_bytes = 1e18;  // 1/8 of the finest level's arrays per level: counted there
         const AirDomain coarse(domain.terrain(), spec);
-        previous =
-            iterateLevel(coarse, ambient, settings, l == levels ? nullptr : &previous, l, rep);
-        if (!rep.levels.back().finite) break;
+        previous = iterateLevel(coarse, ambient, settings, l == levels ? nullptr : &previous, l,
+                                levels + 1, rep);
+        if (!rep.levels.back().finite || rep.stopped) break;
+    }
+    if (rep.stopped) {
+        // Stopped on a coarse level: its field is the last iterate there, prolonged to the
+        // domain's cells through the fine level's own start (no fine step taken).
+        const MomentumLevel& lv = rep.levels.back();
+        rep.iterations = 0;
+        for (const MomentumLevel& l : rep.levels) rep.iterations += l.iterations;
+        rep.momentumResidual = lv.momentumResidual;
+        rep.message = lv.message + " (a coarse level: the field is the mass-consistent start)";
+        res.field = solveSteadyWind(domain, ambient, MassConsistentWeights{}, settings.start).field;
+        rep.seconds = since(t0);
+        return res;
     }
     // A coarse level that went non-finite is no start: the finest level then starts afresh.
     const bool fromCoarse = levels > 0 && rep.levels.back().finite;
-    res.field =
-        iterateLevel(domain, ambient, settings, fromCoarse ? &previous : nullptr, 0, rep).field;
+    res.field = iterateLevel(domain, ambient, settings, fromCoarse ? &previous : nullptr, 0,
+                             levels + 1, rep)
+                    .field;
     const MomentumLevel& fine = rep.levels.back();
     rep.iterations = 0;
     for (const MomentumLevel& lv : rep.levels) rep.iterations += lv.iterations;

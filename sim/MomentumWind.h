@@ -46,6 +46,7 @@
 /// @endcode
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,14 @@ enum class PseudoTimeAdvection {
 /// (solver.momentum_advection) listing the valid names.
 const char* pseudoTimeAdvectionName(PseudoTimeAdvection a);
 PseudoTimeAdvection pseudoTimeAdvectionFromName(const std::string& name);
+
+struct MomentumIteration;
+
+/// Called after every recorded pseudo-time step (MomentumSettings::onStep): the step, its level's
+/// step budget and the number of levels the solve runs (coarse levels and the finest). Return
+/// false to stop the solve after this step: the report then has stopped = true and says where.
+using MomentumStepCallback =
+    std::function<bool(const MomentumIteration& step, int levelMaxIterations, int levelCount)>;
 
 struct MomentumSettings {
     PseudoTimeAdvection advection = PseudoTimeAdvection::SemiLagrangian;
@@ -123,6 +132,9 @@ struct MomentumSettings {
     /// std::logic_error for the wall stress without the eddy viscosity.
     bool eddyViscosity = true;
     bool wallStress = true;
+    /// Progress and cancellation (app/scene/SceneField.cpp prints it and stops on a signal);
+    /// empty: no calls. Not part of the model: it never changes the field of a solve it lets run.
+    MomentumStepCallback onStep;
     static constexpr int COARSE_MIN_CELLS_XY = 16;
     static constexpr int COARSE_MIN_CELLS_Z = 8;
 
@@ -162,12 +174,16 @@ struct MomentumLevel {
 };
 
 struct [[nodiscard]] MomentumReport {
-    bool converged = false;       ///< the finest level converged (coarse levels are only a start)
-    bool finite = true;           ///< no NaN/Inf in the field
-    int iterations = 0;           ///< pseudo-time steps over all levels
-    int fineIterations = 0;       ///< of them, steps on the domain's own cells
-    int minIterations = 0;        ///< the finest level's (MomentumLevel::minIterations)
-    double momentumResidual = 0;  ///< of the last iteration (RMS)
+    bool converged = false;  ///< the finest level converged (coarse levels are only a start)
+    bool finite = true;      ///< no NaN/Inf in the field
+    /// MomentumSettings::onStep returned false: the solve stopped after the last history entry,
+    /// not converged; the field is the last iterate of the finest level, or the mass-consistent
+    /// start when it stopped on a coarse level.
+    bool stopped = false;
+    int iterations = 0;                  ///< pseudo-time steps over all levels
+    int fineIterations = 0;              ///< of them, steps on the domain's own cells
+    int minIterations = 0;               ///< the finest level's (MomentumLevel::minIterations)
+    double momentumResidual = 0;         ///< of the last iteration (RMS)
     double maxDivergenceScaled = 0;      ///< max |div u| h / U after the final projection
     SolveReport finalProjection;         ///< the final projection's solve
     double dt_s = 0;                     ///< the finest level's pseudo-time step
@@ -211,6 +227,12 @@ struct MomentumWindResult {
 /// finest level's, are freed before it starts).
 inline constexpr double MOMENTUM_EXTRA_BYTES_PER_CELL =
     24.0 * 6 + 3.0 + TurbulentStress::BYTES_PER_CELL + 2 * 24.0 / 8;
+
+/// The checks solveMomentumWind makes before any work: the settings, the wind, its profile (the
+/// log law) and the surface layer of its steps (a displacement height plus roughness below the
+/// wind's reference height). Throws as solveMomentumWind does; `gale check` calls it to refuse
+/// what the solve would refuse.
+void validateMomentumWind(const AmbientWind& ambient, const MomentumSettings& settings);
 
 /// Solves the momentum model for an ambient wind with a log profile (its roughness_m is z0).
 /// Build the domain with DomainSpec::momentumModel set, so that its memory check (made before

@@ -1,5 +1,6 @@
 #pragma once
 /// \file PoissonDetail.h
+/// \internal Included only by sim/ and tests/sim (docs/architecture.md lists sim's public headers).
 /// Internal to PoissonSolver (namespace gale::sim::multigrid, so its plain names such as Level
 /// cannot collide with other sim internals), not part of gale_sim's interface: the multigrid level
 /// (padded arrays, uniform runs, transfers to the next level), the row loops every kernel runs on,

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #include "base/ParameterError.h"
@@ -243,80 +242,5 @@ SteadyWindResult solveSteadyWind(const AirDomain& domain, const AmbientWind& amb
     SteadyWindSolver solver(domain, weights);
     return solver.solve(ambient, settings, boundary);
 }
-
-const char* steadyModelName(SteadyModel model) {
-    return model == SteadyModel::Momentum ? "momentum" : "mass_consistent";
-}
-
-SteadyModel steadyModelFromName(const std::string& name) {
-    if (name == "mass_consistent") return SteadyModel::MassConsistent;
-    if (name == "momentum") return SteadyModel::Momentum;
-    throw ParameterError("solver.model", "\"" + name + "\"",
-                         "expected one of: mass_consistent, momentum");
-}
-
-SteadyModelResult solveSteadyModel(const AirDomain& domain, const AmbientWind& ambient,
-                                   SteadyModel model, const MassConsistentWeights& weights,
-                                   const SolverSettings& settings,
-                                   const MomentumSettings& momentum) {
-    SteadyModelResult out;
-    if (model == SteadyModel::MassConsistent) {
-        SteadyWindResult r = solveSteadyWind(domain, ambient, weights, settings);
-        out.field = std::move(r.field);
-        out.report = r.report;
-        return out;
-    }
-    MomentumSettings ms = momentum;
-    ms.start = settings;
-    MomentumWindResult r = solveMomentumWind(domain, ambient, ms);
-    out.field = std::move(r.field);
-    SolveReport& s = out.report;
-    s.converged = r.report.converged && r.report.finite;
-    s.iterations = r.report.iterations;
-    s.relativeResidual = r.report.momentumResidual;
-    s.initialRelativeResidual =
-        r.report.history.empty() ? 0.0 : r.report.history.front().momentumResidual;
-    s.solveSeconds = r.report.seconds;
-    s.setupSeconds = r.report.start.setupSeconds;
-    s.levels = r.report.finalProjection.levels;
-    s.message = r.report.message;
-    s.maxDivergenceScaled = r.report.maxDivergenceScaled;
-    out.momentum = std::move(r.report);
-    return out;
-}
-
-namespace detail {
-
-void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid0,
-                      const GridIndex& g, Placement pl, int layers) {
-    const auto n = g.dims(pl);
-    const int n0 = n[0], n1 = n[1], n2 = n[2];
-    std::vector<uint8_t> valid = valid0, next;
-    for (int layer = 0; layer < layers; ++layer) {
-        next = valid;
-        tbb::parallel_for(0, n2, [&](int k) {
-            for (int j = 0; j < n1; ++j)
-                for (int i = 0; i < n0; ++i) {
-                    const size_t p = g.index(pl, i, j, k);
-                    if (valid[p]) continue;
-                    double s = 0.0;
-                    int c = 0;
-                    auto take = [&](int ii, int jj, int kk) {
-                        if (ii < 0 || jj < 0 || kk < 0 || ii >= n0 || jj >= n1 || kk >= n2) return;
-                        const size_t q = g.index(pl, ii, jj, kk);
-                        if (valid[q]) s += a[q], ++c;
-                    };
-                    take(i - 1, j, k), take(i + 1, j, k), take(i, j - 1, k);
-                    take(i, j + 1, k), take(i, j, k - 1), take(i, j, k + 1);
-                    if (c > 0) a[p] = s / c, next[p] = 1;
-                }
-        });
-        valid.swap(next);
-    }
-    for (size_t p = 0; p < a.size(); ++p)
-        if (!valid[p]) a[p] = 0.0;
-}
-
-}  // namespace detail
 
 }  // namespace gale::sim

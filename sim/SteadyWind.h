@@ -19,7 +19,9 @@
 ///
 /// Faces closed by the terrain get velocities for interpolation only: if both neighbouring cells
 /// are air, u0 + the same potential difference; otherwise the average of the valid face values
-/// around them, repeated EXTRAPOLATION_LAYERS times; any face still without a value gets 0.
+/// around them, repeated EXTRAPOLATION_LAYERS times; any face still without a value gets 0
+/// (sim/FaceExtrapolation.h). The choice between this model and the momentum model is
+/// sim/SteadyModel.h's.
 ///
 /// @code
 ///   gale::sim::AirDomain domain(terrain, {/*voxelSize_m=*/2.0, /*top_m=*/{},
@@ -30,14 +32,12 @@
 /// @endcode
 
 #include <functional>
-#include <optional>
-#include <string>
 #include <vector>
 
 #include "sim/AirDomain.h"
 #include "sim/AmbientWind.h"
-#include "sim/MomentumWind.h"
 #include "sim/PoissonSolver.h"
+#include "sim/SteadyModel.h"  // the dispatcher, for callers that still reach it through this header
 #include "sim/WindField.h"
 
 namespace gale::sim {
@@ -111,33 +111,5 @@ class SteadyWindSolver {
                                                const MassConsistentWeights& weights,
                                                const SolverSettings& settings,
                                                const BoundaryPotential& boundary = {});
-
-/// The steady model a scene chooses ([solver] model).
-enum class SteadyModel {
-    MassConsistent,  ///< Sherman 1978: free slip, no drag (this header)
-    Momentum,        ///< RANS with a surface layer (sim/MomentumWind.h)
-};
-
-/// Name as written in scene files ("mass_consistent", "momentum"), and back; fromName throws
-/// gale::ParameterError (solver.model) listing the valid names.
-const char* steadyModelName(SteadyModel model);
-SteadyModel steadyModelFromName(const std::string& name);
-
-/// What either model produced. For the momentum model `report` summarises its run (converged,
-/// iterations = pseudo-time steps, max divergence, message) and `momentum` holds the history.
-struct SteadyModelResult {
-    WindField field;
-    SolveReport report;
-    std::optional<MomentumReport> momentum;
-};
-
-/// Solves the chosen steady model: the mass-consistent field with `weights` and `settings`, or
-/// the momentum model started from the mass-consistent field solved with `settings`
-/// (momentum.start is overwritten by them). Throws gale::ParameterError as the model does.
-[[nodiscard]] SteadyModelResult solveSteadyModel(const AirDomain& domain,
-                                                 const AmbientWind& ambient, SteadyModel model,
-                                                 const MassConsistentWeights& weights,
-                                                 const SolverSettings& settings,
-                                                 const MomentumSettings& momentum = {});
 
 }  // namespace gale::sim

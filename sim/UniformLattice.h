@@ -1,5 +1,6 @@
 #pragma once
 /// \file UniformLattice.h
+/// \internal Included only by sim/ and tests/sim (docs/architecture.md lists sim's public headers).
 /// The staggered sampler of a layout with cubic cells (GridLayout::uniformZ()), specialised for
 /// the advection's traces: the same trilinear interpolation as GridLayout::sample and
 /// GridLayout::sampleFaces, the same clamping to each placement's lattice, but with 1/h
@@ -26,14 +27,12 @@ struct AxisPair {
 
 /// Trilinear blend of the 8 samples of a cell of a lattice with at least 2 samples per axis:
 /// p points at the lower corner, sy and sz are the array's strides along y and z, tx, ty, tz the
-/// weights of the upper samples. Along x, then y, then z, in blendStencils' order (so equal
-/// stencils give bit-equal answers). If lo/hi are given they receive the min/max of the 8.
+/// weights of the upper samples. The same trilinearBlend as blendStencils on the same 8 values
+/// in the same order, so equal stencils give bit-equal answers.
 inline double blendCorner(const double* p, size_t sy, size_t sz, double tx, double ty, double tz) {
-    const double c00 = p[0] + (p[1] - p[0]) * tx, c10 = p[sy] + (p[sy + 1] - p[sy]) * tx;
-    const double c01 = p[sz] + (p[sz + 1] - p[sz]) * tx;
-    const double c11 = p[sy + sz] + (p[sy + sz + 1] - p[sy + sz]) * tx;
-    const double c0 = c00 + (c10 - c00) * ty, c1 = c01 + (c11 - c01) * ty;
-    return c0 + (c1 - c0) * tz;
+    const double c[8] = {p[0],  p[1],      p[sy],      p[sy + 1],
+                         p[sz], p[sz + 1], p[sy + sz], p[sy + sz + 1]};
+    return trilinearBlend(c, tx, ty, tz);
 }
 
 class UniformLattice {

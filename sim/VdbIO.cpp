@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -45,11 +46,7 @@ openvdb::Vec3SGrid::Ptr emptyVelocityGrid(const WindField& f, const char* name,
 }
 // Cubic voxels of edge h from the box bottom to its top: the cells themselves, or for stretched
 // layers the voxels of their cubic resample.
-int cubicLayers(const WindField& field) {
-    const GridLayout& g = field.layout();
-    if (g.uniformZ()) return g.nz;
-    return std::max(1, int(std::ceil((g.wsTop_m() - g.wsMin_m[2]) / g.voxelSize_m - 1e-9)));
-}
+int cubicLayers(const WindField& field) { return vdbCubicLayers(field.layout()); }
 
 // Calls f(coord, velocity) for every air voxel of the standard grids, in the order the grids are
 // filled: cubic cells give each air cell's cell-centred velocity; stretched layers give the
@@ -468,6 +465,51 @@ void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata) c
         for (const auto& [k, v] : metadata.numbers) g->insertMeta(k, openvdb::DoubleMetadata(v));
     }
     writeGridsAtomic(path, {vel, speed, faces});
+}
+
+int vdbCubicLayers(const GridLayout& layout) {
+    if (layout.uniformZ()) return layout.nz;
+    return std::max(
+        1, int(std::ceil((layout.wsTop_m() - layout.wsMin_m[2]) / layout.voxelSize_m - 1e-9)));
+}
+
+std::vector<std::string> vdbGridNames(const std::string& path) {
+    openvdb::initialize();
+    std::vector<std::string> names;
+    try {
+        openvdb::io::File file(path);
+        file.open(/*delayLoad=*/false);
+        for (auto it = file.beginName(); it != file.endName(); ++it) names.push_back(*it);
+        file.close();
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": not a readable .vdb (" + e.what() + ")");
+    }
+    return names;
+}
+
+std::map<std::string, std::string> vdbGridStrings(const std::string& path,
+                                                  const std::string& gridName) {
+    openvdb::initialize();
+    std::map<std::string, std::string> strings;
+    openvdb::GridBase::Ptr grid;
+    try {
+        openvdb::io::File file(path);
+        file.open(/*delayLoad=*/false);
+        if (!file.hasGrid(gridName)) {
+            file.close();
+            throw std::runtime_error("has no grid '" + gridName + "'");
+        }
+        grid = file.readGridMetadata(gridName);
+        file.close();
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(path + ": " + e.what());
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": not a readable .vdb (" + e.what() + ")");
+    }
+    for (auto it = grid->beginMeta(); it != grid->endMeta(); ++it)
+        if (const auto text = grid->getMetadata<openvdb::StringMetadata>(it->first))
+            strings[it->first] = text->value();
+    return strings;
 }
 
 }  // namespace gale::sim

@@ -18,6 +18,9 @@
 #include <openvdb/openvdb.h>
 
 #include <array>
+#include <map>
+#include <string>
+#include <vector>
 
 #include "sim/AirDomain.h"
 #include "sim/WindField.h"
@@ -63,5 +66,20 @@ void writeHoudiniVdb(const std::string& path, const WindField& field, const Heig
 
 /// "speed": |velocity| of the cell-centred average, m/s, active on air cells.
 openvdb::FloatGrid::Ptr speedGrid(const WindField& field);
+
+/// Voxels along z of the standard grids ("velocity", "speed", Houdini's "vel") of a field on
+/// `layout`: its nz for cubic cells, the cubic resample's layers for stretched layers (file
+/// comment).
+int vdbCubicLayers(const GridLayout& layout);
+
+/// The names of the grids a .vdb file holds, in the file's order; reads the file's grid
+/// descriptors, not its trees. Throws std::runtime_error "PATH: reason".
+std::vector<std::string> vdbGridNames(const std::string& path);
+
+/// The string metadata of grid `gridName` of a .vdb (scene, converged, provenance, ...); reads
+/// that grid's metadata, not its tree. Throws std::runtime_error "PATH: reason" when the file
+/// cannot be read or has no such grid.
+std::map<std::string, std::string> vdbGridStrings(const std::string& path,
+                                                  const std::string& gridName);
 
 }  // namespace gale::sim

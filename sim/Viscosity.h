@@ -1,5 +1,6 @@
 #pragma once
 /// \file Viscosity.h
+/// \internal Included only by sim/ and tests/sim (docs/architecture.md lists sim's public headers).
 /// Implicit viscosity of the unsteady wind (docs/unsteady.md): one backward-Euler step of
 /// du/dt = nu Laplacian(u) per velocity component,
 ///   (M + nu dt K) u^{n+1} = M u^n,

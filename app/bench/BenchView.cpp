@@ -126,9 +126,9 @@ int runBenchView(const BenchViewOptions& options) {
     if (options.frames < 1)
         throw std::invalid_argument("bench view: --frames must be >= 1, got " +
                                     std::to_string(options.frames));
-    if (options.shells < 0 || options.shells > render::kMaxShells)
+    if (options.shells < 0 || options.shells > render::MAX_SHELLS)
         throw std::invalid_argument("bench view: --shells must be 0.." +
-                                    std::to_string(render::kMaxShells) + ", got " +
+                                    std::to_string(render::MAX_SHELLS) + ", got " +
                                     std::to_string(options.shells));
     const std::vector<std::string> files = sceneFiles(options.scenes);
     const int frames = options.quick ? 3 : options.frames;

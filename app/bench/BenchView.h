@@ -41,7 +41,7 @@ struct BenchViewOptions {
     std::vector<std::string> scenes = {"examples"};
     int width = 640;       ///< pixels, 1..16384
     int height = 480;      ///< pixels, 1..16384
-    int shells = 17;       ///< every scene drawn with this many shells, 0..kMaxShells
+    int shells = 17;       ///< every scene drawn with this many shells, 0..render::MAX_SHELLS
     int frames = 120;      ///< timed frames per scene, >= 1
     bool quick = false;    ///< 3 timed frames after 1 warm-up: a smoke run, not a measurement
     bool window = false;   ///< draw into a GLFW window (needs a display) instead of headless OSMesa

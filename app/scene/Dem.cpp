@@ -9,6 +9,7 @@
 #include <ogr_srs_api.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -19,6 +20,7 @@
 
 #include "app/io/Errors.h"
 #include "app/scene/SceneParser.h"
+#include "base/Numbers.h"
 
 namespace gale::app {
 namespace {
@@ -80,6 +82,16 @@ DatasetPtr openRaster(const std::string& path) {
     return ds;
 }
 
+/// An image format that holds pictures rather than rasters with a coordinate system (the
+/// newcomer's heightmap given as a DEM).
+bool plainImage(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".gif" ||
+           ext == ".exr" || ext == ".tga";
+}
+
 /// Largest departure of a projection's scale factor from 1 that gale takes as metres: UTM's is at
 /// most 0.1 % inside its zone; Web Mercator's 1 / cos(latitude) is 1.0001 at 0.8 degrees and
 /// 1.47 at 47 degrees, where a hill would be taken 1.47 times too large.
@@ -132,7 +144,13 @@ Georeference checkCrs(const std::string& path, GDALDataset& ds, const double gt[
     const OGRSpatialReference* srs = ds.GetSpatialRef();
     if (!srs || srs->IsEmpty())
         fail(path, "has no coordinate system; give it one, e.g. gdal_edit.py -a_srs EPSG:32632 " +
-                       path + " (a GeoTIFF), or put a .prj file beside an ASCII grid");
+                       path + " (a GeoTIFF), or put a .prj file beside an ASCII grid" +
+                       (plainImage(path)
+                            ? "; a plain heightmap image is kind = \"heightmap\" with image = "
+                              "\"" +
+                                  fs::path(path).filename().string() +
+                                  "\" and metres_per_pixel, height_scale_m"
+                            : std::string()));
     const char* name = srs->GetName();
     const std::string crsName = name ? name : "unnamed";
     const int cols = ds.GetRasterXSize(), rows = ds.GetRasterYSize();
@@ -320,6 +338,32 @@ Dem loadDem(const DemSpec& spec) {
         fail(path, e.what());
     }
     return dem;
+}
+
+std::optional<double> gridNorthBearing_deg(const Georeference& geo, double demX_m, double demY_m) {
+    if (!geo.georeferenced()) return std::nullopt;
+    ensureGdalRegistered();
+    QuietGdal quiet;
+    OGRSpatialReference projected;
+    if (projected.importFromWkt(geo.crsWkt.c_str()) != OGRERR_NONE) return std::nullopt;
+    projected.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRSpatialReference> geographic(projected.CloneGeogCS());
+    if (!geographic) return std::nullopt;
+    geographic->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);  // longitude, latitude
+    std::unique_ptr<OGRCoordinateTransformation> toGeographic(
+        OGRCreateCoordinateTransformation(&projected, geographic.get()));
+    if (!toGeographic) return std::nullopt;
+    // Two points a short step apart along the grid's +y: the bearing of that step on the sphere
+    // (east of north positive) is the grid convergence there.
+    constexpr double STEP_M = 100.0;
+    double x[2] = {demX_m, demX_m}, y[2] = {demY_m, demY_m + STEP_M};
+    if (!toGeographic->Transform(2, x, y)) return std::nullopt;
+    const double lat = radiansFromDegrees(0.5 * (y[0] + y[1]));
+    const double east = radiansFromDegrees(x[1] - x[0]) * std::cos(lat);
+    const double north = radiansFromDegrees(y[1] - y[0]);
+    if (!std::isfinite(east) || !std::isfinite(north) || (east == 0.0 && north == 0.0))
+        return std::nullopt;
+    return degreesFromRadians(std::atan2(east, north));
 }
 
 }  // namespace gale::app

@@ -71,4 +71,10 @@ int utmEpsg(double longitude_deg, double latitude_deg);
 /// Installs GDAL's drivers once (thread-safe); every GDAL user in gale calls it first.
 void ensureGdalRegistered();
 
+/// The bearing of the coordinate system's grid north (+y) from true north at DEM point (x, y),
+/// degrees, east of north positive (the grid convergence): the angle a wind's from_deg, measured
+/// from +y, is off the meteorological one. nullopt when the DEM is not georeferenced or its CRS
+/// cannot be transformed to latitude and longitude. Does not throw.
+std::optional<double> gridNorthBearing_deg(const Georeference& geo, double demX_m, double demY_m);
+
 }  // namespace gale::app

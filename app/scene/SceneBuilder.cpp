@@ -13,6 +13,7 @@
 #include "app/io/Timing.h"
 #include "app/scene/Dem.h"
 #include "app/scene/Heightmap.h"
+#include "app/scene/SceneField.h"
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
 #include "coupling/FieldSampling.h"
@@ -45,19 +46,6 @@ constexpr double MIN_EYE_HEIGHT_M = 1.7;
 
 [[noreturn]] void failAt(const Scene& scene, const std::string& key, const std::string& reason) {
     throw SceneError(scene.where(key) + ": " + reason);
-}
-
-/// What the grass reads below the first solved faces: the log law of the wall stress for the
-/// momentum model, the free-slip tangential law for the mass-consistent one
-/// (coupling/NearGround.h).
-coupling::NearGround nearGroundOf(const Scene& scene) {
-    coupling::NearGround n;
-    if (scene.solver.model == sim::SteadyModel::Momentum) {
-        n.model = coupling::NearGroundModel::LogLaw;
-        n.roughness_m = scene.wind.ambient.roughness_m;
-        n.displacement_m = scene.solver.momentum.displacementHeight_m;
-    }
-    return n;
 }
 
 }  // namespace
@@ -150,19 +138,22 @@ std::string describeDomain(const sim::AirDomain& d) {
     return buf;
 }
 
-/// The scene's air domain over the built terrain, summarised in built.domainSummary; a bad
-/// [solver] value becomes a SceneError at its key.
+/// The scene's air domain over the built terrain (app/scene/SceneField.h), summarised in
+/// built.domainSummary and built.fieldPlan, with the checks the solve would make before solving.
 std::unique_ptr<sim::AirDomain> buildDomain(const Scene& scene, BuiltScene& built) {
-    std::unique_ptr<sim::AirDomain> domain;
-    try {
-        domain = std::make_unique<sim::AirDomain>(built.heightfield, scene.solver.domain);
-    } catch (const std::invalid_argument& e) {
-        rethrowAsSceneError(scene, "solver", e);
-    }
+    checkSceneFieldInputs(scene);
+    std::unique_ptr<sim::AirDomain> domain = buildSceneDomain(scene, built.heightfield);
     built.domainSummary = describeDomain(*domain);
     built.domainEstimate_bytes = double(domain->memoryEstimate_bytes());
     built.domainVdbFile_bytes = sim::vdbWindFile_bytes(domain->nx(), domain->ny(), domain->nz());
+    built.fieldPlan = describeSceneField(scene, *domain);
     return domain;
+}
+
+/// The composition's options for a build: progress lines when the build shows progress (render
+/// and view print "gale: ..."), nothing otherwise.
+SceneFieldOptions fieldOptions(const BuildOptions& options) {
+    return options.progress ? verbFieldOptions("gale") : SceneFieldOptions{};
 }
 
 /// Metres above the ground where the grass reads the field: wind.sample_height_m, or the grass
@@ -176,18 +167,12 @@ double sampleHeightOf(const Scene& scene) {
 /// mode).
 void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene& built) {
     const auto start = Clock::now();
-    const std::unique_ptr<sim::AirDomain> domain = buildDomain(scene, built);
+    std::unique_ptr<sim::AirDomain> domain = buildDomain(scene, built);
     if (!options.solveWind) return;
     if (options.progress) options.progress("solving the steady wind: " + built.domainSummary);
-    sim::SteadyModelResult result;
-    try {
-        result = sim::solveSteadyModel(*domain, scene.wind.ambient, scene.solver.model,
-                                       scene.solver.weights, scene.solver.settings,
-                                       scene.solver.momentum);
-    } catch (const std::invalid_argument& e) {
-        rethrowAsSceneError(scene, "wind", e);
-    }
+    SceneField result = solveSceneField(scene, std::move(domain), fieldOptions(options));
     built.solve = result.report;
+    built.fieldSummary = result.summary();
     // Kept alive in the wind source for views of the field (coupling/FieldOverlayBuilder).
     auto field = std::make_shared<const sim::WindField>(std::move(result.field));
     const std::vector<glm::vec3> velocity =
@@ -201,7 +186,7 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
             // The front travels with the ambient wind at its reference height (at least 0.5 m/s,
             // so a calm scene still has a finite arrival time).
             spec.convection_mps = std::max(0.5, scene.wind.ambient.speed_mps);
-            const double a = scene.wind.ambient.direction_deg * PI / 180.0;
+            const double a = radiansFromDegrees(scene.wind.ambient.direction_deg);
             spec.wsDirection = glm::vec3(std::cos(a), std::sin(a), 0.0f);
             auto wind = std::make_unique<coupling::SteadyGustWind>(built.mesh, velocity, spec,
                                                                    gustCurve(scene));
@@ -228,18 +213,14 @@ void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltSce
     if (!options.solveWind) return;
     if (options.progress)
         options.progress("solving the steady wind (initial state): " + built.domainSummary);
-    sim::SteadyWindResult result;
-    try {
-        result = sim::solveSteadyWind(*domain, scene.wind.ambient, scene.solver.weights,
-                                      scene.solver.settings);
-    } catch (const std::invalid_argument& e) {
-        rethrowAsSceneError(scene, "wind", e);
-    }
+    SceneField result = solveSceneField(scene, std::move(domain), fieldOptions(options));
     built.solve = result.report;
+    built.fieldSummary = result.summary();
+    const UnsteadyStepping stepping = unsteadySteppingOf(scene);
     try {
         built.wind = std::make_unique<coupling::UnsteadyFieldWind>(
-            built.mesh, std::move(domain), result.field, scene.unsteady.settings,
-            scene.wind.ambient.speed_mps, scene.wind.response, sampleHeightOf(scene));
+            built.mesh, std::move(result.domain), result.field, stepping.settings,
+            stepping.referenceSpeed_mps, scene.wind.response, sampleHeightOf(scene));
     } catch (const std::invalid_argument& e) {
         rethrowAsSceneError(scene, "unsteady", e);
     }
@@ -277,7 +258,7 @@ SceneTerrain buildTerrain(const Scene& scene) {
 sim::Heightfield buildHeightfield(const Scene& scene) { return buildTerrain(scene).field; }
 
 double bladeVisibleDistance_m(float texel_m, int height_px, float fovY_deg) {
-    return texel_m * height_px / (2.0 * std::tan(0.5 * fovY_deg * PI / 180.0));
+    return texel_m * height_px / (2.0 * std::tan(radiansFromDegrees(0.5 * fovY_deg)));
 }
 
 render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera& base,
@@ -288,8 +269,8 @@ render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera
     const double cy = field.originY_m + 0.5 * field.sizeY_m();
     if (!keepTarget) camera.wsTarget_m = glm::vec3(cx, cy, field.sample(cx, cy) * 0.5 + minZ * 0.5);
     if (keepPosition) return camera;
-    const double halfFov = 0.5 * camera.fovY_deg * PI / 180.0;
-    const double azimuth = 235.0 * PI / 180.0;  // from the south-west
+    const double halfFov = radiansFromDegrees(0.5 * camera.fovY_deg);
+    const double azimuth = radiansFromDegrees(235.0);  // from the south-west
     auto place = [&](double distance, double elevation) {
         const glm::dvec3 target(camera.wsTarget_m);
         camera.wsPosition_m =
@@ -302,7 +283,7 @@ render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera
         0.5 * std::sqrt(field.sizeX_m() * field.sizeX_m() + field.sizeY_m() * field.sizeY_m() +
                         (maxZ - minZ) * (maxZ - minZ));
     double distance = std::max(1.0, 0.8 * radius / std::sin(halfFov));
-    double elevation = DEFAULT_ELEVATION_DEG * PI / 180.0;
+    double elevation = radiansFromDegrees(DEFAULT_ELEVATION_DEG);
     // The frame's bottom edge meets ground at the target's height at the slant distance
     // h / sin(elevation + fov / 2), h = distance sin(elevation) the camera's height above it.
     auto nearestGround_m = [&] {
@@ -312,7 +293,7 @@ render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera
         // Too far to show a blade: stand closer and lower, looking at the ground at the centre,
         // so the near grass at the bottom of the frame has blades wider than a pixel.
         if (!keepTarget) camera.wsTarget_m.z = float(field.sample(cx, cy));
-        elevation = CLOSE_ELEVATION_DEG * PI / 180.0;
+        elevation = radiansFromDegrees(CLOSE_ELEVATION_DEG);
         distance = BLADE_VISIBLE_MARGIN * bladeVisible_m * std::sin(elevation + halfFov) /
                    std::sin(elevation);
     }

@@ -46,7 +46,11 @@ struct BuiltScene {
     double domainEstimate_bytes = 0.0;      ///< the air domain's run estimate (its baseline incl.)
     double domainVdbFile_bytes = 0.0;       ///< one .vdb of its field, at most (MemoryEstimate.h)
     std::optional<sim::SolveReport> solve;  ///< the steady solve (absent when not solved)
-    double solve_ms = 0.0;                  ///< domain + solve + sampling wall time
+    /// What the field's composition runs (describeSceneField, app/scene/SceneField.h) and, when
+    /// it ran, what it did (SceneField::summary).
+    std::vector<std::string> fieldPlan;
+    std::string fieldSummary;
+    double solve_ms = 0.0;  ///< domain + solve + sampling wall time
 };
 
 struct BuildOptions {

@@ -24,10 +24,10 @@
 
 namespace gale::app {
 
-static_assert(MAX_SHELLS <= render::kMaxShells,
+static_assert(MAX_SHELLS <= render::MAX_SHELLS,
               "the parser must not allow more shells than the renderer draws");
 
-int maxLights() { return render::kMaxLights; }
+int maxLights() { return render::MAX_LIGHTS; }
 
 namespace {
 
@@ -57,6 +57,36 @@ void requireInputFile(Section& s, const std::string& key, const std::string& res
 
 // ---------------------------------------------------------------------------------------------
 // Sections
+
+/// For a terrain key the kind does not read, the key (or kind) that does what the scene
+/// probably meant: "; did you mean height_scale_m ...?" (empty when there is none).
+std::string terrainKeyHint(const std::string& key, const std::string& kindName, bool heightmap,
+                           bool dem) {
+    if (heightmap) {
+        if (key == "height_m")
+            return "; did you mean height_scale_m (the height of a full-scale pixel, metres)?";
+        if (key == "size_m" || key == "spacing_m")
+            return "; a heightmap's size is its pixels times metres_per_pixel: did you mean "
+                   "metres_per_pixel?";
+        if (key == "dem" || key == "crop_m")
+            return "; for a georeferenced raster use kind = \"dem\" with dem = \"FILE\"";
+        return "";
+    }
+    if (dem) {
+        if (key == "image") return "; a DEM is named by dem = \"FILE\", not image";
+        if (key == "height_m" || key == "height_scale_m" || key == "height_offset_m")
+            return "; a DEM's heights are metres as stored (no scale or offset)";
+        if (key == "size_m" || key == "metres_per_pixel" || key == "spacing_m")
+            return "; a DEM's size and spacing come from its geotransform: did you mean crop_m?";
+        return "";
+    }
+    if (key == "image" || key == "metres_per_pixel" || key == "height_scale_m" ||
+        key == "height_offset_m")
+        return "; an image terrain needs kind = \"heightmap\" (kind is \"" + kindName + "\")";
+    if (key == "dem" || key == "crop_m")
+        return "; a georeferenced raster needs kind = \"dem\" (kind is \"" + kindName + "\")";
+    return "";
+}
 
 void readTerrain(Context& ctx, Section s) {
     TerrainSection& t = ctx.scene->terrain;
@@ -123,7 +153,8 @@ void readTerrain(Context& ctx, Section s) {
           "height_offset_m", "dem", "crop_m"}) {
         if (s.given(key) && !uses(key))
             ctx.scene->notes.push_back(ctx.scene->where(s.full(key)) + ": not used by kind \"" +
-                                       kindName + "\" (ignored)");
+                                       kindName + "\" (ignored)" +
+                                       terrainKeyHint(key, kindName, heightmap, isDem));
     }
 
     if (isDem) {

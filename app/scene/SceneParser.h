@@ -21,7 +21,7 @@
 namespace gale::app {
 
 /// Scene limits, checked by the parser (and by the CLI for its overrides).
-inline constexpr int MAX_SHELLS = 256;           ///< render::kMaxShells
+inline constexpr int MAX_SHELLS = 256;           ///< render::MAX_SHELLS
 inline constexpr int MAX_IMAGE_SIDE_PX = 16384;  ///< output width and height
 inline constexpr int MAX_FRAMES = 100000;
 
@@ -44,7 +44,7 @@ inline constexpr double FRAME_BYTES_PER_PIXEL = 16.0;
 inline constexpr double MAX_OUTPUT_BYTES = 1024.0 * 1024 * 1024 * 1024;  ///< all frames, estimated
 inline constexpr uintmax_t MAX_SCENE_FILE_BYTES = 16u * 1024 * 1024;
 
-/// Most point lights a scene may name: render::kMaxLights (the shell shader's uniform arrays).
+/// Most point lights a scene may name: render::MAX_LIGHTS (the shell shader's uniform arrays).
 int maxLights();
 
 /// Reads and parses the scene file at `path` (relative paths inside it resolve against its

@@ -88,7 +88,7 @@ std::vector<std::string> writeWindRasters(const sim::WindField& field, const sim
             const auto v = field.velocityAt_mps(x, y, z);
             speed[n] = static_cast<float>(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
             sim::AmbientWind a;
-            a.direction_deg = std::atan2(v[1], v[0]) * 180.0 / PI;
+            a.direction_deg = degreesFromRadians(std::atan2(v[1], v[0]));
             from[n] = std::hypot(v[0], v[1]) > 1e-9 ? static_cast<float>(a.from_deg())
                                                     : static_cast<float>(WIND_RASTER_NODATA);
         }

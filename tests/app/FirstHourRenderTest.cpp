@@ -9,6 +9,7 @@
 #include "AppTestSupport.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
+#include "base/Numbers.h"
 #include "coupling/LiveWind.h"
 #include "render/CameraMath.h"
 #include "render/ImageIO.h"
@@ -58,11 +59,11 @@ TEST(FirstHourRender, ASceneWithoutLightsRendersInDaylightNotNearBlack) {
         luma[oldDefault] = meanLuma(render::readImageRgba8(dir / (name + "/frame_0000.png")));
     }
     // Sunlit grass: the mean is well off black (a third of full scale)...
-    constexpr double kMinMeanLuma = 85.0;
-    EXPECT_GT(luma[0], kMinMeanLuma) << "old default " << luma[1];
+    constexpr double MIN_MEAN_LUMA = 85.0;
+    EXPECT_GT(luma[0], MIN_MEAN_LUMA) << "old default " << luma[1];
     // ...and far brighter than the grey ambient alone that lit such scenes before.
-    constexpr double kMinGainOverAmbient = 1.5;
-    EXPECT_GT(luma[0], kMinGainOverAmbient * luma[1])
+    constexpr double MIN_GAIN_OVER_AMBIENT = 1.5;
+    EXPECT_GT(luma[0], MIN_GAIN_OVER_AMBIENT * luma[1])
         << "default " << luma[0] << ", ambient alone " << luma[1];
 }
 
@@ -89,7 +90,7 @@ TEST(FirstHourRender, FromTheDefaultCameraBladesAtTheBottomOfTheFrameAreWiderTha
         ASSERT_TRUE(hit.has_value()) << side_m << " m: the bottom of the frame shows no ground";
         const double distance_m = glm::length(*hit - ray.wsOrigin_m);
         const double pixel_m =
-            2.0 * distance_m * std::tan(0.5 * camera.fovY_deg * M_PI / 180.0) / double(h);
+            2.0 * distance_m * std::tan(0.5 * radiansFromDegrees(camera.fovY_deg)) / double(h);
         // A blade's cross-section: one texel of the grass texture.
         const double blade_m = scene.grass.params.tile_m / double(built.texture.levels[0].width);
         EXPECT_GT(blade_m, pixel_m)

@@ -135,13 +135,19 @@ TEST(Probe, BadProbeRowsExitTwoNamingFileAndLineAndWriteNothing) {
         const char* message;
     };
     const Case cases[] = {
-        {"x,y,height_agl_m\n1,1,2\n1,zz,2\n", "masts.csv:3: y: not a finite number (got 'zz')"},
+        {"x,y,height_agl_m\n1,1,2\n1,zz,2\n", "masts.csv:3: y: not a decimal number (got 'zz')"},
+        {"x,y,height_agl_m\n1,0x10,2\n", "masts.csv:2: y: not a decimal number (got '0x10')"},
+        {"x,y,height_agl_m\n1,1,1e-320\n",
+         "masts.csv:2: height_agl_m: not a finite normal number (got '1e-320')"},
+        {"x,y,x,height_agl_m\n1,1,1,2\n", "masts.csv:1: column 'x' is given twice"},
+        {"name,x,y,height_agl_m\n\"a\x1b\",1,1,2\n",
+         "masts.csv:2: name: holds a control character (byte 0x1b)"},
         {"x,y,height_agl_m\n1,1\n", "masts.csv:2: expected 3 values, got 2"},
         {"x,y,height_agl_m\n\n25,1,2\n",
          "masts.csv:3: point (25.000, 1.000) is outside the terrain"},
         {"x,y,z_m\n5,5,-1\n", "masts.csv:2: point is not above the ground"},
         {"x,y\n5,5\n", "masts.csv:1: the header must name exactly one of height_agl_m"},
-        {"x,y,speed\n", "masts.csv:1: unknown column 'speed'"},
+        {"x,y,speed\n1,1,2\n", "masts.csv:1: the header must name exactly one of height_agl_m"},
     };
     for (const Case& c : cases) {
         test::writeFile(dir / "masts.csv", c.csv);

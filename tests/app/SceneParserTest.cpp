@@ -9,6 +9,7 @@
 #include "AppTestSupport.h"
 #include "app/io/Errors.h"
 #include "app/scene/SceneParser.h"
+#include "base/Numbers.h"
 
 namespace gale::app {
 namespace {
@@ -87,9 +88,10 @@ TEST(SceneParser, EmptySceneTakesTheDocumentedDefaults) {
     ASSERT_EQ(s.lighting.lights.size(), 1u);
     const glm::vec3 sun = s.lighting.lights[0].wsPosition_m;
     const float sunDistance_m = std::sqrt(sun.x * sun.x + sun.y * sun.y + sun.z * sun.z);
-    constexpr float kDirectionTolerance = 1e-5f;  // float positions 1e6 m away
-    EXPECT_NEAR(sun.z / sunDistance_m, std::sin(40.0f * float(M_PI) / 180.0f), kDirectionTolerance);
-    EXPECT_NEAR(sun.x, sun.y, kDirectionTolerance * sunDistance_m);  // azimuth 225 deg
+    constexpr float DIRECTION_TOLERANCE = 1e-5f;  // float positions 1e6 m away
+    EXPECT_NEAR(sun.z / sunDistance_m, std::sin(float(radiansFromDegrees(40.0))),
+                DIRECTION_TOLERANCE);
+    EXPECT_NEAR(sun.x, sun.y, DIRECTION_TOLERANCE * sunDistance_m);  // azimuth 225 deg
     EXPECT_LT(sun.x, 0.0f);
     EXPECT_FLOAT_EQ(s.lighting.ambient.x, 0.30f);
     EXPECT_FLOAT_EQ(s.lighting.ambient.z, 0.40f);

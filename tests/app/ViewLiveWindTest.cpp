@@ -23,7 +23,7 @@ namespace {
 // camera's centre ray meets the ground at its target, (16, 16), where the click goes. Every shell
 // is drawn (lod_pixels = 0): in so small a window the level of detail would leave the grass 27 m
 // below the camera as flat ground, and this test is about the wind reaching the grass.
-const char* const kCalmScene = R"([terrain]
+const char* const CALM_SCENE = R"([terrain]
 kind = "flat"
 size_m = [32.0, 32.0]
 spacing_m = 0.5
@@ -63,19 +63,19 @@ fps = 30.0
 
 // Pixels that differ by more than this (8-bit levels) count as changed: above the run-to-run noise
 // of the same frame (zero here: the solver is deterministic), below a bent blade's change.
-constexpr int kChangedLevel = 24;
+constexpr int CHANGED_LEVEL = 24;
 // The whirlwind bends the grass in a disc of a few core radii around the click: a visible part
 // of the middle of the frame changes. Still air changes none of it.
-constexpr double kMinChangedFraction = 0.02;
+constexpr double MIN_CHANGED_FRACTION = 0.02;
 // Three frames at 30 fps: the grass must answer within 100 ms of sim time.
-constexpr int kFramesToAnswer = 3;
+constexpr int FRAMES_TO_ANSWER = 3;
 
 TEST(View, UnderXvfbAScriptedClickDropsAWhirlwindThatTheGrassShowsWithinThreeFrames) {
     if (std::getenv("DISPLAY") == nullptr)
         GTEST_SKIP() << "no display; ctest runs this under xvfb-run";
     TempDir dir;
-    writeFile(dir / "calm.toml", kCalmScene);
-    const int clickFrame = 1, lastFrame = clickFrame + kFramesToAnswer;
+    writeFile(dir / "calm.toml", CALM_SCENE);
+    const int clickFrame = 1, lastFrame = clickFrame + FRAMES_TO_ANSWER;
     auto view = [&](const std::string& input, const std::string& shot) {
         std::vector<std::string> args = {"view",         dir / "calm.toml",
                                          "--frames",     std::to_string(lastFrame + 1),
@@ -92,9 +92,9 @@ TEST(View, UnderXvfbAScriptedClickDropsAWhirlwindThatTheGrassShowsWithinThreeFra
 
     const render::Image a = render::readImageRgba8(dir / "still.png");
     const render::Image b = render::readImageRgba8(dir / "clicked.png");
-    const double changed = render::test::compareImages(a, b, kChangedLevel).differingFraction;
-    EXPECT_GT(changed, kMinChangedFraction)
-        << "the grass did not answer the click within " << kFramesToAnswer << " frames";
+    const double changed = render::test::compareImages(a, b, CHANGED_LEVEL).differingFraction;
+    EXPECT_GT(changed, MIN_CHANGED_FRACTION)
+        << "the grass did not answer the click within " << FRAMES_TO_ANSWER << " frames";
 }
 
 TEST(View, LiveWindInputThatCannotBeReadIsBadInput) {
@@ -108,7 +108,7 @@ TEST(View, LiveWindInputThatCannotBeReadIsBadInput) {
 
 TEST(BenchLiveStep, AdvectionOptionReplacesTheScenesSchemeAndNamesItInTheRow) {
     TempDir dir;
-    writeFile(dir / "calm.toml", kCalmScene);
+    writeFile(dir / "calm.toml", CALM_SCENE);
     const RunResult r = runGale({"bench", "unsteady", "--live", dir / "calm.toml", "--advection",
                                  "maccormack", "--steps", "2", "--json", dir / "live.json"});
     ASSERT_EQ(r.exitCode, 0) << r.err;

@@ -19,10 +19,10 @@ namespace {
 // The window's context is OSMesa too (docs/design.md 7), so the pixels should be those of `gale
 // render`; the same slack as the reference-image tests covers any difference in the copy to the
 // window.
-constexpr int kChannelTolerance = 8;
-constexpr double kMaxDifferingFraction = 0.005;
+constexpr int CHANNEL_TOLERANCE = 8;
+constexpr double MAX_DIFFERING_FRACTION = 0.005;
 // A blank (one-colour) frame has variance 0; sky over grass has thousands (8-bit levels squared).
-constexpr double kMinPixelVariance = 100.0;
+constexpr double MIN_PIXEL_VARIANCE = 100.0;
 
 double lumaVariance(const render::Image& image) {
     double sum = 0.0, sum2 = 0.0;
@@ -37,11 +37,11 @@ double lumaVariance(const render::Image& image) {
     return sum2 / double(n) - mean * mean;
 }
 
-/// Fraction of pixels of two same-size image files differing by more than kChannelTolerance.
+/// Fraction of pixels of two same-size image files differing by more than CHANNEL_TOLERANCE.
 double differingFraction(const std::string& pathA, const std::string& pathB) {
     const render::Image a = render::readImageRgba8(pathA);
     const render::Image b = render::readImageRgba8(pathB);
-    return render::test::compareImages(a, b, kChannelTolerance).differingFraction;
+    return render::test::compareImages(a, b, CHANNEL_TOLERANCE).differingFraction;
 }
 
 TEST(View, UnderXvfbScreenshotMatchesHeadlessRenderOfTheSameFrame) {
@@ -60,19 +60,19 @@ TEST(View, UnderXvfbScreenshotMatchesHeadlessRenderOfTheSameFrame) {
 
     const render::Image actual = render::readImageRgba8(shot);
     const render::Image expected = render::readImageRgba8(dir / "frames/frame_0002.png");
-    EXPECT_GT(lumaVariance(actual), kMinPixelVariance) << "the screenshot is blank";
+    EXPECT_GT(lumaVariance(actual), MIN_PIXEL_VARIANCE) << "the screenshot is blank";
     ASSERT_EQ(actual.width, expected.width);
     ASSERT_EQ(actual.height, expected.height);
     const render::test::ImageDiff diff =
-        render::test::compareImages(actual, expected, kChannelTolerance);
-    if (diff.differingFraction > kMaxDifferingFraction) {
+        render::test::compareImages(actual, expected, CHANNEL_TOLERANCE);
+    if (diff.differingFraction > MAX_DIFFERING_FRACTION) {
         const fs::path out = fs::path(GALE_BINARY_DIR) / "app_test_output";
         fs::create_directories(out);
         render::writeImageAtomic(actual, (out / "view.actual.png").string());
         render::writeImageAtomic(expected, (out / "view.expected.png").string());
         render::writeImageAtomic(diff.diff, (out / "view.diff.png").string());
         ADD_FAILURE() << diff.differingFraction * 100.0 << "% of pixels differ by more than "
-                      << kChannelTolerance << "/255 (max " << diff.maxChannelDiff << "); images in "
+                      << CHANNEL_TOLERANCE << "/255 (max " << diff.maxChannelDiff << "); images in "
                       << out;
     }
 }
@@ -103,8 +103,8 @@ TEST(View, UnderXvfbKeysToggleGrassAndSaveAScreenshotWithTheHeadsUpLine) {
     EXPECT_EQ(readFile(dir / "gale_view_0.png"), first);
     EXPECT_TRUE(fs::exists(dir / "gale_view_1.png")) << again.err;
     // Hiding the shells leaves the bare ground: a large part of the frame changes.
-    constexpr double kMinChangedFraction = 0.05;
-    EXPECT_GT(differingFraction(dir / "grass.png", dir / "nograss.png"), kMinChangedFraction);
+    constexpr double MIN_CHANGED_FRACTION = 0.05;
+    EXPECT_GT(differingFraction(dir / "grass.png", dir / "nograss.png"), MIN_CHANGED_FRACTION);
 }
 
 TEST(OverlayRender, HeadlessRenderDrawsTheSceneOverlaysAndCheckListsThem) {
@@ -122,9 +122,9 @@ TEST(OverlayRender, HeadlessRenderDrawsTheSceneOverlaysAndCheckListsThem) {
         ASSERT_EQ(r.exitCode, 0) << r.err;
     }
     // Arrows and the legend cover a visible part of the frame.
-    constexpr double kMinOverlayFraction = 0.01;
+    constexpr double MIN_OVERLAY_FRACTION = 0.01;
     EXPECT_GT(differingFraction(dir / "plain/frame_0000.png", dir / "views/frame_0000.png"),
-              kMinOverlayFraction);
+              MIN_OVERLAY_FRACTION);
 }
 
 TEST(OverlayRender, ExrFormatWritesExrFrames) {

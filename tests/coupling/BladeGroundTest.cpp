@@ -21,7 +21,7 @@ namespace {
 constexpr int SHELLS = 17;
 constexpr double HEIGHT_M = 0.5;
 // The bowl is 20 % more curved-tolerant than the margin's documented limit R = h / (2 margin).
-constexpr double BOWL_RADIUS_M = 1.2 * HEIGHT_M / (2.0 * render::kGroundMargin_rad);
+constexpr double BOWL_RADIUS_M = 1.2 * HEIGHT_M / (2.0 * render::GROUND_MARGIN_RAD);
 // Clearance demanded of every shell above shell 0: float rounding of metre-scale positions.
 constexpr double CLEARANCE_TOL_M = 1e-9;
 

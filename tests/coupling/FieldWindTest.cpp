@@ -96,9 +96,9 @@ TEST(FieldWind, ReplacingTheLastStepShowsWhatAWindBuiltWithTheNewStepShows) {
         EXPECT_EQ(after.wsDirection()[v], fresh.wsDirection()[v]) << v;
         EXPECT_EQ(shownAfter[v], shownFresh[v]) << v;
         // At least 0.05 of intensity apart: well above float noise, so the swirl arrived.
-        constexpr float kChanged = 0.05f;
-        if (std::abs(shownAfter[v] - shownBefore[v]) > kChanged ||
-            glm::distance(after.wsDirection()[v], before.wsDirection()[v]) > kChanged)
+        constexpr float CHANGED = 0.05f;
+        if (std::abs(shownAfter[v] - shownBefore[v]) > CHANGED ||
+            glm::distance(after.wsDirection()[v], before.wsDirection()[v]) > CHANGED)
             ++changed;
     }
     EXPECT_GT(changed, mesh.wsPosition_m.size() / 2);

@@ -45,7 +45,7 @@ struct Calm {
 
 // The projection's tolerance leaves a residual divergence; the swirl's circulation is
 // measured on 64 points and loses a little to the projection near the ground.
-constexpr double kCirculationFraction = 0.5;
+constexpr double CIRCULATION_FRACTION = 0.5;
 
 TEST(LiveWind, ADroppedWhirlwindCirclesItsAxisCounterClockwise) {
     Calm c;
@@ -66,7 +66,7 @@ TEST(LiveWind, ADroppedWhirlwindCirclesItsAxisCounterClockwise) {
     const double expected = 2.0 * M_PI * 6.0 * ww.tangentialSpeed_mps(6.0);
     const double measured =
         sim::circulationAround(c.solver->grid(), c.solver->velocity(), {16.0, 16.0}, 6.0, 4.0);
-    EXPECT_GT(measured, kCirculationFraction * expected) << "expected about " << expected;
+    EXPECT_GT(measured, CIRCULATION_FRACTION * expected) << "expected about " << expected;
     EXPECT_TRUE(std::isfinite(c.solver->maxSpeed_mps()));
 }
 
@@ -123,7 +123,7 @@ TEST(LiveWind, BadSourcesAreParameterErrors) {
 
 // A pick lands within this much of the exact intersection: the bisection's 30 halvings of half a
 // mesh cell leave far less; the float positions of a 40 m terrain about 1e-5 m.
-constexpr float kPickTolerance_m = 1e-3f;
+constexpr float PICK_TOLERANCE_M = 1e-3f;
 
 TEST(LiveWind, PickingFindsTheTerrainUnderARay) {
     sim::TerrainSpec ts;
@@ -136,14 +136,14 @@ TEST(LiveWind, PickingFindsTheTerrainUnderARay) {
     // Straight down.
     auto hit = pickTerrain(mesh, {12.3f, 7.7f, 50.0f}, {0.0f, 0.0f, -1.0f});
     ASSERT_TRUE(hit.has_value());
-    EXPECT_NEAR(hit->x, 12.3f, kPickTolerance_m);
-    EXPECT_NEAR(hit->y, 7.7f, kPickTolerance_m);
-    EXPECT_NEAR(hit->z, ground, kPickTolerance_m);
+    EXPECT_NEAR(hit->x, 12.3f, PICK_TOLERANCE_M);
+    EXPECT_NEAR(hit->y, 7.7f, PICK_TOLERANCE_M);
+    EXPECT_NEAR(hit->z, ground, PICK_TOLERANCE_M);
     // Slanted at 45 degrees from 10 m above (0, 20): lands 10 m further along x.
     const glm::vec3 dir = glm::normalize(glm::vec3(1.0f, 0.0f, -1.0f));
     hit = pickTerrain(mesh, {0.0f, 20.0f, ground + 10.0f}, dir);
     ASSERT_TRUE(hit.has_value());
-    EXPECT_NEAR(hit->x, 10.0f, kPickTolerance_m);
+    EXPECT_NEAR(hit->x, 10.0f, PICK_TOLERANCE_M);
     // Upwards, or off the terrain's plan: nothing.
     EXPECT_FALSE(pickTerrain(mesh, {20.0f, 20.0f, 5.0f}, {0.0f, 0.0f, 1.0f}).has_value());
     EXPECT_FALSE(pickTerrain(mesh, {-30.0f, 20.0f, 5.0f}, {0.0f, 0.0f, -1.0f}).has_value());

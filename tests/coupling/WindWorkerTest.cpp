@@ -18,28 +18,28 @@ using namespace gale;
 
 namespace {
 
-constexpr int kGroups = 64;
-constexpr int kVertices = 256;
+constexpr int GROUPS = 64;
+constexpr int VERTICES = 256;
 
 /// A source whose every output at time t holds t in every entry, written one entry at a time with
 /// yields in between, so a reader that could see a half-written snapshot would see mixed values.
 class StampSource : public coupling::WindSource {
   public:
-    int groupCount() const override { return kGroups; }
+    int groupCount() const override { return GROUPS; }
     void update(double t_s, render::GrassWind& wind) override {
         ++updates;
         times.push_back(t_s);
         if (t_s >= failAt_s)
             throw std::runtime_error("source failed at t = " + std::to_string(t_s));
         if (delay_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
-        wind.groupIntensity.resize(kGroups);
-        for (int g = 0; g < kGroups; ++g) {
+        wind.groupIntensity.resize(GROUPS);
+        for (int g = 0; g < GROUPS; ++g) {
             wind.groupIntensity[g] = float(t_s);
             if (g % 8 == 0) std::this_thread::yield();
         }
         auto vertex = std::make_shared<render::VertexWind>();
-        vertex->wsDirection.assign(kVertices, glm::vec3(float(t_s), 0.0f, 0.0f));
-        vertex->group.assign(kVertices, 0u);
+        vertex->wsDirection.assign(VERTICES, glm::vec3(float(t_s), 0.0f, 0.0f));
+        vertex->group.assign(VERTICES, 0u);
         wind.vertex = vertex;
         ++wind.revision;
     }
@@ -54,10 +54,10 @@ class StampSource : public coupling::WindSource {
 /// Stamps as float, compared exactly: every entry is the same float conversion of the same t.
 bool complete(const coupling::WindSnapshot& s) {
     const float t = float(s.t_s);
-    if (int(s.wind.groupIntensity.size()) != kGroups) return false;
+    if (int(s.wind.groupIntensity.size()) != GROUPS) return false;
     for (float v : s.wind.groupIntensity)
         if (v != t) return false;
-    if (int(s.wind.wsDirection().size()) != kVertices) return false;
+    if (int(s.wind.wsDirection().size()) != VERTICES) return false;
     for (const glm::vec3& d : s.wind.wsDirection())
         if (d.x != t) return false;
     return true;
@@ -65,13 +65,13 @@ bool complete(const coupling::WindSnapshot& s) {
 
 render::TerrainMesh noMesh() { return {}; }
 
-/// A stepping source: update(t) takes steps of kStep_s up to t and asks updateUntil's `stop`
+/// A stepping source: update(t) takes steps of STEP_S up to t and asks updateUntil's `stop`
 /// between them. Its second step of an update waits until the test lets it go (release), so a
 /// test can post work while an update is known to be under way.
 class SteppingSource : public coupling::WindSource {
   public:
-    static constexpr double kStep_s = 0.125;  // exact in binary: times compare exactly
-    int groupCount() const override { return kGroups; }
+    static constexpr double STEP_S = 0.125;  // exact in binary: times compare exactly
+    int groupCount() const override { return GROUPS; }
     void update(double t_s, render::GrassWind& wind) override { (void)updateUntil(t_s, wind, {}); }
     double updateUntil(double t_s, render::GrassWind& wind,
                        const std::function<bool()>& stop) override {
@@ -82,10 +82,10 @@ class SteppingSource : public coupling::WindSource {
                 underWay.store(true);
                 while (!released.load()) std::this_thread::yield();
             }
-            time_s += kStep_s;
+            time_s += STEP_S;
         }
         const double shown_s = std::min(time_s, t_s);
-        wind.groupIntensity.assign(kGroups, float(shown_s));
+        wind.groupIntensity.assign(GROUPS, float(shown_s));
         ++wind.revision;
         return shown_s;
     }
@@ -221,8 +221,8 @@ TEST(WindWorker, PostedWorkStopsTheUpdateUnderWayAfterItsCurrentStep) {
     SteppingSource source;
     const render::TerrainMesh mesh = noMesh();
     coupling::WindWorker worker(source, mesh, 0.5);
-    constexpr double kFar_s = 100 * SteppingSource::kStep_s;  // an update of 100 steps
-    worker.request(kFar_s, coupling::OverlaySpec{});
+    constexpr double FAR_S = 100 * SteppingSource::STEP_S;  // an update of 100 steps
+    worker.request(FAR_S, coupling::OverlaySpec{});
     while (!source.underWay.load()) std::this_thread::yield();  // in its second step
     double workRanAt_s = -1.0;  // written on the worker, read after waitFor (synchronised)
     const uint64_t number = worker.post([&workRanAt_s](coupling::WindSource& s) {
@@ -230,11 +230,11 @@ TEST(WindWorker, PostedWorkStopsTheUpdateUnderWayAfterItsCurrentStep) {
     });
     source.released.store(true);
     coupling::WindSnapshot shown;
-    worker.waitFor(kFar_s, shown);
-    EXPECT_EQ(workRanAt_s, 2 * SteppingSource::kStep_s);
-    EXPECT_EQ(shown.t_s, kFar_s);
+    worker.waitFor(FAR_S, shown);
+    EXPECT_EQ(workRanAt_s, 2 * SteppingSource::STEP_S);
+    EXPECT_EQ(shown.t_s, FAR_S);
     EXPECT_GE(shown.workDone, number);
-    EXPECT_EQ(shown.wind.groupIntensity.front(), float(kFar_s));
+    EXPECT_EQ(shown.wind.groupIntensity.front(), float(FAR_S));
 }
 
 }  // namespace

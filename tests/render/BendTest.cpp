@@ -8,10 +8,10 @@
 #include "render/Bend.h"
 
 using gale::render::bendBlade;
-using gale::render::kGroundMargin_rad;
-using gale::render::kMaxTipTilt_rad;
-using gale::render::kTipTiltKnee_rad;
+using gale::render::GROUND_MARGIN_RAD;
+using gale::render::MAX_TIP_TILT_RAD;
 using gale::render::ShellOffset;
+using gale::render::TIP_TILT_KNEE_RAD;
 using gale::render::tipTilt_rad;
 
 namespace {
@@ -53,8 +53,8 @@ TEST_P(BendInvariants, EverySegmentKeepsLengthAndTheTipTiltsAsThePaperUpToHalfFl
     } else {
         // Beyond, the tilt keeps the sign of I, tilts further than the knee and stays short of
         // the ground margin (never past pi/2 - margin; tanh rounds to 1 in double for large I).
-        EXPECT_GT(std::abs(tilt), gale::render::kTipTiltKnee_rad);
-        EXPECT_LE(std::abs(tilt), gale::render::kMaxTipTilt_rad + TIP_TILT_TOL_RAD);
+        EXPECT_GT(std::abs(tilt), gale::render::TIP_TILT_KNEE_RAD);
+        EXPECT_LE(std::abs(tilt), gale::render::MAX_TIP_TILT_RAD + TIP_TILT_TOL_RAD);
         EXPECT_EQ(tilt > 0.0, c.intensity > 0.0f);
     }
 }
@@ -111,38 +111,38 @@ TEST(Bend, NegativeIntensityMirrorsTheBlade) {
 TEST(Bend, TipTiltSaturatesSmoothlyAndMonotonically) {
     // Slope of the tilt against (pi/2) I on both sides of the knee: 1 (C1), by central differences
     // of step h; the curvature there is 0, so one-sided differences agree to O(h^2).
-    constexpr double kStep = 1e-5;
-    constexpr double kSlopeTol = 1e-6;  // O(h^2) with h = 1e-5 rad, plus rounding of 1e-11 / h
-    const double kneeI = kTipTiltKnee_rad / (0.5 * PI);
+    constexpr double STEP = 1e-5;
+    constexpr double SLOPE_TOL = 1e-6;  // O(h^2) with h = 1e-5 rad, plus rounding of 1e-11 / h
+    const double kneeI = TIP_TILT_KNEE_RAD / (0.5 * PI);
     auto slope = [&](double i) {
-        const double h = kStep / (0.5 * PI);
-        return (tipTilt_rad(i + h) - tipTilt_rad(i - h)) / (2.0 * kStep);
+        const double h = STEP / (0.5 * PI);
+        return (tipTilt_rad(i + h) - tipTilt_rad(i - h)) / (2.0 * STEP);
     };
-    EXPECT_NEAR(slope(kneeI - 2 * kStep), 1.0, kSlopeTol);
-    EXPECT_NEAR(slope(kneeI + 2 * kStep), 1.0, kSlopeTol);
+    EXPECT_NEAR(slope(kneeI - 2 * STEP), 1.0, SLOPE_TOL);
+    EXPECT_NEAR(slope(kneeI + 2 * STEP), 1.0, SLOPE_TOL);
     // Monotone, odd and bounded from rest to far past any drive an oscillator reaches.
     double previous = 0.0;
     for (double i = 0.0; i < 50.0; i += 0.01) {
         const double t = tipTilt_rad(i);
         EXPECT_GE(t, previous) << "I = " << i;
-        EXPECT_LE(t, kMaxTipTilt_rad) << "I = " << i;
+        EXPECT_LE(t, MAX_TIP_TILT_RAD) << "I = " << i;
         EXPECT_EQ(tipTilt_rad(-i), -t);
         previous = t;
     }
     // And it reaches the bound: within 1e-9 rad by I = 50 (tanh saturates exponentially).
-    EXPECT_NEAR(tipTilt_rad(50.0), kMaxTipTilt_rad, 1e-9);
+    EXPECT_NEAR(tipTilt_rad(50.0), MAX_TIP_TILT_RAD, 1e-9);
 }
 
 TEST(Bend, ExtremeIntensitiesGiveFiniteBladesInsideTheGroundMarginCone) {
     // Every shell point keeps n >= tan(margin) |w|: the blade never reaches the tangent plane.
-    constexpr double kConeTol_m = 1e-12;  // double sums of at most 256 terms of <= 1 m
+    constexpr double CONE_TOL_M = 1e-12;  // double sums of at most 256 terms of <= 1 m
     for (float intensity : {-3.4e38f, -1e6f, -2.45f, 1.9f, 2.45f, 1e6f, 3.4e38f}) {
         for (float stiffness : {0.3f, 1.0f, 3.0f}) {
             const auto s = bendBlade(64, 1.0f, intensity, stiffness);
             for (int i = 1; i <= 64; ++i) {
                 ASSERT_TRUE(std::isfinite(s[i].n_m) && std::isfinite(s[i].w_m));
                 EXPECT_GT(s[i].n_m, 0.0);
-                EXPECT_GE(s[i].n_m + kConeTol_m, std::tan(kGroundMargin_rad) * std::abs(s[i].w_m))
+                EXPECT_GE(s[i].n_m + CONE_TOL_M, std::tan(GROUND_MARGIN_RAD) * std::abs(s[i].w_m))
                     << "I = " << intensity << ", stiffness " << stiffness << ", shell " << i;
             }
         }

@@ -38,7 +38,7 @@ TEST(ChunkMesh, EveryLevelCoversItsChunkOnceCounterClockwise) {
     // Plan areas in square metres of float coordinates: sums of ~2000 terms.
     constexpr double AREA_TOLERANCE = 1e-3;
     for (const detail::TerrainChunk& c : g.chunks) {
-        EXPECT_EQ(c.levelCount, detail::kMeshLevels);  // 32 x 32 quads: steps 1 .. 32
+        EXPECT_EQ(c.levelCount, detail::MESH_LEVELS);  // 32 x 32 quads: steps 1 .. 32
         const double chunkArea =
             double(c.wsMax_m.x - c.wsMin_m.x) * double(c.wsMax_m.y - c.wsMin_m.y);
         for (int l = 0; l < c.levelCount; ++l) {
@@ -118,8 +118,8 @@ TEST(ChunkMesh, CoarseChunksMeetTheirNeighboursWithoutCracks) {
                           {2, 5, false, 32, 64, 96}};
     int compared = 0;
     for (const Side& side : sides)
-        for (int la = 0; la < detail::kMeshLevels; ++la)
-            for (int lb = 0; lb < detail::kMeshLevels; ++lb) {
+        for (int la = 0; la < detail::MESH_LEVELS; ++la)
+            for (int lb = 0; lb < detail::MESH_LEVELS; ++lb) {
                 const auto ea = borderEdges(g, g.chunks[side.chunkA].levels[la]);
                 const auto eb = borderEdges(g, g.chunks[side.chunkB].levels[lb]);
                 for (int k = side.from; k < side.to; ++k)
@@ -145,7 +145,7 @@ TEST(ChunkMesh, TheLevelCoarsensWithDistanceAndKeepsCellsWithinThePixelBudget) {
     EXPECT_GE(c.quad_m, 1.0f);
     EXPECT_LE(c.quad_m, std::hypot(1.0f, 1.85f));
     const float focal_px = 500.0f, lodPixels = 2.0f;
-    const float budget_px = detail::kMeshCellPerLodPixel * lodPixels;
+    const float budget_px = detail::MESH_CELL_PER_LOD_PIXEL * lodPixels;
     int previous = 0;
     for (float d : {0.0f, 1.0f, 10.0f, 50.0f, 100.0f, 300.0f, 1000.0f, 1e6f}) {
         const int l = detail::meshLevel(c, focal_px, lodPixels, d);
@@ -161,7 +161,7 @@ TEST(ChunkMesh, TheLevelCoarsensWithDistanceAndKeepsCellsWithinThePixelBudget) {
         }
         previous = l;
     }
-    EXPECT_EQ(detail::meshLevel(c, focal_px, lodPixels, 1e6f), detail::kMeshLevels - 1);
+    EXPECT_EQ(detail::meshLevel(c, focal_px, lodPixels, 1e6f), detail::MESH_LEVELS - 1);
     EXPECT_EQ(detail::meshLevel(c, focal_px, 0.0f, 1e6f), 0);  // no level of detail
 }
 
@@ -171,10 +171,10 @@ TEST(ChunkMesh, RowBandsSplitEveryLevelInOrderAndBoundTheirTriangles) {
         for (int l = 0; l < c.levelCount; ++l) {
             const int bands = c.bandCount[l];
             ASSERT_GE(bands, 1);
-            ASSERT_LE(bands, detail::kChunkBands);
+            ASSERT_LE(bands, detail::CHUNK_BANDS);
             // 32 cell rows at level 0: four bands of 8 rows, 32 x 8 quads of 2 triangles each.
             if (l == 0) {
-                EXPECT_EQ(bands, detail::kChunkBands);
+                EXPECT_EQ(bands, detail::CHUNK_BANDS);
                 for (int b = 0; b < bands; ++b) EXPECT_EQ(c.bands[0][b].range.count, 32u * 8u * 6u);
             }
             uint32_t next = c.levels[l].first;
@@ -205,21 +205,21 @@ TEST(ChunkMesh, LevelErrorIsZeroOnAPlaneAndTheSpikeHeightWhereASpikeIsCut) {
     // A tilted plane is reproduced exactly by every level; a single raised vertex (at grid
     // index (3, 5): odd, so no coarse level keeps it and every coarse triangle over it lies in
     // the flat ground) is missed by exactly its height.
-    constexpr float kSpike_m = 0.75f;
+    constexpr float SPIKE_M = 0.75f;
     // Heights of tens of centimetres interpolated in float: a few ulps.
     constexpr float ERROR_TOLERANCE_M = 1e-5f;
     const TerrainMesh plane = singleChunk([](float x, float y) { return 0.1f * x - 0.05f * y; });
     const TerrainMesh spike = singleChunk([](float x, float y) {
-        return (std::abs(x - (-13.0f)) < 0.1f && std::abs(y - (-11.0f)) < 0.1f) ? kSpike_m : 0.0f;
+        return (std::abs(x - (-13.0f)) < 0.1f && std::abs(y - (-11.0f)) < 0.1f) ? SPIKE_M : 0.0f;
     });
     for (const TerrainMesh* mesh : {&plane, &spike}) {
         std::vector<uint32_t> indices;
         const auto chunks = detail::buildChunks(mesh->nx, mesh->ny, mesh->wsPosition_m, indices);
         ASSERT_EQ(chunks.size(), 1u);
-        ASSERT_EQ(chunks[0].levelCount, detail::kMeshLevels);
+        ASSERT_EQ(chunks[0].levelCount, detail::MESH_LEVELS);
         EXPECT_EQ(chunks[0].levelError_m[0], 0.0f);
-        for (int l = 1; l < detail::kMeshLevels; ++l) {
-            const float expected = mesh == &plane ? 0.0f : kSpike_m;
+        for (int l = 1; l < detail::MESH_LEVELS; ++l) {
+            const float expected = mesh == &plane ? 0.0f : SPIKE_M;
             EXPECT_NEAR(chunks[0].levelError_m[l], expected, ERROR_TOLERANCE_M) << "level " << l;
             EXPECT_NEAR(
                 detail::meshLevelError(mesh->nx, mesh->wsPosition_m, indices, chunks[0].levels[l]),
@@ -241,14 +241,14 @@ TEST(ChunkMesh, FlatGroundTakesCellsUpToTheFlatBudgetAndRoughGroundDoesNot) {
         // Flat: the coarsest level whose cells span at most the flat budget on screen.
         int expected = 0;
         while (expected + 1 < f.levelCount && float(2 << expected) * f.quad_m * focal_px / d <=
-                                                  detail::kMeshFlatCellPerLodPixel * lodPixels)
+                                                  detail::MESH_FLAT_CELL_PER_LOD_PIXEL * lodPixels)
             ++expected;
         EXPECT_EQ(lf, expected) << d << " m";
         // Rough (bumps 2 m high, 1 m apart): only the small-cell rule, as before.
         const int lr = detail::meshLevel(r, focal_px, lodPixels, d);
         if (lr > 0) {
             EXPECT_LE(float(1 << lr) * r.quad_m * focal_px / d,
-                      detail::kMeshCellPerLodPixel * lodPixels)
+                      detail::MESH_CELL_PER_LOD_PIXEL * lodPixels)
                 << d << " m";
         }
         EXPECT_LE(lr, lf) << d << " m";

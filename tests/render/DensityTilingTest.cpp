@@ -29,13 +29,13 @@ Image fourHeightClasses() {
 
 TEST(DensityCuts, KeepTheWantedShareOfBladeAreaTallestFirst) {
     const std::vector<float> cuts = densityCuts(fourHeightClasses());
-    ASSERT_EQ(cuts.size(), size_t(kDensityCuts));
+    ASSERT_EQ(cuts.size(), size_t(DENSITY_CUTS));
     constexpr float HALF = 0.5f / 255.0f;
     EXPECT_GT(cuts[0], 1.0f);                         // density 0: nothing
     EXPECT_FLOAT_EQ(cuts[255], 0.0f);                 // density 1: everything
     EXPECT_FLOAT_EQ(cuts[128], 128.0f / 255 - HALF);  // a half: the two tallest classes (and a bit)
     EXPECT_FLOAT_EQ(cuts[64], 192.0f / 255 - HALF);   // a quarter: the tallest class
-    for (int k = 1; k < kDensityCuts; ++k) EXPECT_LE(cuts[k], cuts[k - 1]);
+    for (int k = 1; k < DENSITY_CUTS; ++k) EXPECT_LE(cuts[k], cuts[k - 1]);
     // A texture without blades: no cut.
     for (float c : densityCuts(test::makeUniformImage(4, 9, 9, 9, 0))) EXPECT_EQ(c, 0.0f);
 }
@@ -140,7 +140,7 @@ TEST(AperiodicTiling, TheTextureNoLongerRepeatsOneTileOver) {
     spec.size = 64;
     spec.seed = 11;
     const Image texture = generateGrassTexture(spec).levels[0];
-    const float fov_deg = float(2.0 * std::atan(0.2) * 180.0 / gale::PI);
+    const float fov_deg = float(gale::degreesFromRadians(2.0 * std::atan(0.2)));
     TopView plain(128, texture, 1.0f, 0, false), aperiodic(128, texture, 1.0f, 0, true);
     const double repeat = shiftDifference(plain.draw(fov_deg), 32);
     const double broken = shiftDifference(aperiodic.draw(fov_deg), 32);

@@ -48,7 +48,7 @@ TEST(ShaderCompile, EmbeddedShadersCompileAndLink) {
 TEST(ShaderCompile, EveryShellVariantCompilesAndLinks) {
     // The renderer compiles a variant when a frame first needs it: all of them must build.
     auto context = createOsMesaContext(8, 8);
-    for (unsigned bits = 0; bits < shell_detail::kShellVariants; ++bits) {
+    for (unsigned bits = 0; bits < shell_detail::SHELL_VARIANTS; ++bits) {
         const std::string defines = shell_detail::shellVariantDefines(bits);
         EXPECT_NO_THROW(
             detail::Program(detail::linkProgramFiles("shell.vert", "shell.frag", defines)))

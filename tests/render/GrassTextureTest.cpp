@@ -173,7 +173,7 @@ TEST(GrassTextureGenerator, OtherSeedGivesOtherBytes) {
 
 TEST(GrassTextureGenerator, CoverageMatchesRequestedDensity) {
     // Blades are placed until the density is reached, overshooting by less than one footprint.
-    constexpr double kDensityTolerance = 0.005;
+    constexpr double DENSITY_TOLERANCE = 0.005;
     for (float density : {0.05f, 0.35f, 0.8f, 1.0f}) {
         GrassTextureSpec spec;
         spec.size = 256;
@@ -189,7 +189,7 @@ TEST(GrassTextureGenerator, CoverageMatchesRequestedDensity) {
             }
         }
         const double covered = static_cast<double>(blades) / (256.0 * 256.0);
-        EXPECT_NEAR(covered, density, kDensityTolerance) << "density " << density;
+        EXPECT_NEAR(covered, density, DENSITY_TOLERANCE) << "density " << density;
         // Alpha is the blade height fraction, never below minHeight (less half an 8-bit step).
         EXPECT_GE(minAlpha, static_cast<int>(spec.minHeight * 255.0f - 0.5f));
     }

@@ -16,8 +16,8 @@
 namespace gale::render {
 namespace {
 
-constexpr int kGroups = 4;
-constexpr float kHalfSize_m = 6.0f;
+constexpr int GROUPS = 4;
+constexpr float HALF_SIZE_M = 6.0f;
 
 // Flat field seen from above, grass of one colour lit by a far light 45 degrees up towards +x, so
 // the brightness of a strand follows its tilt towards +x (Kajiya-Kay diffuse sqrt(1 - (T.L)^2),
@@ -25,7 +25,7 @@ constexpr float kHalfSize_m = 6.0f;
 struct StripeScene {
     std::unique_ptr<GlContext> context = createOsMesaContext(128, 96);
     ShellRenderer renderer{*context};
-    TerrainMesh mesh = test::makeFlatMesh(49, kHalfSize_m, 1.0f);
+    TerrainMesh mesh = test::makeFlatMesh(49, HALF_SIZE_M, 1.0f);
 
     StripeScene() {
         renderer.setTerrain(mesh);
@@ -48,21 +48,20 @@ struct StripeScene {
     GrassWind wind(Coord mode) const {
         const bool blend = mode != Coord::None;
         auto vertex = std::make_shared<VertexWind>();
-        vertex->groupColumns = kGroups;
+        vertex->groupColumns = GROUPS;
         for (const glm::vec3& p : mesh.wsPosition_m) {
-            const float bins = (p.x + kHalfSize_m) / (2.0f * kHalfSize_m) * kGroups;
+            const float bins = (p.x + HALF_SIZE_M) / (2.0f * HALF_SIZE_M) * GROUPS;
             vertex->wsDirection.emplace_back(1.0f, 0.0f, 0.0f);
-            vertex->group.push_back(static_cast<uint32_t>(std::clamp(int(bins), 0, kGroups - 1)));
+            vertex->group.push_back(static_cast<uint32_t>(std::clamp(int(bins), 0, GROUPS - 1)));
             const float centre = float(vertex->group.back());
             if (mode == Coord::Continuous)
-                vertex->groupCoord.emplace_back(std::clamp(bins - 0.5f, 0.0f, kGroups - 1.0f),
-                                                0.0f);
+                vertex->groupCoord.emplace_back(std::clamp(bins - 0.5f, 0.0f, GROUPS - 1.0f), 0.0f);
             if (mode == Coord::Centres) vertex->groupCoord.emplace_back(centre, 0.0f);
         }
         GrassWind w;
         w.vertex = std::move(vertex);
         w.revision = blend ? 2 : 1;  // a new revision: the renderer re-uploads per-vertex data
-        for (int g = 0; g < kGroups; ++g) w.groupIntensity.push_back(0.05f + 0.13f * g);
+        for (int g = 0; g < GROUPS; ++g) w.groupIntensity.push_back(0.05f + 0.13f * g);
         return w;
     }
 
@@ -80,12 +79,12 @@ struct StripeScene {
 using Coord = StripeScene::Coord;
 
 // One 8-bit level: the bilinear weights of llvmpipe's filtering are quantised.
-constexpr int kRoundingJump = 1;
+constexpr int ROUNDING_JUMP = 1;
 // The blended ramp changes the brightness by about 25 levels over the 96 pixels of the field, so
 // under one level a pixel; the grid's per-vertex (Gouraud) lighting adds one or two more.
-constexpr int kSmoothJump = 3;
+constexpr int SMOOTH_JUMP = 3;
 // A stripe: the 4 groups step the brightness by about 8 levels each (measured 11 at the worst).
-constexpr int kStripeJump = 6;
+constexpr int STRIPE_JUMP = 6;
 
 // Largest difference of any channel between horizontally neighbouring pixels.
 int maxNeighbourJump(const Image& image) {
@@ -104,8 +103,8 @@ TEST(GroupBlend, BlendedGroupsShowNoStripes) {
     const int nearest = maxNeighbourJump(scene.draw(scene.wind(Coord::None)));
     const int blended = maxNeighbourJump(scene.draw(scene.wind(Coord::Continuous)));
     // Measured 11 and 1 on llvmpipe: the stripes are a group's brightness step at once.
-    EXPECT_GE(nearest, kStripeJump);
-    EXPECT_LE(blended, kSmoothJump);
+    EXPECT_GE(nearest, STRIPE_JUMP);
+    EXPECT_LE(blended, SMOOTH_JUMP);
 }
 
 TEST(GroupBlend, VerticesAtGroupCentresShowTheirGroupAlone) {
@@ -113,7 +112,7 @@ TEST(GroupBlend, VerticesAtGroupCentresShowTheirGroupAlone) {
     StripeScene scene;
     const Image nearest = scene.draw(scene.wind(Coord::None));
     const Image centres = scene.draw(scene.wind(Coord::Centres));
-    EXPECT_LE(test::compareImages(nearest, centres, 0).maxChannelDiff, kRoundingJump);
+    EXPECT_LE(test::compareImages(nearest, centres, 0).maxChannelDiff, ROUNDING_JUMP);
 }
 
 }  // namespace

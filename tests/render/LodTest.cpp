@@ -66,13 +66,13 @@ TEST(LodShellRange, AChunkDrawnWithoutTheFadeHasNoShellThinningInIt) {
             for (float far_m = near_m; far_m < near_m + 60.0f; far_m += 0.25f) {
                 int last = 1;
                 while (last * 2 <= shells) last *= 2;
-                bool anyFades = far_m > detail::kLodFadeStart * d1_m * float(last);
+                bool anyFades = far_m > detail::LOD_FADE_START * d1_m * float(last);
                 for (int k = 0; k < r.count(); ++k) {
                     const int i = r.top - k * r.stride;
                     if (i == 0) continue;
                     int v = 0;
                     while (((i >> v) & 1) == 0) ++v;
-                    anyFades = anyFades || far_m > detail::kLodFadeStart * d1_m * float(1 << v);
+                    anyFades = anyFades || far_m > detail::LOD_FADE_START * d1_m * float(1 << v);
                 }
                 if (anyFades) {
                     EXPECT_TRUE(detail::chunkMayFade(r, shells, d1_m, far_m))
@@ -184,20 +184,20 @@ double differingRows(const Image& a, const Image& b, int y0, int y1, int toleran
     return double(off) / double(n);
 }
 
-constexpr int kChannelTolerance = 8;  // as the reference images
+constexpr int CHANNEL_TOLERANCE = 8;  // as the reference images
 // The frames are a quarter of the viewer's 640 x 480 across: 0.5 pixels here drop shells at the
 // distances the default 2 pixels drops them at 640 x 480 (D1 = 15 m for this grass).
-constexpr float kLodPixels = 0.5f;
+constexpr float LOD_PIXELS = 0.5f;
 
 TEST(LodFrames, OnlyDistantGrassDiffersAndLessIsDrawn) {
     Meadow meadow;
     FrameStats full, lod;
     const Image off = meadow.frame(0.0f, -50.0f, &full);
-    const Image on = meadow.frame(kLodPixels, -50.0f, &lod);
+    const Image on = meadow.frame(LOD_PIXELS, -50.0f, &lod);
     // The near third of the frame (its bottom rows) is the same grass, pixel for pixel within
     // the reference tolerance; the whole frame differs in a minority of pixels, all farther up.
-    EXPECT_LT(differingRows(off, on, 80, 120, kChannelTolerance), 0.002);  // measured 0
-    EXPECT_LT(differingRows(off, on, 0, 120, kChannelTolerance), 0.01);    // measured 0.0005
+    EXPECT_LT(differingRows(off, on, 80, 120, CHANNEL_TOLERANCE), 0.002);  // measured 0
+    EXPECT_LT(differingRows(off, on, 0, 120, CHANNEL_TOLERANCE), 0.01);    // measured 0.0005
     EXPECT_LT(lod.layers * 2, full.layers);  // measured 87 of 234 chunk layers
     EXPECT_GT(lod.chunksCulled, 0);          // the chunks behind the camera
 }
@@ -209,13 +209,13 @@ TEST(LodFrames, ASlowDollyShowsNoPopping) {
     Meadow meadow;
     constexpr double FLICKER_FACTOR = 1.2;  // measured 1.00 (0.040 of the pixels either way)
     constexpr double BURST_FACTOR = 1.3;    // the largest step against the median step
-    Image previousOn = meadow.frame(kLodPixels, -50.0f), previousOff = meadow.frame(0.0f, -50.0f);
+    Image previousOn = meadow.frame(LOD_PIXELS, -50.0f), previousOff = meadow.frame(0.0f, -50.0f);
     std::vector<double> changes;
     for (int step = 1; step <= 6; ++step) {
         const float y = -50.0f + 0.05f * step;
-        const Image on = meadow.frame(kLodPixels, y), off = meadow.frame(0.0f, y);
-        const double changeOn = differingRows(previousOn, on, 0, 120, kChannelTolerance);
-        const double changeOff = differingRows(previousOff, off, 0, 120, kChannelTolerance);
+        const Image on = meadow.frame(LOD_PIXELS, y), off = meadow.frame(0.0f, y);
+        const double changeOn = differingRows(previousOn, on, 0, 120, CHANNEL_TOLERANCE);
+        const double changeOff = differingRows(previousOff, off, 0, 120, CHANNEL_TOLERANCE);
         EXPECT_LE(changeOn, FLICKER_FACTOR * changeOff) << "step " << step;
         changes.push_back(changeOn);
         previousOn = on;

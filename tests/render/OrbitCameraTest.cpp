@@ -10,7 +10,7 @@ namespace gale::render {
 namespace {
 
 // float positions of a 10-50 m camera: a few ulps.
-constexpr float kPositionTol = 1e-4f;
+constexpr float POSITION_TOL = 1e-4f;
 
 Camera home() {
     Camera c;
@@ -30,9 +30,9 @@ TEST(OrbitCamera, OrbitKeepsDistanceAndTargetAndResetGoesHome) {
     const float d0 = glm::length(home().wsPosition_m - home().wsTarget_m);
     orbit.orbit(120.0, -40.0);
     const Camera c = orbit.camera();
-    EXPECT_NEAR(glm::length(c.wsPosition_m - c.wsTarget_m), d0, kPositionTol);
+    EXPECT_NEAR(glm::length(c.wsPosition_m - c.wsTarget_m), d0, POSITION_TOL);
     EXPECT_GT(glm::length(c.wsPosition_m - home().wsPosition_m), 1.0f);
-    EXPECT_LT(glm::length(c.wsTarget_m - home().wsTarget_m), kPositionTol);
+    EXPECT_LT(glm::length(c.wsTarget_m - home().wsTarget_m), POSITION_TOL);
     orbit.reset();
     EXPECT_EQ(orbit.camera().wsPosition_m, home().wsPosition_m);
 }
@@ -44,7 +44,7 @@ TEST(OrbitCamera, ZoomMovesAlongTheViewAndElevationStaysBelowThePole) {
     const Camera c = orbit.camera();
     EXPECT_LT(glm::length(c.wsPosition_m - c.wsTarget_m),
               glm::length(home().wsPosition_m - home().wsTarget_m));
-    EXPECT_NEAR(glm::dot(glm::normalize(c.wsPosition_m - c.wsTarget_m), dir0), 1.0f, kPositionTol);
+    EXPECT_NEAR(glm::dot(glm::normalize(c.wsPosition_m - c.wsTarget_m), dir0), 1.0f, POSITION_TOL);
     orbit.orbit(0.0, 10000.0);
     EXPECT_LT(orbit.elevation_deg(), 89.0 + 1e-9);
     orbit.pan(10.0, 0.0, 480);

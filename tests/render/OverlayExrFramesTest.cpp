@@ -11,7 +11,7 @@ namespace gale::render {
 namespace {
 
 // Half floats carry 11 significant bits: 1e-3 relative covers values in [0, 1].
-constexpr float kHalfTol = 1e-3f;
+constexpr float HALF_TOL = 1e-3f;
 
 TEST(ExrFrames, HoldLinearLightDecodedFromSrgbAndKeepAlpha) {
     Image image;
@@ -27,12 +27,12 @@ TEST(ExrFrames, HoldLinearLightDecodedFromSrgbAndKeepAlpha) {
     ASSERT_EQ(in->spec().nchannels, 4);
     std::vector<float> px(12);
     ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, px.data()));
-    EXPECT_NEAR(px[0], 0.0f, kHalfTol);
+    EXPECT_NEAR(px[0], 0.0f, HALF_TOL);
     // sRGB 128/255 is 21.6 % linear light (IEC 61966-2-1).
-    EXPECT_NEAR(px[4], std::pow((128.0f / 255.0f + 0.055f) / 1.055f, 2.4f), kHalfTol);
-    EXPECT_NEAR(px[4], 0.2158f, kHalfTol);
-    EXPECT_NEAR(px[8], 1.0f, kHalfTol);
-    EXPECT_NEAR(px[11], 64.0f / 255.0f, kHalfTol);
+    EXPECT_NEAR(px[4], std::pow((128.0f / 255.0f + 0.055f) / 1.055f, 2.4f), HALF_TOL);
+    EXPECT_NEAR(px[4], 0.2158f, HALF_TOL);
+    EXPECT_NEAR(px[8], 1.0f, HALF_TOL);
+    EXPECT_NEAR(px[11], 64.0f / 255.0f, HALF_TOL);
 }
 
 }  // namespace

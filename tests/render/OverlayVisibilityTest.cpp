@@ -17,7 +17,7 @@
 namespace gale::render {
 namespace {
 
-constexpr int kSize_px = 160;
+constexpr int SIZE_PX = 160;
 
 /// A camera 8 m straight above the origin (+x to the right of the image, +y up).
 Camera above() {
@@ -52,10 +52,10 @@ OverlaySlice uniformSlice(float speed) {
 }
 
 // A pixel changes "visibly" by more than this many 8-bit levels in some channel.
-constexpr int kVisibleLevels = 40;
+constexpr int VISIBLE_LEVELS = 40;
 
 TEST(OverlayVisibility, ArrowsShowOverASliceOfTheirOwnColour) {
-    auto context = createOsMesaContext(kSize_px, kSize_px);
+    auto context = createOsMesaContext(SIZE_PX, SIZE_PX);
     FieldOverlay overlay(*context);
     FieldOverlayData data;
     data.legend = false;
@@ -69,15 +69,15 @@ TEST(OverlayVisibility, ArrowsShowOverASliceOfTheirOwnColour) {
                 {glm::vec3(i * 1.8f - 0.4f, j * 1.8f, 0.6f), glm::vec3(0.8f, 0.0f, 0.0f), 3.0f});
     const Image withArrows = drawOnBlack(*context, overlay, data);
     const double changed =
-        test::compareImages(sliceOnly, withArrows, kVisibleLevels).differingFraction;
+        test::compareImages(sliceOnly, withArrows, VISIBLE_LEVELS).differingFraction;
     // Nine arrows 0.8 m long seen from 8 m (about 13 px each): their outlines alone are over a
     // hundred pixels, 0.5 % of the frame.
-    constexpr double kMinVisibleFraction = 0.005;
-    EXPECT_GT(changed, kMinVisibleFraction);
+    constexpr double MIN_VISIBLE_FRACTION = 0.005;
+    EXPECT_GT(changed, MIN_VISIBLE_FRACTION);
 }
 
 TEST(OverlayVisibility, AnArrowTooShortOnScreenIsDrawnAtTheMinimumLength) {
-    auto context = createOsMesaContext(kSize_px, kSize_px);
+    auto context = createOsMesaContext(SIZE_PX, SIZE_PX);
     FieldOverlay overlay(*context);
     FieldOverlayData data;
     data.legend = false;
@@ -85,7 +85,7 @@ TEST(OverlayVisibility, AnArrowTooShortOnScreenIsDrawnAtTheMinimumLength) {
     // 1 cm along +x, from 8 m away: a tenth of a pixel as given.
     data.arrows.push_back({glm::vec3(0.0f), glm::vec3(0.01f, 0.0f, 0.0f), 3.0f});
     const Image image = drawOnBlack(*context, overlay, data);
-    int minX = kSize_px, maxX = -1;
+    int minX = SIZE_PX, maxX = -1;
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
             const uint8_t* p = &image.rgba[(size_t(y) * image.width + x) * 4];
@@ -94,8 +94,8 @@ TEST(OverlayVisibility, AnArrowTooShortOnScreenIsDrawnAtTheMinimumLength) {
         }
     ASSERT_GE(maxX, 0) << "the arrow vanished";
     // Rasterisation may lose a pixel at each end of the outline.
-    constexpr int kEndPixels = 2;
-    EXPECT_GE(maxX - minX + 1, int(kMinArrowLength_px) - kEndPixels);
+    constexpr int END_PIXELS = 2;
+    EXPECT_GE(maxX - minX + 1, int(MIN_ARROW_LENGTH_PX) - END_PIXELS);
 }
 
 TEST(OverlayVisibility, TheLegendDrawsItsHeadingLines) {

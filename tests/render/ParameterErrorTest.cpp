@@ -34,10 +34,10 @@ TEST(ParameterError, ShellRendererNamesTheGrassAndLightingKeys) {
     ShellRenderer renderer(*context);
     const GrassTexture texture = grassTextureFromImage(test::makeUniformImage(4, 0, 200, 0, 255));
     GrassParams grass;
-    grass.shells = kMaxShells + 1;
+    grass.shells = MAX_SHELLS + 1;
     const ParameterError shells = thrownBy([&] { renderer.setGrass(grass, texture); });
     EXPECT_EQ(shells.key(), "grass.shells");
-    EXPECT_EQ(shells.value(), std::to_string(kMaxShells + 1));
+    EXPECT_EQ(shells.value(), std::to_string(MAX_SHELLS + 1));
     grass = {};
     grass.height_m = 0.0f;
     EXPECT_EQ(thrownBy([&] { renderer.setGrass(grass, texture); }).key(), "grass.height_m");
@@ -62,7 +62,7 @@ TEST(ParameterError, ShellRendererNamesTheGrassAndLightingKeys) {
     lighting.lights[1].color.g = NaNf;
     EXPECT_EQ(thrownBy([&] { renderer.setLighting(lighting); }).key(), "lighting.light[1].color");
     lighting = {};
-    lighting.lights.resize(kMaxLights + 1);
+    lighting.lights.resize(MAX_LIGHTS + 1);
     EXPECT_EQ(thrownBy([&] { renderer.setLighting(lighting); }).key(), "lighting.light");
     lighting = {};
     lighting.specularPower = -1.0f;

@@ -122,9 +122,9 @@ inline ImageDiff compareImages(const Image& a, const Image& b, int channelTolera
 // llvmpipe is deterministic for one Mesa build (docs/design.md 7); a few levels of slack per
 // channel absorb differences between CPU instruction sets (AVX2 / AVX-512 code paths) and Mesa
 // updates.
-constexpr int kReferenceChannelTolerance = 8;
+constexpr int REFERENCE_CHANNEL_TOLERANCE = 8;
 // A handful of pixels on blade edges may flip between blade and ground under such differences.
-constexpr double kReferenceMaxDifferingFraction = 0.005;
+constexpr double REFERENCE_MAX_DIFFERING_FRACTION = 0.005;
 
 /// Compares `actual` with tests/data/render/<name>.png within the tolerances above. With
 /// GALE_UPDATE_REFERENCES=1 it rewrites the reference instead and skips. On failure it writes
@@ -140,8 +140,8 @@ inline void expectMatchesReference(const Image& actual, const std::string& name)
     const Image expected = readImageRgba8(reference.string());
     ASSERT_EQ(expected.width, actual.width);
     ASSERT_EQ(expected.height, actual.height);
-    const ImageDiff diff = compareImages(actual, expected, kReferenceChannelTolerance);
-    if (diff.differingFraction > kReferenceMaxDifferingFraction) {
+    const ImageDiff diff = compareImages(actual, expected, REFERENCE_CHANNEL_TOLERANCE);
+    if (diff.differingFraction > REFERENCE_MAX_DIFFERING_FRACTION) {
         const fs::path out = fs::path(GALE_BINARY_DIR) / "render_test_output";
         fs::create_directories(out);
         const fs::path actualPath = out / (name + ".actual.png"),
@@ -149,7 +149,7 @@ inline void expectMatchesReference(const Image& actual, const std::string& name)
         writeImageAtomic(actual, actualPath.string());
         writeImageAtomic(diff.diff, diffPath.string());
         ADD_FAILURE() << diff.differingFraction * 100.0 << "% of pixels differ by more than "
-                      << kReferenceChannelTolerance << "/255 (max " << diff.maxChannelDiff
+                      << REFERENCE_CHANNEL_TOLERANCE << "/255 (max " << diff.maxChannelDiff
                       << "); actual: " << actualPath << ", diff: " << diffPath
                       << ", expected: " << reference;
     }

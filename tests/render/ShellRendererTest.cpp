@@ -89,13 +89,13 @@ TEST(ShellRenderer, MatchesReferenceImage) {
 TEST(ShellRenderer, BendingMovesPixels) {
     // A calm frame and a full-intensity frame of the reference scene differ in many pixels: the
     // tips lean by up to the grass height along the wind.
-    constexpr double kMinMovedFraction = 0.05;
-    constexpr int kChannelNoise = 8;  // ignore differences below the reference tolerance
+    constexpr double MIN_MOVED_FRACTION = 0.05;
+    constexpr int CHANNEL_NOISE = 8;  // ignore differences below the reference tolerance
     ReferenceScene scene;
     const Image calm = renderReference(scene.wind(0.0f, 0.0f));
     const Image windy = renderReference(scene.wind(1.0f, 1.0f));
-    const test::ImageDiff diff = test::compareImages(calm, windy, kChannelNoise);
-    EXPECT_GT(diff.differingFraction, kMinMovedFraction);
+    const test::ImageDiff diff = test::compareImages(calm, windy, CHANNEL_NOISE);
+    EXPECT_GT(diff.differingFraction, MIN_MOVED_FRACTION);
 }
 
 TEST(ShellRenderer, TheNearestSampledBaselineLeavesTheGrassFilteringAlone) {
@@ -115,9 +115,9 @@ TEST(ShellRenderer, NearestTexelsChangeOnlyTheFilteringOfTheirOwnFrame) {
     // DrawOptions::nearestTexels: the same grass with one texel of the nearest MIP level. Its frame
     // differs from the trilinear one but covers the same ground (the same geometry and alpha
     // test, so nearly the same pixels are sky), and the next default frame is the default again.
-    constexpr int kChannelNoise = 8;              // the reference tolerance
-    constexpr double kMaxSkyChange = 0.01;        // blade edges move by a texel at most
-    constexpr double kMinChangedFraction = 0.05;  // the filtering visibly changes the grass
+    constexpr int CHANNEL_NOISE = 8;               // the reference tolerance
+    constexpr double MAX_SKY_CHANGE = 0.01;        // blade edges move by a texel at most
+    constexpr double MIN_CHANGED_FRACTION = 0.05;  // the filtering visibly changes the grass
     ReferenceRig rig(160, 120);
     const GrassWind wind = rig.scene.wind(0.35f, 0.9f);
     const Image before = rig.frame(wind);
@@ -126,18 +126,18 @@ TEST(ShellRenderer, NearestTexelsChangeOnlyTheFilteringOfTheirOwnFrame) {
     rig.renderer.draw(rig.scene.camera, wind, nearestTexels);
     Image nearest;
     rig.context->readPixels(nearest);
-    EXPECT_GT(test::compareImages(before, nearest, kChannelNoise).differingFraction,
-              kMinChangedFraction);
+    EXPECT_GT(test::compareImages(before, nearest, CHANNEL_NOISE).differingFraction,
+              MIN_CHANGED_FRACTION);
     const auto skyShare = [](const Image& image) {
         const auto sky = [](float v) { return static_cast<int>(std::lround(v * 255.0f)); };
         size_t n = 0;
         for (size_t p = 0; p < image.rgba.size(); p += 4)
-            n += image.rgba[p] == sky(ShellRenderer::kSkyColor[0]) &&
-                 image.rgba[p + 1] == sky(ShellRenderer::kSkyColor[1]) &&
-                 image.rgba[p + 2] == sky(ShellRenderer::kSkyColor[2]);
+            n += image.rgba[p] == sky(ShellRenderer::SKY_COLOR[0]) &&
+                 image.rgba[p + 1] == sky(ShellRenderer::SKY_COLOR[1]) &&
+                 image.rgba[p + 2] == sky(ShellRenderer::SKY_COLOR[2]);
         return static_cast<double>(n) / static_cast<double>(image.rgba.size() / 4);
     };
-    EXPECT_NEAR(skyShare(nearest), skyShare(before), kMaxSkyChange);
+    EXPECT_NEAR(skyShare(nearest), skyShare(before), MAX_SKY_CHANGE);
     EXPECT_GT(skyShare(before), 0.05);  // the check above has sky to compare
     EXPECT_EQ(rig.frame(wind).rgba, before.rgba);
 }
@@ -168,8 +168,8 @@ TEST(ShellRenderer, WindArraysAreReuploadedOnlyWhenRevisionChanges) {
 // factor S = (i/N)(1 - S_min) + S_min alone: with S_min = 1/2 the ground shows at half brightness,
 // the top shell at full.
 struct CoverageScene {
-    static constexpr int kShells = 8;
-    static constexpr float kShadowMin = 0.5f;
+    static constexpr int SHELLS = 8;
+    static constexpr float SHADOW_MIN = 0.5f;
     std::unique_ptr<GlContext> context = createOsMesaContext(96, 72);
     ShellRenderer renderer{*context};
 
@@ -177,12 +177,12 @@ struct CoverageScene {
         renderer.setTerrain(test::makeFlatMesh(9, 6.0f, 1.0f));
         GrassParams grass;
         grass.height_m = 0.4f;
-        grass.shells = kShells;
+        grass.shells = SHELLS;
         renderer.setGrass(grass, grassTextureFromImage(texture));
         Lighting lighting;
         lighting.ambient = glm::vec3(0.0f);
         lighting.specularStrength = 0.0f;
-        lighting.selfShadowMin = kShadowMin;
+        lighting.selfShadowMin = SHADOW_MIN;
         lighting.lights.push_back(
             {glm::vec3(1.0e4f, 0.0f, 0.0f), glm::vec3(1.0f), glm::vec3(1.0f, 0.0f, 0.0f)});
         renderer.setLighting(lighting);
@@ -200,13 +200,13 @@ struct CoverageScene {
 };
 
 // Rounding of the 8-bit framebuffer and texture plus the light's 1e-4 rad elevation.
-constexpr int kShadeTolerance = 2;
+constexpr int SHADE_TOLERANCE = 2;
 
 int countPixelsOff(const Image& image, int expected) {
     int off = 0;
     for (size_t p = 0; p < image.rgba.size(); p += 4) {
         for (int c = 0; c < 3; ++c) {
-            if (std::abs(int(image.rgba[p + c]) - expected) > kShadeTolerance) {
+            if (std::abs(int(image.rgba[p + c]) - expected) > SHADE_TOLERANCE) {
                 ++off;
                 break;
             }
@@ -224,7 +224,7 @@ TEST(ShellRenderer, AllBladeTextureShowsTheTopShellEverywhere) {
 TEST(ShellRenderer, AllGroundTextureShowsOnlyShellZero) {
     CoverageScene scene(test::makeUniformImage(16, 255, 255, 255, 0));
     const Image image = scene.draw();
-    const int groundShade = static_cast<int>(255.0f * CoverageScene::kShadowMin + 0.5f);
+    const int groundShade = static_cast<int>(255.0f * CoverageScene::SHADOW_MIN + 0.5f);
     EXPECT_EQ(countPixelsOff(image, groundShade), 0);
 }
 
@@ -267,14 +267,14 @@ TEST(ShellRenderer, MoreLightsThanTheCapThrow) {
     auto context = createOsMesaContext(32, 24);
     ShellRenderer renderer(*context);
     Lighting lighting;
-    lighting.lights.resize(kMaxLights + 1);
+    lighting.lights.resize(MAX_LIGHTS + 1);
     try {
         renderer.setLighting(lighting);
         FAIL() << "expected std::invalid_argument";
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("at most 16"), std::string::npos) << e.what();
     }
-    lighting.lights.resize(kMaxLights);
+    lighting.lights.resize(MAX_LIGHTS);
     EXPECT_NO_THROW(renderer.setLighting(lighting));
 }
 
@@ -289,7 +289,7 @@ TEST(ShellRenderer, BadGrassParamsThrow) {
     ShellRenderer renderer(*context);
     ReferenceScene scene;
     GrassParams grass = scene.grass;
-    grass.shells = kMaxShells + 1;
+    grass.shells = MAX_SHELLS + 1;
     EXPECT_THROW(renderer.setGrass(grass, scene.texture), std::invalid_argument);
     grass = scene.grass;
     grass.height_m = 0.0f;

@@ -16,6 +16,7 @@
 #include "sim/Gusts.h"
 #include "sim/Heightfield.h"
 #include "sim/PoissonSolver.h"
+#include "sim/SteadyModel.h"
 #include "sim/SteadyWind.h"
 #include "sim/Vortices.h"
 

@@ -1,0 +1,39 @@
+/// \file FaceExtrapolation.cpp
+/// Layer-by-layer averaging of valid face neighbours into faces the terrain closes.
+#include "sim/FaceExtrapolation.h"
+
+#include <tbb/parallel_for.h>
+
+namespace gale::sim::detail {
+
+void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid0,
+                      const GridIndex& g, Placement pl, int layers) {
+    const auto n = g.dims(pl);
+    const int n0 = n[0], n1 = n[1], n2 = n[2];
+    std::vector<uint8_t> valid = valid0, next;
+    for (int layer = 0; layer < layers; ++layer) {
+        next = valid;
+        tbb::parallel_for(0, n2, [&](int k) {
+            for (int j = 0; j < n1; ++j)
+                for (int i = 0; i < n0; ++i) {
+                    const size_t p = g.index(pl, i, j, k);
+                    if (valid[p]) continue;
+                    double s = 0.0;
+                    int c = 0;
+                    auto take = [&](int ii, int jj, int kk) {
+                        if (ii < 0 || jj < 0 || kk < 0 || ii >= n0 || jj >= n1 || kk >= n2) return;
+                        const size_t q = g.index(pl, ii, jj, kk);
+                        if (valid[q]) s += a[q], ++c;
+                    };
+                    take(i - 1, j, k), take(i + 1, j, k), take(i, j - 1, k);
+                    take(i, j + 1, k), take(i, j, k - 1), take(i, j, k + 1);
+                    if (c > 0) a[p] = s / c, next[p] = 1;
+                }
+        });
+        valid.swap(next);
+    }
+    for (size_t p = 0; p < a.size(); ++p)
+        if (!valid[p]) a[p] = 0.0;
+}
+
+}  // namespace gale::sim::detail
