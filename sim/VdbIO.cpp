@@ -308,6 +308,28 @@ class AddressSpaceCap {
     bool mCapped = false;
 };
 
+/// What a .vdb's header, metadata and grid descriptors may take in memory while they are read.
+constexpr double VDB_HEADER_READ_BYTES = 256.0 * (1 << 20);
+
+/// Refuses a path that is not a regular file (OpenVDB's "IoError: could not get size of file").
+void refuseUnlessRegularVdb(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        refuseVdb(path,
+                  std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
+}
+
+/// Rethrows what reading `path` threw as gale's message: ours as it is, OpenVDB's and the
+/// allocator's without their text.
+[[noreturn]] void refuseUnreadableVdb(const std::string& path, const std::exception& e) {
+    if (dynamic_cast<const VdbRefused*>(&e)) throw VdbRefused(e.what());
+    if (dynamic_cast<const std::bad_alloc*>(&e))
+        refuseVdb(path,
+                  "not a readable .vdb file (corrupt: it claims more memory than a field "
+                  "of this scene holds)");
+    refuseVdb(path, "not a readable .vdb file (corrupt, truncated, or not written by OpenVDB)");
+}
+
 }  // namespace
 
 double readFaceVelocities(const std::string& path, WindField& field) {
@@ -476,13 +498,16 @@ int vdbCubicLayers(const GridLayout& layout) {
 std::vector<std::string> vdbGridNames(const std::string& path) {
     openvdb::initialize();
     std::vector<std::string> names;
+    refuseUnlessRegularVdb(path);
     try {
+        // The header and descriptors within a small budget (a corrupt length took 3.1 GB).
+        const AddressSpaceCap cap(VDB_HEADER_READ_BYTES);
         openvdb::io::File file(path);
         file.open(/*delayLoad=*/false);
         for (auto it = file.beginName(); it != file.endName(); ++it) names.push_back(*it);
         file.close();
     } catch (const std::exception& e) {
-        throw std::runtime_error(path + ": not a readable .vdb (" + e.what() + ")");
+        refuseUnreadableVdb(path, e);
     }
     return names;
 }
@@ -492,19 +517,19 @@ std::map<std::string, std::string> vdbGridStrings(const std::string& path,
     openvdb::initialize();
     std::map<std::string, std::string> strings;
     openvdb::GridBase::Ptr grid;
+    refuseUnlessRegularVdb(path);
     try {
+        const AddressSpaceCap cap(VDB_HEADER_READ_BYTES);
         openvdb::io::File file(path);
         file.open(/*delayLoad=*/false);
         if (!file.hasGrid(gridName)) {
             file.close();
-            throw std::runtime_error("has no grid '" + gridName + "'");
+            refuseVdb(path, "has no grid '" + gridName + "'");
         }
         grid = file.readGridMetadata(gridName);
         file.close();
-    } catch (const std::runtime_error& e) {
-        throw std::runtime_error(path + ": " + e.what());
     } catch (const std::exception& e) {
-        throw std::runtime_error(path + ": not a readable .vdb (" + e.what() + ")");
+        refuseUnreadableVdb(path, e);
     }
     for (auto it = grid->beginMeta(); it != grid->endMeta(); ++it)
         if (const auto text = grid->getMetadata<openvdb::StringMetadata>(it->first))
