@@ -38,8 +38,9 @@ int runCheck(const SceneRunOptions& options);
 /// `gale render SCENE`: renders the frames headless into the output folder, with a run report.
 int runRender(const SceneRunOptions& options);
 
-/// The files a scene reads (the scene, its heightmap, its grass texture; empty paths for those
-/// it does not have), with their roles for refuseAliases messages.
+/// The files a scene reads (the scene, its heightmap or DEM and the world, .prj and .aux.xml files
+/// GDAL reads beside it, its grass texture and density map; empty paths for those it does not
+/// have), with their roles (the key each came from) for refuseAliases messages.
 std::vector<RunPath> sceneInputs(const Scene& scene);
 
 /// `gale view SCENE`: the scene in a window (docs/cli.md).

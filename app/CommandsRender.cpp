@@ -91,9 +91,23 @@ std::string utcNow() {
 }  // namespace
 
 std::vector<RunPath> sceneInputs(const Scene& scene) {
-    return {{scene.path, "the scene"},
-            {scene.terrain.imagePath, scene.where("terrain.image") + " (the heightmap)"},
-            {scene.grass.texturePath, scene.where("grass.texture") + " (the grass texture)"}};
+    std::vector<RunPath> inputs{
+        {scene.path, "the scene"},
+        {scene.terrain.imagePath, scene.where("terrain.image") + " (the heightmap)"},
+        {scene.terrain.demPath, scene.where("terrain.dem") + " (the DEM)"},
+        {scene.grass.texturePath, scene.where("grass.texture") + " (the grass texture)"},
+        {scene.grass.densityMapPath, scene.where("grass.density_map") + " (the density map)"}};
+    // GDAL reads a raster's world file, .prj and .aux.xml beside it: inputs too.
+    for (const auto& [path, key] : {std::pair{scene.terrain.imagePath, "terrain.image"},
+                                    std::pair{scene.terrain.demPath, "terrain.dem"}}) {
+        if (path.empty()) continue;
+        std::error_code ec;
+        for (const std::string& side : rasterSidecars(path))
+            if (fs::exists(side, ec))
+                inputs.push_back({side, scene.where(key) + " (beside it, '" +
+                                            fs::path(side).filename().string() + "')"});
+    }
+    return inputs;
 }
 
 namespace {}  // namespace

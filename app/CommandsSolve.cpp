@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -45,6 +46,12 @@ std::string houdiniPath(const std::string& vdbPath, double fps, double t_s) {
     char num[32];
     std::snprintf(num, sizeof num, ".%04ld.vdb", std::lround(t_s * fps) + 1);
     return std::filesystem::path(vdbPath).replace_extension("").string() + "_houdini" + num;
+}
+
+std::string rasterStem(const std::string& vdbPath, double height_m) {
+    char suffix[64];
+    std::snprintf(suffix, sizeof suffix, "_%gm", height_m);
+    return std::filesystem::path(vdbPath).replace_extension("").string() + suffix;
 }
 
 std::string folderOf(const std::string& path) {
@@ -241,10 +248,7 @@ int runSolve(const SolveRequest& req) {
             {"vector_type", "VEC_CONTRAVARIANT_RELATIVE"}};
     }
     for (const double height_m : req.gridHeights_m) {
-        char suffix[64];
-        std::snprintf(suffix, sizeof suffix, "_%gm", height_m);
-        const std::string stem =
-            std::filesystem::path(req.vdbPath).replace_extension("").string() + suffix;
+        const std::string stem = rasterStem(req.vdbPath, height_m);
         const std::vector<std::string> paths =
             writeWindRasters(sf.field, req.terrain, req.georef, height_m, stem);
         j["outputs"]["rasters"].push_back(
@@ -324,17 +328,53 @@ int runSolveVerb(const SolveVerbOptions& options) {
                              "' is a folder; give the name of the file to write");
     }
     {
-        std::vector<RunPath> outputs{{request.reportPath, reportWhere + " (the report)"}};
+        // The report is text: a device or FIFO (/dev/null) is written as a stream.
+        std::vector<RunPath> outputs{
+            {request.reportPath, reportWhere + " (the report)", /*streamable=*/true}};
         if (request.unsteady) {
             const int files =
                 int(std::ceil(request.unsteady->duration_s / request.unsteady->outputEvery_s -
                               1e-9)) +
                 1;
-            for (int n = 0; n < files && n < MAX_ALIAS_CHECKED_FILES; ++n)
+            for (int n = 0; n < files && n < MAX_ALIAS_CHECKED_FILES; ++n) {
                 outputs.push_back(
                     {sequencePath(request.vdbPath, n), vdbWhere + " (a .vdb of the sequence)"});
+                if (request.houdiniFps > 0.0)
+                    outputs.push_back({houdiniPath(request.vdbPath, request.houdiniFps,
+                                                   std::min(request.unsteady->duration_s,
+                                                            n * request.unsteady->outputEvery_s)),
+                                       "--houdini (a Houdini .vdb of the sequence)"});
+            }
         } else {
             outputs.push_back({request.vdbPath, vdbWhere + " (the .vdb field)"});
+            if (request.houdiniFps > 0.0)
+                outputs.push_back({houdiniPath(request.vdbPath, request.houdiniFps, 0.0),
+                                   "--houdini (the Houdini .vdb)"});
+        }
+        std::vector<std::string> stems;
+        for (const double height_m : request.gridHeights_m) {
+            if (!std::isfinite(height_m))
+                throw InputError("--grid-height-m: must be a finite height in metres (got " +
+                                 std::to_string(height_m) + ")");
+            const std::string stem = rasterStem(request.vdbPath, height_m);
+            // Heights that print alike (10 and 10.0, or 10.0000001 and 10.0000002) would write
+            // one set of files twice, the second over the first.
+            if (std::find(stems.begin(), stems.end(), stem) != stems.end())
+                throw InputError("--grid-height-m: two heights write the same files '" + stem +
+                                 ".tif' (heights are named to 6 significant digits); give "
+                                 "each height once, differing in its first 6 digits");
+            stems.push_back(stem);
+            const std::string role = "--grid-height-m " + fs::path(stem).filename().string();
+            std::vector<std::string> files;  // the rasters and every file GDAL may put beside
+            for (const char* ext : {".tif", ".asc"}) {
+                const std::string raster = stem + ext;
+                outputs.push_back({raster, role + " (the " + ext + " raster)"});
+                for (const std::string& side : rasterSidecars(raster))
+                    if (std::find(files.begin(), files.end(), side) == files.end())
+                        files.push_back(side);
+            }
+            for (const std::string& side : files)
+                outputs.push_back({side, role + " (beside the rasters)"});
         }
         refuseAliases(sceneInputs(scene), outputs);
     }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -66,6 +67,103 @@ void checkRoomForSequence(const std::string& folder, const std::string& where, d
                          " (the first took " + formatBytes(fileBytes) + "); nothing was written");
 }
 
+/// Growth of the flow's kinetic energy over the run, against its initial state, beyond which
+/// vorticity confinement is taken to have run away: chosen, not measured, far above what a
+/// scene's gusts and whirlwinds add to a domain's ambient flow, far below the runaway's.
+constexpr double MAX_CONFINED_ENERGY_GROWTH = 4.0;
+
+/// "%.3g" of `v`.
+std::string formatNumber(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", v);
+    return text;
+}
+
+/// Whether `name` is a file of the sequence of `stem`: "<stem>_NNNN.vdb" (4 or more digits) or
+/// its Houdini twin "<stem>_houdini.NNNN.vdb".
+bool isSequenceFileOf(const std::string& name, const std::string& stem) {
+    const auto digitsBetween = [&](const std::string& head) {
+        const std::string tail = ".vdb";
+        if (name.size() < head.size() + 4 + tail.size() ||
+            name.compare(0, head.size(), head) != 0 ||
+            name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
+            return false;
+        const std::string digits =
+            name.substr(head.size(), name.size() - head.size() - tail.size());
+        return digits.find_first_not_of("0123456789") == std::string::npos;
+    };
+    return digitsBetween(stem + "_") || digitsBetween(stem + "_houdini.");
+}
+
+/// The .vdb files (sequence and Houdini) an earlier run's report at `reportPath` lists, read
+/// before this run replaces it; empty when there is none or it cannot be read.
+std::vector<std::string> sequenceOfEarlierReport(const std::string& reportPath) {
+    namespace fs = std::filesystem;
+    // A report of 10 000 outputs is a few MiB; anything far larger is not one of ours.
+    constexpr std::uintmax_t MAX_REPORT_BYTES = 64u << 20;
+    std::error_code ec;
+    if (reportPath.empty() || !fs::is_regular_file(reportPath, ec) ||
+        fs::file_size(reportPath, ec) > MAX_REPORT_BYTES)
+        return {};
+    std::vector<std::string> paths;
+    try {
+        std::ifstream in(reportPath);
+        const nlohmann::json j = nlohmann::json::parse(in);
+        for (const auto& f : j.at("outputs").value("vdb_sequence", nlohmann::json::array()))
+            if (f.contains("path") && f["path"].is_string()) paths.push_back(f["path"]);
+        if (j.at("outputs").contains("houdini"))
+            for (const auto& p : j["outputs"]["houdini"].value("paths", nlohmann::json::array()))
+                if (p.is_string()) paths.push_back(p);
+    } catch (const std::exception&) {
+        return {};  // not an unsteady report of gale's: nothing is known to be an earlier run's
+    }
+    return paths;
+}
+
+/// After this run's files are in place: removes the files an earlier run of the same .vdb path
+/// wrote (as its report listed them) that this run did not write (an earlier, longer run's tail,
+/// or what an interrupted run did not reach), so the folder never mixes two runs
+/// (docs/reliability.md). Files named like the sequence that no report listed are left, with a
+/// note. Says what it did.
+void removeEarlierSequence(const std::string& vdbPath, const std::vector<std::string>& written,
+                           const std::vector<std::string>& earlier) {
+    namespace fs = std::filesystem;
+    const std::string folder = folderOf(vdbPath);
+    const std::string stem = fs::path(vdbPath).stem().string();
+    std::vector<std::string> kept, listed;
+    for (const std::string& w : written) kept.push_back(fs::path(w).filename().string());
+    for (const std::string& e : earlier)
+        if (folderOf(e) == folder) listed.push_back(fs::path(e).filename().string());
+    std::vector<std::string> removed, unknown;
+    std::error_code ec;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (!isSequenceFileOf(name, stem) || !it->is_regular_file(ec) ||
+            std::find(kept.begin(), kept.end(), name) != kept.end())
+            continue;
+        if (std::find(listed.begin(), listed.end(), name) == listed.end()) {
+            unknown.push_back(name);
+            continue;
+        }
+        std::error_code rm;
+        if (fs::remove(it->path(), rm)) removed.push_back(name);
+    }
+    std::sort(removed.begin(), removed.end());
+    std::sort(unknown.begin(), unknown.end());
+    if (!removed.empty())
+        std::fprintf(stderr,
+                     "gale: note: removed %zu .vdb file%s of the earlier sequence in %s that this "
+                     "run did not write (%s .. %s), so the folder holds this run's sequence only\n",
+                     removed.size(), removed.size() == 1 ? "" : "s", folder.c_str(),
+                     removed.front().c_str(), removed.back().c_str());
+    if (!unknown.empty())
+        std::fprintf(stderr,
+                     "gale: note: %s holds %zu file%s named like this run's sequence that no "
+                     "earlier report lists (e.g. %s); they are left as they are\n",
+                     folder.c_str(), unknown.size(), unknown.size() == 1 ? "" : "s",
+                     unknown.front().c_str());
+}
+
 }  // namespace
 
 int runUnsteadySolve(const SolveRequest& req) {
@@ -99,6 +197,7 @@ int runUnsteadySolve(const SolveRequest& req) {
     sim::UnsteadyWindSolver solver(domain, steady.field, stepping.settings,
                                    stepping.referenceSpeed_mps);
     const FieldProvenance provenance = fieldProvenance(scene, req.terrain);
+    const double initialEnergy_m5ps2 = solver.kineticEnergy_m5ps2();
 
     nlohmann::json j;
     j["scene"] = req.sceneName;
@@ -137,6 +236,7 @@ int runUnsteadySolve(const SolveRequest& req) {
     // interrupted, the complete frames and a report that says where the run stopped).
     interrupt.defer();
     const std::unique_ptr<OutputLock> lock = prepareSolveOutputs(req);
+    const std::vector<std::string> earlierSequence = sequenceOfEarlierReport(req.reportPath);
     StagedFiles staged;
     const int outputs = int(std::ceil(u.duration_s / u.outputEvery_s - 1e-9));
     std::vector<std::string> gridNames;  // of the first file; every file holds the same
@@ -198,6 +298,15 @@ int runUnsteadySolve(const SolveRequest& req) {
         progress.step(n, msSince(outputStart));
     }
     progress.finish();
+    // Vorticity confinement (Fedkiw, Stam, Jensen 2001) adds energy at vortex cores; a strength
+    // the grid cannot take grows the whole flow's energy (100 drove the peak from 6 to 255 m/s).
+    // The run still writes its files but is not a result: exit 3, with the reason.
+    double peakEnergy_m5ps2 = initialEnergy_m5ps2;
+    for (const auto& step : steps)
+        peakEnergy_m5ps2 = std::max(peakEnergy_m5ps2, step["kinetic_energy_m5ps2"].get<double>());
+    const bool confinementGrew =
+        s.vorticityConfinement > 0.0 && initialEnergy_m5ps2 > 0.0 &&
+        peakEnergy_m5ps2 > MAX_CONFINED_ENERGY_GROWTH * initialEnergy_m5ps2;
     // Stopped before the last output: the report says where. A signal after it (while the
     // report and files are moved into place) stops nothing: the run is complete.
     const bool stoppedEarly = interruptSignal() != 0 && int(frames.size()) <= outputs;
@@ -228,9 +337,22 @@ int runUnsteadySolve(const SolveRequest& req) {
                     {"all_converged", ok},
                     {"finite", finite},
                     {"mean_step_s", stepCount ? solveSeconds / stepCount : 0.0}};
+    const std::string energyNote =
+        confinementGrew ? "vorticity confinement " + formatNumber(s.vorticityConfinement) +
+                              " grew the kinetic energy " +
+                              formatNumber(peakEnergy_m5ps2 / initialEnergy_m5ps2) +
+                              "-fold (limit " + formatNumber(MAX_CONFINED_ENERGY_GROWTH) +
+                              "): the field is not a result; lower unsteady.vorticity_confinement"
+                        : std::string();
+    if (confinementGrew) j["summary"]["problem"] = energyNote;
     j["total_s"] = secondsSince(t0);
     if (!req.reportPath.empty()) writeStagedText(staged, req.reportPath, j.dump(2) + "\n");
     staged.commit();
+    if (!req.vdbPath.empty()) {
+        std::vector<std::string> written = houdiniPaths;
+        for (const auto& f : frames) written.push_back(f["path"].get<std::string>());
+        removeEarlierSequence(req.vdbPath, written, earlierSequence);
+    }
     if (stoppedEarly) {
         std::printf(
             "solve: interrupted (%s) at t = %.3g s after %d steps: wrote %zu complete .vdb files "
@@ -248,13 +370,14 @@ int runUnsteadySolve(const SolveRequest& req) {
         : ok    ? "all solves converged"
                 : "SOME SOLVES DID NOT CONVERGE",
         j["total_s"].get<double>(), stepCount ? solveSeconds / stepCount : 0.0);
+    if (confinementGrew) std::printf("solve: %s\n", energyNote.c_str());
     if (interruptSignal())
         return reportInterruptedWhileWriting(
             req.vdbPath.empty()
                 ? std::string()
                 : sequencePath(req.vdbPath, 0) + " .. " + frames.back()["path"].get<std::string>(),
             req.reportPath);
-    return ok ? EXIT_OK : EXIT_UNMET;
+    return ok && !confinementGrew ? EXIT_OK : EXIT_UNMET;
 }
 
 }  // namespace gale::app

@@ -4,10 +4,15 @@
 /// heads-up line. The wind runs on a worker thread and hands the renderer snapshots, so the window
 /// stays responsive while a step computes; when the wind falls behind, the heads-up line says so.
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
@@ -134,6 +139,39 @@ std::string fmt(const char* format, double v) {
     return buf;
 }
 
+/// --screenshot is checked before the window opens or anything is built: a writable image format,
+/// a folder that exists, and not a file the scene reads (refuseAliases). Throws InputError.
+void checkScreenshotPath(const Scene& scene, const std::string& path) {
+    namespace fs = std::filesystem;
+    if (!render::canWriteImageFormat(path))
+        throw InputError("--screenshot: '" + path +
+                         "': no image format for its extension; name a .png (or .exr, .jpg, .tif)");
+    const fs::path folder =
+        fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec))
+        throw InputError("--screenshot: '" + path + "': the folder '" + folder.string() +
+                         (fs::exists(folder, ec) ? "' is a file" : "' does not exist"));
+    if (::access(folder.c_str(), W_OK | X_OK) != 0)
+        throw InputError("--screenshot: '" + path + "': the folder '" + folder.string() +
+                         "' is not writable: " + std::strerror(errno));
+    refuseAliases(sceneInputs(scene), {{path, "--screenshot"}});
+}
+
+/// The first "gale_view_N.png" (N from `next` up) that does not exist, so that S never replaces
+/// a file (an earlier screenshot, or a scene's input named like one); advances `next` past it.
+std::string nextScreenshotName(int& next) {
+    namespace fs = std::filesystem;
+    for (;; ++next) {
+        const std::string path = "gale_view_" + std::to_string(next) + ".png";
+        std::error_code ec;
+        if (!fs::exists(fs::symlink_status(path, ec))) {
+            ++next;
+            return path;
+        }
+    }
+}
+
 }  // namespace
 
 void limitUnsteadyStepToAFrame(Scene& scene) {
@@ -153,6 +191,7 @@ int runView(const ViewOptions& options) {
     // Bad --input is bad input, found before the window opens or anything is solved.
     const std::map<int, std::vector<render::InputEvent>> inputScript =
         parseInputScript(options.input);
+    if (!options.screenshotPath.empty()) checkScreenshotPath(scene, options.screenshotPath);
 
     // The window first: without a display there is no point in building (or solving) anything.
     std::unique_ptr<render::GlfwWindow> window;
@@ -313,11 +352,16 @@ int runView(const ViewOptions& options) {
                     renderer.setShellCount(std::min(render::MAX_SHELLS, renderer.shellCount() + 1));
                     break;
                 case render::Key::S: {
-                    const std::string path =
-                        "gale_view_" + std::to_string(screenshotCount++) + ".png";
+                    const std::string path = nextScreenshotName(screenshotCount);
                     window->readPixels(image);  // the last frame, with its heads-up line
-                    render::writeImageAtomic(image, path);
-                    note("saved " + path);
+                    try {
+                        render::writeImageAtomic(image, path);
+                        note("saved " + path);
+                    } catch (const std::runtime_error& saveError) {
+                        // A full disk or a folder made read-only since: say so, keep viewing.
+                        std::fprintf(stderr, "gale: warning: %s\n", saveError.what());
+                        note("screenshot not saved");
+                    }
                     break;
                 }
                 default:
@@ -364,7 +408,11 @@ int runView(const ViewOptions& options) {
         if (lastFrame && !options.screenshotPath.empty()) {
             // Before the heads-up line, so it matches `gale render` of the same frame.
             window->readPixels(image);
-            render::writeImageAtomic(image, options.screenshotPath);
+            try {
+                render::writeImageAtomic(image, options.screenshotPath);
+            } catch (const std::runtime_error& e) {
+                throw std::runtime_error("--screenshot: " + std::string(e.what()));
+            }
         }
 
         // The heads-up line: frame rate, sim time, the wind step's cost, and lag.

@@ -72,6 +72,9 @@ std::string houdiniPath(const std::string& vdbPath, double fps, double t_s);
 
 /// The folder of `path` ("." for a bare name).
 std::string folderOf(const std::string& path);
+/// The name of the rasters of --grid-height-m height_m, without extension:
+/// "<vdbPath without .vdb>_<height_m, %g>m" (e.g. "out/wind_10m").
+std::string rasterStem(const std::string& vdbPath, double height_m);
 
 /// Creates the folders of the .vdb and the report, takes the .vdb folder's lock and removes
 /// temporaries a killed run left there. Returns the lock (null when no .vdb is written).

@@ -3,9 +3,12 @@
 
 #include "app/ViewInput.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
+#include <system_error>
 
 #include "app/io/Errors.h"
 
@@ -63,6 +66,17 @@ render::InputEvent scriptedKey(char c) {
     return e;
 }
 
+namespace {
+
+/// `text` without leading and trailing spaces and tabs.
+std::string trimmed(const std::string& text) {
+    const size_t first = text.find_first_not_of(" \t");
+    if (first == std::string::npos) return {};
+    return text.substr(first, text.find_last_not_of(" \t") - first + 1);
+}
+
+}  // namespace
+
 std::map<int, std::vector<render::InputEvent>> parseInputScript(const std::string& text) {
     std::map<int, std::vector<render::InputEvent>> script;
     std::stringstream entries(text);
@@ -74,26 +88,45 @@ std::map<int, std::vector<render::InputEvent>> parseInputScript(const std::strin
                               " (expected FRAME:ACTION:X,Y[,X2,Y2], ACTION click, gust, "
                               "whirlwind, blast or downwash)");
         };
-        int frame = -1, used = 0;
-        char action[16] = {0};
-        if (std::sscanf(entry.c_str(), " %d:%15[a-z]:%n", &frame, action, &used) != 2 || used == 0)
+        // Strict: FRAME:ACTION:COORDS, each part whole (no trailing characters, no hex).
+        const size_t colon1 = entry.find(':');
+        const size_t colon2 = colon1 == std::string::npos ? colon1 : entry.find(':', colon1 + 1);
+        if (colon2 == std::string::npos) throw bad("cannot read FRAME:ACTION:");
+        const std::string frameText = trimmed(entry.substr(0, colon1));
+        const std::string action = trimmed(entry.substr(colon1 + 1, colon2 - colon1 - 1));
+        if (frameText.empty() || frameText.find_first_not_of("0123456789") != std::string::npos)
+            throw bad("FRAME '" + frameText + "' must be a whole number >= 0 (decimal digits)");
+        long long frameValue = 0;
+        const auto [frameEnd, frameErr] =
+            std::from_chars(frameText.data(), frameText.data() + frameText.size(), frameValue);
+        if (frameErr != std::errc() || frameEnd != frameText.data() + frameText.size() ||
+            frameValue > std::numeric_limits<int>::max())
+            throw bad("FRAME " + frameText + " is beyond the last frame the viewer counts to (" +
+                      std::to_string(std::numeric_limits<int>::max()) + ")");
+        const int frame = static_cast<int>(frameValue);
+        if (action.empty() ||
+            action.find_first_not_of("abcdefghijklmnopqrstuvwxyz") != std::string::npos)
             throw bad("cannot read FRAME:ACTION:");
-        if (frame < 0) throw bad("FRAME must be >= 0");
         double c[4] = {0, 0, 0, 0};
         int read = 0;
         {
-            std::stringstream coords(entry.substr(size_t(used)));
-            std::string number;
-            while (std::getline(coords, number, ',')) {
+            std::stringstream coords(entry.substr(colon2 + 1));
+            std::string raw;
+            while (std::getline(coords, raw, ',')) {
                 if (read == 4) throw bad("more than 4 coordinates");
+                const std::string number = trimmed(raw);
+                // Decimal only: strtod would also take hex ("0x10"), "inf" and "nan".
                 char* end = nullptr;
-                c[read] = std::strtod(number.c_str(), &end);
-                if (end == number.c_str() || !std::isfinite(c[read]))
-                    throw bad("'" + number + "' is not a pixel coordinate");
+                const bool decimal = !number.empty() && number.find_first_not_of(
+                                                            "0123456789+-.eE") == std::string::npos;
+                if (decimal) c[read] = std::strtod(number.c_str(), &end);
+                if (!decimal || end != number.c_str() + number.size() || !std::isfinite(c[read]))
+                    throw bad("'" + raw + "' is not a pixel coordinate");
                 ++read;
             }
+            if (!entry.empty() && entry.back() == ',') throw bad("a coordinate is missing");
         }
-        const std::string a = action;
+        const std::string& a = action;
         std::vector<render::InputEvent>& events = script[frame];
         if (a == "gust") {
             if (read != 4) throw bad("gust needs X,Y,X2,Y2");

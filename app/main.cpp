@@ -7,8 +7,10 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <memory>
 #include <new>
@@ -95,7 +97,19 @@ int main(int argc, char** argv) {
 
     try {
         const auto threadLimit = threadLimitFromEnvironment();
-        if (const auto* run = verbs.parsedRun()) return (*run)();
+        if (const auto* run = verbs.parsedRun()) {
+            const int code = (*run)();
+            // What the verb printed is only written now (stdout is buffered when it is not a
+            // terminal): `gale probe ... > /dev/full` must not exit 0 having written nothing.
+            errno = 0;
+            if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+                const int err = errno;
+                return reportError(std::string("stdout: cannot write: ") +
+                                       (err != 0 ? std::strerror(err) : "write error"),
+                                   EXIT_FAILURE_INTERNAL);
+            }
+            return code;
+        }
         return reportError("no verb given (see 'gale --help')", EXIT_BAD_INPUT);
     } catch (const InputError& e) {
         return reportError(e.what(), EXIT_BAD_INPUT);

@@ -25,10 +25,16 @@ struct DensityMap {
     glm::vec2 wsSize_m{1.0f};
 };
 
+/// Largest side of a density map, pixels: its float copy is at most 256 MiB.
+constexpr int MAX_DENSITY_MAP_SIDE_PX = 8192;
+
 /// Reads a density map from any image OpenImageIO reads (8/16-bit or float; the first channel,
 /// a grey image's grey: 0 = bare, full scale = full density) to cover the plan rectangle given.
-/// Throws std::runtime_error naming the path and the reason if the image cannot be read;
-/// std::logic_error if wsSize_m is not positive and finite (the caller's plan rectangle).
+/// The header is checked before anything is allocated (at most MAX_DENSITY_MAP_SIDE_PX a side; a
+/// PNG smaller than its claimed pixels could compress to is corrupt), and every value must be
+/// finite and in [0, 1] (float images). Throws std::runtime_error "PATH: reason" if the image
+/// cannot be read or is refused; std::logic_error if wsSize_m is not positive and finite (the
+/// caller's plan rectangle).
 DensityMap loadDensityMap(const std::string& path, glm::vec2 wsMin_m, glm::vec2 wsSize_m);
 
 /// Entries of the density cut table: entry k is the cut for density k / (DENSITY_CUTS - 1).

@@ -84,7 +84,7 @@ void writeImageAtomic(const Image& image, const std::string& path) {
     if (!out->open(temp.string(), spec)) {
         const std::string reason = out->geterror();
         out.reset();
-        failWrite(path, "cannot open '" + temp.string() + "': " + reason, temp);
+        failWrite(path, "cannot open it: " + reason, temp);
     }
     bool ok = true;
     if (linearHalf) {
@@ -115,10 +115,16 @@ void writeImageAtomic(const Image& image, const std::string& path) {
         reason = out->geterror();
     }
     out.reset();
-    if (!ok) failWrite(path, "writing '" + temp.string() + "' failed: " + reason, temp);
+    if (!ok) failWrite(path, "writing failed: " + reason, temp);
 
     fs::rename(temp, target, ec);
     if (ec) failWrite(path, "rename from '" + temp.string() + "' failed: " + ec.message(), temp);
+}
+
+bool canWriteImageFormat(const std::string& path) {
+    const fs::path target(path);
+    if (target.extension().empty()) return false;
+    return OIIO::ImageOutput::create(target.string()) != nullptr;
 }
 
 Image readImageRgba8(const std::string& path) {

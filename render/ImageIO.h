@@ -14,6 +14,10 @@ namespace gale::render {
 /// std::runtime_error naming the path and the reason.
 void writeImageAtomic(const Image& image, const std::string& path);
 
+/// Whether writeImageAtomic has a writer for `path`'s extension (OpenImageIO's plugins), checked
+/// before a run so that a bad name is refused before any work.
+bool canWriteImageFormat(const std::string& path);
+
 /// Reads an 8-bit RGBA image (grey and RGB are expanded; 16-bit and float converted). Throws
 /// std::runtime_error naming the path and the reason.
 Image readImageRgba8(const std::string& path);

@@ -3,6 +3,7 @@
 
 #include <openvdb/io/File.h>
 #include <openvdb/tools/SignedFloodFill.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -88,6 +89,14 @@ void writeGridsAtomic(const std::string& path, const openvdb::GridCPtrVec& grids
     const fs::path target(path);
     const fs::path tmp =
         target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()));
+    // Only a regular file (or nothing) is replaced: the rename below would put a regular file in
+    // place of a device node such as /dev/null.
+    std::error_code statError;
+    const fs::file_status st = fs::status(target, statError);
+    if (fs::exists(st) && !fs::is_regular_file(st))
+        throw std::runtime_error("cannot write VDB file '" + path +
+                                 "': it exists and is not a regular file (a device, FIFO or "
+                                 "folder); gale replaces only regular files");
     // openvdb::io::File::write never looks at its stream after writing, so a full disk gave a
     // truncated file and no error: write the same archive to a stream we check.
     struct CheckedArchive : openvdb::io::File {
@@ -167,26 +176,201 @@ openvdb::FloatGrid::Ptr speedGrid(const WindField& f) {
     return grid;
 }
 
+namespace {
+
+/// A .vdb refused by readFaceVelocities's own checks, told apart from other std::runtime_errors
+/// (std::ios_base::failure is one) that OpenVDB's reading may throw.
+struct VdbRefused : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// A corrupt or foreign .vdb: gale's own words, never OpenVDB's exception text.
+[[noreturn]] void refuseVdb(const std::string& path, const std::string& reason) {
+    throw VdbRefused(path + ": " + reason);
+}
+
+/// Checks what a .vdb says about itself before its trees are read, so that a corrupt file costs
+/// bounded memory (docs/reliability.md): the file's size, and the face grid's own metadata (its
+/// voxel count, bounding box and in-memory bytes, which OpenVDB writes beside each grid) against
+/// what a field on `field`'s grid can hold. Returns the bytes the face grid may take in memory.
+/// Throws std::runtime_error naming the file.
+double checkVdbAgainstField(const std::string& path, openvdb::io::File& file, const char* facesName,
+                            const WindField& field) {
+    const double nx = field.nx(), ny = field.ny(), nz = std::max(field.nz(), cubicLayers(field));
+    // A stretched file holds its native layers and a cubic resample: two fields; a margin of 2
+    // over sim::vdbWindFile_bytes, itself an upper bound of the measured files (0.46-0.74).
+    constexpr double FILE_BOUND_FACTOR = 4.0;
+    constexpr double FILE_BOUND_SLACK_BYTES = 1 << 20;
+    std::error_code ec;
+    const double fileBytes = double(std::filesystem::file_size(path, ec));
+    const double fileBound =
+        FILE_BOUND_FACTOR * vdbWindFile_bytes(nx, ny, nz) + FILE_BOUND_SLACK_BYTES;
+    if (!ec && fileBytes > fileBound)
+        refuseVdb(path, "holds " + std::to_string(static_cast<long long>(fileBytes)) +
+                            " bytes, more than a field of this scene's " +
+                            std::to_string(field.nx()) + " x " + std::to_string(field.ny()) +
+                            " x " + std::to_string(field.nz()) + " cells can take (" +
+                            std::to_string(static_cast<long long>(fileBound)) +
+                            "): not a field of this scene");
+    const openvdb::GridBase::Ptr meta = file.readGridMetadata(facesName);
+    const auto count =
+        meta->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT);
+    const auto lo =
+        meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
+    const auto hi =
+        meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
+    const auto bytes =
+        meta->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_MEM_BYTES);
+    if (!count || !lo || !hi || !bytes)
+        refuseVdb(path, std::string("grid '") + facesName +
+                            "' has no size metadata (file_voxel_count, file_bbox_min/max, "
+                            "file_mem_bytes); write it with gale solve");
+    const double faces = (nx + 1) * (ny + 1) * (nz + 1);
+    // The 8^3 leaves and the 16^3 and 32^3 internal nodes that cover the face grid, at the
+    // bytes OpenVDB allocates for a Vec3s tree (leaf: 512 values of 12 B and its masks; internal
+    // nodes: one 8-byte slot per child and two masks), doubled for the allocator.
+    const auto nodes = [&](double side) {
+        return std::ceil((nx + 1) / side) * std::ceil((ny + 1) / side) * std::ceil((nz + 1) / side);
+    };
+    constexpr double LEAF_BYTES = 512 * 12 + 160, NODE16_BYTES = 4096 * 8 + 1024,
+                     NODE32_BYTES = 32768 * 8 + 8192, MEMORY_MARGIN = 2.0;
+    const double memoryBound = MEMORY_MARGIN * (nodes(8) * LEAF_BYTES + nodes(128) * NODE16_BYTES +
+                                                nodes(4096) * NODE32_BYTES) +
+                               FILE_BOUND_SLACK_BYTES;
+    const openvdb::Vec3i a = lo->value(), b = hi->value();
+    const bool boxInside = a.x() >= -1 && a.y() >= -1 && a.z() >= -1 && b.x() <= nx + 1 &&
+                           b.y() <= ny + 1 && b.z() <= nz + 1;
+    if (count->value() < 0 || double(count->value()) > faces || !boxInside || bytes->value() < 0 ||
+        double(bytes->value()) > memoryBound)
+        refuseVdb(path, std::string("grid '") + facesName + "' claims " +
+                            std::to_string(count->value()) + " voxels in [" +
+                            std::to_string(a.x()) + ", " + std::to_string(a.y()) + ", " +
+                            std::to_string(a.z()) + "] .. [" + std::to_string(b.x()) + ", " +
+                            std::to_string(b.y()) + ", " + std::to_string(b.z()) + "] and " +
+                            std::to_string(bytes->value()) + " bytes, beyond the scene's " +
+                            std::to_string(static_cast<long long>(faces)) +
+                            " faces: a corrupt file, or not a field of this scene");
+    return memoryBound;
+}
+
+/// Caps this process's address space (RLIMIT_AS) at what it maps at construction plus a budget,
+/// for its lifetime, so that a corrupt size field in a .vdb (a metadata string's length, a
+/// compressed chunk's length, a node count), which OpenVDB allocates as it reads, fails with
+/// std::bad_alloc instead of taking gigabytes. Nothing is capped under the sanitizers, which map
+/// their own shadow memory, or when the current size cannot be read. Only for a reading thread
+/// while no other thread allocates.
+class AddressSpaceCap {
+  public:
+    explicit AddressSpaceCap(double budget_bytes) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+        mUsable = false;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || \
+    __has_feature(thread_sanitizer)
+        mUsable = false;
+#endif
+#endif
+        if (mUsable) start();
+        widen(budget_bytes);
+    }
+    ~AddressSpaceCap() {
+        if (mCapped) ::setrlimit(RLIMIT_AS, &mOld);
+    }
+    AddressSpaceCap(const AddressSpaceCap&) = delete;
+    AddressSpaceCap& operator=(const AddressSpaceCap&) = delete;
+
+    /// Sets the cap to the mapping at construction plus `budget_bytes` (never above the limit
+    /// the process had).
+    void widen(double budget_bytes) {
+        if (!mUsable) return;
+        const double want = mBaseline_bytes + budget_bytes;
+        rlimit capped = mOld;
+        if (mOld.rlim_cur == RLIM_INFINITY || double(mOld.rlim_cur) > want)
+            capped.rlim_cur = static_cast<rlim_t>(want);
+        mCapped = ::setrlimit(RLIMIT_AS, &capped) == 0 || mCapped;
+    }
+
+  private:
+    void start() {
+        mUsable = false;
+        std::FILE* statm = std::fopen("/proc/self/statm", "r");
+        if (!statm) return;
+        unsigned long long pages = 0;
+        const bool read = std::fscanf(statm, "%llu", &pages) == 1;
+        std::fclose(statm);
+        if (!read || ::getrlimit(RLIMIT_AS, &mOld) != 0) return;
+        mBaseline_bytes = double(pages) * double(::sysconf(_SC_PAGESIZE));
+        mUsable = true;
+    }
+    bool mUsable = true;
+    double mBaseline_bytes = 0.0;
+    rlimit mOld{};
+    bool mCapped = false;
+};
+
+/// What a .vdb's header, metadata and grid descriptors may take in memory while they are read.
+constexpr double VDB_HEADER_READ_BYTES = 256.0 * (1 << 20);
+
+/// Refuses a path that is not a regular file (OpenVDB's "IoError: could not get size of file").
+void refuseUnlessRegularVdb(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        refuseVdb(path,
+                  std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
+}
+
+/// Rethrows what reading `path` threw as gale's message: ours as it is, OpenVDB's and the
+/// allocator's without their text.
+[[noreturn]] void refuseUnreadableVdb(const std::string& path, const std::exception& e) {
+    if (dynamic_cast<const VdbRefused*>(&e)) throw VdbRefused(e.what());
+    if (dynamic_cast<const std::bad_alloc*>(&e))
+        refuseVdb(path,
+                  "not a readable .vdb file (corrupt: it claims more memory than a field "
+                  "of this scene holds)");
+    refuseVdb(path, "not a readable .vdb file (corrupt, truncated, or not written by OpenVDB)");
+}
+
+}  // namespace
+
 double readFaceVelocities(const std::string& path, WindField& field) {
     openvdb::initialize();
     const bool stretched = !field.layout().uniformZ();
     const char* facesName = stretched ? STRETCHED_FACES_GRID : CUBIC_FACES_GRID;
     openvdb::GridBase::Ptr base;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        refuseVdb(path,
+                  std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
+    // The file's header, metadata and grid descriptors first, within a small budget; then the
+    // face grid's trees within what its checked metadata allows.
+    constexpr double READ_SLACK_BYTES = 256.0 * (1 << 20);
     try {
+        AddressSpaceCap cap(READ_SLACK_BYTES);
         openvdb::io::File file(path);
-        file.open();
+        file.open(/*delayLoad=*/false);
         if (!file.hasGrid(facesName)) {
             file.close();
-            throw std::runtime_error(std::string("has no grid '") + facesName +
-                                     "' (write it with gale solve" +
-                                     (stretched ? ", stretched layers" : "") + ")");
+            refuseVdb(path, std::string("has no grid '") + facesName +
+                                "' (write it with gale solve" +
+                                (stretched ? ", stretched layers" : "") + ")");
         }
+        const double gridBytes = checkVdbAgainstField(path, file, facesName, field);
+        // The grid, OpenVDB's read buffers and a margin for the allocator's own mappings.
+        cap.widen(2.0 * gridBytes + READ_SLACK_BYTES);
         base = file.readGrid(facesName);
         file.close();
-    } catch (const std::runtime_error& e) {
-        throw std::runtime_error(path + ": " + e.what());
-    } catch (const std::exception& e) {
-        throw std::runtime_error(path + ": not a readable .vdb (" + e.what() + ")");
+    } catch (const openvdb::Exception&) {
+        // OpenVDB's own text ("LookupError: Cannot read grid. Grid type  is not registered.")
+        // says nothing a user can act on.
+        refuseVdb(path, "not a readable .vdb file (corrupt, truncated, or not written by OpenVDB)");
+    } catch (const std::bad_alloc&) {
+        refuseVdb(path,
+                  "not a readable .vdb file (corrupt: its trees claim more memory than a "
+                  "field of this scene holds)");
+    } catch (const VdbRefused&) {
+        throw;  // ours, naming the file
+    } catch (const std::exception&) {
+        refuseVdb(path, "not a readable .vdb file (corrupt, truncated, or not written by OpenVDB)");
     }
     auto grid = openvdb::gridPtrCast<openvdb::Vec3SGrid>(base);
     if (!grid) throw std::runtime_error(path + ": grid '" + facesName + "' is not a Vec3s grid");
@@ -314,13 +498,16 @@ int vdbCubicLayers(const GridLayout& layout) {
 std::vector<std::string> vdbGridNames(const std::string& path) {
     openvdb::initialize();
     std::vector<std::string> names;
+    refuseUnlessRegularVdb(path);
     try {
+        // The header and descriptors within a small budget (a corrupt length took 3.1 GB).
+        const AddressSpaceCap cap(VDB_HEADER_READ_BYTES);
         openvdb::io::File file(path);
         file.open(/*delayLoad=*/false);
         for (auto it = file.beginName(); it != file.endName(); ++it) names.push_back(*it);
         file.close();
     } catch (const std::exception& e) {
-        throw std::runtime_error(path + ": not a readable .vdb (" + e.what() + ")");
+        refuseUnreadableVdb(path, e);
     }
     return names;
 }
@@ -330,19 +517,19 @@ std::map<std::string, std::string> vdbGridStrings(const std::string& path,
     openvdb::initialize();
     std::map<std::string, std::string> strings;
     openvdb::GridBase::Ptr grid;
+    refuseUnlessRegularVdb(path);
     try {
+        const AddressSpaceCap cap(VDB_HEADER_READ_BYTES);
         openvdb::io::File file(path);
         file.open(/*delayLoad=*/false);
         if (!file.hasGrid(gridName)) {
             file.close();
-            throw std::runtime_error("has no grid '" + gridName + "'");
+            refuseVdb(path, "has no grid '" + gridName + "'");
         }
         grid = file.readGridMetadata(gridName);
         file.close();
-    } catch (const std::runtime_error& e) {
-        throw std::runtime_error(path + ": " + e.what());
     } catch (const std::exception& e) {
-        throw std::runtime_error(path + ": not a readable .vdb (" + e.what() + ")");
+        refuseUnreadableVdb(path, e);
     }
     for (auto it = grid->beginMeta(); it != grid->endMeta(); ++it)
         if (const auto text = grid->getMetadata<openvdb::StringMetadata>(it->first))

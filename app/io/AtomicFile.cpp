@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cstdio>
@@ -165,10 +166,15 @@ void commitTemporary(const std::string& tmpPath, const std::string& path) {
 namespace {
 
 /// Writes `text` to `tmpPath` (created or truncated), fsyncs and closes it; every failure
-/// removes the temporary and throws naming `path`, the file the user asked for.
+/// removes the temporary and throws naming `path`, the file the user asked for. A stream
+/// (tmpPath == path, isStreamOutput) is opened without creating or truncating, not fsync'ed and
+/// never removed.
 void writeWholeText(const std::string& tmpPath, const std::string& path, const std::string& text) {
-    const int fd = ::open(tmpPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd < 0) failWrite(path, std::strerror(errno), tmpPath);
+    const bool stream = tmpPath == path;
+    const std::string removable = stream ? std::string() : tmpPath;
+    const int fd = stream ? ::open(path.c_str(), O_WRONLY | O_CLOEXEC)
+                          : ::open(tmpPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) failWrite(path, std::strerror(errno), removable);
     size_t done = 0;
     while (done < text.size()) {
         const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
@@ -176,9 +182,13 @@ void writeWholeText(const std::string& tmpPath, const std::string& path, const s
         if (n <= 0) {
             const int err = n < 0 ? errno : ENOSPC;
             ::close(fd);
-            failWrite(path, std::strerror(err), tmpPath);
+            failWrite(path, std::strerror(err), removable);
         }
         done += static_cast<size_t>(n);
+    }
+    if (stream) {
+        if (::close(fd) != 0) failWrite(path, std::strerror(errno), removable);
+        return;
     }
     if (::fsync(fd) != 0) {
         const int err = errno;
@@ -191,6 +201,7 @@ void writeWholeText(const std::string& tmpPath, const std::string& path, const s
 }  // namespace
 
 void writeTextAtomic(const std::string& path, const std::string& text) {
+    if (isStreamOutput(path)) return writeWholeText(path, path, text);
     const std::string tmp = temporaryPathFor(path);
     writeWholeText(tmp, path, text);
     if (::rename(tmp.c_str(), path.c_str()) != 0) failWrite(path, std::strerror(errno), tmp);
@@ -235,20 +246,26 @@ namespace gale::app {
 StagedFiles::~StagedFiles() { discard(); }
 
 void StagedFiles::discard() {
-    for (const Entry& e : mEntries) discardTemporary(e.tmp);
+    for (const Entry& e : mEntries)
+        if (!e.stream) discardTemporary(e.tmp);
     mEntries.clear();
 }
 
 std::string StagedFiles::add(const std::string& path) {
-    mEntries.push_back({path, temporaryPathFor(path), false});
+    if (isStreamOutput(path)) {
+        mEntries.push_back({path, path, false, true});
+        return path;
+    }
+    mEntries.push_back({path, temporaryPathFor(path), false, false});
     return mEntries.back().tmp;
 }
 
 double StagedFiles::seal(const std::string& path) {
     for (Entry& e : mEntries)
         if (e.path == path) {
-            syncTemporary(e.tmp, e.path);
             e.sealed = true;
+            if (e.stream) return 0.0;  // written in place: nothing to sync or measure
+            syncTemporary(e.tmp, e.path);
             std::error_code ec;
             const auto size = fs::file_size(e.tmp, ec);
             return ec ? 0.0 : static_cast<double>(size);
@@ -269,13 +286,15 @@ void StagedFiles::commit() {
     std::vector<std::string> folders;
     for (size_t k = 0; k < entries.size(); ++k) {
         const Entry& e = entries[k];
+        if (e.stream) continue;  // written in place already
         if (!e.sealed) {
             discardTemporary(e.tmp);
             continue;
         }
         if (::rename(e.tmp.c_str(), e.path.c_str()) != 0) {
             const int err = errno;
-            for (size_t j = k; j < entries.size(); ++j) discardTemporary(entries[j].tmp);
+            for (size_t j = k; j < entries.size(); ++j)
+                if (!entries[j].stream) discardTemporary(entries[j].tmp);
             throw std::runtime_error(e.path + ": cannot write: " + std::strerror(err));
         }
         unregisterForRemoval(e.tmp);
@@ -287,36 +306,118 @@ void StagedFiles::commit() {
     }
 }
 
-void refuseAliases(const std::vector<RunPath>& inputs, const std::vector<RunPath>& outputs) {
-    // Resolving each folder once keeps this cheap for thousands of frames in one folder.
-    std::vector<std::pair<std::string, std::string>> folderCache;
-    auto resolve = [&](const std::string& path) {
+bool isStreamOutput(const std::string& path) {
+    struct stat st {};
+    if (path.empty() || ::stat(path.c_str(), &st) != 0) return false;
+    return S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode);
+}
+
+std::vector<std::string> rasterSidecars(const std::string& path) {
+    const fs::path p(path);
+    std::string ext = p.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    std::vector<std::string> out{path + ".aux.xml", fs::path(p).replace_extension(".aux").string(),
+                                 fs::path(p).replace_extension(".prj").string(),
+                                 fs::path(p).replace_extension(".wld").string()};
+    std::vector<std::string> worlds;
+    if (ext == ".tif" || ext == ".tiff") worlds = {".tfw", ".tifw", ".tiffw"};
+    if (ext == ".png") worlds = {".pgw", ".pngw"};
+    if (ext == ".jpg" || ext == ".jpeg") worlds = {".jgw", ".jpgw"};
+    for (const std::string& w : worlds) out.push_back(fs::path(p).replace_extension(w).string());
+    return out;
+}
+
+namespace {
+
+/// What refuseAliases knows about one path: its real name, and the file it is if it exists.
+struct ResolvedPath {
+    std::string real;  ///< absolute, symbolic links and ".." resolved
+    bool exists = false;
+    struct stat st {};
+    /// One name per file: device and inode when it exists (hard links meet), else the name.
+    std::string identity() const {
+        if (!exists) return "path:" + real;
+        return "inode:" + std::to_string(static_cast<unsigned long long>(st.st_dev)) + ":" +
+               std::to_string(static_cast<unsigned long long>(st.st_ino));
+    }
+};
+
+/// Resolves paths, each folder once (thousands of frames share one).
+class PathResolver {
+  public:
+    ResolvedPath resolve(const std::string& path) {
+        ResolvedPath r;
         const fs::path p(path);
-        const std::string folder = p.parent_path().empty() ? "." : p.parent_path().string();
-        std::string resolvedFolder;
-        for (const auto& [raw, resolved] : folderCache)
-            if (raw == folder) resolvedFolder = resolved;
+        const std::string name = p.filename().string();
         std::error_code ec;
-        if (resolvedFolder.empty()) {
-            resolvedFolder = fs::weakly_canonical(fs::absolute(folder, ec), ec).string();
-            if (ec) resolvedFolder = fs::absolute(folder).lexically_normal().string();
-            folderCache.emplace_back(folder, resolvedFolder);
+        fs::path full;
+        if (name.empty() || name == "." || name == "..") {
+            full = fs::weakly_canonical(fs::absolute(p, ec), ec);
+            if (ec) full = fs::absolute(p).lexically_normal();
+        } else {
+            full =
+                fs::path(folder(p.parent_path().empty() ? "." : p.parent_path().string())) / name;
+            // The file itself may be a symbolic link (to an input): resolve it too.
+            if (fs::is_symlink(full, ec)) {
+                const fs::path target = fs::weakly_canonical(full, ec);
+                if (!ec) full = target;
+            }
         }
-        const fs::path full = fs::path(resolvedFolder) / p.filename();
-        // The file itself may be a symbolic link (to an input): resolve it too.
-        if (!fs::is_symlink(full, ec)) return full.string();
-        const fs::path target = fs::weakly_canonical(full, ec);
-        return (ec ? full : target).string();
-    };
+        r.real = full.string();
+        r.exists = ::stat(r.real.c_str(), &r.st) == 0;
+        return r;
+    }
+
+  private:
+    std::string folder(const std::string& raw) {
+        for (const auto& [given, resolved] : mFolders)
+            if (given == raw) return resolved;
+        std::error_code ec;
+        std::string resolved = fs::weakly_canonical(fs::absolute(raw, ec), ec).string();
+        if (ec) resolved = fs::absolute(raw).lexically_normal().string();
+        mFolders.emplace_back(raw, resolved);
+        return resolved;
+    }
+    std::vector<std::pair<std::string, std::string>> mFolders;
+};
+
+bool isStreamMode(mode_t mode) { return S_ISCHR(mode) || S_ISFIFO(mode) || S_ISSOCK(mode); }
+
+}  // namespace
+
+void refuseAliases(const std::vector<RunPath>& inputs, const std::vector<RunPath>& outputs) {
+    PathResolver resolver;
     std::unordered_map<std::string, const RunPath*> seen;
     for (const RunPath& in : inputs)
-        if (!in.path.empty()) seen.emplace(resolve(in.path), &in);
+        if (!in.path.empty()) seen.emplace(resolver.resolve(in.path).identity(), &in);
+    const auto clash = [](const RunPath& out, const RunPath& other) {
+        throw InputError(out.role + ": '" + out.path + "' is also " + other.role + " ('" +
+                         other.path + "'); choose another output path");
+    };
     for (const RunPath& out : outputs) {
         if (out.path.empty()) continue;
-        const auto [it, fresh] = seen.emplace(resolve(out.path), &out);
-        if (!fresh)
-            throw InputError(out.role + ": '" + out.path + "' is also " + it->second->role + " ('" +
-                             it->second->path + "'); choose another output path");
+        const ResolvedPath r = resolver.resolve(out.path);
+        if (r.exists && S_ISDIR(r.st.st_mode))
+            throw InputError(out.role + ": '" + out.path +
+                             "' is a folder; give the name of the file to write");
+        if (r.exists && isStreamMode(r.st.st_mode)) {
+            if (!out.streamable)
+                throw InputError(out.role + ": '" + out.path +
+                                 "' is a device, FIFO or socket; this output is written as a "
+                                 "regular file (and moved into place): give a file name");
+            // A stream is written in place: it may not be an input, but two outputs may share it.
+            const auto it = seen.find(r.identity());
+            if (it != seen.end()) clash(out, *it->second);
+            continue;
+        }
+        if (r.exists && S_ISREG(r.st.st_mode) &&
+            ((r.st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 ||
+             ::access(r.real.c_str(), W_OK) != 0))
+            throw InputError(out.role + ": '" + out.path +
+                             "' is read-only; gale does not replace it: make it writable "
+                             "(chmod u+w) or choose another output path");
+        const auto [it, fresh] = seen.emplace(r.identity(), &out);
+        if (!fresh) clash(out, *it->second);
     }
 }
 

@@ -31,7 +31,8 @@ void discardTemporary(const std::string& tmpPath);
 
 /// Writes `text` to `path` atomically: temporary, write (every byte checked), fsync, close
 /// (checked), rename. Throws std::runtime_error "PATH: cannot write: REASON" and leaves `path`
-/// as it was.
+/// as it was. A stream destination (isStreamOutput: /dev/null, /dev/full, a FIFO) is written in
+/// place, every byte checked, and never replaced.
 void writeTextAtomic(const std::string& path, const std::string& text);
 
 /// Registers `path` (a temporary or a lock file) for removal by removeRegisteredTemporaries;
@@ -75,7 +76,9 @@ class StagedFiles {
     StagedFiles(const StagedFiles&) = delete;
     StagedFiles& operator=(const StagedFiles&) = delete;
 
-    /// The temporary to write `path` to (temporaryPathFor).
+    /// The temporary to write `path` to (temporaryPathFor); for a stream destination
+    /// (isStreamOutput: /dev/null, a FIFO) `path` itself, written in place and never renamed,
+    /// synced or removed.
     std::string add(const std::string& path);
     /// The writer has finished the temporary of `path`: checks it is non-empty and fsyncs it
     /// (syncTemporary); returns its size in bytes. Throws std::runtime_error naming `path`.
@@ -93,6 +96,7 @@ class StagedFiles {
     struct Entry {
         std::string path, tmp;
         bool sealed = false;
+        bool stream = false;  ///< tmp == path: written in place
     };
     std::vector<Entry> mEntries;
 };
@@ -101,15 +105,47 @@ class StagedFiles {
 /// Throws std::runtime_error "PATH: cannot write: REASON" naming `path`, not the temporary.
 void writeStagedText(StagedFiles& staged, const std::string& path, const std::string& text);
 
-/// One file a run reads or writes, and what it is for messages ("the scene", "-o").
+/// One file a run reads or writes, and what it is for messages: the key or flag it came from and
+/// its part ("-o (the .vdb field)", "scene.toml:4: terrain.dem (the DEM)").
 struct RunPath {
     std::string path;
     std::string role;
+    /// An output that may be a stream: when `path` is a character device, FIFO or socket (e.g.
+    /// /dev/null, /dev/stdout) it is written in place as a stream (isStreamOutput) instead of
+    /// being replaced. Only for writers that go through StagedFiles or writeTextAtomic (text:
+    /// reports, CSV, SVG); outputs whose writer renames its own temporary over the destination
+    /// (OpenVDB, GDAL, images) leave it false and a stream destination is refused.
+    bool streamable = false;
 };
 
-/// Outputs never overwrite inputs or each other (docs/reliability.md): resolves every path
-/// (symbolic links, "..", relative to the current folder) and throws InputError "ROLE: 'PATH' is
-/// also ROLE2 ('PATH2'); ..." if an output resolves to an input or to another output.
+/// Whether `path` (after symbolic links) exists and is a character device, FIFO or socket: an
+/// output written as a stream, never replaced. False for regular files, folders, missing paths.
+bool isStreamOutput(const std::string& path);
+
+/// The guard of every verb (docs/reliability.md, "Outputs never overwrite inputs"): before any
+/// work, resolves every path a run reads and writes to its real file (symbolic links, "..",
+/// relative to the current folder, and hard links by device and inode) and throws InputError,
+/// naming both paths and the key or flag each came from, when
+/// - an output resolves to an input or to another output of the same run:
+///   "ROLE: 'PATH' is also ROLE2 ('PATH2'); choose another output path";
+/// - an output exists and is read-only (no write permission bit, or not writable by this user):
+///   "ROLE: 'PATH' is read-only; gale does not replace it: ...";
+/// - an output exists as a device, FIFO or socket and is not `streamable`;
+/// - an output exists as a folder.
+/// Empty paths are skipped. Streams (isStreamOutput) are not compared with each other (two
+/// outputs to /dev/null are fine) but are compared with the inputs. Cheap for many outputs in
+/// one folder: each folder is resolved once, each file stat'ed once.
+/// @code
+///   std::vector<RunPath> inputs = sceneInputs(scene);
+///   inputs.push_back({o.pointsPath, "the points file"});
+///   for (const std::string& v : o.vdbPaths) inputs.push_back({v, "--vdb"});
+///   refuseAliases(inputs, {{o.outPath, "-o (the probe CSV)", /*streamable=*/true}});
+/// @endcode
 void refuseAliases(const std::vector<RunPath>& inputs, const std::vector<RunPath>& outputs);
+
+/// The sidecar files GDAL reads beside a raster `path` (they may not exist): its .aux.xml, .prj,
+/// and world files (.wld, .tfw/.tifw for a .tif, .pgw/.pngw for a .png, .jgw for a .jpg, .aux).
+/// Inputs for refuseAliases; outputs of a raster writer that writes them.
+std::vector<std::string> rasterSidecars(const std::string& path);
 
 }  // namespace gale::app

@@ -6,6 +6,7 @@
 #include <cpl_error.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
+#include <ogr_srs_api.h>
 
 #include <algorithm>
 #include <cctype>
@@ -91,6 +92,53 @@ bool plainImage(const std::string& path) {
            ext == ".exr" || ext == ".tga";
 }
 
+/// Largest departure of a projection's scale factor from 1 that gale takes as metres: UTM's is at
+/// most 0.1 % inside its zone; Web Mercator's 1 / cos(latitude) is 1.0001 at 0.8 degrees and
+/// 1.47 at 47 degrees, where a hill would be taken 1.47 times too large.
+constexpr double MAX_SCALE_FACTOR_ERROR = 0.01;
+
+/// Refuses a Mercator-family projection (Web Mercator, Mercator 1SP / 2SP) whose scale factor at
+/// the DEM's centre is more than MAX_SCALE_FACTOR_ERROR from 1: its "metres" are not metres on
+/// the ground there. The fix named is a runnable gdalwarp to the centre's UTM zone.
+void checkScaleFactor(const std::string& path, const OGRSpatialReference& srs,
+                      const std::string& crsName, const double gt[6], int cols, int rows) {
+    const char* projection = srs.GetAttrValue("PROJECTION");
+    const std::string name = projection ? projection : "";
+    if (name.find("Mercator") == std::string::npos ||
+        name.find("Transverse") != std::string::npos || name.find("Oblique") != std::string::npos ||
+        name.find("Hotine") != std::string::npos)
+        return;
+    double x = gt[0] + 0.5 * cols * gt[1] + 0.5 * rows * gt[2];
+    double y = gt[3] + 0.5 * cols * gt[4] + 0.5 * rows * gt[5];
+    OGRSpatialReference geographic;
+    if (geographic.CopyGeogCSFrom(&srs) != OGRERR_NONE) return;
+    geographic.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    OGRSpatialReference source(srs);
+    source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    const std::unique_ptr<OGRCoordinateTransformation> toGeographic(
+        OGRCreateCoordinateTransformation(&source, &geographic));
+    if (!toGeographic || !toGeographic->Transform(1, &x, &y)) return;
+    const double lon = x, lat = y;
+    if (!(std::isfinite(lat) && std::abs(lat) < 89.0)) return;
+    // Mercator's scale factor grows as 1 / cos(latitude) away from its true-scale parallel:
+    // k = k0 / cos(lat) (1SP, Web Mercator) or cos(lat_ts) / cos(lat) (2SP).
+    constexpr double DEG = 3.14159265358979323846 / 180.0;
+    const double k0 = name.find("2SP") != std::string::npos
+                          ? std::cos(srs.GetProjParm(SRS_PP_STANDARD_PARALLEL_1, 0.0) * DEG)
+                          : srs.GetProjParm(SRS_PP_SCALE_FACTOR, 1.0);
+    const double k = k0 / std::cos(lat * DEG);
+    if (std::abs(k - 1.0) <= MAX_SCALE_FACTOR_ERROR) return;
+    fail(path, "coordinate system '" + crsName +
+                   "' is a Mercator projection whose scale factor at "
+                   "the DEM's centre (latitude " +
+                   num(lat) + ") is " + num(k) +
+                   ": its metres are not metres on the ground there, so every distance would be " +
+                   num(k) + " times too large; reproject it first: gdalwarp -t_srs EPSG:" +
+                   std::to_string(utmEpsg(lon, lat)) + " -r bilinear " + path +
+                   " dem_utm.tif (UTM zone " + std::to_string(utmZone(lon)) +
+                   (lat >= 0 ? "N" : "S") + ")");
+}
+
 /// Refuses coordinate systems gale cannot use as metres on a plane, saying how to fix it.
 Georeference checkCrs(const std::string& path, GDALDataset& ds, const double gt[6]) {
     const OGRSpatialReference* srs = ds.GetSpatialRef();
@@ -130,6 +178,7 @@ Georeference checkCrs(const std::string& path, GDALDataset& ds, const double gt[
         fail(path, "coordinate system '" + crsName + "' measures in " +
                        std::string(unitName ? unitName : "unknown units") + " (" + num(unit_m) +
                        " m); gale needs metres: gdalwarp -t_srs with a metre-based system");
+    checkScaleFactor(path, *srs, crsName, gt, cols, rows);
     Georeference g;
     char* wkt = nullptr;
     const char* options[] = {"FORMAT=WKT2", nullptr};
@@ -182,11 +231,17 @@ Dem loadDem(const DemSpec& spec) {
         fail(path, "the grid is rotated; resample it north-up first: gdalwarp " + path +
                        " dem_north_up.tif");
     const double pixelW = gt[1], pixelH = std::abs(gt[5]);
-    if (!(pixelW > 0.0) || !(pixelH > 0.0) ||
-        std::abs(pixelW - pixelH) > SQUARE_PIXEL_TOLERANCE * pixelW)
+    if (!(pixelW > 0.0) || !(pixelH > 0.0) || !std::isfinite(pixelW) || !std::isfinite(pixelH))
+        fail(path, "the geotransform gives pixels of " + num(pixelW) + " x " + num(gt[5]) +
+                       " m, not a positive size: its georeferencing is broken; export it again "
+                       "from its source");
+    if (std::abs(pixelW - pixelH) > SQUARE_PIXEL_TOLERANCE * pixelW) {
+        // The finer of the two sides, so the resample loses nothing.
+        const double side = std::min(pixelW, pixelH);
         fail(path, "pixels are " + num(pixelW) + " x " + num(pixelH) +
-                       " m; gale needs square pixels: gdalwarp -tr " + num(pixelW) + " " +
-                       num(pixelW) + " " + path + " dem_square.tif");
+                       " m; gale needs square pixels: gdalwarp -tr " + num(side) + " " + num(side) +
+                       " -r bilinear " + path + " dem_square.tif");
+    }
     const int cols = ds->GetRasterXSize(), rows = ds->GetRasterYSize();
 
     // The window: every pixel, or those whose centres lie in the crop rectangle.
@@ -207,9 +262,12 @@ Dem loadDem(const DemSpec& spec) {
     if (wc < 2 || wr < 2)
         fail(path, "too small for a DEM (" + dims + " pixels; need at least 2 x 2)");
     if (wc > MAX_SAMPLES_PER_SIDE || wr > MAX_SAMPLES_PER_SIDE)
-        fail(path, "too large (" + dims + " pixels; at most " +
-                       std::to_string(MAX_SAMPLES_PER_SIDE) +
-                       " per side): crop it (terrain.crop_m) or resample it (gdalwarp -tr)");
+        fail(path,
+             "too large (" + dims + " pixels; at most " + std::to_string(MAX_SAMPLES_PER_SIDE) +
+                 " per side): crop it (terrain.crop_m) or resample it: gdalwarp -tr " +
+                 num(pixelW * std::ceil(double(std::max(wc, wr)) / MAX_SAMPLES_PER_SIDE)) + " " +
+                 num(pixelW * std::ceil(double(std::max(wc, wr)) / MAX_SAMPLES_PER_SIDE)) +
+                 " -r bilinear " + path + " dem_coarse.tif");
     const double bytes = estimateTerrainBytes(wc, wr, std::max(1, spec.meshStride));
     if (bytes > MAX_TERRAIN_BYTES)
         fail(path, "a " + dims + " DEM and its render mesh need about " + formatBytes(bytes) +

@@ -95,6 +95,13 @@ TEST(View, UnderXvfbKeysToggleGrassAndSaveAScreenshotWithTheHeadsUpLine) {
     ASSERT_EQ(withGrass.exitCode, 0) << withGrass.err;
     ASSERT_EQ(noGrass.exitCode, 0) << noGrass.err;
     EXPECT_TRUE(fs::exists(dir / "gale_view_0.png")) << noGrass.err;
+    // S again in a new run: gale_view_0.png is taken, so it saves gale_view_1.png and leaves the
+    // earlier screenshot as it was.
+    const std::string first = readFile(dir / "gale_view_0.png");
+    const RunResult again = view("s..", dir / "again.png");
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_EQ(readFile(dir / "gale_view_0.png"), first);
+    EXPECT_TRUE(fs::exists(dir / "gale_view_1.png")) << again.err;
     // Hiding the shells leaves the bare ground: a large part of the frame changes.
     constexpr double MIN_CHANGED_FRACTION = 0.05;
     EXPECT_GT(differingFraction(dir / "grass.png", dir / "nograss.png"), MIN_CHANGED_FRACTION);

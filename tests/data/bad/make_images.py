@@ -51,11 +51,15 @@ values[6] = float("inf")
 write("inf_pixel.pfm", pfm(4, 4, values))
 values[6] = 1e30
 write("absurd_pixel.pfm", pfm(4, 4, values))
+values[6] = -5.0
+write("negative_pixel.pfm", pfm(4, 4, values))
 write("strip_1x64.png", png(1, 64, grey_rows(1, 64)))
 # Headers that promise enormous images over a few bytes of data: refused before allocating.
 tiny_idat = zlib.compress(b"\x00" * 64, 9)
 write("enormous_16000.png", png(16000, 16000, idat=tiny_idat))
 write("enormous_100000.png", png(100000, 100000, idat=tiny_idat))
+# Within a density map's 8192 per side, but far fewer bytes than deflate can squeeze it into.
+write("enormous_8000.png", png(8000, 8000, idat=tiny_idat))
 write("empty.png", b"")
 write("bad_crc.png", png(8, 8, grey_rows(8, 8), bad_crc=True))
 write("text.tif", b"This is not a TIFF; it is a note where an image was expected.\n")
