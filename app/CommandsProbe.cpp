@@ -14,12 +14,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "app/Cli.h"
+#include "app/Commands.h"
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/io/Interrupt.h"
@@ -231,6 +233,26 @@ void checkVdbProvenance(const std::string& path, const FieldProvenance& scene) {
         std::fprintf(stderr, "probe: warning: --vdb: %s: %s\n", path.c_str(), w.c_str());
 }
 
+/// A time series must come from one run: every file's provenance (terrain, crop, model, solver
+/// keys, wind) equals the first's, or InputError names the two files and what differs.
+void refuseMixedSeries(const std::vector<std::string>& paths) {
+    if (paths.size() < 2) return;
+    const std::map<std::string, std::string> first = sim::vdbGridStrings(paths.front(), "velocity");
+    for (size_t i = 1; i < paths.size(); ++i) {
+        const std::map<std::string, std::string> meta = sim::vdbGridStrings(paths[i], "velocity");
+        for (const char* key : {"gale_terrain_digest", "gale_crop", "gale_model",
+                                "gale_solver_digest", "gale_wind_digest"}) {
+            const auto a = first.find(key), b = meta.find(key);
+            const bool same = (a == first.end()) == (b == meta.end()) &&
+                              (a == first.end() || a->second == b->second);
+            if (!same)
+                throw InputError("--vdb: " + paths[i] + " and " + paths.front() +
+                                 " come from different runs (their " + std::string(key + 5) +
+                                 " differs): a time series must be one run's sequence");
+        }
+    }
+}
+
 int runProbe(const ProbeOptions& o) {
     SceneRunOptions sceneOptions;
     sceneOptions.scenePath = o.scenePath;
@@ -238,6 +260,17 @@ int runProbe(const ProbeOptions& o) {
     // momentum model steps (deferred there: it stops between two pseudo-time steps).
     InterruptScope interrupt("while probing: nothing written");
     const Scene scene = loadScene(sceneOptions);
+    // Nothing this run reads is replaced by what it writes (docs/reliability.md): the scene and
+    // every file it names, the points, the .vdb files; a CSV to a device or FIFO is a stream.
+    if (!o.outPath.empty()) {
+        std::vector<RunPath> inputs = sceneInputs(scene);
+        inputs.push_back({o.pointsPath, "the points file"});
+        for (const std::string& v : o.vdbPaths) inputs.push_back({v, "--vdb"});
+        refuseAliases(inputs, {{o.outPath, "-o (the probe output)",
+                                /*streamable=*/!isVectorOutput(o.outPath)}});
+        checkProbeOutputPath(o.outPath);
+    }
+    const bool toStream = !o.outPath.empty() && isStreamOutput(o.outPath);
     const SceneTerrain terrain = buildTerrain(scene);
     checkSceneFieldInputs(scene);
     std::unique_ptr<sim::AirDomain> domain = buildSceneDomain(scene, terrain.field);
@@ -262,10 +295,9 @@ int runProbe(const ProbeOptions& o) {
             throw InputError("--reference: point '" + o.reference + "' (" + table.where(ref->in) +
                              ") has no wind: " + ref->reason);
     }
-    if (!o.outPath.empty()) checkProbeOutputPath(o.outPath);  // before any work
     const std::filesystem::path outFolder = std::filesystem::path(o.outPath).parent_path();
     const std::string outFolderText = outFolder.empty() ? "." : outFolder.string();
-    if (!o.outPath.empty()) (void)checkOutputFolder(outFolderText, "-o", "probe", 0);
+    if (!o.outPath.empty() && !toStream) (void)checkOutputFolder(outFolderText, "-o", "probe", 0);
     const sim::AmbientWind& ambient = scene.wind.ambient;
     const bool series =
         o.vdbPaths.size() > 1 || (o.vdbPaths.empty() && scene.wind.kind == WindKind::Unsteady);
@@ -275,6 +307,7 @@ int runProbe(const ProbeOptions& o) {
     if (!o.vdbPaths.empty()) {
         const FieldProvenance provenance = fieldProvenance(scene, terrain.field);
         for (const std::string& path : o.vdbPaths) checkVdbProvenance(path, provenance);
+        refuseMixedSeries(o.vdbPaths);
         for (const std::string& path : o.vdbPaths) {
             sim::WindField field(domain->layout(), domain->terrainShared(), domain->airFlags());
             double t_s;
@@ -344,7 +377,7 @@ int runProbe(const ProbeOptions& o) {
             std::fflush(stdout) != 0)
             throw std::runtime_error("stdout: cannot write the probe table");
     } else {
-        prepareOutputFolder(outFolderText, "-o");
+        if (!toStream) prepareOutputFolder(outFolderText, "-o");
         if (isVectorOutput(o.outPath))
             writeProbeVector(o.outPath, out, terrain.georef);
         else

@@ -294,23 +294,27 @@ std::string probeCsv(const ProbeOutput& table) {
     return out;
 }
 
-bool isVectorOutput(const std::string& path) {
+bool isVectorOutput(const std::string& path) { return !vectorDriverFor(path).empty(); }
+
+void checkProbeOutputPath(const std::string& path) {
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
-    return !ext.empty() && ext != ".csv" && ext != ".txt";
-}
-
-void checkProbeOutputPath(const std::string& path) {
-    if (isVectorOutput(path) && vectorDriverFor(path).empty())
-        throw InputError("-o: '" + path +
-                         "': write the table as .csv, or as a vector file by extension: .gpkg "
-                         "(GeoPackage), .geojson, .fgb (FlatGeobuf)");
+    // Vector formats OGR has but gale does not write: several files (a shapefile), or a fixed
+    // coordinate system (KML); a user asking for them must not get a CSV under their name.
+    for (const char* other : {".shp", ".kml", ".kmz", ".gml", ".sqlite", ".tab", ".mif", ".dxf"})
+        if (ext == other)
+            throw InputError("-o: '" + path +
+                             "': gale writes the table as .csv, or as a single-file vector "
+                             "format by extension: .gpkg (GeoPackage), .geojson, .fgb "
+                             "(FlatGeobuf)");
 }
 
 void writeProbeVector(const std::string& path, const ProbeOutput& table, const Georeference& geo) {
     checkProbeOutputPath(path);
     const std::string driverName = vectorDriverFor(path);
+    if (driverName.empty())
+        throw InputError("-o: '" + path + "' is not a vector format gale writes");
     ensureGdalRegistered();
     QuietOgr quiet;
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driverName.c_str());

@@ -74,11 +74,12 @@ struct ProbeOutput {
 /// The table as RFC 4180 CSV text.
 std::string probeCsv(const ProbeOutput& table);
 
-/// True when `path`'s extension picks an OGR vector format (anything but .csv and .txt).
+/// True when `path`'s extension picks a vector format gale writes (.gpkg, .geojson, .json, .fgb);
+/// any other name is written as CSV.
 bool isVectorOutput(const std::string& path);
 
-/// Throws InputError "-o: ..." unless `path` ends in .csv, .txt or an extension
-/// writeProbeVector writes (.gpkg, .geojson, .json, .fgb).
+/// Throws InputError "-o: ..." for an extension of a vector format gale does not write (.shp,
+/// .kml, ...), so that such a name never receives a CSV.
 void checkProbeOutputPath(const std::string& path);
 
 /// Writes the table to `path` atomically in the OGR format its extension picks, point features in

@@ -165,11 +165,29 @@ std::string steadyModelText(const Scene& scene) {
 
 std::unique_ptr<sim::AirDomain> buildSceneDomain(const Scene& scene,
                                                  const sim::Heightfield& terrain) {
+    std::unique_ptr<sim::AirDomain> domain;
     try {
-        return std::make_unique<sim::AirDomain>(terrain, scene.solver.domain);
+        domain = std::make_unique<sim::AirDomain>(terrain, scene.solver.domain);
     } catch (const std::invalid_argument& e) {
         rethrowAsSceneError(scene, "solver", e);  // at the key's line when it names one
     }
+    // The log law is zero at and below z0 + d above the ground: when that reaches above the
+    // domain's highest air over the lowest ground, the whole field would be calm and "converge"
+    // at once (docs/reliability.md).
+    const sim::AmbientWind& a = scene.wind.ambient;
+    const double calm_m = a.roughness_m + (scene.solver.model == sim::SteadyModel::Momentum
+                                               ? scene.solver.momentum.displacementHeight_m
+                                               : 0.0);
+    const double reach_m = domain->wsTop_m() - terrain.minHeight_m();
+    if (scene.wind.kind != WindKind::PointSource && a.profile == sim::WindProfile::LogLaw &&
+        calm_m >= reach_m)
+        throw SceneError(scene.where("wind.roughness_m") + ": roughness_m = " +
+                         formatG(a.roughness_m, 4) + " m makes the log profile zero up to " +
+                         formatG(calm_m, 4) + " m above the ground (z0 + d), and the air domain " +
+                         "reaches only " + formatG(reach_m, 4) +
+                         " m above the lowest ground: the whole field would be calm (lower " +
+                         "wind.roughness_m or raise solver.top_m)");
+    return domain;
 }
 
 coupling::NearGround nearGroundOf(const Scene& scene) {

@@ -188,7 +188,13 @@ TEST(SceneField, CheckRefusesWhatSolveRefuses) {
     std::string power = HILL_SCENE;
     power.replace(power.find("profile = \"log\""), 15, "profile = \"uniform\"");
     test::writeFile(dir / "p.toml", power + "model = \"momentum\"\n");
-    for (const char* scene : {"d.toml", "p.toml"}) {
+    // A roughness above the whole domain (z0 100 m under a 40 m top, reference 300 m): the log
+    // profile is zero everywhere, a calm field that would "converge in 0 iterations".
+    std::string rough = HILL_SCENE;
+    rough.replace(rough.find("reference_height_m = 10.0"), 25, "reference_height_m = 300.0");
+    rough.replace(rough.find("roughness_m = 0.03"), 18, "roughness_m = 100.0");
+    test::writeFile(dir / "r.toml", rough);
+    for (const char* scene : {"d.toml", "p.toml", "r.toml"}) {
         const auto solve = test::runGale({"solve", dir / scene, "-o", dir / "out/w.vdb"});
         EXPECT_EQ(solve.exitCode, 2) << solve.describe();
         const auto check = test::runGale({"check", dir / scene});

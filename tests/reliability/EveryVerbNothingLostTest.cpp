@@ -492,5 +492,52 @@ TEST(EveryOutput, VorticityConfinementThatGrowsTheEnergyExitsThreeAndSaysSo) {
               std::string::npos);
 }
 
+TEST(EveryInput, ProbeOutputOverAnyOfItsInputsIsRefusedBeforeAnyWork) {
+    TempDir cwd;
+    writeFile(cwd / "s.toml", SMALL_SOLVE);
+    writeFile(cwd / "pts.csv", "name,x,y,height_agl_m\na,1,4,1\n");
+    ASSERT_EQ(run({"solve", "s.toml", "-o", "w.vdb"}, cwd.str()).exitCode, 0);
+    fs::create_directories(cwd / "sub");
+    expectRefused({"probe", "s.toml", "pts.csv", "-o", "pts.csv"}, cwd.str(),
+                  {"-o (the probe output)", "the points file"});
+    expectRefused({"probe", "s.toml", "pts.csv", "-o", "sub/../pts.csv"}, cwd.str(),
+                  {"-o (the probe output)", "the points file"});
+    expectRefused({"probe", "s.toml", "pts.csv", "-o", "s.toml"}, cwd.str(),
+                  {"-o (the probe output)", "the scene"});
+    expectRefused({"probe", "s.toml", "pts.csv", "--vdb", "w.vdb", "-o", "w.vdb"}, cwd.str(),
+                  {"-o (the probe output)", "--vdb"});
+}
+
+TEST(EveryOutput, AProbeTableToADeviceIsAStreamAndTheDeviceStays) {
+    TempDir cwd;
+    writeFile(cwd / "s.toml", SMALL_SOLVE);
+    writeFile(cwd / "pts.csv", "name,x,y,height_agl_m\na,1,4,1\n");
+    const RunResult ok = run({"probe", "s.toml", "pts.csv", "-o", "/dev/null"}, cwd.str());
+    EXPECT_EQ(ok.exitCode, 0) << ok.describe();
+    EXPECT_TRUE(fs::is_character_file("/dev/null"));
+    const RunResult full = run({"probe", "s.toml", "pts.csv", "-o", "/dev/full"}, cwd.str());
+    EXPECT_EQ(full.exitCode, 1) << full.describe();
+    EXPECT_TRUE(fs::is_character_file("/dev/full"));
+}
+
+TEST(EveryInput, AProbeSeriesOfVdbFilesFromTwoRunsIsRefused) {
+    TempDir cwd;
+    writeFile(cwd / "s.toml", SMALL_SOLVE);
+    // The same scene with another wind: its field belongs to another run.
+    std::string windier = SMALL_SOLVE;
+    windier.replace(windier.find("kind = \"solved\""), 15, "kind = \"solved\"\nspeed_mps = 9.0");
+    writeFile(cwd / "t.toml", windier);
+    writeFile(cwd / "pts.csv", "name,x,y,height_agl_m\na,1,4,1\n");
+    ASSERT_EQ(run({"solve", "s.toml", "-o", "a.vdb"}, cwd.str()).exitCode, 0);
+    ASSERT_EQ(run({"solve", "t.toml", "-o", "b.vdb"}, cwd.str()).exitCode, 0);
+    const RunResult r =
+        run({"probe", "s.toml", "pts.csv", "--vdb", "a.vdb", "b.vdb", "-o", "o.csv"}, cwd.str());
+    EXPECT_EQ(r.exitCode, 2) << r.describe();
+    EXPECT_NE(r.err.find("come from different runs (their wind_digest differs)"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(cwd / "o.csv"));
+}
+
 }  // namespace
 }  // namespace gale::reliability
