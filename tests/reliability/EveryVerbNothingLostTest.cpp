@@ -533,8 +533,7 @@ TEST(EveryInput, AProbeSeriesOfVdbFilesFromTwoRunsIsRefused) {
     const RunResult r =
         run({"probe", "s.toml", "pts.csv", "--vdb", "a.vdb", "b.vdb", "-o", "o.csv"}, cwd.str());
     EXPECT_EQ(r.exitCode, 2) << r.describe();
-    EXPECT_NE(r.err.find("come from different runs (their wind_digest differs)"),
-              std::string::npos)
+    EXPECT_NE(r.err.find("come from different runs (their wind_digest differs)"), std::string::npos)
         << r.err;
     EXPECT_FALSE(fs::exists(cwd / "o.csv"));
 }
