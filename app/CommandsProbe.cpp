@@ -215,7 +215,9 @@ void appendRows(ProbeOutput& out, const std::vector<ProbePoint>& points, ProbeSa
 
 /// Refuses a .vdb whose terrain or crop differ from the scene's (InputError naming what
 /// differs), and warns on stderr when only the model, the solver keys or the wind differ.
-void checkVdbProvenance(const std::string& path, const FieldProvenance& scene) {
+/// Returns the file's metadata strings (read once, without the trees).
+std::map<std::string, std::string> checkVdbProvenance(const std::string& path,
+                                                      const FieldProvenance& scene) {
     std::map<std::string, std::string> meta;
     try {
         meta = sim::vdbGridStrings(path, "velocity");
@@ -231,15 +233,17 @@ void checkVdbProvenance(const std::string& path, const FieldProvenance& scene) {
     }
     for (const std::string& w : diff.warnings)
         std::fprintf(stderr, "probe: warning: --vdb: %s: %s\n", path.c_str(), w.c_str());
+    return meta;
 }
 
 /// A time series must come from one run: every file's provenance (terrain, crop, model, solver
 /// keys, wind) equals the first's, or InputError names the two files and what differs.
-void refuseMixedSeries(const std::vector<std::string>& paths) {
+void refuseMixedSeries(const std::vector<std::string>& paths,
+                       const std::vector<std::map<std::string, std::string>>& metadata) {
     if (paths.size() < 2) return;
-    const std::map<std::string, std::string> first = sim::vdbGridStrings(paths.front(), "velocity");
+    const std::map<std::string, std::string>& first = metadata.front();
     for (size_t i = 1; i < paths.size(); ++i) {
-        const std::map<std::string, std::string> meta = sim::vdbGridStrings(paths[i], "velocity");
+        const std::map<std::string, std::string>& meta = metadata[i];
         for (const char* key : {"gale_terrain_digest", "gale_crop", "gale_model",
                                 "gale_solver_digest", "gale_wind_digest"}) {
             const auto a = first.find(key), b = meta.find(key);
@@ -306,8 +310,10 @@ int runProbe(const ProbeOptions& o) {
     bool ok = true;
     if (!o.vdbPaths.empty()) {
         const FieldProvenance provenance = fieldProvenance(scene, terrain.field);
-        for (const std::string& path : o.vdbPaths) checkVdbProvenance(path, provenance);
-        refuseMixedSeries(o.vdbPaths);
+        std::vector<std::map<std::string, std::string>> metadata;
+        for (const std::string& path : o.vdbPaths)
+            metadata.push_back(checkVdbProvenance(path, provenance));
+        refuseMixedSeries(o.vdbPaths, metadata);
         for (const std::string& path : o.vdbPaths) {
             sim::WindField field(domain->layout(), domain->terrainShared(), domain->airFlags());
             double t_s;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "app/io/Errors.h"
+#include "app/scene/GdalSupport.h"
 #include "app/scene/SceneParser.h"
 #include "base/Numbers.h"
 
@@ -42,30 +43,6 @@ std::string num(double v) {
     std::snprintf(buf, sizeof buf, "%.10g", v);
     return buf;
 }
-
-/// GDAL's last error message, one line ("unknown error" when it said nothing).
-std::string gdalMessage() {
-    std::string s = CPLGetLastErrorMsg();
-    s = s.substr(0, s.find('\n'));
-    return s.empty() ? "unknown error" : s;
-}
-
-/// Silences GDAL's own printing for its lifetime; errors are read with gdalMessage().
-class QuietGdal {
-  public:
-    QuietGdal() {
-        CPLPushErrorHandler(CPLQuietErrorHandler);
-        CPLErrorReset();
-    }
-    ~QuietGdal() { CPLPopErrorHandler(); }
-    QuietGdal(const QuietGdal&) = delete;
-    QuietGdal& operator=(const QuietGdal&) = delete;
-};
-
-struct DatasetCloser {
-    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 DatasetPtr openRaster(const std::string& path) {
     std::error_code ec;

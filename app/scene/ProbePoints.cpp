@@ -19,33 +19,13 @@
 
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
+#include "app/scene/GdalSupport.h"
 #include "base/Numbers.h"
 
 namespace gale::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// GDAL's own messages kept off stderr while this lives; the last one is asked for by message().
-class QuietOgr {
-  public:
-    QuietOgr() {
-        CPLPushErrorHandler(CPLQuietErrorHandler);
-        CPLErrorReset();
-    }
-    ~QuietOgr() { CPLPopErrorHandler(); }
-    QuietOgr(const QuietOgr&) = delete;
-    QuietOgr& operator=(const QuietOgr&) = delete;
-    static std::string message() {
-        const char* m = CPLGetLastErrorMsg();
-        return m && *m ? m : "no reason given";
-    }
-};
-
-struct DatasetCloser {
-    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 /// Decimal notation only: digits with an optional point and exponent (no hex, inf, nan).
 const std::regex& decimalNumber() {
@@ -143,13 +123,12 @@ ProbeTable readProbeTable(const std::string& path, const Georeference& geo) {
         throw InputError(path + ": too large for a probe table (at most " +
                          formatG(MAX_PROBE_FILE_BYTES / MIB, 3) + " MiB)");
     ensureGdalRegistered();
-    QuietOgr quiet;
+    QuietGdal quiet;
     const char* options[] = {"AUTODETECT_TYPE=NO", nullptr};  // CSV cells stay text: parsed here
     DatasetPtr ds(GDALDataset::FromHandle(
         GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, options, nullptr)));
     if (!ds)
-        throw InputError(path + ": not a table of points GDAL can read (" + QuietOgr::message() +
-                         ")");
+        throw InputError(path + ": not a table of points GDAL can read (" + gdalMessage() + ")");
     if (ds->GetLayerCount() < 1) throw InputError(path + ": holds no layer of points");
     OGRLayer* layer = ds->GetLayer(0);
     ProbeTable t;
@@ -209,7 +188,7 @@ ProbeTable readProbeTable(const std::string& path, const Georeference& geo) {
             if (!toDem)
                 failHeader("cannot reproject the points from " +
                            std::string(src.GetName() ? src.GetName() : "their coordinate system") +
-                           " to the DEM's " + geo.crsName + " (" + QuietOgr::message() + ")");
+                           " to the DEM's " + geo.crsName + " (" + gdalMessage() + ")");
         }
     }
 
@@ -316,7 +295,7 @@ void writeProbeVector(const std::string& path, const ProbeOutput& table, const G
     if (driverName.empty())
         throw InputError("-o: '" + path + "' is not a vector format gale writes");
     ensureGdalRegistered();
-    QuietOgr quiet;
+    QuietGdal quiet;
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driverName.c_str());
     if (!driver) throw InputError("-o: this GDAL has no " + driverName + " driver for " + path);
     const std::string tmp = temporaryPathFor(path);
@@ -326,7 +305,7 @@ void writeProbeVector(const std::string& path, const ProbeOutput& table, const G
     };
     {
         DatasetPtr ds(driver->Create(tmp.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-        if (!ds) cannot(QuietOgr::message());
+        if (!ds) cannot(gdalMessage());
         std::unique_ptr<OGRSpatialReference> srs;
         if (geo.georeferenced()) {
             srs = std::make_unique<OGRSpatialReference>();
@@ -334,7 +313,7 @@ void writeProbeVector(const std::string& path, const ProbeOutput& table, const G
             srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
         }
         OGRLayer* layer = ds->CreateLayer("probe", srs.get(), wkbPoint, nullptr);
-        if (!layer) cannot(QuietOgr::message());
+        if (!layer) cannot(gdalMessage());
         // A column is a number field when every cell that holds something holds a number.
         std::vector<bool> numeric(table.columns.size(), true);
         for (const auto& row : table.rows)
@@ -342,7 +321,7 @@ void writeProbeVector(const std::string& path, const ProbeOutput& table, const G
                 if (!row[i].number && !row[i].text.empty()) numeric[i] = false;
         for (size_t i = 0; i < table.columns.size(); ++i) {
             OGRFieldDefn field(table.columns[i].c_str(), numeric[i] ? OFTReal : OFTString);
-            if (layer->CreateField(&field) != OGRERR_NONE) cannot(QuietOgr::message());
+            if (layer->CreateField(&field) != OGRERR_NONE) cannot(gdalMessage());
         }
         for (const auto& row : table.rows) {
             OGRFeature feature(layer->GetLayerDefn());
@@ -356,11 +335,11 @@ void writeProbeVector(const std::string& path, const ProbeOutput& table, const G
             const ProbeCell& y = row[size_t(table.yColumn)];
             OGRPoint point(x.number.value_or(0.0), y.number.value_or(0.0));
             feature.SetGeometry(&point);
-            if (layer->CreateFeature(&feature) != OGRERR_NONE) cannot(QuietOgr::message());
+            if (layer->CreateFeature(&feature) != OGRERR_NONE) cannot(gdalMessage());
         }
         ds->FlushCache();
         if (CPLGetLastErrorType() == CE_Failure || CPLGetLastErrorType() == CE_Fatal)
-            cannot(QuietOgr::message());
+            cannot(gdalMessage());
     }
     commitTemporary(tmp, path);
 }
