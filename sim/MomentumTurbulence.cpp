@@ -76,6 +76,17 @@ struct RowScratch {
 
 }  // namespace
 
+const char* turbulenceClosureName(TurbulenceClosure c) {
+    return c == TurbulenceClosure::KEpsilon ? "k_epsilon" : "mixing_length";
+}
+
+TurbulenceClosure turbulenceClosureFromName(const std::string& name) {
+    for (TurbulenceClosure c : {TurbulenceClosure::MixingLength, TurbulenceClosure::KEpsilon})
+        if (name == turbulenceClosureName(c)) return c;
+    throw ParameterError("solver.turbulence", "\"" + name + "\"",
+                         "one of \"mixing_length\", \"k_epsilon\"");
+}
+
 void validateWallAndMixing(double displacementHeight_m, double mixingLengthMax_m) {
     if (!(displacementHeight_m >= 0.0) || !std::isfinite(displacementHeight_m))
         throw ParameterError("solver.displacement_height_m", num(displacementHeight_m),
@@ -89,6 +100,8 @@ void SurfaceLayerSettings::validate() const {
     if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
         throw ParameterError("wind.roughness_m", num(roughness_m), "must be > 0 m and finite");
     validateWallAndMixing(displacementHeight_m, mixingLengthMax_m);
+    if (closure == TurbulenceClosure::KEpsilon)
+        throw std::logic_error("SurfaceLayerSettings: the k-epsilon closure is not built yet");
     if (wallStress && !eddyViscosity)
         throw std::logic_error("SurfaceLayerSettings: the wall stress needs the eddy viscosity");
     if (balanced && !(eddyViscosity && wallStress))
@@ -238,6 +251,7 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
     auto zi = [&G](int i, int j, int k) { return G.faceZIndex(i, j, k); };
     mStrainH.assign(G.cellCount(), 0.0);
     mNuZ.assign(G.count(Placement::FaceZ), 0.0);
+    mShearZ.assign(G.count(Placement::FaceZ), 0.0);
     // Cell-centred part of 2 S_ij S_ij without the vertical shears: 2 (du/dx^2 + dv/dy^2 + dw/dz^2)
     // + (du/dy + dv/dx)^2, central differences of cell-centred velocities across the cell.
     tbb::parallel_for(0, nz, [&](int k) {
@@ -286,7 +300,8 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
                     jp > jm ? (W[zi(i, jp, k)] - W[zi(i, jm, k)]) / ((jp - jm) * h) : 0.0;
                 const double s2 = (dudz + dwdx) * (dudz + dwdx) + (dvdz + dwdy) * (dvdz + dwdy) +
                                   0.5 * (mStrainH[zi(i, j, k - 1)] + mStrainH[zi(i, j, k)]);
-                mNuZ[zi(i, j, k)] = mNuMol + double(mL2Z[zi(i, j, k)]) * std::sqrt(s2);
+                mShearZ[zi(i, j, k)] = std::sqrt(s2);
+                mNuZ[zi(i, j, k)] = mNuMol + double(mL2Z[zi(i, j, k)]) * mShearZ[zi(i, j, k)];
             }
     });
     // The wall-level and top faces of each column take the value of their air neighbour (the
@@ -303,7 +318,23 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
             if (kb < 0) continue;
             mNuZ[zi(i, j, kb)] = kb + 1 < nz ? mNuZ[zi(i, j, kb + 1)] : mNuMol;
             mNuZ[zi(i, j, nz)] = nz - 1 > kb ? mNuZ[zi(i, j, nz - 1)] : mNuZ[zi(i, j, kb)];
+            mShearZ[zi(i, j, kb)] = kb + 1 < nz ? mShearZ[zi(i, j, kb + 1)] : 0.0;
+            mShearZ[zi(i, j, nz)] = nz - 1 > kb ? mShearZ[zi(i, j, nz - 1)] : mShearZ[zi(i, j, kb)];
         }
+    });
+    // Local-equilibrium k on the cells (turbulentKineticEnergy_m2ps2): the two z-faces' mean.
+    mTke.assign(G.cellCount(), 0.0);
+    const double rootCmu = std::sqrt(TKE_EQUILIBRIUM_CMU);
+    tbb::parallel_for(0, nz, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                if (!D.isAir(i, j, k)) continue;
+                auto kz = [&](int kk) {
+                    const size_t f = zi(i, j, kk);
+                    return std::max(mNuZ[f] - mNuMol, 0.0) * mShearZ[f] / rootCmu;
+                };
+                mTke[zi(i, j, k)] = 0.5 * (kz(k) + kz(k + 1));
+            }
     });
 }
 

@@ -52,6 +52,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "sim/AirDomain.h"
@@ -65,8 +66,24 @@ namespace gale::sim {
 /// the surface-layer stresses need.
 void validateWallAndMixing(double displacementHeight_m, double mixingLengthMax_m);
 
+/// The turbulence closure of the surface-layer stresses (scene key solver.turbulence).
+enum class TurbulenceClosure {
+    /// Prandtl's mixing length with Blackadar's (1962) length and the balance force of the
+    /// ambient profile (the file comment).
+    MixingLength,
+    /// The standard k-epsilon model (Launder and Spalding 1974) with Richards and Hoxey's (1993)
+    /// inflow and rough-wall functions: transported k and epsilon on the cells, no balance force.
+    KEpsilon,
+};
+
+/// "mixing_length", "k_epsilon" and back; fromName throws gale::ParameterError
+/// (solver.turbulence) listing the valid names.
+const char* turbulenceClosureName(TurbulenceClosure c);
+TurbulenceClosure turbulenceClosureFromName(const std::string& name);
+
 struct SurfaceLayerSettings {
-    bool enabled = false;       ///< false: no eddy viscosity, no wall stress
+    bool enabled = false;  ///< false: no eddy viscosity, no wall stress
+    TurbulenceClosure closure = TurbulenceClosure::MixingLength;
     double roughness_m = 0.03;  ///< aerodynamic roughness length z0, metres, > 0
     double displacementHeight_m =
         0.0;  ///< displacement height d (about 2/3 of tall grass), m, >= 0
@@ -112,8 +129,17 @@ class TurbulentStress {
 
     /// nu_t (m^2/s) on the z-faces of the last apply() (WindField's w layout), 0 before.
     const std::vector<double>& eddyViscosityZ_m2ps() const { return mNuZ; }
+    /// Turbulent kinetic energy k (m^2/s^2) on the cells of the last apply() (GridIndex's cell
+    /// layout, 0 in solid cells; empty before the first apply). The mixing-length closure carries
+    /// no k of its own: it reports the local-equilibrium value (production equals dissipation, so
+    /// the shear stress nu_t |S| is sqrt(C_mu) k as in the log layer; Pope 2000, section 10.3),
+    ///   k = (nu_t - nu) |S| / sqrt(C_mu),  C_mu = TKE_EQUILIBRIUM_CMU,
+    /// averaged from the two z-faces of each cell.
+    const std::vector<double>& turbulentKineticEnergy_m2ps2() const { return mTke; }
+    /// C_mu of the equilibrium k above (the standard k-epsilon value, Launder and Spalding 1974).
+    static constexpr double TKE_EQUILIBRIUM_CMU = 0.09;
     /// Bytes per cell of the box this object holds and uses while applying (memory estimates).
-    static constexpr double BYTES_PER_CELL = 8.0 * 6 + 4.0 + 3.0;
+    static constexpr double BYTES_PER_CELL = 8.0 * 8 + 4.0 + 3.0;
 
   private:
     void computeEddyViscosity(const std::vector<double>& u, const std::vector<double>& v,
@@ -129,6 +155,7 @@ class TurbulentStress {
     std::vector<double> mForceX, mForceY;  // balance force on x- and y-faces, m/s^2
     std::vector<double> mTopX, mTopY;      // top stress per column, m^2/s^2
     std::vector<double> mNuZ, mStrainH, mOld, mNuFace;
+    std::vector<double> mShearZ, mTke;  // |S| on z-faces (1/s), k on cells (m^2/s^2)
 };
 
 }  // namespace gale::sim

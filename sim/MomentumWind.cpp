@@ -138,6 +138,7 @@ constexpr int CYCLE_WINDOW_STEPS = 96;
 /// What one level leaves for the next: its steady field and its mass-consistent start.
 struct LevelResult {
     WindField field, start;
+    std::vector<double> tke_m2ps2;  ///< the closure's k after the level's last step
 };
 
 /// The coarse level's correction to its mass-consistent field, coarse.field - coarse.start,
@@ -228,6 +229,7 @@ SurfaceLayerSettings momentumSurfaceLayer(const AmbientWind& ambient,
                                           const MomentumSettings& settings) {
     SurfaceLayerSettings s;
     s.enabled = settings.eddyViscosity || settings.wallStress;
+    s.closure = settings.turbulence;
     s.roughness_m = ambient.roughness_m;
     s.displacementHeight_m = settings.displacementHeight_m;
     s.mixingLengthMax_m = settings.mixingLengthMax_m;
@@ -362,6 +364,7 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
     lv.seconds = since(t0);
     rep.levels.push_back(lv);
     out.field = solver.field();
+    out.tke_m2ps2 = solver.turbulentKineticEnergy_m2ps2();
     return out;
 }
 
@@ -427,9 +430,10 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
     }
     // A coarse level that went non-finite is no start: the finest level then starts afresh.
     const bool fromCoarse = levels > 0 && rep.levels.back().finite;
-    res.field = iterateLevel(domain, ambient, settings, fromCoarse ? &previous : nullptr, 0,
-                             levels + 1, rep)
-                    .field;
+    LevelResult finest = iterateLevel(domain, ambient, settings, fromCoarse ? &previous : nullptr,
+                                      0, levels + 1, rep);
+    res.field = std::move(finest.field);
+    res.tke_m2ps2 = std::move(finest.tke_m2ps2);
     const MomentumLevel& fine = rep.levels.back();
     rep.iterations = 0;
     for (const MomentumLevel& lv : rep.levels) rep.iterations += lv.iterations;

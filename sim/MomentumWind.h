@@ -83,6 +83,8 @@ using MomentumStepCallback =
 
 struct MomentumSettings {
     PseudoTimeAdvection advection = PseudoTimeAdvection::SemiLagrangian;
+    /// The closure of the Reynolds stresses (solver.turbulence; sim/MomentumTurbulence.h).
+    TurbulenceClosure turbulence = TurbulenceClosure::MixingLength;
     /// Semi-Lagrangian pseudo-time step: dt = cfl h / U_max (U_max the start field's largest face
     /// speed), > 0. Stable at any cfl; larger steps converge in fewer iterations with a larger
     /// error.
@@ -216,6 +218,11 @@ inline constexpr double MIN_CYCLE_CORRELATION = 0.5;
 struct MomentumWindResult {
     WindField field;
     MomentumReport report;
+    /// Turbulent kinetic energy k (m^2/s^2) on the domain's cells (GridIndex's cell layout, 0 in
+    /// solid cells) after the finest level's last pseudo-time step
+    /// (TurbulentStress::turbulentKineticEnergy_m2ps2: the closure's k); empty when the eddy
+    /// viscosity is off or no step of the finest level ran.
+    std::vector<double> tke_m2ps2;
 };
 
 /// Extra bytes per cell of the box a momentum solve holds beyond the mass-consistent solve

@@ -47,6 +47,7 @@ SteadyModelResult solveSteadyModel(const AirDomain& domain, const AmbientWind& a
     s.message = r.report.message;
     s.maxDivergenceScaled = r.report.maxDivergenceScaled;
     out.momentum = std::move(r.report);
+    out.tke_m2ps2 = std::move(r.tke_m2ps2);
     return out;
 }
 

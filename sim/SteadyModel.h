@@ -13,6 +13,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "sim/AirDomain.h"
 #include "sim/AmbientWind.h"
@@ -41,6 +42,9 @@ struct SteadyModelResult {
     WindField field;
     SolveReport report;
     std::optional<MomentumReport> momentum;
+    /// The momentum model's turbulent kinetic energy (MomentumWindResult::tke_m2ps2); empty for
+    /// the mass-consistent model, which has no turbulence.
+    std::vector<double> tke_m2ps2;
 };
 
 /// Solves the chosen steady model: the mass-consistent field with `weights` and `settings`, or

@@ -225,6 +225,11 @@ double UnsteadyWindSolver::maxDivergenceScaled() const {
     return maxDiv / mRefSpeed_mps;
 }
 
+const std::vector<double>& UnsteadyWindSolver::turbulentKineticEnergy_m2ps2() const {
+    static const std::vector<double> none;
+    return mStress ? mStress->turbulentKineticEnergy_m2ps2() : none;
+}
+
 void UnsteadyWindSolver::extrapolateClosedFaces() {
     detail::extrapolateFaces(mField.u_mps(), mOkX, mGrid, Placement::FaceX, EXTRAPOLATION_LAYERS);
     detail::extrapolateFaces(mField.v_mps(), mOkY, mGrid, Placement::FaceY, EXTRAPOLATION_LAYERS);

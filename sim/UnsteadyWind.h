@@ -150,6 +150,10 @@ class UnsteadyWindSolver {
     [[nodiscard]] std::vector<StepReport> advanceTo(double t_s);
 
     const WindField& field() const { return mField; }
+    /// Turbulent kinetic energy (m^2/s^2) on the cells after the last step's surface-layer stress
+    /// step (TurbulentStress::turbulentKineticEnergy_m2ps2); empty without the surface layer or
+    /// before the first step.
+    const std::vector<double>& turbulentKineticEnergy_m2ps2() const;
     /// The field for edits from outside the step (sources the viewer drops in, tests' seeding);
     /// call project() after editing.
     WindField& editField() { return mField; }

@@ -418,6 +418,7 @@ SceneField solveSceneField(const Scene& scene, std::unique_ptr<sim::AirDomain> d
             out.field = std::move(r.field);
             out.report = r.report;
             out.momentum = std::move(r.momentum);
+            out.tke_m2ps2 = std::move(r.tke_m2ps2);
         } else {
             // The mass-consistent branch of sim::solveSteadyModel, with the solver kept for the
             // report's memory figure.

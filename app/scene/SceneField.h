@@ -132,8 +132,12 @@ struct SceneField {
     /// steps over all levels; converged only when the finest level converged and stayed finite).
     sim::SolveReport report;
     std::optional<sim::MomentumReport> momentum;  ///< solver.model = "momentum"
-    double domain_s = 0.0;                        ///< building the domain, seconds
-    double solve_s = 0.0;                         ///< the steady solve, seconds
+    /// Turbulent kinetic energy k (m^2/s^2) on the domain's cells (GridIndex cell layout; sample it
+    /// with sim::sampleAt(grid, Placement::Cell, ...)), from the momentum model's closure
+    /// (sim/MomentumTurbulence.h); empty for the mass-consistent model, which has no turbulence.
+    std::vector<double> tke_m2ps2;
+    double domain_s = 0.0;            ///< building the domain, seconds
+    double solve_s = 0.0;             ///< the steady solve, seconds
     double solverMemory_bytes = 0.0;  ///< the mass-consistent solver's levels (0: momentum)
     std::string modelText;            ///< one line: the model that ran, with its closure and step
     /// FNV-1a 64 of the face velocities' bits (hex): equal digests, the same field to the last
