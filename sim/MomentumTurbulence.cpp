@@ -13,6 +13,8 @@
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
 #include "sim/Format.h"
+#include "sim/KEpsilon.h"
+#include "sim/Tridiagonal.h"
 
 namespace gale::sim {
 namespace {
@@ -33,29 +35,6 @@ double wallHeight_m(const GridLayout& L, int kl, double ground_m) {
     const double dz = L.dz_m(kl);
     return std::clamp(L.zFace_m(kl + 1) - ground_m, MIN_WALL_HEIGHT_CELLS * dz,
                       MAX_WALL_HEIGHT_CELLS * dz);
-}
-
-/// Solves `count` tridiagonal systems at once, sub[e] x[e - count] + diag[e] x[e] + sup[e]
-/// x[e + count] = rhs[e] with e = k count + i for system i in [0, count) and row k in [0, n), by
-/// the Thomas algorithm (stable without pivoting for the diagonally dominant systems of the
-/// stress step), level by level so that the inner loop runs along contiguous memory. Overwrites
-/// sup and rhs; the solutions land in rhs.
-void solveTridiagonalRows(int count, int n, const double* sub, const double* diag, double* sup,
-                          double* rhs) {
-    const size_t m = size_t(count);
-    for (size_t i = 0; i < m; ++i) {
-        rhs[i] /= diag[i];
-        sup[i] /= diag[i];
-    }
-    for (size_t k = 1; k < size_t(n); ++k)
-        for (size_t i = 0; i < m; ++i) {
-            const size_t e = k * m + i;
-            const double beta = diag[e] - sub[e] * sup[e - m];
-            sup[e] /= beta;
-            rhs[e] = (rhs[e] - sub[e] * rhs[e - m]) / beta;
-        }
-    for (size_t k = size_t(n) - 1; k-- > 0;)
-        for (size_t i = 0; i < m; ++i) rhs[k * m + i] -= sup[k * m + i] * rhs[(k + 1) * m + i];
 }
 
 /// Per-thread scratch of one row of columns: the systems' coefficients (level-major) and each
@@ -100,8 +79,10 @@ void SurfaceLayerSettings::validate() const {
     if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
         throw ParameterError("wind.roughness_m", num(roughness_m), "must be > 0 m and finite");
     validateWallAndMixing(displacementHeight_m, mixingLengthMax_m);
-    if (closure == TurbulenceClosure::KEpsilon)
-        throw std::logic_error("SurfaceLayerSettings: the k-epsilon closure is not built yet");
+    if (closure == TurbulenceClosure::KEpsilon && !(eddyViscosity && wallStress && balanced))
+        throw std::logic_error(
+            "SurfaceLayerSettings: the k-epsilon closure needs the eddy viscosity, the wall "
+            "stress and the ambient profile (its inflow and top)");
     if (wallStress && !eddyViscosity)
         throw std::logic_error("SurfaceLayerSettings: the wall stress needs the eddy viscosity");
     if (balanced && !(eddyViscosity && wallStress))
@@ -188,6 +169,10 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
     const double uStar = surface::frictionVelocity_mps(A.speed_mps, A.referenceHeight_m, z0, d);
     const double dir = gale::radiansFromDegrees(A.direction_deg),
                  e[2] = {std::cos(dir), std::sin(dir)};
+    if (s.closure == TurbulenceClosure::KEpsilon) {
+        setUpKEpsilon(uStar, e[0], e[1]);
+        return;
+    }
     for (int c = 0; c < 2; ++c) {
         const Placement p = Placement(c);
         const int n0 = G.dims(p)[0], n1 = G.dims(p)[1];
@@ -237,7 +222,64 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
     }
 }
 
-void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
+TurbulentStress::~TurbulentStress() = default;
+
+void TurbulentStress::setUpKEpsilon(double uStar, double ex, double ey) {
+    const AirDomain& D = mDomain;
+    const int nx = D.nx(), ny = D.ny(), nz = D.nz();
+    const GridLayout& L = D.layout();
+    const GridIndex G = L;
+    const double z0 = mSettings.roughness_m, d = mSettings.displacementHeight_m;
+    // The wall cell of each cell column and its open height (the wall faces' clamp).
+    std::vector<double> wallH(G.columnCount(Placement::Cell), 0.0);
+    std::vector<int> wallK(G.columnCount(Placement::Cell), -1);
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            const size_t col = G.column(Placement::Cell, i, j);
+            for (int k = 0; k < nz; ++k)
+                if (D.isAir(i, j, k)) {
+                    wallK[col] = k;
+                    wallH[col] = wallHeight_m(L, k, mGroundCell[col]);
+                    break;
+                }
+        }
+    // Per z-face with air on both sides: the log-law correction of nu_t and the share of the
+    // face's production that goes to the cell above (docs/solver.md, "The k-epsilon closure"):
+    // with the samples at z- (the cell below: its centre, or the wall sample) and z+ (the centre
+    // above), heights above the displacement plane, and the face at z_e,
+    //   nu_t factor = (z+ - z-) / (z_e ln(z+ / z-))  (a sampled log profile then carries u*^2),
+    //   upper share = ln(z+ / z_e) / ln(z+ / z-)      (the log profile's energy above the face).
+    // Both tend to 1 and 1/2 a few cells above the ground.
+    mLogCorrectionZ.assign(G.count(Placement::FaceZ), 1.f);
+    mUpperShareZ.assign(G.count(Placement::FaceZ), 0.5f);
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            const size_t col = G.column(Placement::Cell, i, j);
+            const int kb = wallK[col];
+            if (kb < 0) continue;
+            const double g = mGroundCell[col];
+            auto above = [&](double height) { return std::max(height - d, 2.0 * z0); };
+            for (int k = kb + 1; k < nz; ++k) {
+                const double zm = above(k - 1 == kb ? 0.5 * wallH[col] : L.zCentre_m(k - 1) - g);
+                const double zp = above(L.zCentre_m(k) - g), ze = above(L.zFace_m(k) - g);
+                const double logRatio = std::log(zp / zm);
+                if (!(logRatio > 1e-12) || !(ze > zm) || !(zp > ze)) continue;
+                const size_t f = G.faceZIndex(i, j, k);
+                mLogCorrectionZ[f] = float((zp - zm) / (ze * logRatio));
+                mUpperShareZ[f] = float(std::log(zp / ze) / logRatio);
+            }
+        }
+    mKEpsilon = std::make_unique<KEpsilonTransport>(D, mGroundCell, wallH, z0, d, uStar, mNuMol,
+                                                    mOkX, mOkY, mOkZ);
+    // Richards and Hoxey's top: the constant shear stress u*^2 along the wind; no body force.
+    const double tau = uStar * uStar;
+    for (size_t c = 0; c < mTopX.size(); ++c)
+        if (mLowX[c] >= 0) mTopX[c] = tau * ex;
+    for (size_t c = 0; c < mTopY.size(); ++c)
+        if (mLowY[c] >= 0) mTopY[c] = tau * ey;
+}
+
+void TurbulentStress::computeEddyViscosity(double dt, const std::vector<double>& U,
                                            const std::vector<double>& V,
                                            const std::vector<double>& W) {
     const AirDomain& D = mDomain;
@@ -250,8 +292,10 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
     // Cells and z-faces share the first nx * ny * nz indices (the strain lives on cells).
     auto zi = [&G](int i, int j, int k) { return G.faceZIndex(i, j, k); };
     mStrainH.assign(G.cellCount(), 0.0);
+    mRotationH.assign(G.cellCount(), 0.0);
     mNuZ.assign(G.count(Placement::FaceZ), 0.0);
     mShearZ.assign(G.count(Placement::FaceZ), 0.0);
+    mVorticityZ.assign(G.count(Placement::FaceZ), 0.0);
     // Cell-centred part of 2 S_ij S_ij without the vertical shears: 2 (du/dx^2 + dv/dy^2 + dw/dz^2)
     // + (du/dy + dv/dx)^2, central differences of cell-centred velocities across the cell.
     tbb::parallel_for(0, nz, [&](int k) {
@@ -275,6 +319,7 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
                                             : 0.0;
                 mStrainH[zi(i, j, k)] =
                     2.0 * (dudx * dudx + dvdy * dvdy + dwdz * dwdz) + (dudy + dvdx) * (dudy + dvdx);
+                mRotationH[zi(i, j, k)] = (dudy - dvdx) * (dudy - dvdx);
             }
     });
     // nu_t = nu + l^2 |S| on z-faces between two air cells; the vertical shears S_xz, S_yz as
@@ -300,10 +345,15 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
                     jp > jm ? (W[zi(i, jp, k)] - W[zi(i, jm, k)]) / ((jp - jm) * h) : 0.0;
                 const double s2 = (dudz + dwdx) * (dudz + dwdx) + (dvdz + dwdy) * (dvdz + dwdy) +
                                   0.5 * (mStrainH[zi(i, j, k - 1)] + mStrainH[zi(i, j, k)]);
+                const double w2 = (dudz - dwdx) * (dudz - dwdx) + (dvdz - dwdy) * (dvdz - dwdy) +
+                                  0.5 * (mRotationH[zi(i, j, k - 1)] + mRotationH[zi(i, j, k)]);
                 mShearZ[zi(i, j, k)] = std::sqrt(s2);
-                mNuZ[zi(i, j, k)] = mNuMol + double(mL2Z[zi(i, j, k)]) * mShearZ[zi(i, j, k)];
+                mVorticityZ[zi(i, j, k)] = std::sqrt(w2);
+                if (!mKEpsilon)
+                    mNuZ[zi(i, j, k)] = mNuMol + double(mL2Z[zi(i, j, k)]) * mShearZ[zi(i, j, k)];
             }
     });
+    if (mKEpsilon) kEpsilonStep(dt, U, V, W);
     // The wall-level and top faces of each column take the value of their air neighbour (the
     // wall's stress is the wall function's; the top's is prescribed): they only enter the
     // cell-centred averages.
@@ -322,6 +372,10 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
             mShearZ[zi(i, j, nz)] = nz - 1 > kb ? mShearZ[zi(i, j, nz - 1)] : mShearZ[zi(i, j, kb)];
         }
     });
+    if (mKEpsilon) {
+        mTke = mKEpsilon->tke_m2ps2();
+        return;
+    }
     // Local-equilibrium k on the cells (turbulentKineticEnergy_m2ps2): the two z-faces' mean.
     mTke.assign(G.cellCount(), 0.0);
     const double rootCmu = std::sqrt(TKE_EQUILIBRIUM_CMU);
@@ -338,6 +392,62 @@ void TurbulentStress::computeEddyViscosity(const std::vector<double>& U,
     });
 }
 
+void TurbulentStress::faceEddyViscosityFromKEpsilon() {
+    const AirDomain& D = mDomain;
+    const int nx = D.nx(), ny = D.ny(), nz = D.nz();
+    const GridIndex G = D.layout();
+    tbb::parallel_for(1, nz, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                if (!D.isAir(i, j, k - 1)) continue;
+                const size_t f = G.faceZIndex(i, j, k);
+                const double nuT = 0.5 * (mKEpsilon->eddyViscosity_m2ps(G.cellIndex(i, j, k - 1)) +
+                                          mKEpsilon->eddyViscosity_m2ps(G.cellIndex(i, j, k)));
+                mNuZ[f] = mNuMol + nuT * double(mLogCorrectionZ[f]);
+            }
+    });
+}
+
+void TurbulentStress::kEpsilonStep(double dt, const std::vector<double>& U,
+                                   const std::vector<double>& V, const std::vector<double>& W) {
+    const AirDomain& D = mDomain;
+    const int nx = D.nx(), ny = D.ny(), nz = D.nz();
+    const GridLayout& L = D.layout();
+    const GridIndex G = L;
+    // Production on the z-faces from the state before the step, P_f = nu_t S Omega (Kato and
+    // Launder 1993), shared between the two cells by the log profile's energy split; the top
+    // cell takes its bottom face's rate for its upper half.
+    faceEddyViscosityFromKEpsilon();
+    mProductionZ.assign(G.count(Placement::FaceZ), 0.0);
+    tbb::parallel_for(1, nz, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                if (!D.isAir(i, j, k - 1)) continue;
+                const size_t f = G.faceZIndex(i, j, k);
+                mProductionZ[f] = std::max(mNuZ[f] - mNuMol, 0.0) * mShearZ[f] * mVorticityZ[f];
+            }
+    });
+    mProductionCell.assign(G.cellCount(), 0.0);
+    tbb::parallel_for(0, nz, [&](int k) {
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                if (!D.isAir(i, j, k)) continue;
+                const size_t below = G.faceZIndex(i, j, k), above = G.faceZIndex(i, j, k + 1);
+                double energy = 0.0;  // m^3/s^3 per unit area
+                if (k > 0 && D.isAir(i, j, k - 1))
+                    energy += double(mUpperShareZ[below]) * mProductionZ[below] * L.centreGap_m(k);
+                if (k + 1 < nz)
+                    energy += (1.0 - double(mUpperShareZ[above])) * mProductionZ[above] *
+                              L.centreGap_m(k + 1);
+                else
+                    energy += 0.5 * mProductionZ[below] * L.dz_m(k);
+                mProductionCell[G.cellIndex(i, j, k)] = energy / L.dz_m(k);
+            }
+    });
+    mKEpsilon->step(dt, U, V, W, mProductionCell);
+    faceEddyViscosityFromKEpsilon();
+}
+
 TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::vector<double>& V,
                                         std::vector<double>& W) {
     if (!(dt > 0.0) || !std::isfinite(dt))
@@ -349,7 +459,7 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
     const double h = D.voxelSize_m(), h2 = h * h;
     const double z0 = mSettings.roughness_m, d = mSettings.displacementHeight_m;
     TurbulenceReport rep;
-    computeEddyViscosity(U, V, W);
+    computeEddyViscosity(dt, U, V, W);
     for (double nu : mNuZ) rep.maxEddyViscosity_m2ps = std::max(rep.maxEddyViscosity_m2ps, nu);
 
     const GridLayout& L = D.layout();
@@ -436,12 +546,25 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                         wallH = wallHeight_m(L, kl, g);
                         const double speed = (c == 0 ? speedX : speedY)[col];
                         const double cw = surface::KAPPA / surface::logFactor(0.5 * wallH, z0, d);
+                        // The velocity scale of the log law: from the face's own speed (mixing
+                        // length), or from the wall cells' k beside it (k-epsilon, u*_k =
+                        // C_mu^(1/4) sqrt(k); Richards and Hoxey 1993).
+                        double uScale = cw * speed;
+                        if (mKEpsilon) {
+                            int ia = i, ja = j, ib = i, jb = j;
+                            if (c == 0) ia = std::max(i - 1, 0), ib = std::min(i, nx - 1);
+                            if (c == 1) ja = std::max(j - 1, 0), jb = std::min(j, ny - 1);
+                            uScale = 0.5 * (mKEpsilon->wallFrictionVelocity_mps(
+                                                G.column(Placement::Cell, ia, ja)) +
+                                            mKEpsilon->wallFrictionVelocity_mps(
+                                                G.column(Placement::Cell, ib, jb)));
+                        }
                         // tau_w = wallC * u, m/s (0: the free-slip diagnostic)
-                        wallC = mSettings.wallStress ? cw * cw * speed : 0.0;
+                        wallC = mSettings.wallStress ? cw * uScale : 0.0;
                         // The reported u* skips slivers (a wall face under half its layer high
                         // sits below the log law's range and reports the clamp, not the flow).
                         if (wallH >= 0.5 * L.dz_m(kl) && mSettings.wallStress)
-                            (c == 0 ? frictionX : frictionY)[col] = cw * speed;
+                            (c == 0 ? frictionX : frictionY)[col] = uScale;
                     }
                     s.wallH[size_t(i)] = wallH, s.wallC[size_t(i)] = wallC;
                 }
@@ -492,8 +615,8 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                         if (c < 2) rhs += dt * (c == 0 ? mForceX : mForceY)[f];
                         s.diag[e0] = diag, s.rhs[e0] = rhs;
                     }
-                solveTridiagonalRows(n0, n2, s.sub.data(), s.diag.data(), s.sup.data(),
-                                     s.rhs.data());
+                detail::solveTridiagonalRows(n0, n2, s.sub.data(), s.diag.data(), s.sup.data(),
+                                             s.rhs.data());
                 for (int k = 0; k < n2; ++k)
                     for (int i = 0; i < n0; ++i) q[idx(i, j, k)] = s.rhs[size_t(k) * n0 + i];
             }

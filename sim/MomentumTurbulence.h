@@ -51,6 +51,7 @@
 /// small (about 2 u*^2 kappa / l_max aloft).
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,6 +61,8 @@
 #include "sim/SurfaceLayer.h"
 
 namespace gale::sim {
+
+class KEpsilonTransport;
 
 /// Throws ParameterError naming solver.displacement_height_m (m, must be >= 0) or
 /// solver.mixing_length_max_m (m, must be > 0), each finite: the checks both the momentum model and
@@ -121,6 +124,9 @@ class TurbulentStress {
     TurbulentStress(const AirDomain& domain, const SurfaceLayerSettings& settings,
                     double molecularViscosity_m2ps, const std::vector<uint8_t>& okX,
                     const std::vector<uint8_t>& okY, const std::vector<uint8_t>& okZ);
+    ~TurbulentStress();
+    TurbulentStress(const TurbulentStress&) = delete;
+    TurbulentStress& operator=(const TurbulentStress&) = delete;
 
     /// One step of dt_s (> 0) seconds on the face velocities (m/s, WindField layout), in place.
     /// Faces outside the masks are not changed.
@@ -142,8 +148,12 @@ class TurbulentStress {
     static constexpr double BYTES_PER_CELL = 8.0 * 8 + 4.0 + 3.0;
 
   private:
-    void computeEddyViscosity(const std::vector<double>& u, const std::vector<double>& v,
-                              const std::vector<double>& w);
+    void setUpKEpsilon(double uStar_mps, double windX, double windY);
+    void kEpsilonStep(double dt_s, const std::vector<double>& u, const std::vector<double>& v,
+                      const std::vector<double>& w);
+    void faceEddyViscosityFromKEpsilon();
+    void computeEddyViscosity(double dt_s, const std::vector<double>& u,
+                              const std::vector<double>& v, const std::vector<double>& w);
 
     const AirDomain& mDomain;
     SurfaceLayerSettings mSettings;
@@ -155,7 +165,13 @@ class TurbulentStress {
     std::vector<double> mForceX, mForceY;  // balance force on x- and y-faces, m/s^2
     std::vector<double> mTopX, mTopY;      // top stress per column, m^2/s^2
     std::vector<double> mNuZ, mStrainH, mOld, mNuFace;
-    std::vector<double> mShearZ, mTke;  // |S| on z-faces (1/s), k on cells (m^2/s^2)
+    std::vector<double> mShearZ, mTke;            // |S| on z-faces (1/s), k on cells (m^2/s^2)
+    std::vector<double> mRotationH, mVorticityZ;  // (du/dy - dv/dx)^2 on cells, |Omega| on z-faces
+    // k-epsilon (TurbulenceClosure::KEpsilon): the transport, and per z-face the log-law
+    // correction of nu_t and the upper cell's share of the face's production.
+    std::unique_ptr<KEpsilonTransport> mKEpsilon;
+    std::vector<float> mLogCorrectionZ, mUpperShareZ;
+    std::vector<double> mProductionZ, mProductionCell;
 };
 
 }  // namespace gale::sim

@@ -64,6 +64,7 @@ CaoTamuraStudy runCaoTamura(const CaoTamuraOptions& o, const std::vector<RidgeMe
     sim::MomentumSettings ms;
     ms.cfl = o.cfl;
     ms.advection = o.advection;
+    ms.turbulence = o.turbulence;
     ms.maxIterations = o.maxIterations;
     const sim::SteadyModelResult res = sim::solveSteadyModel(
         domain, wind, o.momentum ? sim::SteadyModel::Momentum : sim::SteadyModel::MassConsistent,

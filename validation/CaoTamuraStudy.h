@@ -54,6 +54,7 @@ struct CaoTamuraOptions {
     double cfl = 2.0;          ///< the semi-Lagrangian step's cfl (momentum)
     ridge::Inflow inflow = ridge::Inflow::Published;
     sim::PseudoTimeAdvection advection = sim::PseudoTimeAdvection::SemiLagrangian;
+    sim::TurbulenceClosure turbulence = sim::TurbulenceClosure::MixingLength;  ///< (momentum)
 };
 
 /// The figures of one run, as docs/validation.md states them (speed-ups against the model's own

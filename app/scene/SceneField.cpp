@@ -70,6 +70,10 @@ void addSurfaceLayer(Digest& d, const sim::SurfaceLayerSettings& s) {
     d.number(s.enabled), d.number(s.roughness_m), d.number(s.displacementHeight_m);
     d.number(s.mixingLengthMax_m), d.number(s.eddyViscosity), d.number(s.wallStress);
     d.number(s.balanced.has_value());
+    // Added only for a closure other than the first, so that fields solved before the closure
+    // was a choice keep their digest.
+    if (s.closure != sim::TurbulenceClosure::MixingLength)
+        d.text(sim::turbulenceClosureName(s.closure));
 }
 
 void addAmbient(Digest& d, const sim::AmbientWind& a) {
@@ -146,10 +150,14 @@ std::string massConsistentText(const Scene& scene) {
 std::string momentumText(const Scene& scene) {
     const sim::MomentumSettings& m = scene.solver.momentum;
     const bool eulerian = m.advection == sim::PseudoTimeAdvection::Eulerian;
-    return "momentum model (RANS): mixing-length closure (Blackadar 1962, l_max " +
-           formatG(m.mixingLengthMax_m, 3) + " m), log-law wall stress (z0 " +
-           formatG(scene.wind.ambient.roughness_m, 3) + " m, d " +
-           formatG(m.displacementHeight_m, 3) + " m), " +
+    const std::string closure =
+        m.turbulence == sim::TurbulenceClosure::KEpsilon
+            ? "k-epsilon closure (Launder and Spalding 1974, Kato-Launder production, Richards "
+              "and Hoxey 1993 inflow and top), wall functions from k (z0 "
+            : "mixing-length closure (Blackadar 1962, l_max " + formatG(m.mixingLengthMax_m, 3) +
+                  " m), log-law wall stress (z0 ";
+    return "momentum model (RANS): " + closure + formatG(scene.wind.ambient.roughness_m, 3) +
+           " m, d " + formatG(m.displacementHeight_m, 3) + " m), " +
            (eulerian ? "Eulerian pseudo-time step (van Leer slopes, cfl " +
                            formatG(m.eulerianCfl, 3) + ")"
                      : "semi-Lagrangian pseudo-time step (cfl " + formatG(m.cfl, 3) + ")") +
@@ -231,17 +239,19 @@ std::vector<std::string> describeSceneField(const Scene& scene, const sim::AirDo
     lines.push_back("budgets: " + budget);
     if (unsteady) {
         const sim::UnsteadySettings& us = scene.unsteady.settings;
-        lines.push_back(
-            std::string("then unsteady stepping: ") + sim::advectionSchemeName(us.advection) +
-            " advection, " +
-            (us.dt_s > 0 ? "fixed dt " + formatG(us.dt_s, 3) + " s"
-                         : "adaptive CFL " + formatG(us.cfl, 3) +
-                               " (dt <= " + formatG(us.maxDt_s, 3) + " s)") +
-            ", projection to " + formatG(us.projection.relativeTolerance, 3) + " in at most " +
-            std::to_string(us.projection.maxIterations) + " iterations (warm MGPCG), " +
-            (us.surfaceLayer.enabled ? "surface layer (mixing length, log-law wall stress), "
-                                     : "no surface layer, ") +
-            (us.openTop ? "open top" : "free-slip lid on top"));
+        lines.push_back(std::string("then unsteady stepping: ") +
+                        sim::advectionSchemeName(us.advection) + " advection, " +
+                        (us.dt_s > 0 ? "fixed dt " + formatG(us.dt_s, 3) + " s"
+                                     : "adaptive CFL " + formatG(us.cfl, 3) +
+                                           " (dt <= " + formatG(us.maxDt_s, 3) + " s)") +
+                        ", projection to " + formatG(us.projection.relativeTolerance, 3) +
+                        " in at most " + std::to_string(us.projection.maxIterations) +
+                        " iterations (warm MGPCG), " +
+                        (!us.surfaceLayer.enabled ? "no surface layer, "
+                         : us.surfaceLayer.closure == sim::TurbulenceClosure::KEpsilon
+                             ? "surface layer (k-epsilon, wall functions from k), "
+                             : "surface layer (mixing length, log-law wall stress), ") +
+                        (us.openTop ? "open top" : "free-slip lid on top"));
     }
     lines.push_back("cells: " + std::to_string(d.nx()) + " x " + std::to_string(d.ny()) + " x " +
                     std::to_string(d.nz()) + ", " + std::to_string(d.activeCellCount()) + " air; " +
@@ -299,6 +309,8 @@ FieldProvenance fieldProvenance(const Scene& scene, const sim::Heightfield& t) {
         solver.number(m.mixingLengthMax_m), solver.number(m.coarseLevels);
         solver.number(m.minIterationsAfterProlongation), solver.number(m.averageCycles);
         solver.number(m.averageMinSteps);
+        if (m.turbulence != sim::TurbulenceClosure::MixingLength)  // as in addSurfaceLayer
+            solver.text(sim::turbulenceClosureName(m.turbulence));
         addSolverSettings(solver, m.projection), addSolverSettings(solver, m.finalProjection);
     }
     solver.text(windKindName(scene.wind.kind));

@@ -295,6 +295,13 @@ void readSolver(Context& ctx, Section s) {
     } catch (const ParameterError& e) {
         s.failParameter(e);
     }
+    const std::string turbulence =
+        s.string("turbulence", sim::turbulenceClosureName(v.momentum.turbulence));
+    try {
+        v.momentum.turbulence = sim::turbulenceClosureFromName(turbulence);
+    } catch (const ParameterError& e) {
+        s.failParameter(e);
+    }
     s.finish();
 }
 
@@ -327,6 +334,9 @@ void readUnsteady(Context& ctx, Section s) {
     v.surfaceLayer.roughness_m = ambient.roughness_m;
     v.surfaceLayer.displacementHeight_m = ctx.scene->solver.momentum.displacementHeight_m;
     if (ambient.profile == sim::WindProfile::LogLaw) v.surfaceLayer.balanced = ambient;
+    // The closure of [solver] turbulence; the two-equation closure reads its inflow and top from
+    // the ambient log profile, so it needs one (the mixing length then runs without balance).
+    if (v.surfaceLayer.balanced) v.surfaceLayer.closure = ctx.scene->solver.momentum.turbulence;
     v.projection.relativeTolerance =
         s.number("tolerance", v.projection.relativeTolerance, above(0.0, 0.5));
     v.projection.maxIterations =
