@@ -29,13 +29,15 @@ struct Rows {
 }  // namespace
 
 KEpsilonTransport::KEpsilonTransport(const AirDomain& D, const std::vector<double>& groundCell,
-                                     const std::vector<double>& wallHeight, double z0, double d,
+                                     const std::vector<double>& wallHeight,
+                                     const std::vector<double>& wallDistance, double z0, double d,
                                      double uStar, double nuMol, const std::vector<uint8_t>& okX,
                                      const std::vector<uint8_t>& okY,
                                      const std::vector<uint8_t>& okZ)
     : mDomain(D),
       mGround(groundCell),
       mWallHeight(wallHeight),
+      mWallDistance(wallDistance),
       mZ0(z0),
       mD(d),
       mUStar(uStar),
@@ -46,7 +48,8 @@ KEpsilonTransport::KEpsilonTransport(const AirDomain& D, const std::vector<doubl
     const GridLayout& L = D.layout();
     const GridIndex G = L;
     if (groundCell.size() != G.columnCount(Placement::Cell) ||
-        wallHeight.size() != G.columnCount(Placement::Cell))
+        wallHeight.size() != G.columnCount(Placement::Cell) ||
+        wallDistance.size() != G.columnCount(Placement::Cell))
         throw std::logic_error("KEpsilonTransport: column arrays do not match the domain");
     if (!(uStar > 0.0) || !std::isfinite(uStar))
         throw std::logic_error("KEpsilonTransport: the friction velocity must be > 0");
@@ -203,8 +206,12 @@ void KEpsilonTransport::step(double dt, const std::vector<double>& U, const std:
                                     su += tx * U[G.faceXIndex(i + f, j, k)], wu += tx;
                                     sv += ty * V[G.faceYIndex(i, j + f, k)], wv += ty;
                                 }
-                                const double speed =
-                                    std::hypot(wu > 0.0 ? su / wu : 0.0, wv > 0.0 ? sv / wv : 0.0);
+                                // The speed along the wall: the normal component is the
+                                // projection's (near zero), so |U| at the cell, w from its top.
+                                const double wTop = W[G.faceZIndex(i, j, k + 1)];
+                                const double uc = wu > 0.0 ? su / wu : 0.0,
+                                             vc = wv > 0.0 ? sv / wv : 0.0;
+                                const double speed = std::sqrt(uc * uc + vc * vc + wTop * wTop);
                                 production = uk * uk * speed / (z * surface::logFactor(z, mZ0, mD));
                                 sinkRate = CMU_QUARTER * CMU_QUARTER * CMU_QUARTER *
                                            std::sqrt(mOld[c]) / (kappa * z);

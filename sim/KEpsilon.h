@@ -26,8 +26,9 @@
 /// any body force.
 ///
 /// Wall (the lowest air cell of each column): rough-wall functions with the velocity scale from k,
-/// u*_k = C_mu^(1/4) k_p^(1/2), at the wall sample z_p (the centroid of the cell's open part:
-/// half its open height above the ground, the wall faces' definition in TurbulentStress):
+/// u*_k = C_mu^(1/4) k_p^(1/2), at the wall sample's distance z_p to the terrain along its normal
+/// (the sample at the centroid of the cell's open part, half its open height above the ground, as
+/// TurbulentStress places the wall faces' samples):
 ///   epsilon_p = u*_k^3 / (kappa z_p),  P_p = tau_w u*_k / (kappa z_p),
 ///   tau_w = kappa u*_k |U_p| / ln((z_p - d) / z0),
 /// so that in the log layer P_p = epsilon_p and tau_w = u*^2.
@@ -77,10 +78,13 @@ class KEpsilonTransport {
   public:
     /// groundCell_m: the terrain height (world z, m) under each cell column's centre (GridIndex's
     /// cell columns); wallHeight_m: per cell column, the open height (m) of its lowest air cell,
-    /// as TurbulentStress clamps it; okX/okY/okZ: the faces that are unknowns (between air cells
-    /// or on the box). Starts from the Richards and Hoxey profile of uStar_mps (> 0).
+    /// as TurbulentStress clamps it; wallDistance_m: per cell column, the wall sample's distance
+    /// to the terrain along its normal (half the open height over sqrt(1 + |grad h|^2)), where
+    /// the wall functions are evaluated; okX/okY/okZ: the faces that are unknowns (between air
+    /// cells or on the box). Starts from the Richards and Hoxey profile of uStar_mps (> 0).
     KEpsilonTransport(const AirDomain& domain, const std::vector<double>& groundCell_m,
-                      const std::vector<double>& wallHeight_m, double z0_m, double d_m,
+                      const std::vector<double>& wallHeight_m,
+                      const std::vector<double>& wallDistance_m, double z0_m, double d_m,
                       double uStar_mps, double molecularViscosity_m2ps,
                       const std::vector<uint8_t>& okX, const std::vector<uint8_t>& okY,
                       const std::vector<uint8_t>& okZ);
@@ -100,12 +104,12 @@ class KEpsilonTransport {
     int wallCell(size_t column) const { return mWallK[column]; }
     /// u*_k = C_mu^(1/4) sqrt(k) (m/s) of a column's wall cell, 0 without air.
     double wallFrictionVelocity_mps(size_t column) const;
-    /// The wall sample's height above the ground z_p (m): half the wall cell's open height.
-    double wallSampleHeight_m(size_t column) const { return 0.5 * mWallHeight[column]; }
+    /// The wall sample's distance to the terrain along the normal z_p (m).
+    double wallSampleHeight_m(size_t column) const { return mWallDistance[column]; }
 
   private:
     const AirDomain& mDomain;
-    std::vector<double> mGround, mWallHeight;
+    std::vector<double> mGround, mWallHeight, mWallDistance;
     double mZ0 = 0.03, mD = 0.0, mUStar = 0.0, mNuMol = 0.0;
     std::vector<uint8_t> mOkX, mOkY, mOkZ;
     std::vector<int> mWallK;

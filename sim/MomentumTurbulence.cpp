@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -39,8 +40,30 @@ double wallHeight_m(const GridLayout& L, int kl, double ground_m) {
 
 /// Per-thread scratch of one row of columns: the systems' coefficients (level-major) and each
 /// column's unknown range and wall coefficients.
+/// A wall face's velocity against the terrain's tangent plane (the wall law on slopes): the
+/// tangential speed |U_t| (m/s), the wetted-area factor q = sqrt(1 + |grad h|^2), and its own
+/// component c of U_t written as implicitShare * U_c + explicitPart (the other components'
+/// contribution, m/s).
+struct WallSample {
+    double tangentialSpeed = 0.0, q = 1.0, implicitShare = 1.0, explicitPart = 0.0;
+};
+
+/// U_t = U - (U.n) n for the unit normal n = (-g_x, -g_y, 1) / q of a surface with gradient g.
+WallSample wallSample(const std::array<double, 2>& g, const std::array<double, 3>& U, int c) {
+    const double n[3] = {-g[0], -g[1], 1.0};  // the normal times q
+    const double q2 = 1.0 + g[0] * g[0] + g[1] * g[1];
+    const double un = (U[0] * n[0] + U[1] * n[1] + U[2] * n[2]) / q2;  // (U.n) / q
+    const double t[3] = {U[0] - un * n[0], U[1] - un * n[1], U[2] - un * n[2]};
+    WallSample s;
+    s.tangentialSpeed = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    s.q = std::sqrt(q2);
+    s.implicitShare = 1.0 - n[c] * n[c] / q2;
+    s.explicitPart = t[c] - U[size_t(c)] * s.implicitShare;
+    return s;
+}
+
 struct RowScratch {
-    std::vector<double> sub, diag, sup, rhs, wallH, wallC;
+    std::vector<double> sub, diag, sup, rhs, wallH, wallC, wallI, wallE;
     std::vector<int> kl, kt;
     RowScratch(int n0, int n2)
         : sub(size_t(n0) * n2),
@@ -49,6 +72,8 @@ struct RowScratch {
           rhs(size_t(n0) * n2),
           wallH(size_t(n0)),
           wallC(size_t(n0)),
+          wallI(size_t(n0)),
+          wallE(size_t(n0)),
           kl(size_t(n0)),
           kt(size_t(n0)) {}
 };
@@ -128,6 +153,24 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
             if (i < nx) mGroundY[G.column(Placement::FaceY, i, j)] = T.sample(x + 0.5 * h, y);
         }
 
+    // The terrain's gradient (dh/dx, dh/dy) under each x- and y-face column and cell column, by
+    // central differences of the bilinear surface half a cell either way: the wall law's normal.
+    auto gradientAt = [&](double x, double y) {
+        const double e = 0.5 * h;
+        return std::array<double, 2>{(T.sample(x + e, y) - T.sample(x - e, y)) / (2.0 * e),
+                                     (T.sample(x, y + e) - T.sample(x, y - e)) / (2.0 * e)};
+    };
+    mSlopeCell.resize(mGroundCell.size()), mSlopeX.resize(mGroundX.size());
+    mSlopeY.resize(mGroundY.size());
+    for (int j = 0; j <= ny; ++j)
+        for (int i = 0; i <= nx; ++i) {
+            const double x = o[0] + i * h, y = o[1] + j * h;
+            if (i < nx && j < ny)
+                mSlopeCell[G.column(Placement::Cell, i, j)] = gradientAt(x + 0.5 * h, y + 0.5 * h);
+            if (j < ny) mSlopeX[G.column(Placement::FaceX, i, j)] = gradientAt(x, y + 0.5 * h);
+            if (i < nx) mSlopeY[G.column(Placement::FaceY, i, j)] = gradientAt(x + 0.5 * h, y);
+        }
+
     // Lowest unknown face of each column (the masks are monotone in k over a heightfield).
     auto lowest = [&G](const std::vector<uint8_t>& ok, Placement p, std::vector<int>& low) {
         const auto n = G.dims(p);
@@ -152,8 +195,15 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 if (!D.isAir(i, j, k - 1) || !s.eddyViscosity) continue;
-                const double zE = L.zFace_m(k) - mGroundCell[G.column(Placement::Cell, i, j)];
-                const double below = 0.5 * L.dz_m(k - 1), above = 0.5 * L.dz_m(std::min(k, nz - 1));
+                const double g = mGroundCell[G.column(Placement::Cell, i, j)];
+                const double zE = L.zFace_m(k) - g;
+                // The sample below: the layer's centre, or on the wall cell its wall sample (the
+                // centroid of its open part, half its open height up), as the wall function,
+                // the start field and the balance profile place it.
+                const bool wallBelow = k == 1 || !D.isAir(i, j, k - 2);
+                const double below =
+                    wallBelow ? zE - 0.5 * wallHeight_m(L, k - 1, g) : 0.5 * L.dz_m(k - 1);
+                const double above = 0.5 * L.dz_m(std::min(k, nz - 1));
                 const double l = surface::discreteMixingLengthBetween_m(zE, below, above,
                                                                         s.mixingLengthMax_m, z0, d);
                 mL2Z[G.faceZIndex(i, j, k)] = float(l * l);
@@ -269,8 +319,13 @@ void TurbulentStress::setUpKEpsilon(double uStar, double ex, double ey) {
                 mUpperShareZ[f] = float(std::log(zp / ze) / logRatio);
             }
         }
-    mKEpsilon = std::make_unique<KEpsilonTransport>(D, mGroundCell, wallH, z0, d, uStar, mNuMol,
-                                                    mOkX, mOkY, mOkZ);
+    std::vector<double> wallDistance(wallH.size());
+    for (size_t col = 0; col < wallH.size(); ++col) {
+        const auto& g = mSlopeCell[col];
+        wallDistance[col] = 0.5 * wallH[col] / std::sqrt(1.0 + g[0] * g[0] + g[1] * g[1]);
+    }
+    mKEpsilon = std::make_unique<KEpsilonTransport>(D, mGroundCell, wallH, wallDistance, z0, d,
+                                                    uStar, mNuMol, mOkX, mOkY, mOkZ);
     // Richards and Hoxey's top: the constant shear stress u*^2 along the wind; no body force.
     const double tau = uStar * uStar;
     for (size_t c = 0; c < mTopX.size(); ++c)
@@ -467,26 +522,39 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
     auto nuZ = [&](int i, int j, int k) { return mNuZ[G.faceZIndex(i, j, k)]; };
     auto nuCell = [&](int i, int j, int k) { return 0.5 * (nuZ(i, j, k) + nuZ(i, j, k + 1)); };
 
-    // Horizontal speed of each wall face at the start of the step: its own component and the
-    // mean of the four faces of the other component around it.
-    std::vector<double> speedX(mLowX.size(), 0.0), speedY(mLowY.size(), 0.0);
+    // The wall law on sloping ground at the start of the step: each wall face's velocity split
+    // into its part tangential to the terrain, U_t = U - (U.n) n with the unit normal
+    // n = (-dh/dx, -dh/dy, 1) / q, q = sqrt(1 + |grad h|^2), from its own component and the
+    // means of the four nearest faces of the other two (flat ground: U_t = (u, v, 0)).
+    std::vector<WallSample> wallX(mLowX.size()), wallY(mLowY.size()), wallZ(mLowZ.size());
+    auto wAt = [&](int i, int j, int k) { return W[G.faceZIndex(i, j, k)]; };
     tbb::parallel_for(0, ny + 1, [&](int j) {
         for (int i = 0; i <= nx; ++i) {
             const size_t colX = G.column(Placement::FaceX, i, j);
             if (j < ny && mLowX[colX] >= 0) {
                 const int k = mLowX[colX], ia = std::max(i - 1, 0), ib = std::min(i, nx - 1);
                 auto vAt = [&](int ii, int jj) { return V[G.faceYIndex(ii, jj, k)]; };
-                const double other =
-                    0.25 * (vAt(ia, j) + vAt(ia, j + 1) + vAt(ib, j) + vAt(ib, j + 1));
-                speedX[colX] = std::hypot(U[G.faceXIndex(i, j, k)], other);
+                const double v = 0.25 * (vAt(ia, j) + vAt(ia, j + 1) + vAt(ib, j) + vAt(ib, j + 1));
+                const double w =
+                    0.25 * (wAt(ia, j, k) + wAt(ia, j, k + 1) + wAt(ib, j, k) + wAt(ib, j, k + 1));
+                wallX[colX] = wallSample(mSlopeX[colX], {U[G.faceXIndex(i, j, k)], v, w}, 0);
             }
             const size_t colY = G.column(Placement::FaceY, i, j);
             if (i < nx && mLowY[colY] >= 0) {
                 const int k = mLowY[colY], ja = std::max(j - 1, 0), jb = std::min(j, ny - 1);
                 auto uAt = [&](int ii, int jj) { return U[G.faceXIndex(ii, jj, k)]; };
-                const double other =
-                    0.25 * (uAt(i, ja) + uAt(i + 1, ja) + uAt(i, jb) + uAt(i + 1, jb));
-                speedY[colY] = std::hypot(V[G.faceYIndex(i, j, k)], other);
+                const double u = 0.25 * (uAt(i, ja) + uAt(i + 1, ja) + uAt(i, jb) + uAt(i + 1, jb));
+                const double w =
+                    0.25 * (wAt(i, ja, k) + wAt(i, ja, k + 1) + wAt(i, jb, k) + wAt(i, jb, k + 1));
+                wallY[colY] = wallSample(mSlopeY[colY], {u, V[G.faceYIndex(i, j, k)], w}, 1);
+            }
+            // The lowest unknown w face: the top of its column's wall cell (kw - 1).
+            const size_t colZ = G.column(Placement::FaceZ, i, j);
+            if (i < nx && j < ny && mLowZ[colZ] >= 1) {
+                const int kc = mLowZ[colZ] - 1;
+                const double u = 0.5 * (U[G.faceXIndex(i, j, kc)] + U[G.faceXIndex(i + 1, j, kc)]);
+                const double v = 0.5 * (V[G.faceYIndex(i, j, kc)] + V[G.faceYIndex(i, j + 1, kc)]);
+                wallZ[colZ] = wallSample(mSlopeCell[colZ], {u, v, wAt(i, j, kc + 1)}, 2);
             }
         }
     });
@@ -541,31 +609,42 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                         for (kt = kl; kt + 1 < n2 && ok[idx(i, j, kt + 1)];) ++kt;
                     s.kl[size_t(i)] = kl, s.kt[size_t(i)] = kt;
                     double wallH = h, wallC = 0.0;
-                    if (c < 2 && kl >= 0) {
-                        const double g = (c == 0 ? mGroundX : mGroundY)[col];
-                        wallH = wallHeight_m(L, kl, g);
-                        const double speed = (c == 0 ? speedX : speedY)[col];
-                        const double cw = surface::KAPPA / surface::logFactor(0.5 * wallH, z0, d);
-                        // The velocity scale of the log law: from the face's own speed (mixing
-                        // length), or from the wall cells' k beside it (k-epsilon, u*_k =
-                        // C_mu^(1/4) sqrt(k); Richards and Hoxey 1993).
-                        double uScale = cw * speed;
+                    const WallSample* ws = nullptr;
+                    if (kl >= 0 && (c < 2 || kl >= 1)) {
+                        // The wall face's sample: x, y faces own the open part of their layer;
+                        // the lowest w face sits on its wall cell (kl - 1), whose open part it
+                        // takes.
+                        const int kw = c < 2 ? kl : kl - 1;
+                        const double g = (c == 0 ? mGroundX : c == 1 ? mGroundY : mGroundCell)[col];
+                        wallH = wallHeight_m(L, kw, g);
+                        ws = &(c == 0 ? wallX : c == 1 ? wallY : wallZ)[col];
+                        // The log law at the sample's distance to the surface along the normal.
+                        const double zn = 0.5 * wallH / ws->q;
+                        const double cw = surface::KAPPA / surface::logFactor(zn, z0, d);
+                        // The velocity scale of the log law: from the tangential speed (mixing
+                        // length), or from the wall cells' k beside the face (k-epsilon,
+                        // u*_k = C_mu^(1/4) sqrt(k); Richards and Hoxey 1993).
+                        double uScale = cw * ws->tangentialSpeed;
                         if (mKEpsilon) {
-                            int ia = i, ja = j, ib = i, jb = j;
-                            if (c == 0) ia = std::max(i - 1, 0), ib = std::min(i, nx - 1);
-                            if (c == 1) ja = std::max(j - 1, 0), jb = std::min(j, ny - 1);
+                            int ia = std::min(i, nx - 1), ja = std::min(j, ny - 1), ib = ia,
+                                jb = ja;
+                            if (c == 0) ia = std::max(i - 1, 0);
+                            if (c == 1) ja = std::max(j - 1, 0);
                             uScale = 0.5 * (mKEpsilon->wallFrictionVelocity_mps(
                                                 G.column(Placement::Cell, ia, ja)) +
                                             mKEpsilon->wallFrictionVelocity_mps(
                                                 G.column(Placement::Cell, ib, jb)));
                         }
-                        // tau_w = wallC * u, m/s (0: the free-slip diagnostic)
-                        wallC = mSettings.wallStress ? cw * uScale : 0.0;
+                        // tau_w = wallC * (U_t)_c over the wetted area q h^2 of the face's
+                        // horizontal h^2, m/s (0: the free-slip diagnostic).
+                        wallC = mSettings.wallStress ? cw * uScale * ws->q : 0.0;
                         // The reported u* skips slivers (a wall face under half its layer high
                         // sits below the log law's range and reports the clamp, not the flow).
-                        if (wallH >= 0.5 * L.dz_m(kl) && mSettings.wallStress)
+                        if (c < 2 && wallH >= 0.5 * L.dz_m(kl) && mSettings.wallStress)
                             (c == 0 ? frictionX : frictionY)[col] = uScale;
                     }
+                    s.wallI[size_t(i)] = ws ? ws->implicitShare : 1.0;
+                    s.wallE[size_t(i)] = ws ? ws->explicitPart : 0.0;
                     s.wallH[size_t(i)] = wallH, s.wallC[size_t(i)] = wallC;
                 }
                 for (int k = 0; k < n2; ++k)
@@ -590,7 +669,10 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                         double diag = 1.0, rhs = mOld[f];
                         // Below: the wall function (x, y) or the edge to the face below.
                         if (k == kl) {
-                            diag += a * s.wallC[size_t(i)];
+                            // tau_w = wallC (implicit share u' + explicit part): the component's
+                            // share of U_t (docs/solver.md, "The wall law on slopes").
+                            diag += a * s.wallC[size_t(i)] * s.wallI[size_t(i)];
+                            rhs -= a * s.wallC[size_t(i)] * s.wallE[size_t(i)];
                         } else {
                             const double e = a * nuBelow(i, j, k) / spacing(k);
                             diag += e, s.sub[e0] = -e;

@@ -50,6 +50,7 @@
 /// flat ground the ambient profile is then an exact steady state of the scheme; the force is
 /// small (about 2 u*^2 kappa / l_max aloft).
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -161,6 +162,8 @@ class TurbulentStress {
     std::vector<uint8_t> mOkX, mOkY, mOkZ;                // copies: the owner may move
     std::vector<double> mGroundCell, mGroundX, mGroundY;  // terrain height under cells / faces, m
     std::vector<int> mLowX, mLowY, mLowZ;  // lowest unknown face per column, -1: none
+    // dh/dx, dh/dy of the terrain under each cell, x-face and y-face column (the wall's normal)
+    std::vector<std::array<double, 2>> mSlopeCell, mSlopeX, mSlopeY;
     std::vector<float> mL2Z;               // l^2 on z-faces, m^2
     std::vector<double> mForceX, mForceY;  // balance force on x- and y-faces, m/s^2
     std::vector<double> mTopX, mTopY;      // top stress per column, m^2/s^2
