@@ -1,6 +1,7 @@
 #pragma once
 /// \file PoissonDetail.h
-/// \internal Included only by sim/ and tests/sim (docs/architecture.md lists sim's public headers).
+/// \internal Included only by sim/, tests/sim and dist/ (gale_dist runs these kernels on each
+/// rank's subdomain; docs/architecture.md lists sim's public headers).
 /// Internal to PoissonSolver (namespace gale::sim::multigrid, so its plain names such as Level
 /// cannot collide with other sim internals), not part of gale_sim's interface: the multigrid level
 /// (padded arrays, uniform runs, transfers to the next level), the row loops every kernel runs on,
@@ -178,11 +179,30 @@ inline constexpr auto MAX = [](double a, double b) { return std::max(a, b); };
 
 // --- the hierarchy (PoissonLevels.cpp) ---------------------------------------------------------
 
+/// The coarsening factors (cx, cy, cz) buildHierarchy uses on an nx * ny * nz box, one entry per
+/// coarser level, finest first: 2 along every axis longer than one cell, until a level has at
+/// most COARSEST_MAX_CELLS cells (then solved by dense Cholesky).
+std::vector<std::array<int, 3>> coarseningPlan(int nx, int ny, int nz);
+
+/// One rank's subdomain of a box split across ranks (gale_dist): a side marked as an interface
+/// touches a neighbouring rank, so its face weights are the box's own interior weights, kept
+/// unscaled (the ghost cell holds the neighbour's current value, exchanged by the caller), and
+/// the transfers treat it as a Neumann side (weight towards the ghost goes to the fine cell's own
+/// parent), so each rank's prolongation and restriction are local and still each other's
+/// transpose. The plan is the whole box's coarseningPlan, so every rank builds the same levels;
+/// the caller places the subdomain so that its cells start at a multiple of the product of the
+/// plan's factors along each split axis (no coarse cell straddles two ranks).
+struct SubdomainShape {
+    std::array<bool, 6> interfaceSides{};
+    std::vector<std::array<int, 3>> plan;
+};
+
 /// Builds level 0 from a validated system (boundary-face weights scaled: Dirichlet x 2, Neumann
-/// 0) and coarsens by 2 per axis until a level has few enough cells for the dense solve; levels
-/// on output holds them finest first, with the transfers between them. Returns the number of
-/// active cells of level 0.
-size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels);
+/// 0, interfaces of a subdomain 1) and coarsens it by coarseningPlan (or the subdomain's plan);
+/// levels on output holds them finest first, with the transfers between them. Returns the number
+/// of active cells of level 0.
+size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels,
+                      const SubdomainShape* subdomain = nullptr);
 
 /// The coarsest level solved exactly: dense Cholesky factor over its active cells.
 struct CoarseSolver {

@@ -73,6 +73,19 @@ struct PoissonSolver::Impl {
     }
 };
 
+void checkSettings(const SolverSettings& settings) {
+    if (!(settings.relativeTolerance > 0.0 && settings.relativeTolerance < 1.0))
+        throw ParameterError("solver.tolerance", formatG(settings.relativeTolerance),
+                             "must be in (0, 1)");
+    if (settings.maxIterations < 1)
+        throw ParameterError("solver.max_iterations", std::to_string(settings.maxIterations),
+                             "must be >= 1");
+    // No scene key sets the sweeps: `gale solve` and the benchmarks keep the default.
+    if (settings.smoothingSweeps < 1 || settings.smoothingSweeps > 8)
+        throw std::logic_error("SolverSettings.smoothingSweeps must be in 1..8, got " +
+                               std::to_string(settings.smoothingSweeps));
+}
+
 PoissonSystem PoissonSystem::uniformBox(int nx, int ny, int nz) {
     PoissonSystem s;
     s.nx = nx, s.ny = ny, s.nz = nz;
@@ -82,8 +95,7 @@ PoissonSystem PoissonSystem::uniformBox(int nx, int ny, int nz) {
     return s;
 }
 
-PoissonSolver::PoissonSolver(const PoissonSystem& sys) : mImpl(std::make_unique<Impl>()) {
-    const auto t0 = std::chrono::steady_clock::now();
+void checkSystem(const PoissonSystem& sys) {
     if (sys.nx < 1 || sys.ny < 1 || sys.nz < 1)
         throw std::logic_error("PoissonSystem: nx, ny, nz must be >= 1, got " +
                                std::to_string(sys.nx) + ", " + std::to_string(sys.ny) + ", " +
@@ -102,6 +114,11 @@ PoissonSolver::PoissonSolver(const PoissonSystem& sys) : mImpl(std::make_unique<
     checkWeights(sys.weightX, nxF, "weightX");
     checkWeights(sys.weightY, nyF, "weightY");
     checkWeights(sys.weightZ, nzF, "weightZ");
+}
+
+PoissonSolver::PoissonSolver(const PoissonSystem& sys) : mImpl(std::make_unique<Impl>()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    checkSystem(sys);
 
     Impl& m = *mImpl;
     m.activeCells = multigrid::buildHierarchy(sys, m.levels);
@@ -209,16 +226,7 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
         throw std::logic_error(
             "PoissonSolver::solve: solution (warm start) must be empty or have " +
             std::to_string(n) + " entries, got " + std::to_string(solution.size()));
-    if (!(settings.relativeTolerance > 0.0 && settings.relativeTolerance < 1.0))
-        throw ParameterError("solver.tolerance", formatG(settings.relativeTolerance),
-                             "must be in (0, 1)");
-    if (settings.maxIterations < 1)
-        throw ParameterError("solver.max_iterations", std::to_string(settings.maxIterations),
-                             "must be >= 1");
-    // No scene key sets the sweeps: `gale solve` and the benchmarks keep the default.
-    if (settings.smoothingSweeps < 1 || settings.smoothingSweeps > 8)
-        throw std::logic_error("SolverSettings.smoothingSweeps must be in 1..8, got " +
-                               std::to_string(settings.smoothingSweeps));
+    checkSettings(settings);
     m.sweeps = settings.smoothingSweeps;
 
     SolveReport rep;
