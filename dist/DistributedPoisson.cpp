@@ -1,6 +1,6 @@
 /// \file DistributedPoisson.cpp
 /// Distributed MGPCG (DistributedPoisson.h): the decomposition by a PETSc DMDA, the halos by
-/// PetscSF on sim's padded level arrays, the V-cycle and CG driver over sim's kernels
+/// PetscSF on sim's padded level arrays, the V-cycle over sim's kernels and sim's own CG driver
 /// (sim/PoissonDetail.h), the coarsest level by PETSc's redundant LU. The single-process driver
 /// this mirrors is sim/PoissonSolver.cpp; what differs is only where ranks meet: an exchange
 /// before each sweep and each A p, the residual of the cells next to an interface formed again
@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -351,20 +350,6 @@ struct DistributedPoissonSolver::Impl {
                   s + 1 == sweeps ? dotOut : nullptr);
         }
     }
-
-    double maxAbs(const double* v) {
-        const Level& L = levels[0];
-        const double local = mg::reduceRows(
-            L,
-            [&](int j, int k) {
-                double mx = 0.0;
-                const size_t p0 = L.at(0, j, k);
-                for (int i = 0; i < L.nx; ++i) mx = std::max(mx, std::abs(v[p0 + i]));
-                return mx;
-            },
-            mg::MAX);
-        return allreduce(local, MPI_MAX);
-    }
 };
 
 DistributedPoissonSolver::DistributedPoissonSolver(const sim::PoissonSystem& sys, MPI_Comm comm)
@@ -543,115 +528,28 @@ sim::SolveReport DistributedPoissonSolver::solve(const std::vector<double>& rhs,
         m.stats.solveSeconds = rep.solveSeconds;
         m.stats.iterations = rep.iterations;
     };
-    const double normB = m.maxAbs(r);
-    if (!std::isfinite(normB)) {
-        rep.initialRelativeResidual = rep.relativeResidual =
-            std::numeric_limits<double>::infinity();
-        std::fill(x, x + L.total, 0.0);
-        finish("right-hand side is not finite");
-        return rep;
-    }
-    if (normB == 0.0) {
-        std::fill(x, x + L.total, 0.0);
-        rep.converged = true;
-        finish("right-hand side is zero: solution is zero");
-        return rep;
-    }
-    if (warm) {
-        std::copy(r, r + L.total, p);  // p = b
-        m.exchange(0, x);
-        mg::residual(L, x, p, r);
-    }
-    double res = m.maxAbs(r) / normB;
-    rep.initialRelativeResidual = rep.relativeResidual = res;
-    const double tol = settings.relativeTolerance;
-    if (res <= tol) {
-        rep.converged = true;
-        finish("warm start already meets the tolerance");
-        return rep;
-    }
-    auto sumRows = [&](const double* a, const double* b) {
-        return mg::reduceRows(
-            L,
-            [&](int j, int k) {
-                double s = 0.0;
-                const size_t p0 = L.at(0, j, k);
-                for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) s += a[pp] * b[pp];
-                return s;
-            },
-            mg::SUM);
-    };
-    auto precondition = [&]() {
-        if (settings.useMultigrid) {
+    // sim's CG driver, with this rank's exchanges and the sums and maxima over ranks.
+    struct Ranks : mg::PcgCommunication {
+        Impl& solver;
+        explicit Ranks(Impl& impl) : solver(impl) {}
+        void exchange(double* v) override { solver.exchange(0, v); }
+        double sum(double v) override { return solver.allreduce(v, MPI_SUM); }
+        double max(double v) override { return solver.allreduce(v, MPI_MAX); }
+    } ranks(m);
+    const char* why = mg::pcg(
+        L, {x, r, z, p, q}, warm, settings,
+        [&](double* rr, double* zz) {
             double rz = 0.0;
-            m.vcycle(0, r, z, q, &rz);
-            return m.allreduce(rz, MPI_SUM);
-        }
-        mg::forRows(L, [&](int j, int k) {
-            const size_t p0 = L.at(0, j, k);
-            for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) {
-                const double dd = L.diag(pp);
-                z[pp] = dd > 0.0 ? r[pp] / dd : 0.0;
-            }
-        });
-        return m.allreduce(sumRows(r, z), MPI_SUM);
-    };
-    double rz = precondition();
-    std::copy(z, z + L.total, p);
-    const char* why = "reached maxIterations";
-    bool ok = false;
-    for (int it = 1; it <= settings.maxIterations; ++it) {
-        m.exchange(0, p);
-        const double pq = m.allreduce(mg::applyDot(L, p, q), MPI_SUM);
-        if (!(pq > 0.0) || !std::isfinite(pq) || !std::isfinite(rz)) {
-            why = "breakdown: p.Ap is not positive (operator not SPD or values not finite)";
-            break;
-        }
-        const double alpha = rz / pq;
-        const double rmaxLocal = mg::reduceRows(
-            L,
-            [&](int j, int k) {
-                double mx = 0.0;
-                const size_t p0 = L.at(0, j, k);
-                for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) {
-                    x[pp] += alpha * p[pp];
-                    r[pp] -= alpha * q[pp];
-                    mx = std::max(mx, std::abs(r[pp]));
-                }
-                return mx;
-            },
-            mg::MAX);
-        rep.iterations = it;
-        res = m.allreduce(rmaxLocal, MPI_MAX) / normB;
-        if (!std::isfinite(res)) {
-            why = "residual is not finite";
-            break;
-        }
-        if (res <= tol) {
-            ok = true;
-            why = "converged";
-            break;
-        }
-        const double rzNew = precondition();
-        const double beta = rzNew / rz;
-        rz = rzNew;
-        mg::forRows(L, [&](int j, int k) {
-            const size_t p0 = L.at(0, j, k);
-            for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) p[pp] = z[pp] + beta * p[pp];
-        });
-    }
-    // The true residual b - A x, as sim's solver reports it.
-    mg::forRows(L, [&](int j, int k) {
-        const size_t p0 = L.at(0, j, k), c0 = whole.cellIndex(x0, y0 + j, k);
-        for (int i = 0; i < L.nx; ++i) z[p0 + i] = L.active[p0 + i] ? rhs[c0 + i] : 0.0;
-    });
-    m.exchange(0, x);
-    mg::residual(L, x, z, r);
-    const double trueRes = m.maxAbs(r) / normB;
-    rep.relativeResidual = trueRes;
-    constexpr double RECURRENCE_DRIFT = 10.0;  // as sim's solver: rounding lifts the true residual
-    rep.converged = ok && trueRes <= RECURRENCE_DRIFT * tol;
-    if (ok && !rep.converged) why = "recurrence converged but the true residual did not";
+            m.vcycle(0, rr, zz, q, &rz);
+            return rz;
+        },
+        [&](double* b) {
+            mg::forRows(L, [&](int j, int k) {
+                const size_t p0 = L.at(0, j, k), c0 = whole.cellIndex(x0, y0 + j, k);
+                for (int i = 0; i < L.nx; ++i) b[p0 + i] = L.active[p0 + i] ? rhs[c0 + i] : 0.0;
+            });
+        },
+        ranks, rep);
     finish(why);
     return rep;
 }

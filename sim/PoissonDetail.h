@@ -30,6 +30,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "sim/GridLayout.h"
@@ -295,5 +296,35 @@ void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, in
 
 /// xf += the redirected part of P xc on fine slab k, in redirect order.
 void prolongRedirects(const Level& F, const double* xc, double* xf, int k);
+
+// --- the CG driver (PoissonSolver.cpp) --------------------------------------------------------
+
+/// What the CG driver needs from whoever holds level 0, one process (PoissonSolver) or one rank
+/// of many (gale_dist): the ghosts of a level-0 vector made current before the operator reads
+/// them, and a partial sum or maximum combined over ranks. On one process: nothing and the
+/// identity, which is this base class.
+struct PcgCommunication {
+    virtual ~PcgCommunication() = default;
+    virtual void exchange(double* v) { (void)v; }
+    virtual double sum(double v) { return v; }
+    virtual double max(double v) { return v; }
+};
+
+/// Level 0's padded PCG vectors: solution, residual, preconditioned residual, direction,
+/// operator times direction.
+struct PcgVectors {
+    double *x, *r, *z, *p, *q;
+};
+
+/// Preconditioned CG on level 0 (McAdams, Sifakis, Teran 2010 precondition with one V-cycle):
+/// on input r holds b and x the warm start (both padded, 0 off the unknowns; warm says whether x
+/// is one); on output x is the solution. vcycle(r, z): z = M^-1 r, returning this process's
+/// r . z; loadRhs(b): b := the right-hand side again (padded), for the true residual reported at
+/// the end. Fills rep's converged, iterations and residuals (the max norm, relative to max |b|);
+/// returns why it stopped, in words.
+const char* pcg(const Level& L, const PcgVectors& v, bool warm, const SolverSettings& settings,
+                const std::function<double(double* r, double* z)>& vcycle,
+                const std::function<void(double* b)>& loadRhs, PcgCommunication& comm,
+                SolveReport& rep);
 
 }  // namespace gale::sim::multigrid
