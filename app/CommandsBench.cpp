@@ -22,6 +22,7 @@
 #include "app/bench/BenchModels.h"
 #include "app/bench/BenchRender.h"
 #include "app/bench/BenchRough.h"
+#include "app/bench/BenchScale.h"
 #include "app/bench/BenchSolve.h"
 #include "app/bench/BenchUnsteady.h"
 #include "app/bench/BenchView.h"
@@ -122,6 +123,32 @@ void addSolve(CLI::App& bench, VerbTable& verbs) {
                      "Max-norm relative residual for both solvers")
         ->capture_default_str()
         ->check(CLI::Range(1e-14, 0.5));
+}
+
+void addScale(CLI::App& bench, VerbTable& verbs) {
+    auto size = std::make_shared<std::string>();
+    auto ranks = std::make_shared<std::vector<int>>();
+    auto noGamg = std::make_shared<bool>(false);
+    auto [verb, o] = addBench<BenchScaleOptions>(
+        bench, verbs, "scale",
+        "Strong scaling of the distributed solve (mpirun, 1, 2, 4 ranks) on the 256x256x64 box: "
+        "per-iteration compute, halo exchange, coarse solve, bytes exchanged; one process at 1 "
+        "and 2 threads and PETSc GAMG as anchors (docs/scale.md)",
+        "A 64x64x32 box (a CI smoke run)", [size, ranks, noGamg](BenchScaleOptions& options) {
+            if (!size->empty()) options.size = parseBoxSize(*size);
+            if (!ranks->empty()) options.ranks = *ranks;
+            options.gamg = !*noGamg;
+            return runBenchScale(options);
+        });
+    verb->add_option("--size", *size, "Box NXxNYxNZ (default 256x256x64)");
+    verb->add_option("--ranks", *ranks, "Rank counts (default 1 2 4)")->check(CLI::Range(1, 1024));
+    verb->add_option("--tolerance", o->relativeTolerance, "Max-norm relative residual")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-14, 0.5));
+    verb->add_flag("--no-gamg", *noGamg, "Skip PETSc GAMG");
+    verb->add_flag("--worker", o->worker, "Internal: one rank count's child run");
+    verb->add_option("--shared-threads", o->sharedThreads,
+                     "Internal: the child runs sim's one-process solver");
 }
 
 void addCoupling(CLI::App& bench, VerbTable& verbs) {
@@ -353,6 +380,7 @@ void addBenchVerbs(CLI::App& app, VerbTable& verbs) {
     addRender(*bench, verbs);
     addAccuracy(*bench, verbs);
     addSolve(*bench, verbs);
+    addScale(*bench, verbs);
     addCoupling(*bench, verbs);
     addRough(*bench, verbs);
     addModels(*bench, verbs);

@@ -19,6 +19,9 @@
 #include "app/Cli.h"
 #include "app/Version.h"
 #include "app/io/Errors.h"
+#ifdef GALE_HAVE_DIST
+#include "dist/ProcessGroup.h"
+#endif
 
 namespace {
 
@@ -63,7 +66,7 @@ bool isVerb(const CLI::App& app, const std::string& name) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int runGale(int argc, char** argv) {
     CLI::App app{
         "gale: wind over terrain, rendered as real-time shell grass (Bakay, Lalonde, "
         "Heidrich 2002).",
@@ -118,4 +121,23 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         return reportError(e.what(), EXIT_FAILURE_INTERNAL);
     }
+}
+
+/// Under mpirun rank 0 runs the verb and the other ranks serve its solves (dist/ProcessGroup.h);
+/// started without an MPI launcher, or built without gale_dist, gale is one process.
+int main(int argc, char** argv) {
+#ifdef GALE_HAVE_DIST
+    std::unique_ptr<gale::dist::ProcessGroup> group;
+    try {
+        group = std::make_unique<gale::dist::ProcessGroup>();
+    } catch (const std::exception& e) {
+        return reportError(e.what(), EXIT_FAILURE_INTERNAL);
+    }
+    if (!group->leader()) return group->serve();
+    const int code = runGale(argc, argv);
+    group->finish(code);
+    return code;
+#else
+    return runGale(argc, argv);
+#endif
 }

@@ -1,6 +1,7 @@
 #pragma once
 /// \file PoissonDetail.h
-/// \internal Included only by sim/ and tests/sim (docs/architecture.md lists sim's public headers).
+/// \internal Included only by sim/, tests/sim and dist/ (gale_dist runs these kernels on each
+/// rank's subdomain; docs/architecture.md lists sim's public headers).
 /// Internal to PoissonSolver (namespace gale::sim::multigrid, so its plain names such as Level
 /// cannot collide with other sim internals), not part of gale_sim's interface: the multigrid level
 /// (padded arrays, uniform runs, transfers to the next level), the row loops every kernel runs on,
@@ -29,6 +30,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "sim/GridLayout.h"
@@ -178,11 +180,30 @@ inline constexpr auto MAX = [](double a, double b) { return std::max(a, b); };
 
 // --- the hierarchy (PoissonLevels.cpp) ---------------------------------------------------------
 
+/// The coarsening factors (cx, cy, cz) buildHierarchy uses on an nx * ny * nz box, one entry per
+/// coarser level, finest first: 2 along every axis longer than one cell, until a level has at
+/// most COARSEST_MAX_CELLS cells (then solved by dense Cholesky).
+std::vector<std::array<int, 3>> coarseningPlan(int nx, int ny, int nz);
+
+/// One rank's subdomain of a box split across ranks (gale_dist): a side marked as an interface
+/// touches a neighbouring rank, so its face weights are the box's own interior weights, kept
+/// unscaled (the ghost cell holds the neighbour's current value, exchanged by the caller), and
+/// the transfers treat it as a Neumann side (weight towards the ghost goes to the fine cell's own
+/// parent), so each rank's prolongation and restriction are local and still each other's
+/// transpose. The plan is the whole box's coarseningPlan, so every rank builds the same levels;
+/// the caller places the subdomain so that its cells start at a multiple of the product of the
+/// plan's factors along each split axis (no coarse cell straddles two ranks).
+struct SubdomainShape {
+    std::array<bool, 6> interfaceSides{};
+    std::vector<std::array<int, 3>> plan;
+};
+
 /// Builds level 0 from a validated system (boundary-face weights scaled: Dirichlet x 2, Neumann
-/// 0) and coarsens by 2 per axis until a level has few enough cells for the dense solve; levels
-/// on output holds them finest first, with the transfers between them. Returns the number of
-/// active cells of level 0.
-size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels);
+/// 0, interfaces of a subdomain 1) and coarsens it by coarseningPlan (or the subdomain's plan);
+/// levels on output holds them finest first, with the transfers between them. Returns the number
+/// of active cells of level 0.
+size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels,
+                      const SubdomainShape* subdomain = nullptr);
 
 /// The coarsest level solved exactly: dense Cholesky factor over its active cells.
 struct CoarseSolver {
@@ -275,5 +296,35 @@ void prolongRow(const Level& C, const double* xc, const Level& F, double* xf, in
 
 /// xf += the redirected part of P xc on fine slab k, in redirect order.
 void prolongRedirects(const Level& F, const double* xc, double* xf, int k);
+
+// --- the CG driver (PoissonSolver.cpp) --------------------------------------------------------
+
+/// What the CG driver needs from whoever holds level 0, one process (PoissonSolver) or one rank
+/// of many (gale_dist): the ghosts of a level-0 vector made current before the operator reads
+/// them, and a partial sum or maximum combined over ranks. On one process: nothing and the
+/// identity, which is this base class.
+struct PcgCommunication {
+    virtual ~PcgCommunication() = default;
+    virtual void exchange(double* v) { (void)v; }
+    virtual double sum(double v) { return v; }
+    virtual double max(double v) { return v; }
+};
+
+/// Level 0's padded PCG vectors: solution, residual, preconditioned residual, direction,
+/// operator times direction.
+struct PcgVectors {
+    double *x, *r, *z, *p, *q;
+};
+
+/// Preconditioned CG on level 0 (McAdams, Sifakis, Teran 2010 precondition with one V-cycle):
+/// on input r holds b and x the warm start (both padded, 0 off the unknowns; warm says whether x
+/// is one); on output x is the solution. vcycle(r, z): z = M^-1 r, returning this process's
+/// r . z; loadRhs(b): b := the right-hand side again (padded), for the true residual reported at
+/// the end. Fills rep's converged, iterations and residuals (the max norm, relative to max |b|);
+/// returns why it stopped, in words.
+const char* pcg(const Level& L, const PcgVectors& v, bool warm, const SolverSettings& settings,
+                const std::function<double(double* r, double* z)>& vcycle,
+                const std::function<void(double* b)>& loadRhs, PcgCommunication& comm,
+                SolveReport& rep);
 
 }  // namespace gale::sim::multigrid

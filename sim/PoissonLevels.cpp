@@ -183,7 +183,19 @@ void Level::markActive() {
     });
 }
 
-size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels) {
+std::vector<std::array<int, 3>> coarseningPlan(int nx, int ny, int nz) {
+    std::vector<std::array<int, 3>> plan;
+    while (GridIndex{nx, ny, nz}.cellCount() > COARSEST_MAX_CELLS) {
+        const std::array<int, 3> f = {nx > 1 ? 2 : 1, ny > 1 ? 2 : 1, nz > 1 ? 2 : 1};
+        if (f[0] == 1 && f[1] == 1 && f[2] == 1) break;
+        plan.push_back(f);
+        nx = (nx + f[0] - 1) / f[0], ny = (ny + f[1] - 1) / f[1], nz = (nz + f[2] - 1) / f[2];
+    }
+    return plan;
+}
+
+size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels,
+                      const SubdomainShape* subdomain) {
     levels.clear();
     levels.emplace_back();
     Level& L = levels[0];
@@ -193,6 +205,7 @@ size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels) {
     // Boundary faces: Dirichlet data sits on the face, half a cell from the centre (weight x 2);
     // Neumann faces carry no flux (weight 0).
     auto boundaryScale = [&](int side) {
+        if (subdomain && subdomain->interfaceSides[size_t(side)]) return 1.f;
         return sys.sides[side] == BoundaryKind::Dirichlet ? 2.f : 0.f;
     };
     tbb::parallel_for(0, sys.nz, [&](int k) {
@@ -249,12 +262,16 @@ size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels) {
             L.findUniformRuns(bx, by, bz);
     }
 
-    while (levels.back().cells() > COARSEST_MAX_CELLS) {
+    // The transfers see an interface as a Neumann side (SubdomainShape).
+    std::array<BoundaryKind, 6> transferSides = sys.sides;
+    if (subdomain)
+        for (size_t s = 0; s < 6; ++s)
+            if (subdomain->interfaceSides[s]) transferSides[s] = BoundaryKind::Neumann;
+    const std::vector<std::array<int, 3>> plan =
+        subdomain ? subdomain->plan : coarseningPlan(sys.nx, sys.ny, sys.nz);
+    for (const std::array<int, 3>& factors : plan) {
         Level& F = levels.back();
-        F.cx = F.nx > 1 ? 2 : 1;
-        F.cy = F.ny > 1 ? 2 : 1;
-        F.cz = F.nz > 1 ? 2 : 1;
-        if (F.cx == 1 && F.cy == 1 && F.cz == 1) break;
+        F.cx = factors[0], F.cy = factors[1], F.cz = factors[2];
         Level C;
         C.zLines = F.zLines;
         buildCoarse(F, C);
@@ -270,7 +287,7 @@ size_t buildHierarchy(const PoissonSystem& sys, std::vector<Level>& levels) {
         F.tx = makeTransfer(F.nx, C.nx, F.cx);
         F.ty = makeTransfer(F.ny, C.ny, F.cy);
         F.tz = makeTransfer(F.nz, C.nz, F.cz);
-        buildRedirects(F, C, sys.sides);
+        buildRedirects(F, C, transferSides);
         levels.push_back(std::move(C));
     }
     return activeCells;

@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -33,6 +34,130 @@
 namespace gale::sim {
 
 using multigrid::Level;
+
+namespace multigrid {
+
+const char* pcg(const Level& L, const PcgVectors& v, bool warm, const SolverSettings& settings,
+                const std::function<double(double* r, double* z)>& vcycle,
+                const std::function<void(double* b)>& loadRhs, PcgCommunication& comm,
+                SolveReport& rep) {
+    double *x = v.x, *r = v.r, *z = v.z, *p = v.p, *q = v.q;
+    // max |v| over the cells of level 0 (max is exact: the same bits for any thread count).
+    auto maxAbs = [&](const double* a) {
+        return comm.max(reduceRows(
+            L,
+            [&](int j, int k) {
+                double mx = 0.0;
+                const size_t p0 = L.at(0, j, k);
+                for (int i = 0; i < L.nx; ++i) mx = std::max(mx, std::abs(a[p0 + i]));
+                return mx;
+            },
+            MAX));
+    };
+    const double normB = maxAbs(r);
+    if (!std::isfinite(normB)) {
+        rep.converged = false;
+        rep.initialRelativeResidual = rep.relativeResidual =
+            std::numeric_limits<double>::infinity();
+        std::fill(x, x + L.total, 0.0);
+        return "right-hand side is not finite";
+    }
+    if (normB == 0.0) {
+        std::fill(x, x + L.total, 0.0);
+        rep.converged = true;
+        return "right-hand side is zero: solution is zero";
+    }
+    // Keep b in p temporarily to form r = b - A x0.
+    if (warm) {
+        std::copy(r, r + L.total, p);  // p = b
+        comm.exchange(x);
+        residual(L, x, p, r);
+    }
+    double res = maxAbs(r) / normB;
+    rep.initialRelativeResidual = res;
+    rep.relativeResidual = res;
+    const double tol = settings.relativeTolerance;
+    if (res <= tol) {
+        rep.converged = true;
+        return "warm start already meets the tolerance";
+    }
+    auto precondition = [&]() {
+        if (settings.useMultigrid) return comm.sum(vcycle(r, z));
+        forRows(L, [&](int j, int k) {
+            const size_t p0 = L.at(0, j, k);
+            for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) {
+                const double d = L.diag(pp);
+                z[pp] = d > 0.0 ? r[pp] / d : 0.0;
+            }
+        });
+        return comm.sum(reduceRows(
+            L,
+            [&](int j, int k) {
+                double s = 0.0;
+                const size_t p0 = L.at(0, j, k);
+                for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) s += r[pp] * z[pp];
+                return s;
+            },
+            SUM));
+    };
+    double rz = precondition();
+    std::copy(z, z + L.total, p);
+    const char* why = "reached maxIterations";
+    bool ok = false;
+    for (int it = 1; it <= settings.maxIterations; ++it) {
+        comm.exchange(p);
+        const double pq = comm.sum(applyDot(L, p, q));
+        if (!(pq > 0.0) || !std::isfinite(pq) || !std::isfinite(rz)) {
+            why = "breakdown: p.Ap is not positive (operator not SPD or values not finite)";
+            break;
+        }
+        const double alpha = rz / pq;
+        const double rmax = comm.max(reduceRows(
+            L,
+            [&](int j, int k) {
+                double mx = 0.0;
+                const size_t p0 = L.at(0, j, k);
+                for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) {
+                    x[pp] += alpha * p[pp];
+                    r[pp] -= alpha * q[pp];
+                    mx = std::max(mx, std::abs(r[pp]));
+                }
+                return mx;
+            },
+            MAX));
+        rep.iterations = it;
+        res = rmax / normB;
+        if (!std::isfinite(res)) {
+            why = "residual is not finite";
+            break;
+        }
+        if (res <= tol) {
+            ok = true;
+            why = "converged";
+            break;
+        }
+        const double rzNew = precondition();
+        const double beta = rzNew / rz;
+        rz = rzNew;
+        forRows(L, [&](int j, int k) {
+            const size_t p0 = L.at(0, j, k);
+            for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) p[pp] = z[pp] + beta * p[pp];
+        });
+    }
+    // Report the true residual, not the recurrence's: b - A x, recomputed once.
+    loadRhs(z);
+    comm.exchange(x);
+    residual(L, x, z, r);
+    const double trueRes = maxAbs(r) / normB;
+    rep.relativeResidual = trueRes;
+    // Rounding can leave the true residual a little above the recurrence's.
+    constexpr double RECURRENCE_DRIFT = 10.0;
+    rep.converged = ok && trueRes <= RECURRENCE_DRIFT * tol;
+    if (ok && !rep.converged) why = "recurrence converged but the true residual did not";
+    return why;
+}
+
+}  // namespace multigrid
 
 struct PoissonSolver::Impl {
     std::vector<Level> levels;
@@ -73,6 +198,19 @@ struct PoissonSolver::Impl {
     }
 };
 
+void checkSettings(const SolverSettings& settings) {
+    if (!(settings.relativeTolerance > 0.0 && settings.relativeTolerance < 1.0))
+        throw ParameterError("solver.tolerance", formatG(settings.relativeTolerance),
+                             "must be in (0, 1)");
+    if (settings.maxIterations < 1)
+        throw ParameterError("solver.max_iterations", std::to_string(settings.maxIterations),
+                             "must be >= 1");
+    // No scene key sets the sweeps: `gale solve` and the benchmarks keep the default.
+    if (settings.smoothingSweeps < 1 || settings.smoothingSweeps > 8)
+        throw std::logic_error("SolverSettings.smoothingSweeps must be in 1..8, got " +
+                               std::to_string(settings.smoothingSweeps));
+}
+
 PoissonSystem PoissonSystem::uniformBox(int nx, int ny, int nz) {
     PoissonSystem s;
     s.nx = nx, s.ny = ny, s.nz = nz;
@@ -82,8 +220,7 @@ PoissonSystem PoissonSystem::uniformBox(int nx, int ny, int nz) {
     return s;
 }
 
-PoissonSolver::PoissonSolver(const PoissonSystem& sys) : mImpl(std::make_unique<Impl>()) {
-    const auto t0 = std::chrono::steady_clock::now();
+void checkSystem(const PoissonSystem& sys) {
     if (sys.nx < 1 || sys.ny < 1 || sys.nz < 1)
         throw std::logic_error("PoissonSystem: nx, ny, nz must be >= 1, got " +
                                std::to_string(sys.nx) + ", " + std::to_string(sys.ny) + ", " +
@@ -102,6 +239,11 @@ PoissonSolver::PoissonSolver(const PoissonSystem& sys) : mImpl(std::make_unique<
     checkWeights(sys.weightX, nxF, "weightX");
     checkWeights(sys.weightY, nyF, "weightY");
     checkWeights(sys.weightZ, nzF, "weightZ");
+}
+
+PoissonSolver::PoissonSolver(const PoissonSystem& sys) : mImpl(std::make_unique<Impl>()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    checkSystem(sys);
 
     Impl& m = *mImpl;
     m.activeCells = multigrid::buildHierarchy(sys, m.levels);
@@ -209,16 +351,7 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
         throw std::logic_error(
             "PoissonSolver::solve: solution (warm start) must be empty or have " +
             std::to_string(n) + " entries, got " + std::to_string(solution.size()));
-    if (!(settings.relativeTolerance > 0.0 && settings.relativeTolerance < 1.0))
-        throw ParameterError("solver.tolerance", formatG(settings.relativeTolerance),
-                             "must be in (0, 1)");
-    if (settings.maxIterations < 1)
-        throw ParameterError("solver.max_iterations", std::to_string(settings.maxIterations),
-                             "must be >= 1");
-    // No scene key sets the sweeps: `gale solve` and the benchmarks keep the default.
-    if (settings.smoothingSweeps < 1 || settings.smoothingSweeps > 8)
-        throw std::logic_error("SolverSettings.smoothingSweeps must be in 1..8, got " +
-                               std::to_string(settings.smoothingSweeps));
+    checkSettings(settings);
     m.sweeps = settings.smoothingSweeps;
 
     SolveReport rep;
@@ -235,19 +368,6 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
             x[p0 + i] = (active && warm) ? solution[c0 + i] : 0.0;
         }
     });
-    // max |v| over the cells of level 0 (max is exact: the same bits for any thread count).
-    auto maxAbs = [&](const double* v) {
-        return multigrid::reduceRows(
-            L,
-            [&](int j, int k) {
-                double mx = 0.0;
-                const size_t p0 = L.at(0, j, k);
-                for (int i = 0; i < L.nx; ++i) mx = std::max(mx, std::abs(v[p0 + i]));
-                return mx;
-            },
-            multigrid::MAX);
-    };
-    const double normB = maxAbs(r);
     auto finish = [&](const char* why) {
         solution.assign(n, 0.0);
         multigrid::forRows(L, [&](int j, int k) {
@@ -258,115 +378,21 @@ SolveReport PoissonSolver::solve(const std::vector<double>& rhs, std::vector<dou
         rep.solveSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     };
-    if (!std::isfinite(normB)) {
-        rep.converged = false;
-        rep.initialRelativeResidual = rep.relativeResidual =
-            std::numeric_limits<double>::infinity();
-        std::fill(x, x + L.total, 0.0);
-        finish("right-hand side is not finite");
-        return rep;
-    }
-    if (normB == 0.0) {
-        std::fill(x, x + L.total, 0.0);
-        rep.converged = true;
-        finish("right-hand side is zero: solution is zero");
-        return rep;
-    }
-    // Keep b in p temporarily to form r = b - A x0.
-    if (warm) {
-        std::copy(r, r + L.total, p);  // p = b
-        multigrid::residual(L, x, p, r);
-    }
-    double res = maxAbs(r) / normB;
-    rep.initialRelativeResidual = res;
-    rep.relativeResidual = res;
-    const double tol = settings.relativeTolerance;
-    if (res <= tol) {
-        rep.converged = true;
-        finish("warm start already meets the tolerance");
-        return rep;
-    }
-    auto precondition = [&]() {
-        if (settings.useMultigrid) {
+    multigrid::PcgCommunication one;  // one process: nothing to exchange or combine
+    const char* why = multigrid::pcg(
+        L, {x, r, z, p, q}, warm, settings,
+        [&](double* rr, double* zz) {
             double rz = 0.0;
-            m.vcycle(0, r, z, q, &rz);  // r . z summed inside the last sweep
+            m.vcycle(0, rr, zz, q, &rz);  // r . z summed inside the last sweep
             return rz;
-        } else {
+        },
+        [&](double* b) {
             multigrid::forRows(L, [&](int j, int k) {
-                const size_t p0 = L.at(0, j, k);
-                for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) {
-                    const double d = L.diag(pp);
-                    z[pp] = d > 0.0 ? r[pp] / d : 0.0;
-                }
+                const size_t p0 = L.at(0, j, k), c0 = L.cellIndex(0, j, k);
+                for (int i = 0; i < L.nx; ++i) b[p0 + i] = L.diag(p0 + i) > 0.0 ? rhs[c0 + i] : 0.0;
             });
-        }
-        return multigrid::reduceRows(
-            L,
-            [&](int j, int k) {
-                double s = 0.0;
-                const size_t p0 = L.at(0, j, k);
-                for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) s += r[pp] * z[pp];
-                return s;
-            },
-            multigrid::SUM);
-    };
-    double rz = precondition();
-    std::copy(z, z + L.total, p);
-    const char* why = "reached maxIterations";
-    bool ok = false;
-    for (int it = 1; it <= settings.maxIterations; ++it) {
-        const double pq = multigrid::applyDot(L, p, q);
-        if (!(pq > 0.0) || !std::isfinite(pq) || !std::isfinite(rz)) {
-            why = "breakdown: p.Ap is not positive (operator not SPD or values not finite)";
-            break;
-        }
-        const double alpha = rz / pq;
-        const double rmax = multigrid::reduceRows(
-            L,
-            [&](int j, int k) {
-                double mx = 0.0;
-                const size_t p0 = L.at(0, j, k);
-                for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) {
-                    x[pp] += alpha * p[pp];
-                    r[pp] -= alpha * q[pp];
-                    mx = std::max(mx, std::abs(r[pp]));
-                }
-                return mx;
-            },
-            multigrid::MAX);
-        rep.iterations = it;
-        res = rmax / normB;
-        if (!std::isfinite(res)) {
-            why = "residual is not finite";
-            break;
-        }
-        if (res <= tol) {
-            ok = true;
-            why = "converged";
-            break;
-        }
-        const double rzNew = precondition();
-        const double beta = rzNew / rz;
-        rz = rzNew;
-        multigrid::forRows(L, [&](int j, int k) {
-            const size_t p0 = L.at(0, j, k);
-            for (size_t pp = p0; pp < p0 + size_t(L.nx); ++pp) p[pp] = z[pp] + beta * p[pp];
-        });
-    }
-    // Report the true residual, not the recurrence's: b - A x, recomputed once.
-    {
-        multigrid::forRows(L, [&](int j, int k) {
-            const size_t p0 = L.at(0, j, k), c0 = L.cellIndex(0, j, k);
-            for (int i = 0; i < L.nx; ++i) z[p0 + i] = L.diag(p0 + i) > 0.0 ? rhs[c0 + i] : 0.0;
-        });
-        multigrid::residual(L, x, z, r);
-        const double trueRes = maxAbs(r) / normB;
-        rep.relativeResidual = trueRes;
-        // Rounding can leave the true residual a little above the recurrence's.
-        constexpr double RECURRENCE_DRIFT = 10.0;
-        rep.converged = ok && trueRes <= RECURRENCE_DRIFT * tol;
-        if (ok && !rep.converged) why = "recurrence converged but the true residual did not";
-    }
+        },
+        one, rep);
     finish(why);
     return rep;
 }

@@ -76,6 +76,15 @@ struct SolverSettings {
     bool useMultigrid = true;
 };
 
+/// Throws std::logic_error (a broken precondition of the caller) naming the field when a size is
+/// < 1, a weight vector has the wrong length, or a weight is negative or not finite: the checks
+/// every solver of a PoissonSystem makes (PoissonSolver, gale_dist's distributed one).
+void checkSystem(const PoissonSystem& system);
+
+/// Throws gale::ParameterError naming solver.tolerance or solver.max_iterations for a bad
+/// setting, std::logic_error for smoothingSweeps outside 1..8.
+void checkSettings(const SolverSettings& settings);
+
 /// What a solve reached. Non-convergence is reported here, never thrown.
 struct [[nodiscard]] SolveReport {
     bool converged = false;

@@ -166,7 +166,8 @@ SteadyWindResult SteadyWindSolver::solve(const AmbientWind& ambient, const Solve
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     // --- solve -----------------------------------------------------------------------------
-    res.report = mPoisson.solve(rhs, mPotential, settings);
+    res.report =
+        mSolve ? mSolve(rhs, mPotential, settings) : mPoisson.solve(rhs, mPotential, settings);
     const auto t1 = std::chrono::steady_clock::now();
 
     // --- velocity update: u = u0 + (d/dx psi, d/dy psi, r d/dz psi) on every face whose

@@ -91,6 +91,12 @@ class SteadyWindSolver {
     void setWarmStart(std::vector<double> potential_m2ps);
     const PoissonSystem& system() const { return mSystem; }
     const PoissonSolver& poisson() const { return mPoisson; }
+    /// Another solver of system() for solve() to call instead of poisson() (gale_dist's
+    /// distributed MGPCG under mpirun): PoissonSolver::solve's contract (right-hand side, warm
+    /// start in and solution out, one value per cell, and the report). Empty: poisson().
+    using PoissonSolve = std::function<SolveReport(
+        const std::vector<double>& rhs, std::vector<double>& solution, const SolverSettings&)>;
+    void setPoissonSolve(PoissonSolve solve) { mSolve = std::move(solve); }
     double verticalRatio() const { return mRatio; }
 
     /// The PoissonSystem of a domain: weights theta_f * c_f, Dirichlet sides and top, Neumann
@@ -103,6 +109,7 @@ class SteadyWindSolver {
     double mRatio = 1.0;
     PoissonSystem mSystem;
     PoissonSolver mPoisson;
+    PoissonSolve mSolve;
     std::vector<double> mPotential;
 };
 

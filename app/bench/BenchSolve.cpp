@@ -34,12 +34,8 @@
 namespace gale::app {
 
 // =================================================================================================
-// Solver speed: the same elliptic problem for ours and OpenVDB's.
-namespace {
+// Solver speed: the same elliptic problem for ours and OpenVDB's (and bench scale's).
 
-/// The benchmark problem: a box of unit cells, the 7-point Laplacian, Dirichlet 0 on the faces of
-/// the sides and top, Neumann on the ground, and a deterministic pseudo-random right-hand side in
-/// [-0.5, 0.5] (every frequency present: the hard case for any preconditioner).
 std::vector<double> benchRhs(size_t n) {
     std::vector<double> b(n);
     uint64_t s = 0x9E3779B97F4A7C15ull;
@@ -55,6 +51,8 @@ sim::PoissonSystem benchSystem(int nx, int ny, int nz) {
     s.sides[sim::SIDE_ZMIN] = sim::BoundaryKind::Neumann;
     return s;
 }
+
+namespace {
 
 /// What a child process reports back through a pipe (plain data).
 struct RunResult {

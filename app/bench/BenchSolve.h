@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/PoissonSolver.h"
+
 namespace gale::app {
 
 struct BenchAccuracyOptions {
@@ -39,5 +41,12 @@ struct BenchSolveOptions {
 /// its own. Returns 0 when ours converged at every size (targets are reported, not enforced).
 /// Throws std::invalid_argument on bad options, std::runtime_error on I/O failure.
 int runBenchSolve(const BenchSolveOptions& options);
+
+/// The problem of `gale bench solve` (and `gale bench scale`): a box of unit cells, the 7-point
+/// Laplacian, Dirichlet 0 on the sides and top, Neumann on the ground ...
+sim::PoissonSystem benchSystem(int nx, int ny, int nz);
+/// ... and a deterministic pseudo-random right-hand side in [-0.5, 0.5] (every frequency
+/// present: the hard case for any preconditioner), n entries.
+std::vector<double> benchRhs(size_t n);
 
 }  // namespace gale::app

@@ -21,6 +21,9 @@
 #include "base/Numbers.h"
 #include "coupling/UnsteadyFieldWind.h"
 #include "sim/MemoryEstimate.h"
+#ifdef GALE_HAVE_DIST
+#include "dist/ProcessGroup.h"
+#endif
 
 namespace gale::app {
 namespace {
@@ -435,6 +438,11 @@ SceneField solveSceneField(const Scene& scene, std::unique_ptr<sim::AirDomain> d
             // The mass-consistent branch of sim::solveSteadyModel, with the solver kept for the
             // report's memory figure.
             sim::SteadyWindSolver solver(*domain, scene.solver.weights);
+#ifdef GALE_HAVE_DIST
+            // Under mpirun every rank takes part in the solve (dist/ProcessGroup.h).
+            if (auto solve = dist::groupPoissonSolve(solver.system()))
+                solver.setPoissonSolve(std::move(solve));
+#endif
             sim::SteadyWindResult r = solver.solve(scene.wind.ambient, scene.solver.settings);
             out.field = std::move(r.field);
             out.report = r.report;
