@@ -170,8 +170,6 @@ struct TraceStart {
     double u[3];
     double layer_m;
     bool above;
-    double z_m;   ///< world height the trace starts from: the sample's, or the surface above it
-    bool lifted;  ///< the sample lay below the terrain surface and its trace starts on it
 };
 
 /// The TraceStart at world point x0 (metres); with a sample (p, i, j, k) that lies at x0 the
@@ -181,18 +179,10 @@ TraceStart traceStart(const MacGrid& g, const FaceVelocitySampler<Lattice>& velo
                       const double* x0, double groundTop_m, const Placement* p = nullptr, int i = 0,
                       int j = 0, int k = 0) {
     TraceStart s{};
+    // Only a trace that starts above the surface is stopped by it on the way (samples inside cut
+    // cells may sit below the bilinear surface: they are traced freely until they emerge, and
+    // one that ends below the surface ends on it instead; traceWs).
     s.above = x0[2] > groundTop_m || aboveGround_m(g, x0) >= 0.0;
-    s.z_m = x0[2];
-    if (!s.above) {
-        // A sample below the bilinear surface (inside a cut cell, or a closed face): the air it
-        // stands for is the air on the surface above it, so its trace starts there and is
-        // stopped by the surface like any other (Advection.h, "Traces").
-        s.z_m = g.terrain->sample(x0[0], x0[1]);
-        s.lifted = s.above = true;
-        const double lifted[3] = {x0[0], x0[1], s.z_m};
-        velocityWs(lifted, s.u, &s.layer_m);
-        return s;
-    }
     if (p)
         velocityWs.atSample(*p, i, j, k, x0, s.u, &s.layer_m);
     else
@@ -204,14 +194,15 @@ TraceStart traceStart(const MacGrid& g, const FaceVelocitySampler<Lattice>& velo
 /// substep moves by s u metres; its length s holds the travel to at most
 /// MAX_TRACE_CELLS_PER_SUBSTEP cells along every axis, horizontal cells of h and vertical ones
 /// of the local layer's thickness (so a trace through thin stretched layers takes short
-/// substeps). x0 and dep are world metres. Returns true when the trace was clipped: it started
-/// below the surface (TraceStart::lifted), was stopped on the surface, or left the box (its value
-/// is then the far field's, not the grid's).
+/// substeps). x0 and dep are world metres. A trace that ends below the surface (one that started
+/// below it and did not emerge) ends on the surface straight above. Returns true when the trace
+/// was clipped: stopped on the surface, ended on it from below, or left the box (its value is
+/// then the far field's, not the grid's).
 template <class Lattice>
 bool traceWs(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs, const double* x0,
              const TraceStart& start, double dt, double groundTop_m, double* dep) {
-    double x[3] = {x0[0], x0[1], start.z_m};
-    bool clipped = start.lifted;
+    double x[3] = {x0[0], x0[1], x0[2]};
+    bool clipped = false;
     const double sign = dt < 0.0 ? -1.0 : 1.0;
     double remaining = std::abs(dt);
     bool above = start.above;
@@ -260,6 +251,10 @@ bool traceWs(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs, c
         above = above || heightNew >= 0.0;
         for (int a = 0; a < 3; ++a) x[a] = xn[a];
         remaining -= s;
+    }
+    if (!above && !velocityWs.box.outside(x) && x[2] <= groundTop_m) {
+        const double ground_m = g.terrain->sample(x[0], x[1]);
+        if (x[2] < ground_m) x[2] = ground_m, clipped = true;
     }
     for (int a = 0; a < 3; ++a) dep[a] = x[a];
     return clipped || velocityWs.box.outside(x);

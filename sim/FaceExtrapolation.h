@@ -21,8 +21,8 @@ void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid,
 /// The faces of placement p that the terrain closes (valid == 0: inside the rock, or between a
 /// solid and an air cell), as indices into g.count(p) values, ascending; the box's top level of
 /// z-faces is left out (a lid's closed faces carry the lid's own velocity, not a wall's). The
-/// advection reads these faces as the ground at rest: normal and tangential velocity 0 (the
-/// no-slip wall; MomentumAdvection.h, "Boundaries").
+/// unsteady solver's advection reads them as 0 under a wall stress (sim/UnsteadyWind.h,
+/// step 2).
 std::vector<size_t> terrainClosedFaces(const std::vector<uint8_t>& valid, const GridIndex& g,
                                        Placement p);
 

@@ -137,9 +137,16 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
                     (k > 0 && k < nz) ? (air(i, j, k - 1) && air(i, j, k))
                     : k == nz         ? (mSettings.openTop ? air(i, j, nz - 1) : uint8_t(0))
                                       : 0;
-    mWallFaces[0] = detail::terrainClosedFaces(mOkX, mGrid, Placement::FaceX);
-    mWallFaces[1] = detail::terrainClosedFaces(mOkY, mGrid, Placement::FaceY);
-    mWallFaces[2] = detail::terrainClosedFaces(mOkZ, mGrid, Placement::FaceZ);
+    // The wall's values in the advection (UnsteadyWind.h, step 2): under the wall stress the
+    // ground is at rest, every closed face 0 (no flow through it, no slip along it). On free-slip
+    // ground (the inviscid runs) the closed faces keep their extrapolated values: there the wall
+    // is the sloping cut surface, not the staircase of closed faces, and a face-normal 0 would
+    // turn a smooth slope into steps (measured: the CFL 5 ridge left its steady potential flow).
+    if (mSettings.surfaceLayer.enabled && mSettings.surfaceLayer.wallStress) {
+        mWallFaces[0] = detail::terrainClosedFaces(mOkX, mGrid, Placement::FaceX);
+        mWallFaces[1] = detail::terrainClosedFaces(mOkY, mGrid, Placement::FaceY);
+        mWallFaces[2] = detail::terrainClosedFaces(mOkZ, mGrid, Placement::FaceZ);
+    }
     mSeeded.assign(mSettings.whirlwinds.size(), 0);
     if (mSettings.surfaceLayer.enabled)
         mStress = std::make_unique<TurbulentStress>(domain, mSettings.surfaceLayer,

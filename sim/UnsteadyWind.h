@@ -12,12 +12,14 @@
 ///     MacCormack or BFECC, both limited). Traces that leave the box through a side or the top
 ///     read the far field: the steady field (clamped to the box) plus the gusts' added velocity
 ///     at the end of the step (sim/Gusts.h). That makes every side an inflow where the air comes
-///     in and zero-gradient where it goes out. Walls: the faces the terrain closes read as the
-///     ground at rest (all three components 0: no flow through the wall, no slip along it), both
-///     as the advected values and as the velocity the traces follow, so a lee cell behind a
-///     riser imports no crest-level momentum through the riser's face; after the advection they
-///     get their extrapolated values back (what sampling near the ground and the stress step
-///     read);
+///     in and zero-gradient where it goes out. Walls: under the surface layer's wall stress
+///     (no slip) every face the terrain closes reads 0, the ground at rest (no flow through the
+///     wall, none along it), both as the advected value and as the velocity the traces follow,
+///     so a lee cell behind a riser imports no crest-level momentum through the riser's face;
+///     after the advection the closed faces get their extrapolated values back (what sampling
+///     near the ground and the stress step read). On free-slip ground (no wall stress) they keep
+///     their extrapolated values: the wall is then the sloping cut surface, and a 0 on the
+///     staircase of closed faces would turn the slope into steps;
 ///  3. forces: region gusts (GustEntry::Region: a moving disc relaxing the flow towards the mean
 ///     plus the gust), whirlwind forcing during a forced whirlwind's lifetime (relaxes its
 ///     circulation at 2 r_c back to the seeded one; injects, never removes), vorticity confinement
@@ -240,8 +242,9 @@ class UnsteadyWindSolver {
     std::vector<double> mMeanU, mMeanV, mMeanW;
     std::vector<uint8_t> mOkX, mOkY,
         mOkZ;  // faces the projection updates (between air cells or on the box)
-    /// Faces the terrain closes, per component (detail::terrainClosedFaces): the advection reads
-    /// them as the ground at rest (0), the rest of the step as the extrapolated values.
+    /// Closed faces the advection reads as 0 (step 2 of the file comment: all of them under a
+    /// wall stress, none on free-slip ground), per component; the rest of the step reads their
+    /// extrapolated values.
     std::array<std::vector<size_t>, 3> mWallFaces;
     PoissonSystem mSystem;
     PoissonSolver mPoisson;

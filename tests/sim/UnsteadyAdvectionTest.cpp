@@ -283,6 +283,9 @@ TEST(Advection, TraceFromBelowTheSurfaceEndsOnOrAboveIt) {
                     below += x[2] < ground.sample(x[0], x[1]);
                     for (double dt : {0.5, 2.0}) {
                         const Vec3d dep = traceBack(g, vel, {}, x, dt);
+                        // Beyond the box a trace reads the far field, not the grid.
+                        if (!(dep[0] >= 0.0 && dep[0] <= 12.0 && dep[1] >= 0.0 && dep[1] <= 10.0))
+                            continue;
                         EXPECT_GE(dep[2] - ground.sample(dep[0], dep[1]),
                                   -TERRAIN_STOP_TOLERANCE_CELLS * g.voxelSize_m)
                             << i << " " << j << " " << k << " dt " << dt;
