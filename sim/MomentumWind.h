@@ -113,11 +113,11 @@ struct MomentumSettings {
     /// The convergence criterion (the file comment, "Convergence"; no scene key): the steady
     /// equations' residual or the change per pseudo-step; Automatic is the change per step for
     /// both advections today. Both residuals are recorded either way. Measured on the lee
-    /// example (docs/validation.md, "The steady residual"), the steady residual of either step's
-    /// fixed point has a floor far above residualTolerance: about 9e-3 for the semi-Lagrangian
-    /// step (its numerical viscosity) and 1.5e-3 for the Eulerian one (the stress step's
-    /// splitting against the projection, O(dt)), so with it as the criterion every solve of a
-    /// steep scene would stop at its step limit.
+    /// example (docs/validation.md, "Walls in the advection and the steady residual"), the
+    /// steady residual of either step's fixed point has a floor far above residualTolerance:
+    /// about 9e-3 for the semi-Lagrangian step (its numerical viscosity) and 1.5e-3 for the
+    /// Eulerian one (the stress step's splitting against the projection, O(dt)), so with it as
+    /// the criterion every solve of a steep scene would stop at its step limit.
     enum class Criterion { Automatic, SteadyResidual, ChangePerStep };
     Criterion criterion = Criterion::Automatic;
     /// The criterion Automatic resolves to.
