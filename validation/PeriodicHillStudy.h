@@ -78,11 +78,11 @@ double rmsDifference(const std::vector<double>& model, const std::vector<double>
 
 /// One run of the study.
 struct PeriodicHillOptions {
-    int cellsPerH = 10;        ///< h / cell edge (> 0)
-    int hills = 5;             ///< periods in the box (>= 2)
-    int measuredHill = 3;      ///< the period compared (1 <= measuredHill < hills)
-    int maxIterations = 500;   ///< pseudo-time steps per level at most
-    double cfl = 2.0;          ///< the semi-Lagrangian step's cfl
+    int cellsPerH = 10;       ///< h / cell edge (> 0)
+    int hills = 5;            ///< periods in the box (>= 2)
+    int measuredHill = 3;     ///< the period compared (1 <= measuredHill < hills)
+    int maxIterations = 500;  ///< pseudo-time steps per level at most
+    double cfl = 2.0;         ///< the semi-Lagrangian step's cfl
     sim::PseudoTimeAdvection advection = sim::PseudoTimeAdvection::SemiLagrangian;
     sim::TurbulenceClosure closure = sim::TurbulenceClosure::MixingLength;
     double h_m = 10.0;           ///< the hill height at model scale, metres (> 0)
