@@ -5,6 +5,7 @@
 /// closure) with both pseudo-time steps at two resolutions. A closure that is not built yet (the
 /// solver throws std::logic_error for it) gets a "not built" row, so the table fills itself once
 /// it lands. This file prints the tables.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -16,6 +17,7 @@
 #include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "sim/MomentumTurbulence.h"
+#include "sim/SurfaceLayer.h"
 #include "validation/AcceptanceLimits.h"
 #include "validation/PeriodicHill.h"
 #include "validation/PeriodicHillStudy.h"
@@ -32,6 +34,9 @@ std::string fixed(double v, int digits) {
     std::snprintf(b, sizeof b, "%.*f", digits, v);
     return b;
 }
+
+/// --quick: pseudo-steps per level at most (a smoke run of the table, not its figures).
+constexpr int QUICK_MAX_ITERATIONS = 300;
 
 struct Run {
     sim::TurbulenceClosure closure{};
@@ -50,11 +55,14 @@ int runSeparationStudy(const BenchModelsOptions& opt) {
     validation::PeriodicHillOptions base;
     std::printf(
         "The ERCOFTAC periodic hill (UFR 3-30; docs/validation.md, section 4): Re_h = %.0f, "
-        "%d hills in a row, period %d compared with the DNS of Xiao et al. (2020); smooth walls as "
-        "z0 = %.3g h (log law B = %.1f, u_tau from Dean's law); h = %.0f m, Ub = %.0f m/s; "
-        "the along-wall line %.1f cells above the floor.\n",
-        ph::REYNOLDS_H, base.hills, base.measuredHill, ph::smoothWallZ0_h(0.41), ph::SMOOTH_WALL_B,
-        base.h_m, base.bulkSpeed_mps, validation::WALL_SAMPLE_CELLS);
+        "%d hills in a row, the period from x = %.0f h to %.0f h compared with the DNS of Xiao et "
+        "al. (2020); smooth walls as z0 = %.3g h (log law B = %.1f, u_tau from Dean's law); h = "
+        "%.0f m, Ub = %.0f m/s; the along-wall line %.1f cells above the floor; at most %d "
+        "pseudo-steps per level.\n",
+        ph::REYNOLDS_H, base.hills, base.measuredHill * ph::PERIOD_OVER_H,
+        (base.measuredHill + 1) * ph::PERIOD_OVER_H, ph::smoothWallZ0_h(sim::surface::KAPPA),
+        ph::SMOOTH_WALL_B, base.h_m, base.bulkSpeed_mps, validation::WALL_SAMPLE_CELLS,
+        opt.quick ? QUICK_MAX_ITERATIONS : base.maxIterations);
     std::printf(
         "reference: separation %.2f h, reattachment %.2f h; target: reattachment within "
         "%.0f %%\n\n",
@@ -72,7 +80,7 @@ int runSeparationStudy(const BenchModelsOptions& opt) {
                 r.closure = c, r.advection = a, r.cellsPerH = n;
                 validation::PeriodicHillOptions o = base;
                 o.cellsPerH = n, o.closure = c, o.advection = a;
-                o.maxIterations = opt.quick ? 300 : base.maxIterations;
+                o.maxIterations = opt.quick ? QUICK_MAX_ITERATIONS : base.maxIterations;
                 try {
                     r.s = validation::runPeriodicHill(o, ref);
                     r.built = true;
@@ -159,6 +167,26 @@ int runSeparationStudy(const BenchModelsOptions& opt) {
             std::printf(" %6.3f", st.rmsU);
         std::printf("   %s / %s\n", fixed(r.s.previousBubble.separation_h, 2).c_str(),
                     fixed(r.s.previousBubble.reattachment_h, 2).c_str());
+    }
+    std::printf("\nRMS of k / Ub^2 per station (x / h); the DNS's peak k / Ub^2 below each\n");
+    std::printf("%-14s %-16s %5s", "closure", "step", "res.");
+    for (double x : ref.stations()) std::printf(" %6.1f", x);
+    std::printf("\n%-38s", "DNS peak");
+    for (double x : ref.stations()) {
+        double peak = 0;
+        for (const validation::HillProfilePoint& p : ref.profiles)
+            if (std::abs(p.x_h - x) < 1e-9) peak = std::max(peak, p.k_Ub2);
+        std::printf(" %6.3f", peak);
+    }
+    std::printf("\n");
+    for (const Run& r : runs) {
+        if (!r.built) continue;
+        std::printf("%-14s %-16s %5s", sim::turbulenceClosureName(r.closure),
+                    sim::pseudoTimeAdvectionName(r.advection),
+                    ("h/" + std::to_string(r.cellsPerH)).c_str());
+        for (const validation::PeriodicHillStudy::Station& st : r.s.stations)
+            std::printf(" %6s", fixed(st.rmsK, 3).c_str());
+        std::printf("\n");
     }
     // What the bubble looks like: the along-wall velocity every half hill height, the DNS's
     // wall row interpolated linearly to the same places.
