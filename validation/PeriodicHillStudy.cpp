@@ -244,6 +244,7 @@ PeriodicHillStudy runPeriodicHill(const PeriodicHillOptions& o, const PeriodicHi
             rf.push_back(p.u_Ub);
             prev.push_back(velocity(p.x_h, p.y_h, -period_m)[0] / ubBefore);
             const double kv = k(p.x_h, p.y_h);
+            st.modelK.push_back(kv);
             if (std::isfinite(kv)) km.push_back(kv), kr.push_back(p.k_Ub2);
         }
         st.points = int(m.size());

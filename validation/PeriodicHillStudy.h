@@ -105,8 +105,9 @@ struct PeriodicHillStudy {
         double rmsU = NAN;        ///< RMS of model minus reference u / Ub
         double rmsK = NAN;        ///< RMS of model minus reference k / Ub^2 (NaN without k)
         double repeatRmsU = NAN;  ///< RMS of u / Ub, measured period minus the one before
-        /// The model's u / Ub at the station's reference points, in the reference's order.
-        std::vector<double> modelU;
+        /// The model's u / Ub and k / Ub^2 (NaN in a solid cell or without k) at the station's
+        /// reference points, in the reference's order.
+        std::vector<double> modelU, modelK;
     };
     std::vector<Station> stations;
     double rmsU = NAN, rmsK = NAN, repeatRmsU = NAN;  ///< the same over every station's points
