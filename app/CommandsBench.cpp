@@ -189,6 +189,10 @@ void addModels(CLI::App& bench, VerbTable& verbs) {
         "Instead: the momentum model's steady state on a gentle and a steep ridge "
         "against its pseudo-time step, semi-Lagrangian and Eulerian (docs/validation.md, "
         "\"Pseudo-time step and its error\")");
+    verb->add_flag("--separation", o->separation,
+                   "Instead: the separation benchmarks (the ERCOFTAC periodic hill against the "
+                   "DNS of Xiao et al. 2020) for every closure and both pseudo-time steps, with "
+                   "their run times (docs/validation.md section 4); --quick: h / 5 only");
     verb->add_flag("--eulerian-ridge", o->eulerianRidge,
                    "The table also solves the Cao and Tamura ridge with the Eulerian pseudo-time "
                    "step (solver.momentum_advection = \"eulerian\")");

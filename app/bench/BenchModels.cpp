@@ -179,6 +179,7 @@ int runBenchModels(const BenchModelsOptions& opt) {
     if (opt.crestStudy) return runCrestStudy(/*cellsPerH=*/5);
     if (opt.jacksonHunt) return runJacksonHuntStudy();
     if (opt.pseudoTime) return runPseudoTimeStudy();
+    if (opt.separation) return runSeparationStudy(opt);
     const std::vector<RidgeMeasurement> data = readValidation(opt.validationCsv);
     const std::vector<int> ridgeRes = opt.quick ? std::vector<int>{5} : std::vector<int>{5, 10};
     // Pseudo-time steps per level at most: the quick run is a smoke test of the table.

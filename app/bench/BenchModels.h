@@ -11,6 +11,8 @@
 ///     speed-up at 0.25 H against the measured 1.33;
 /// each at two or three resolutions, with iterations and wall time. Table to stdout, CSV and a
 /// log-log SVG (error against seconds) to the output folder, progress lines to stderr.
+/// `--separation` runs the separation benchmarks instead (runSeparationStudy): the ERCOFTAC
+/// periodic hill for every closure and both pseudo-time steps, error against run time.
 
 #include <string>
 
@@ -32,6 +34,8 @@ struct BenchModelsOptions {
     /// The table also solves the ridge with the Eulerian pseudo-time step
     /// (solver.momentum_advection = "eulerian"), beside the default semi-Lagrangian one.
     bool eulerianRidge = false;
+    /// Instead of the table: the separation benchmarks (runSeparationStudy).
+    bool separation = false;
 };
 
 /// The crest experiments of docs/validation.md, section 3: the Cao and Tamura ridge at H / h =
@@ -57,6 +61,17 @@ int runJacksonHuntStudy();
 /// iterations and the spread of the lee value per scheme. Returns EXIT_OK when every solve
 /// converged, EXIT_UNMET otherwise. Throws what the solvers throw.
 int runPseudoTimeStudy();
+
+/// The separation benchmarks of docs/validation.md, section 4: the ERCOFTAC periodic hill
+/// (validation/PeriodicHillStudy.h) for every closure (sim::TurbulenceClosure) and both pseudo-time
+/// steps at h / 5 and h / 10 (options.quick: h / 5 alone); prints per run the cells, steps, wall
+/// time, separation and reattachment against the DNS, the profile RMS of u / Ub and k / Ub^2, the
+/// repeat of the period before, and per station the RMS. A closure the solver refuses
+/// (std::logic_error: not built yet) gets a "not built" row. options.jsonPath: the table as JSON.
+/// Returns EXIT_OK when every built run converged with its reattachment within
+/// limits::TARGET_PERIODIC_HILL_REATTACHMENT_ERROR, EXIT_UNMET otherwise. Throws what the solvers
+/// throw otherwise, std::runtime_error when the JSON cannot be written.
+int runSeparationStudy(const BenchModelsOptions& options);
 
 /// Runs the study. Returns EXIT_OK when every momentum solve converged and stayed finite,
 /// EXIT_UNMET otherwise (the table is written either way). Throws InputError (exit 2) when the
