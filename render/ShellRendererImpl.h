@@ -90,7 +90,7 @@ std::string shellVariantDefines(unsigned bits);
 /// Uniform locations of one shell program (-1 for a name the compiler dropped).
 struct ShellLocations {
     GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns, maxTilt,
-        shellStride, lodD1, lastShell, bladeColor, density, densityCut, densityMin, densitySize;
+        shellStride, lodFar, bladeColor, density, densityCut, densityMin, densitySize;
     GLint lightCount, lightPos, lightColor, lightAtten;
     GLint ambient, specularPower, specularStrength, shadowMin;
 };

@@ -36,12 +36,11 @@ uniform mat4 uClipFromWorld;
 uniform vec3 uEyePos;          // camera position
 uniform int uShells;           // N
 uniform int uTopShell;         // shell of instance 0: N, or 0 when the grass is hidden (viewer)
-uniform int uShellStride;      // instance k draws shell uTopShell - k uShellStride (LOD)
-// Level of detail (render/TerrainChunks.h): shell i thins out between 0.7 D(i) and D(i), D(i) =
-// uLodD1 2^(trailing zero bits of i), metres from the eye; 0 = no level of detail.
-uniform float uLodD1;
-// The shell the level of detail drops last: the largest power of two <= N (render/TerrainChunks.h).
-uniform int uLastShell;
+uniform int uShellStride;      // instance k draws shell uTopShell - k uShellStride
+// Level of detail (render/TerrainChunks.h): every shell above the ground thins out between
+// 0.7 uLodFar and uLodFar, metres from the eye, while the ground takes over its look; 0 = no level
+// of detail.
+uniform float uLodFar;
 // Bends over tip tilts (render/BendTables.h): texel (i, l) holds (n_i, w_i) in metres for shell i
 // of a blade whose tip tilts by -uMaxTilt + 2 uMaxTilt l / (L - 1) (Bakay 2003, 3.2), and in .ba
 // segment i, (n_i - n_{i-1}, w_i - w_{i-1}): interpolated between rows like the offsets, it is
@@ -112,23 +111,24 @@ void main() {
     vFade = 1.0;
     vStandIn = 0.0;
 #if FADE
-    if (uLodD1 > 0.0 && i > 0) {
-        float drop = uLodD1 * float(1 << findLSB(i));
-        vFade = 1.0 - smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
-    }
+    // The whole stack fades together (render/TerrainChunks.h): dropping some shells before others
+    // lets the eye see deeper into the stack, onto the darker roots, and draws a band.
+    float ramp = (uLodFar > 0.0)
+                     ? smoothstep(0.7 * uLodFar, uLodFar, distance(aPosition, uEyePos))
+                     : 0.0;
+    if (i > 0) vFade = 1.0 - ramp;
 #if !DENSITY
     // Shell 0 keeps every texel; a full fade's cut is 0 (every blade kept).
     vFadeCut = (i > 0)
                    ? textureLod(uDensityCut, vec2((vFade * 255.0 + 0.5) / 256.0, 0.5), 0.0).r
                    : -1.0;
 #endif
-    // Where the last shell thins out the ground alone remains; it takes over the look of the
-    // grass it replaces (shaded as the top layer, in the mean blade colour), at the same pace, so
-    // the far field keeps the grass's brightness instead of the shaded soil's.
-    if (uLodD1 > 0.0 && i == 0 && uLastShell > 0) {
-        float drop = uLodD1 * float(uLastShell);
-        vStandIn = smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
-    }
+    // Where the shells thin out the ground alone remains; it takes over the look of the grass it
+    // replaces (shaded as the top layer, in the mean blade colour), at the same pace. At uLodFar
+    // the whole grass is P / 2 pixels tall on screen and its texture is read from MIP levels whose
+    // texels are nearly all blade tops: the full stack there looks like its top shell, which is
+    // what the stand-in draws.
+    if (i == 0) vStandIn = ramp;
 #endif
 
     // Thesis 3.1: shell i keeps texels with alpha >= i/N; the ground keeps every texel. Half an
