@@ -89,6 +89,9 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         glUniform1i(loc.shells, m.grass.shells);
         glUniform1i(loc.groupColumns, m.tables->columns());
         glUniform1f(loc.lodFar, grassFar_m);
+        // Wrapped to a day so the float keeps millisecond steps (the flutter's periods are
+        // under 2 s and its phases are per vertex: the wrap is one jump a day).
+        glUniform1f(loc.time, float(std::fmod(wind.time_s, 86400.0)));
         glUniform3fv(loc.bladeColor, 1, glm::value_ptr(m.bladeColor));
         glUniform2fv(loc.densityMin, 1, glm::value_ptr(m.density->wsMin_m()));
         glUniform2fv(loc.densitySize, 1, glm::value_ptr(m.density->wsSize_m()));
