@@ -25,6 +25,9 @@ constexpr float FLUTTER_RAD = 0.3f;
 // The agitated half must move clearly: a mean temporal standard deviation of at least this many
 // 8-bit levels (a blade tip sweeping across a pixel changes it by tens of levels).
 constexpr double MIN_AGITATED_STD = 2.0;
+// Still grass: the very same pixels every frame; the one-pass variance of identical values
+// leaves round-off of about 1e-6 levels.
+constexpr double STILL_STD = 1e-3;
 
 struct FlutterField {
     std::unique_ptr<GlContext> context = createOsMesaContext(WIDTH_PX, HEIGHT_PX);
@@ -94,13 +97,13 @@ TEST(Flutter, TurbulentGrassMovesAndShelteredGrassStandsStill) {
     std::printf("flutter: mean temporal std west (agitated) %.2f, east (calm) %.4f levels\n", west,
                 east);
     EXPECT_GT(west, MIN_AGITATED_STD);
-    EXPECT_EQ(east, 0.0);  // no flutter: the very same pixels every frame
+    EXPECT_LT(east, STILL_STD);  // no flutter: the very same pixels every frame
 }
 
 TEST(Flutter, WithoutFlutterEveryFrameOfASteadyWindIsTheSame) {
     FlutterField field;
     const std::vector<double> sd = field.motion(0.0f, 0.0f);
-    EXPECT_EQ(meanOver(sd, 0, WIDTH_PX), 0.0);
+    EXPECT_LT(meanOver(sd, 0, WIDTH_PX), STILL_STD);
 }
 
 }  // namespace
