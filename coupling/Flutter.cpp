@@ -11,18 +11,29 @@
 
 namespace gale::coupling {
 
-float flutterFromTke(double tke_m2ps2, double bendSpeed_mps) {
+float flutterFromTke(double tke_m2ps2, double speed_mps, double bendSpeed_mps) {
     if (!(bendSpeed_mps > 0.0) || !std::isfinite(bendSpeed_mps))
         throw std::invalid_argument("flutterFromTke: bend speed must be > 0, got " +
                                     std::to_string(bendSpeed_mps));
     if (!(tke_m2ps2 > 0.0) || !std::isfinite(tke_m2ps2)) return 0.0f;
-    const double sigma_mps = std::sqrt(2.0 * tke_m2ps2 / 3.0);
-    return static_cast<float>(std::min(0.5 * PI * sigma_mps / bendSpeed_mps, MAX_FLUTTER_RAD));
+    const double u = std::isfinite(speed_mps) ? std::abs(speed_mps) : 0.0;
+    const double s2 = 2.0 * tke_m2ps2 / 3.0;  // sigma_u^2
+    const double dragRms = std::sqrt(4.0 * u * u * s2 + 2.0 * s2 * s2);
+    return static_cast<float>(
+        std::min(0.5 * PI * dragRms / (bendSpeed_mps * bendSpeed_mps), MAX_FLUTTER_RAD));
 }
 
-std::vector<float> flutterFromTke(const std::vector<double>& tke_m2ps2, double bendSpeed_mps) {
+std::vector<float> flutterFromTke(const std::vector<double>& tke_m2ps2,
+                                  const std::vector<glm::vec3>& wsVelocity_mps,
+                                  double bendSpeed_mps) {
+    if (tke_m2ps2.size() != wsVelocity_mps.size())
+        throw std::logic_error("flutterFromTke: " + std::to_string(tke_m2ps2.size()) +
+                               " k values but " + std::to_string(wsVelocity_mps.size()) +
+                               " velocities");
     std::vector<float> out(tke_m2ps2.size());
-    for (size_t v = 0; v < out.size(); ++v) out[v] = flutterFromTke(tke_m2ps2[v], bendSpeed_mps);
+    for (size_t v = 0; v < out.size(); ++v)
+        out[v] =
+            flutterFromTke(tke_m2ps2[v], double(glm::length(wsVelocity_mps[v])), bendSpeed_mps);
     return out;
 }
 

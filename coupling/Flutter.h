@@ -6,10 +6,14 @@
 /// grass height. Zero in calm air, so shelter reads as stillness and a gust front as agitation.
 ///
 /// The rule: isotropic turbulence has k = (3/2) sigma_u^2 (k = <u_i u_i> / 2, Pope 2000, section
-/// 5.1), so the rms fluctuation of one velocity component is sigma_u = sqrt(2 k / 3). The blade
-/// answers a velocity V_t with I = V_t / bend_speed and the tip tilts (pi/2) I (Bakay et al.
-/// 2002, section 3; render/Bend.h), so the flutter amplitude is (pi/2) sigma_u / bend_speed,
-/// capped at MAX_FLUTTER_RAD.
+/// 5.1), so the rms fluctuation of one velocity component is sigma_u = sqrt(2 k / 3). A blade is
+/// bent by its drag, which goes with the square of the speed: with V = U + u', u' of variance
+/// sigma_u^2, the fluctuation of V^2 about its mean has the rms sqrt(4 U^2 sigma_u^2 +
+/// 2 sigma_u^4) (u' Gaussian). Measured in the drag at the bend speed (the drag that tilts the tip
+/// by (pi/2) I with I = 1, Bakay et al. 2002, section 3; render/Bend.h), the flutter amplitude is
+/// (pi/2) sqrt(4 U^2 sigma_u^2 + 2 sigma_u^4) / bend_speed^2, capped at MAX_FLUTTER_RAD. The
+/// same turbulence shakes a blade in a strong mean wind more than one in a weak wind: the lee of a
+/// ridge, slow, stays nearly still even where its shear layer is turbulent.
 ///
 /// Where k comes from:
 /// - the momentum model: its closure's k on the cells (app/scene/SceneField.h, tke_m2ps2);
@@ -34,13 +38,17 @@ inline constexpr double MAX_FLUTTER_RAD = 0.35;
 inline constexpr double KARMAN = 0.41;
 inline constexpr double C_MU = 0.09;
 
-/// Flutter amplitude, radians, for k = tke_m2ps2 (m^2/s^2; negative or non-finite count as 0) and
-/// the blade's bend speed (m/s, > 0; std::invalid_argument otherwise): min((pi/2) sqrt(2k/3) /
-/// bendSpeed, MAX_FLUTTER_RAD).
-float flutterFromTke(double tke_m2ps2, double bendSpeed_mps);
+/// Flutter amplitude, radians, for k = tke_m2ps2 (m^2/s^2; negative or non-finite count as 0) in
+/// a mean wind of speed_mps (m/s, its magnitude is used; non-finite counts as 0) and the blade's
+/// bend speed (m/s, > 0; std::invalid_argument otherwise): min((pi/2) sqrt(4 U^2 s^2 + 2 s^4) /
+/// bendSpeed^2, MAX_FLUTTER_RAD), s = sqrt(2k/3).
+float flutterFromTke(double tke_m2ps2, double speed_mps, double bendSpeed_mps);
 
-/// flutterFromTke for every entry.
-std::vector<float> flutterFromTke(const std::vector<double>& tke_m2ps2, double bendSpeed_mps);
+/// flutterFromTke for every vertex: k and the world velocity (m/s) at grass height, one each.
+/// std::logic_error on different sizes.
+std::vector<float> flutterFromTke(const std::vector<double>& tke_m2ps2,
+                                  const std::vector<glm::vec3>& wsVelocity_mps,
+                                  double bendSpeed_mps);
 
 /// The mixing-length local-equilibrium k, m^2/s^2, between two heights from the speeds
 /// speedLow_mps at zLow_m and speedHigh_mps at zHigh_m (m above the ground, 0 < zLow < zHigh;

@@ -47,7 +47,7 @@ void UnsteadyFieldWind::setFlutterFor(const std::vector<glm::vec3>& wsVelocity_m
     // k = the mean flow's shear k + the resolved fluctuation's about it (coupling/Flutter.h).
     std::vector<double> k = resolvedTke_m2ps2(wsVelocity_mps, mMean_mps);
     for (size_t v = 0; v < k.size(); ++v) k[v] += mShearTke_m2ps2[v];
-    mWind.setFlutter(flutterFromTke(k, mBendSpeed_mps));
+    mWind.setFlutter(flutterFromTke(k, wsVelocity_mps, mBendSpeed_mps));
 }
 
 void UnsteadyFieldWind::advanceTo(double t_s, const std::function<bool()>& stop) {

@@ -66,7 +66,7 @@ struct BenchViewOptions {
     bool window = false;   ///< draw into a GLFW window (needs a display) instead of headless OSMesa
     std::string jsonPath;  ///< if set, the table is also written there as JSON (atomically)
     /// Measure the wind's readability instead of the frame rate: for every scene with motion
-    /// regions, motionFrames frames from the scene's start at its fps (runBenchViewMotion).
+    /// regions, motionFrames frames at its fps from 4 s after its start (runBenchViewMotion).
     bool motion = false;
     int motionFrames = 24;   ///< >= 2
     ViewSceneLoader loader;  ///< required
@@ -86,10 +86,11 @@ std::vector<std::string> benchViewSceneFiles(const std::vector<std::string>& pat
 
 /// `gale bench view --motion` (app/bench/BenchViewMotion.cpp): for each scene with motion regions,
 /// draws options.motionFrames frames with the scene's wind (source updated, then drawn, in one
-/// thread), the per-pixel temporal standard deviation of luminance over them, and its mean over
-/// the pixels whose ground (mesh vertices projected into the frame) is agitated and calm; prints
-/// the table and the ratio. Returns EXIT_OK, or EXIT_UNMET when a full run gives a ratio under 2
-/// (a quick run is never judged). Throws as runBenchView.
+/// thread; the first 4 s after the scene's start only update the wind, so the blades' response
+/// has settled), the per-pixel temporal standard deviation of luminance over them, and its mean
+/// over the pixels whose ground (mesh vertices projected into the frame) is agitated and calm;
+/// prints the table and the ratio. Returns EXIT_OK, or EXIT_UNMET when a full run gives a ratio
+/// under 2 (a quick run is never judged). Throws as runBenchView.
 int runBenchViewMotion(const BenchViewOptions& options);
 
 }  // namespace gale::app

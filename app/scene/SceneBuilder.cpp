@@ -165,10 +165,9 @@ double sampleHeightOf(const Scene& scene) {
 }
 
 /// The turbulent flutter of a steady field's grass (coupling/Flutter.h), one amplitude per mesh
-/// vertex: from the momentum model's k where it has one, sampled at the grass point over each
-/// vertex (the largest of the 8 cells around it: cells in the ground hold no k and would dilute
-/// the first air cell's); otherwise from the mixing-length k of the shear between the sample
-/// height and twice it.
+/// vertex: from the momentum model's k where it has one, sampled (trilinear) at the grass point
+/// over each vertex; otherwise from the mixing-length k of the shear between the sample height
+/// and twice it.
 std::vector<float> steadyFlutter(const Scene& scene, const SceneField& result,
                                  const sim::WindField& field, const BuiltScene& built,
                                  const std::vector<glm::vec3>& velocity) {
@@ -180,10 +179,8 @@ std::vector<float> steadyFlutter(const Scene& scene, const SceneField& result,
         const sim::MacGrid grid(result.domain->layout(), &result.domain->terrain());
         for (size_t v = 0; v < k.size(); ++v) {
             const glm::vec3& p = mesh.wsPosition_m[v];
-            double lo = 0.0, hi = 0.0;
-            (void)sim::sampleAt(grid, sim::Placement::Cell, result.tke_m2ps2,
-                                sim::Vec3d{p.x, p.y, p.z + z_m}, &lo, &hi);
-            k[v] = hi;
+            k[v] = std::max(0.0, sim::sampleAt(grid, sim::Placement::Cell, result.tke_m2ps2,
+                                               sim::Vec3d{p.x, p.y, p.z + z_m}));
         }
     } else {
         const std::vector<glm::vec3> high =
@@ -192,7 +189,7 @@ std::vector<float> steadyFlutter(const Scene& scene, const SceneField& result,
             k[v] = coupling::shearTke_m2ps2(glm::length(velocity[v]), glm::length(high[v]), z_m,
                                             2.0 * z_m);
     }
-    return coupling::flutterFromTke(k, bend_mps);
+    return coupling::flutterFromTke(k, velocity, bend_mps);
 }
 
 /// wind.kind = "solved": the steady mass-consistent field (docs/design.md 4.1) sampled at grass

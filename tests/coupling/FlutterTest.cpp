@@ -16,19 +16,29 @@ namespace {
 // Float results of double formulas.
 constexpr double FLOAT_TOLERANCE = 1e-6;
 
-TEST(Flutter, AmplitudeIsTheTiltOfTheRmsFluctuationAndZeroInCalmAir) {
-    // sigma_u = 1 m/s is k = 3/2; at a bend speed of 8 m/s the tilt is (pi/2) / 8.
-    EXPECT_NEAR(flutterFromTke(1.5, 8.0), 0.5 * PI / 8.0, FLOAT_TOLERANCE);
-    // Four times the energy, twice the amplitude (below the cap: a stiffer blade).
-    EXPECT_NEAR(flutterFromTke(6.0, 20.0), 2.0 * flutterFromTke(1.5, 20.0), FLOAT_TOLERANCE);
-    EXPECT_EQ(flutterFromTke(0.0, 8.0), 0.0f);
-    EXPECT_EQ(flutterFromTke(-1.0, 8.0), 0.0f);
-    EXPECT_EQ(flutterFromTke(NAN, 8.0), 0.0f);
-    EXPECT_NEAR(flutterFromTke(1e6, 8.0), MAX_FLUTTER_RAD, FLOAT_TOLERANCE);
-    EXPECT_THROW(flutterFromTke(1.0, 0.0), std::invalid_argument);
-    const std::vector<float> v = flutterFromTke(std::vector<double>{0.0, 1.5}, 8.0);
+TEST(Flutter, AmplitudeIsTheTiltOfTheDragsRmsFluctuationAndZeroInCalmAir) {
+    // sigma_u = 1 m/s is k = 3/2. In a mean wind of 3 m/s the drag V^2 fluctuates by
+    // sqrt(4 9 1 + 2 1) = sqrt(38) m^2/s^2; at a bend speed of 20 m/s the tilt is that over 400,
+    // times pi/2.
+    EXPECT_NEAR(flutterFromTke(1.5, 3.0, 20.0), 0.5 * PI * std::sqrt(38.0) / 400.0,
+                FLOAT_TOLERANCE);
+    // In a strong mean wind the drag's fluctuation is linear in sigma_u: four times the energy,
+    // twice the amplitude (below the cap).
+    EXPECT_NEAR(flutterFromTke(6.0, 100.0, 200.0), 2.0 * flutterFromTke(1.5, 100.0, 200.0),
+                1e-3 * flutterFromTke(6.0, 100.0, 200.0));
+    // The same turbulence in a slower mean wind flutters less: shelter reads as stillness.
+    EXPECT_LT(flutterFromTke(1.5, 1.0, 20.0), flutterFromTke(1.5, 5.0, 20.0));
+    EXPECT_EQ(flutterFromTke(0.0, 5.0, 8.0), 0.0f);
+    EXPECT_EQ(flutterFromTke(-1.0, 5.0, 8.0), 0.0f);
+    EXPECT_EQ(flutterFromTke(NAN, 5.0, 8.0), 0.0f);
+    EXPECT_NEAR(flutterFromTke(1e6, 5.0, 8.0), MAX_FLUTTER_RAD, FLOAT_TOLERANCE);
+    EXPECT_THROW(flutterFromTke(1.0, 5.0, 0.0), std::invalid_argument);
+    const std::vector<float> v = flutterFromTke(std::vector<double>{0.0, 1.5},
+                                                {glm::vec3(3, 0, 0), glm::vec3(0, 3, 0)}, 20.0);
     ASSERT_EQ(v.size(), 2u);
     EXPECT_EQ(v[0], 0.0f);
+    EXPECT_NEAR(v[1], 0.5 * PI * std::sqrt(38.0) / 400.0, FLOAT_TOLERANCE);
+    EXPECT_THROW(flutterFromTke(std::vector<double>{1.0}, {}, 8.0), std::logic_error);
 }
 
 TEST(Flutter, TheShearStandInGivesTheSurfaceLayersEquilibriumKOnALogLaw) {

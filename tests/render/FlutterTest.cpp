@@ -19,8 +19,7 @@ namespace {
 
 constexpr int WIDTH_PX = 160, HEIGHT_PX = 120;
 constexpr int FRAMES = 12;
-// 0.3 rad (17 degrees): the amplitude coupling/Flutter.h gives for sigma_u = 1.5 m/s at a bend
-// speed of 8 m/s.
+// 0.3 rad (17 degrees), below coupling/Flutter.h's cap of 0.35: strongly turbulent air.
 constexpr float FLUTTER_RAD = 0.3f;
 // The agitated half must move clearly: a mean temporal standard deviation of at least this many
 // 8-bit levels (a blade tip sweeping across a pixel changes it by tens of levels).
