@@ -37,12 +37,12 @@ sim::Heightfield flat(double groundZ_m) {
 // The log layer's k, through the sampler gale probe and the rasters use: near the ground, where
 // Blackadar's length is within a few % of kappa z, the mixing length's local-equilibrium k is
 // u*^2 / sqrt(C_mu) (Pope 2000, section 10.3), with u* = kappa U_ref / ln(z_ref / z0) of the
-// ambient wind, for flat ground on a cell face (at 0 m and at 2 m). Ground that cuts the first cell
-// is left out: there the mixing length's first edge assumes its wall sample at the cell centre
-// while the wall function holds it at the open part's centroid (issue 24, "Why" 3), and the edge
-// carries only part of u*^2; measured with this sampler for ground 0.7 m into 2 m cells, k is 0.38
-// of the log layer's at 0.25 m, 0.48 at 1 m and 0.55 at 1.5 m, which the two-equation closure is to
-// replace (docs/cli.md).
+// ambient wind, for flat ground on a cell face (at 0 m and at 2 m). Ground that cuts the first
+// cell is left out here: with the mixing length's first edge taking its wall sample at the cell
+// centre while the wall function holds it at the open part's centroid (issue 24, "Why" 3), the
+// edge carries only part of u*^2, and this sampler measured k at 0.38 of the log layer's at
+// 0.25 m, 0.48 at 1 m and 0.55 at 1.5 m for ground 0.7 m into 2 m cells. Once the first edge
+// takes the centroid, 0.7 belongs in the list below.
 TEST(TurbulenceSampling, FlatGroundLogLayerGivesUStarSquaredOverRootCmuNearTheGround) {
     // The first two faces above the ground (2 m and 4 m up) carry Blackadar's factor
     // (1 + l / l_max)^-2 with l <= 0.41 x 4 m: k at most 8 % below the log layer's at 1.5 m, at
