@@ -31,6 +31,7 @@
 #include "app/scene/SceneField.h"
 #include "base/Numbers.h"
 #include "coupling/FieldSampling.h"
+#include "coupling/Turbulence.h"
 #include "sim/AirDomain.h"
 #include "sim/UnsteadyWind.h"
 #include "sim/VdbIO.h"
@@ -152,22 +153,36 @@ class ProbeSampler {
 };
 
 /// The output's columns: [t_s,] name, x, y, z_m, height_agl_m, u_mps, v_mps, w_mps, speed_mps,
-/// from_deg, speedup, read, reason, then the input's kept columns.
+/// from_deg, speedup, tke_m2ps2, turbulence_intensity, gust_mps, read, reason, then the input's
+/// kept columns.
 ProbeOutput outputTable(bool series, const ProbeTable& table) {
     ProbeOutput out;
     if (series) out.columns.push_back("t_s");
-    for (const char* c : {"name", "x", "y", "z_m", "height_agl_m", "u_mps", "v_mps", "w_mps",
-                          "speed_mps", "from_deg", "speedup", "read", "reason"})
+    for (const char* c :
+         {"name", "x", "y", "z_m", "height_agl_m", "u_mps", "v_mps", "w_mps", "speed_mps",
+          "from_deg", "speedup", "tke_m2ps2", "turbulence_intensity", "gust_mps", "read", "reason"})
         out.columns.push_back(c);
     out.xColumn = series ? 2 : 1, out.yColumn = out.xColumn + 1;
     for (const std::string& c : table.extraColumns) out.columns.push_back(c);
     return out;
 }
 
-/// One row per point for the field at time t_s (NaN: steady, no time column).
+/// Says once on stderr that a field carries no turbulence, so its turbulence columns are empty.
+void noteNoTurbulence(const std::string& why) {
+    static bool said = false;
+    if (said) return;
+    said = true;
+    std::fprintf(stderr,
+                 "probe: note: %s: the columns tke_m2ps2, turbulence_intensity and gust_mps are "
+                 "empty\n",
+                 why.c_str());
+}
+
+/// One row per point for the field at time t_s (NaN: steady, no time column). tke_m2ps2: the
+/// field's turbulent kinetic energy on its cells (empty: none, the turbulence columns empty).
 void appendRows(ProbeOutput& out, const std::vector<ProbePoint>& points, ProbeSampler& sampler,
-                const sim::WindField& field, const sim::AmbientWind& ambient,
-                const std::string& referenceName, double t_s) {
+                const sim::WindField& field, const std::vector<double>& tke_m2ps2,
+                const sim::AmbientWind& ambient, const std::string& referenceName, double t_s) {
     std::vector<std::optional<glm::vec3>> vel;
     std::vector<std::string> read;
     sampler.sample(field, vel, read);
@@ -188,7 +203,7 @@ void appendRows(ProbeOutput& out, const std::vector<ProbePoint>& points, ProbeSa
         row.push_back(p.zKnown ? num(p.z) : ProbeCell{});
         row.push_back(p.aglKnown ? num(p.agl) : ProbeCell{});
         if (!vel[i]) {
-            for (int k = 0; k < 7; ++k) row.push_back({});  // u .. read: no values
+            for (int k = 0; k < 10; ++k) row.push_back({});  // u .. read: no values
             row.push_back({std::nullopt, p.reason});
         } else {
             const glm::vec3& v = *vel[i];
@@ -205,6 +220,19 @@ void appendRows(ProbeOutput& out, const std::vector<ProbePoint>& points, ProbeSa
                 row.push_back({});
             }
             row.push_back(ref > 0.0 ? num((speed - ref) / ref) : ProbeCell{});
+            // k at the point (coupling/Turbulence.h: constant below the first air cell's centre,
+            // as in the log layer), and the intensity and gust from it and the speed beside it.
+            if (tke_m2ps2.empty()) {
+                for (int k = 0; k < 3; ++k) row.push_back({});
+            } else {
+                const double k =
+                    coupling::sampleTke_m2ps2(field, tke_m2ps2, p.localX, p.localY, p.z);
+                const double intensity = coupling::turbulenceIntensity(k, speed);
+                row.push_back(std::isfinite(k) ? num(k, 6) : ProbeCell{});
+                row.push_back(std::isfinite(intensity) ? num(intensity, 6) : ProbeCell{});
+                row.push_back(std::isfinite(k) ? num(coupling::gustSpeed_mps(speed, k))
+                                               : ProbeCell{});
+            }
             row.push_back({std::nullopt, read[i]});
             row.push_back({});
         }
@@ -317,12 +345,17 @@ int runProbe(const ProbeOptions& o) {
         for (const std::string& path : o.vdbPaths) {
             sim::WindField field(domain->layout(), domain->terrainShared(), domain->airFlags());
             double t_s;
+            std::vector<double> tke;
             try {
                 t_s = sim::readFaceVelocities(path, field);
+                tke = sim::readCellTke(path, field);
             } catch (const std::runtime_error& e) {
                 throw InputError(e.what());
             }
-            appendRows(out, points, sampler, field, ambient, o.reference,
+            if (tke.empty())
+                noteNoTurbulence("--vdb: " + path +
+                                 " holds no tke grid (a mass-consistent field has no turbulence)");
+            appendRows(out, points, sampler, field, tke, ambient, o.reference,
                        series ? (std::isnan(t_s) ? 0.0 : t_s) : std::nan(""));
         }
     } else {
@@ -343,13 +376,18 @@ int runProbe(const ProbeOptions& o) {
         std::fprintf(stderr, "probe: %s\n", sf.summary().c_str());
         ok = sf.converged();
         if (!ok) std::fprintf(stderr, "probe: %s\n", sf.report.message.c_str());
+        if (sf.tke_m2ps2.empty())
+            noteNoTurbulence(sf.momentum ? "the momentum model ran without its closure"
+                                         : "the mass-consistent model has no turbulence");
         if (!series) {
-            appendRows(out, points, sampler, sf.field, ambient, o.reference, std::nan(""));
+            appendRows(out, points, sampler, sf.field, sf.tke_m2ps2, ambient, o.reference,
+                       std::nan(""));
         } else {
             const UnsteadyStepping stepping = unsteadySteppingOf(scene);
             sim::UnsteadyWindSolver solver(*sf.domain, sf.field, stepping.settings,
                                            stepping.referenceSpeed_mps);
-            appendRows(out, points, sampler, solver.field(), ambient, o.reference, solver.time_s());
+            appendRows(out, points, sampler, solver.field(), sf.tke_m2ps2, ambient, o.reference,
+                       solver.time_s());
             const double every = scene.unsteady.outputEvery_s, duration = scene.unsteady.duration_s;
             const int outputs = int(std::ceil(duration / every - 1e-9));
             bool converged = true, finite = true;
@@ -366,7 +404,10 @@ int runProbe(const ProbeOptions& o) {
                     return interruptExitCode();
                 }
                 if (!finite) break;
-                appendRows(out, points, sampler, solver.field(), ambient, o.reference,
+                // The unsteady solver's own k after its last surface-layer step (empty without
+                // one: its rows' turbulence columns stay empty).
+                appendRows(out, points, sampler, solver.field(),
+                           solver.turbulentKineticEnergy_m2ps2(), ambient, o.reference,
                            solver.time_s());
             }
             std::fprintf(stderr, "probe: unsteady, %d steps to t = %.2f s, %s\n", steps,
@@ -421,7 +462,10 @@ void addProbeVerb(CLI::App& app, VerbTable& verbs) {
         std::string("\nColumns: [t_s,] name, x, y, z_m, height_agl_m, u_mps, v_mps, w_mps, "
                     "speed_mps, from_deg (meteorological: where the wind comes from, "
                     "clockwise from the scene's +y: grid north for a DEM), speedup = speed / "
-                    "reference - 1, read (how the grass reads the field there: field, "
+                    "reference - 1, tke_m2ps2 (the momentum model's turbulent kinetic energy k), "
+                    "turbulence_intensity = sqrt(2k/3) / speed, gust_mps = speed + 3.5 "
+                    "sqrt(2k/3) (the three empty for the mass-consistent model), read (how the "
+                    "grass reads the field there: field, "
                     "tangential, log_law, zero), reason (why a point has no values: outside "
                     "the terrain, not above the ground, above the top). A solve that did not "
                     "converge still writes the table and exits 3. docs/cli.md says more.") +

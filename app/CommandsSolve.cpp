@@ -69,10 +69,11 @@ std::unique_ptr<OutputLock> prepareSolveOutputs(const SolveRequest& req) {
 }
 
 double writeStagedVdb(StagedFiles& staged, const sim::WindField& field, const std::string& path,
-                      const sim::VdbMetadata& meta, std::vector<std::string>* gridNames) {
+                      const sim::VdbMetadata& meta, std::vector<std::string>* gridNames,
+                      const std::vector<double>& tke_m2ps2) {
     const std::string tmp = staged.add(path);
     try {
-        field.writeVdb(tmp, meta);
+        field.writeVdb(tmp, meta, tke_m2ps2);
     } catch (const std::runtime_error& e) {
         // WindField::writeVdb says "cannot write VDB file 'TMP': REASON": keep the reason.
         std::string reason = e.what();
@@ -88,14 +89,18 @@ double writeStagedVdb(StagedFiles& staged, const sim::WindField& field, const st
 nlohmann::json vdbGridDescriptions(const std::vector<std::string>& names) {
     nlohmann::json out = nlohmann::json::array();
     for (const std::string& name : names) {
-        const char* what = name == "velocity" ? " (vec3s, m/s, world axes, cell centres)"
-                           : name == "speed"  ? " (float, m/s, cell centres)"
-                           : name == "velocity_faces"
-                               ? " (vec3s, m/s, staggered: the MAC face velocities)"
-                           : name == "velocity_layers"
-                               ? " (vec3s, m/s, the MAC faces of the stretched layers; metadata "
-                                 "z_levels_m)"
-                               : "";
+        const char* what =
+            name == "velocity"         ? " (vec3s, m/s, world axes, cell centres)"
+            : name == "speed"          ? " (float, m/s, cell centres)"
+            : name == "velocity_faces" ? " (vec3s, m/s, staggered: the MAC face velocities)"
+            : name == "velocity_layers"
+                ? " (vec3s, m/s, the MAC faces of the stretched layers; metadata "
+                  "z_levels_m)"
+            : name == sim::TKE_GRID ? " (float, m^2/s^2, turbulent kinetic energy k, cell centres)"
+            : name == sim::TKE_LAYERS_GRID
+                ? " (float, m^2/s^2, turbulent kinetic energy k on the stretched "
+                  "layers' cells; metadata z_levels_m)"
+                : "";
         out.push_back(name + what);
     }
     return out;
@@ -225,7 +230,7 @@ int runSolve(const SolveRequest& req) {
                         {"relative_residual", rep.relativeResidual},
                         {"max_div_u_h_over_U", rep.maxDivergenceScaled}};
         std::vector<std::string> grids;
-        writeStagedVdb(staged, sf.field, req.vdbPath, meta, &grids);
+        writeStagedVdb(staged, sf.field, req.vdbPath, meta, &grids, sf.tke_m2ps2);
         if (req.houdiniFps > 0.0) {
             const std::string path = houdiniPath(req.vdbPath, req.houdiniFps, 0.0);
             sim::writeHoudiniVdb(path, sf.field, req.terrain);
@@ -250,11 +255,21 @@ int runSolve(const SolveRequest& req) {
     for (const double height_m : req.gridHeights_m) {
         const std::string stem = rasterStem(req.vdbPath, height_m);
         const std::vector<std::string> paths =
-            writeWindRasters(sf.field, req.terrain, req.georef, height_m, stem);
+            writeWindRasters(sf.field, req.terrain, req.georef, height_m, stem, sf.tke_m2ps2);
+        nlohmann::json bands = {"speed_mps (float32)",
+                                "from_deg (float32, meteorological, .tif only)"};
+        if (!sf.tke_m2ps2.empty())
+            for (const char* b : {"tke_m2ps2 (float32, turbulent kinetic energy k, .tif only)",
+                                  "turbulence_intensity (float32, sqrt(2k/3) / speed, .tif only)",
+                                  "gust_mps (float32, speed + 3.5 sqrt(2k/3), .tif only)"})
+                bands.push_back(b);
         j["outputs"]["rasters"].push_back(
             {{"height_agl_m", height_m},
              {"paths", paths},
-             {"bands", {"speed_mps (float32)", "from_deg (float32, meteorological, .tif only)"}},
+             {"bands", bands},
+             {"turbulence", sf.tke_m2ps2.empty()
+                                ? "none: the mass-consistent model has no turbulence"
+                                : "bands 3-5 of the .tif: k, intensity and gust at the height"},
              {"crs", req.georef.georeferenced() ? req.georef.crsName : "none (not a DEM scene)"},
              {"nodata", WIND_RASTER_NODATA}});
         for (const std::string& p : paths) std::printf("solve: wrote %s\n", p.c_str());

@@ -82,9 +82,11 @@ std::unique_ptr<OutputLock> prepareSolveOutputs(const SolveRequest& req);
 
 /// Writes `field` to the staged temporary of `path` and seals it; returns its size in bytes and,
 /// when `gridNames` is given, the names of the grids the written file holds (read back from it).
+/// With tke_m2ps2 (one value per cell) the file also holds the "tke" grid (sim/VdbIO.h).
 /// Throws std::runtime_error "PATH: cannot write: REASON".
 double writeStagedVdb(StagedFiles& staged, const sim::WindField& field, const std::string& path,
-                      const sim::VdbMetadata& meta, std::vector<std::string>* gridNames = nullptr);
+                      const sim::VdbMetadata& meta, std::vector<std::string>* gridNames = nullptr,
+                      const std::vector<double>& tke_m2ps2 = {});
 
 /// The report's list of a .vdb's grids: each name with its type, units and placement.
 nlohmann::json vdbGridDescriptions(const std::vector<std::string>& names);

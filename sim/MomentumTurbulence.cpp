@@ -22,20 +22,12 @@ namespace {
 
 using detail::num;
 
-/// The wall face's control-volume height, as a fraction of h, is kept in this range: below it a
-/// sliver of a cut face would turn the wall drag into a division by almost nothing; above it a
-/// face far above the ground (beside a cliff) would be treated as touching it.
-constexpr double MIN_WALL_HEIGHT_CELLS = 0.05;
-constexpr double MAX_WALL_HEIGHT_CELLS = 1.5;
-
 /// The control-volume height (m) of the wall face of a column whose lowest unknown face sits in
-/// layer kl over ground at ground_m (world z): the open height of that layer above the ground,
-/// clamped to [MIN, MAX]_WALL_HEIGHT_CELLS times the layer's thickness (h on cubic cells; on
-/// stretched layers the first layer's own thickness, not h).
+/// layer kl over ground at ground_m (world z): surface::wallControlHeight_m of the layer's open
+/// height (the one definition the grass sampler shares; on stretched layers the first layer's
+/// own thickness, not h). The wall sample sits at half of it (surface::wallSampleHeight_m).
 double wallHeight_m(const GridLayout& L, int kl, double ground_m) {
-    const double dz = L.dz_m(kl);
-    return std::clamp(L.zFace_m(kl + 1) - ground_m, MIN_WALL_HEIGHT_CELLS * dz,
-                      MAX_WALL_HEIGHT_CELLS * dz);
+    return surface::wallControlHeight_m(L.zFace_m(kl + 1) - ground_m, L.dz_m(kl));
 }
 
 /// Per-thread scratch of one row of columns: the systems' coefficients (level-major) and each

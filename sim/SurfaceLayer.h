@@ -88,6 +88,31 @@ inline double discreteMixingLengthBetween_m(double edgeHeight_m, double below_m,
     return l / (1.0 + l / lMax_m);
 }
 
+/// Where the wall function samples the first open layer of a column, one definition for the
+/// solver's wall stress, its start field and balance profile (sim/MomentumTurbulence.cpp) and the
+/// grass sampler (coupling/NearGround.cpp). openHeight_m is the open part of the layer above the
+/// ground (the layer's top minus the ground height, m), layerThickness_m the layer's thickness
+/// (h on cubic cells, dz_k on stretched layers). The control-volume height of the wall face is
+/// the open height clamped to [MIN, MAX]_WALL_HEIGHT_CELLS layers: below the range a sliver of a
+/// cut face would turn the wall drag into a division by almost nothing; above it a face far above
+/// the ground (beside a cliff) would be treated as touching it.
+inline constexpr double MIN_WALL_HEIGHT_CELLS = 0.05;
+inline constexpr double MAX_WALL_HEIGHT_CELLS = 1.5;
+
+/// The wall face's control-volume height (m): openHeight_m clamped as above.
+inline double wallControlHeight_m(double openHeight_m, double layerThickness_m) {
+    return std::clamp(openHeight_m, MIN_WALL_HEIGHT_CELLS * layerThickness_m,
+                      MAX_WALL_HEIGHT_CELLS * layerThickness_m);
+}
+
+/// The height (m above the ground) of the wall sample: the centroid of the open part of the
+/// first layer, half the control-volume height. A first layer cut at a fraction f of its
+/// thickness dz (open height f dz) holds its velocity at f dz / 2, not at its centre
+/// (f - 1/2) dz above the ground.
+inline double wallSampleHeight_m(double openHeight_m, double layerThickness_m) {
+    return 0.5 * wallControlHeight_m(openHeight_m, layerThickness_m);
+}
+
 /// The same with the two samples spacing_m apart, centred on the face (cubic cells).
 inline double discreteMixingLength_m(double edgeHeight_m, double spacing_m, double lMax_m,
                                      double z0_m, double d_m = 0.0) {

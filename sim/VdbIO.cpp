@@ -454,11 +454,121 @@ void writeHoudiniVdb(const std::string& path, const WindField& f, const Heightfi
     writeGridsAtomic(path, {vel, sdf});
 }
 
-void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata) const {
+openvdb::FloatGrid::Ptr tkeGrid(const WindField& f, const std::vector<double>& tke) {
+    const GridLayout& g = f.layout();
+    if (tke.size() != g.cellCount())
+        throw std::invalid_argument("tkeGrid: " + std::to_string(tke.size()) + " values for " +
+                                    std::to_string(g.cellCount()) + " cells");
     openvdb::initialize();
+    const bool stretched = !g.uniformZ();
+    auto grid = openvdb::FloatGrid::create(0.f);
+    grid->setName(stretched ? TKE_LAYERS_GRID : TKE_GRID);
+    grid->setTransform(detail::cellCentredTransform(f.voxelSize_m(), f.wsMin_m()));
+    grid->setGridClass(openvdb::GRID_UNKNOWN);
+    auto acc = grid->getAccessor();
+    for (int k = 0; k < f.nz(); ++k)
+        for (int j = 0; j < f.ny(); ++j)
+            for (int i = 0; i < f.nx(); ++i)
+                if (f.isAir(i, j, k))
+                    acc.setValueOn(openvdb::Coord(i, j, k), float(tke[g.cellIndex(i, j, k)]));
+    grid->insertMeta("units", openvdb::StringMetadata("m^2/s^2"));
+    grid->insertMeta("quantity", openvdb::StringMetadata("turbulent kinetic energy k"));
+    grid->insertMeta(
+        "cell_placement",
+        openvdb::StringMetadata(
+            stretched ? "cell-centred on stretched layers: voxel (i,j,k) is cell (i,j,k); its x, y "
+                        "as the transform says, layer k between world z = z_levels_m[k] and "
+                        "z_levels_m[k+1] (the transform's z is the layer index, not world z)"
+                      : "cell-centred: voxel (i,j,k) is the cell whose centre is at world wsMin "
+                        "+ (i+0.5, j+0.5, k+0.5) * voxel_size"));
+    if (stretched) grid->insertMeta("z_levels_m", openvdb::StringMetadata(levelsText(g)));
+    grid->insertMeta("voxel_size_m", openvdb::DoubleMetadata(g.voxelSize_m));
+    return grid;
+}
+
+std::vector<double> readCellTke(const std::string& path, const WindField& field) {
+    openvdb::initialize();
+    const GridLayout& g = field.layout();
+    const char* name = g.uniformZ() ? TKE_GRID : TKE_LAYERS_GRID;
+    refuseUnlessRegularVdb(path);
+    openvdb::GridBase::Ptr base;
+    try {
+        // Checked as readFaceVelocities checks its grid: the descriptors within a small budget,
+        // the tree only when its metadata says it fits the field's cells.
+        AddressSpaceCap cap(VDB_HEADER_READ_BYTES);
+        openvdb::io::File file(path);
+        file.open(/*delayLoad=*/false);
+        if (!file.hasGrid(name)) {
+            file.close();
+            return {};
+        }
+        const openvdb::GridBase::Ptr meta = file.readGridMetadata(name);
+        const auto count =
+            meta->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT);
+        const auto lo =
+            meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
+        const auto hi =
+            meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
+        const bool emptyGrid = count && count->value() == 0;
+        if (!count || (!emptyGrid && (!lo || !hi)) || count->value() < 0 ||
+            double(count->value()) > double(g.cellCount()) ||
+            (!emptyGrid &&
+             (lo->value().x() < 0 || lo->value().y() < 0 || lo->value().z() < 0 ||
+              hi->value().x() >= g.nx || hi->value().y() >= g.ny || hi->value().z() >= g.nz)))
+            refuseVdb(path, std::string("grid '") + name +
+                                "' has no size metadata or lies outside the scene's cells: a "
+                                "corrupt file, or not a field of this scene");
+        // A float per cell in 8^3 leaves, doubled for the allocator, and the slack of the read.
+        cap.widen(2.0 * (4.0 + 1.0) * double(g.cellCount()) + 2.0 * VDB_HEADER_READ_BYTES);
+        base = file.readGrid(name);
+        file.close();
+    } catch (const std::exception& e) {
+        refuseUnreadableVdb(path, e);
+    }
+    auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+    if (!grid) throw std::runtime_error(path + ": grid '" + name + "' is not a float grid");
+    const double h = field.voxelSize_m();
+    const auto o = field.wsMin_m();
+    const openvdb::Vec3d centre = grid->transform().indexToWorld(openvdb::Vec3d(0.0));
+    const double tol = 1e-6 * h;
+    if (std::abs(grid->transform().voxelSize()[0] - h) > tol ||
+        std::abs(centre[0] - (o[0] + 0.5 * h)) > tol ||
+        std::abs(centre[1] - (o[1] + 0.5 * h)) > tol ||
+        std::abs(centre[2] - (o[2] + 0.5 * h)) > tol)
+        throw std::runtime_error(path + ": grid '" + name +
+                                 "' sits on another grid than the "
+                                 "scene's (voxel size or origin)");
+    if (!g.uniformZ()) {
+        const auto levels = grid->getMetadata<openvdb::StringMetadata>("z_levels_m");
+        if (!levels || levels->value() != levelsText(g))
+            throw std::runtime_error(path + ": grid '" + name +
+                                     "' sits on other layers (z_levels_m) than the scene's");
+    }
+    std::vector<double> tke(g.cellCount(), 0.0);
+    auto acc = grid->getConstAccessor();
+    for (int k = 0; k < g.nz; ++k)
+        for (int j = 0; j < g.ny; ++j)
+            for (int i = 0; i < g.nx; ++i)
+                if (field.isAir(i, j, k))
+                    tke[g.cellIndex(i, j, k)] = acc.getValue(openvdb::Coord(i, j, k));
+    return tke;
+}
+
+void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata,
+                         const std::vector<double>& tke_m2ps2) const {
+    openvdb::initialize();
+    if (!tke_m2ps2.empty() && tke_m2ps2.size() != mLayout.cellCount())
+        throw std::invalid_argument("writeVdb: " + std::to_string(tke_m2ps2.size()) +
+                                    " tke values for " + std::to_string(mLayout.cellCount()) +
+                                    " cells");
     auto vel = velocityGrid(*this);
     auto speed = speedGrid(*this);
     auto faces = staggeredVelocityGrid(*this);
+    openvdb::FloatGrid::Ptr tke = tke_m2ps2.empty() ? nullptr : tkeGrid(*this, tke_m2ps2);
+    if (tke) {
+        for (const auto& [k, v] : metadata.strings) tke->insertMeta(k, openvdb::StringMetadata(v));
+        for (const auto& [k, v] : metadata.numbers) tke->insertMeta(k, openvdb::DoubleMetadata(v));
+    }
     for (openvdb::GridBase* g :
          {static_cast<openvdb::GridBase*>(vel.get()), static_cast<openvdb::GridBase*>(speed.get()),
           static_cast<openvdb::GridBase*>(faces.get())}) {
@@ -486,7 +596,10 @@ void WindField::writeVdb(const std::string& path, const VdbMetadata& metadata) c
         for (const auto& [k, v] : metadata.strings) g->insertMeta(k, openvdb::StringMetadata(v));
         for (const auto& [k, v] : metadata.numbers) g->insertMeta(k, openvdb::DoubleMetadata(v));
     }
-    writeGridsAtomic(path, {vel, speed, faces});
+    if (tke)
+        writeGridsAtomic(path, {vel, speed, faces, tke});
+    else
+        writeGridsAtomic(path, {vel, speed, faces});
 }
 
 int vdbCubicLayers(const GridLayout& layout) {

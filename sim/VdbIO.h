@@ -67,6 +67,27 @@ void writeHoudiniVdb(const std::string& path, const WindField& field, const Heig
 /// "speed": |velocity| of the cell-centred average, m/s, active on air cells.
 openvdb::FloatGrid::Ptr speedGrid(const WindField& field);
 
+/// Name of the turbulent kinetic energy grid on cubic cells, and on stretched layers (voxel k is
+/// layer k, metadata "z_levels_m", like "velocity_layers").
+inline constexpr const char* TKE_GRID = "tke";
+inline constexpr const char* TKE_LAYERS_GRID = "tke_layers";
+
+/// "tke" (stretched layers: "tke_layers"): the momentum model's turbulent kinetic energy k,
+/// m^2/s^2, one float per air cell, voxel (i, j, k) = cell (i, j, k) with the cell-centred
+/// transform of the file comment (stretched: its z is the layer index, the layers' world z in
+/// "z_levels_m"); active on air cells, background 0; GRID_UNKNOWN (the grid's "class"), metadata
+/// "units" = "m^2/s^2", "quantity" and "cell_placement". tke_m2ps2 holds one value per cell
+/// (GridIndex cell layout); throws std::invalid_argument otherwise.
+openvdb::FloatGrid::Ptr tkeGrid(const WindField& field, const std::vector<double>& tke_m2ps2);
+
+/// Reads the "tke" grid (stretched layers: "tke_layers") of a .vdb that gale solve wrote for
+/// `field`'s geometry into one value per cell (m^2/s^2, GridIndex cell layout; solid cells 0).
+/// Empty when the file holds no such grid (a mass-consistent field: no turbulence). Call it after
+/// readFaceVelocities has accepted the file (same grid). Throws std::runtime_error naming the file
+/// when it cannot be read, the grid is not a float grid, lies outside the field's cells, or sits
+/// on another voxel size, origin or layers.
+std::vector<double> readCellTke(const std::string& path, const WindField& field);
+
 /// Voxels along z of the standard grids ("velocity", "speed", Houdini's "vel") of a field on
 /// `layout`: its nz for cubic cells, the cubic resample's layers for stretched layers (file
 /// comment).

@@ -119,9 +119,12 @@ class WindField : public LayoutAccessors<WindField> {
     /// Vec3s grid "velocity_faces" (the face velocities themselves, GRID_STAGGERED; OpenVDB's
     /// StaggeredBoxSampler reads it as velocityAt_mps does; see VdbIO.h). Stretched layers: a
     /// cubic resample for the first two and "velocity_layers" with "z_levels_m" metadata instead
-    /// of "velocity_faces" (VdbIO.h). Atomic: written to a
-    /// temporary name in the same folder, then renamed. Throws std::runtime_error on I/O failure.
-    void writeVdb(const std::string& path, const VdbMetadata& metadata = {}) const;
+    /// of "velocity_faces" (VdbIO.h). With tke_m2ps2 (one value per cell, the momentum model's
+    /// k, m^2/s^2) also a float grid "tke" (stretched layers: "tke_layers"; sim::tkeGrid). Atomic:
+    /// written to a temporary name in the same folder, then renamed. Throws std::runtime_error on
+    /// I/O failure, std::invalid_argument when tke_m2ps2 is neither empty nor one per cell.
+    void writeVdb(const std::string& path, const VdbMetadata& metadata = {},
+                  const std::vector<double>& tke_m2ps2 = {}) const;
 
   private:
     GridLayout mLayout;

@@ -14,6 +14,7 @@
 
 #include "app/io/AtomicFile.h"
 #include "base/Numbers.h"
+#include "coupling/Turbulence.h"
 #include "sim/AmbientWind.h"
 
 namespace gale::app {
@@ -71,9 +72,13 @@ void copyTo(GDALDataset* ds, const char* driverName, const std::string& path,
 
 std::vector<std::string> writeWindRasters(const sim::WindField& field, const sim::Heightfield& t,
                                           const Georeference& g, double height_m,
-                                          const std::string& stem) {
+                                          const std::string& stem,
+                                          const std::vector<double>& tke_m2ps2) {
     const int nx = t.nx, ny = t.ny;
+    const bool turbulent = !tke_m2ps2.empty();
     std::vector<float> speed(static_cast<size_t>(nx) * ny), from(speed.size());
+    std::vector<float> tke(turbulent ? speed.size() : 0), intensity(tke.size()), gust(tke.size());
+    const float nodata = static_cast<float>(WIND_RASTER_NODATA);
     for (int row = 0; row < ny; ++row) {
         const int j = ny - 1 - row;  // north-up: the first row is the far edge
         for (int i = 0; i < nx; ++i) {
@@ -82,7 +87,8 @@ std::vector<std::string> writeWindRasters(const sim::WindField& field, const sim
             const size_t n = static_cast<size_t>(row) * nx + i;
             const auto top = field.wsMin_m()[2] + field.nz() * field.voxelSize_m();
             if (!(z < top)) {
-                speed[n] = from[n] = static_cast<float>(WIND_RASTER_NODATA);
+                speed[n] = from[n] = nodata;
+                if (turbulent) tke[n] = intensity[n] = gust[n] = nodata;
                 continue;
             }
             const auto v = field.velocityAt_mps(x, y, z);
@@ -91,6 +97,15 @@ std::vector<std::string> writeWindRasters(const sim::WindField& field, const sim
             a.direction_deg = degreesFromRadians(std::atan2(v[1], v[0]));
             from[n] = std::hypot(v[0], v[1]) > 1e-9 ? static_cast<float>(a.from_deg())
                                                     : static_cast<float>(WIND_RASTER_NODATA);
+            if (turbulent) {
+                const double k = coupling::sampleTke_m2ps2(field, tke_m2ps2, x, y, z);
+                const double ti = coupling::turbulenceIntensity(k, double(speed[n]));
+                tke[n] = std::isfinite(k) ? static_cast<float>(k) : nodata;
+                intensity[n] = std::isfinite(ti) ? static_cast<float>(ti) : nodata;
+                gust[n] = std::isfinite(k)
+                              ? static_cast<float>(coupling::gustSpeed_mps(double(speed[n]), k))
+                              : nodata;
+            }
         }
     }
     const double h = t.spacing_m;
@@ -111,10 +126,15 @@ std::vector<std::string> writeWindRasters(const sim::WindField& field, const sim
     };
     // The GeoTIFF holds both bands; an ASCII grid holds one, the speed.
     for (const bool tiff : {true, false}) {
-        GDALDataset* ds = memoryRaster(nx, ny, tiff ? 2 : 1, gt, g);
+        GDALDataset* ds = memoryRaster(nx, ny, tiff ? (turbulent ? 5 : 2) : 1, gt, g);
         try {
             fill(ds, 1, speed, "speed_mps");
             if (tiff) fill(ds, 2, from, "from_deg");
+            if (tiff && turbulent) {
+                fill(ds, 3, tke, "tke_m2ps2");
+                fill(ds, 4, intensity, "turbulence_intensity");
+                fill(ds, 5, gust, "gust_mps");
+            }
             copyTo(ds, tiff ? "GTiff" : "AAIGrid", stem + (tiff ? ".tif" : ".asc"), written);
         } catch (...) {
             GDALClose(ds);

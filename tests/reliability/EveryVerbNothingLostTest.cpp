@@ -376,6 +376,47 @@ TEST(EveryOutput, AnInterruptedUnsteadyRunOverALongerSequenceLeavesExactlyItsOwn
     EXPECT_EQ(found, expected) << describeTree(listTree(cwd / "f"));
 }
 
+// The turbulence outputs (issue 24, item 5: the .vdb's tke grid, the GeoTIFF's k, intensity and
+// gust bands) of a momentum solve stopped while it steps: no field, no raster, no temporary,
+// only the report that says how far it got; the same scene run to its end writes them all.
+TEST(EveryOutput, AMomentumSolveStoppedWhileSteppingLeavesNoTkeGridOrTurbulenceRaster) {
+    TempDir cwd;
+    const std::string scene =
+        "[terrain]\nkind = \"hemisphere\"\nsize_m = [40.0, 40.0]\nradius_m = 6.0\n"
+        "[wind]\nkind = \"solved\"\nspeed_mps = 5.0\n[solver]\nvoxel_size_m = 0.5\n"
+        "top_m = 20.0\nmodel = \"momentum\"\nmomentum_max_iterations = 100000\n";
+    writeFile(cwd / "m.toml", scene);
+    RunOptions options;
+    options.cwd = cwd.str();
+    Child child({"solve", "m.toml", "-o", "f/w.vdb", "--grid-height-m", "2"}, options);
+    ASSERT_TRUE(
+        waitFor([&] { return child.errSoFar().find("pseudo-time step") != std::string::npos; },
+                RUN_TIMEOUT_S))
+        << child.errSoFar();
+    child.signal(SIGINT);
+    const RunResult r = child.wait(RUN_TIMEOUT_S);
+    ASSERT_EQ(r.exitCode, 130) << r.describe();
+    std::set<std::string> found;
+    for (const auto& [rel, size] : listTree(cwd / "f")) found.insert(rel);
+    EXPECT_EQ(found, (std::set<std::string>{"w.json"})) << describeTree(listTree(cwd / "f"));
+    const nlohmann::json report = nlohmann::json::parse(readFile(cwd / "f/w.json"));
+    EXPECT_TRUE(report["outputs"].empty()) << report["outputs"].dump();
+
+    // Run to the end on a coarser grid: the same outputs, now with the turbulence in them.
+    writeFile(cwd / "c.toml",
+              "[terrain]\nkind = \"hemisphere\"\nsize_m = [8.0, 8.0]\nradius_m = 2.0\n"
+              "[wind]\nkind = \"solved\"\n[solver]\nvoxel_size_m = 0.5\n"
+              "model = \"momentum\"\nmomentum_max_iterations = 20\n");
+    const RunResult done =
+        run({"solve", "c.toml", "-o", "g/w.vdb", "--grid-height-m", "2"}, cwd.str());
+    ASSERT_TRUE(done.exitCode == 0 || done.exitCode == 3) << done.describe();
+    const nlohmann::json full = nlohmann::json::parse(readFile(cwd / "g/w.json"));
+    EXPECT_NE(full["outputs"]["vdb"]["grids"].dump().find("tke (float"), std::string::npos)
+        << full["outputs"]["vdb"].dump();
+    EXPECT_EQ(full["outputs"]["rasters"][0]["bands"].size(), 5u);
+    EXPECT_TRUE(hiddenOrTemporary(cwd.str()).empty()) << describeTree(listTree(cwd.str()));
+}
+
 TEST(EveryInput, ACorruptOrForeignVdbGetsGalesOwnMessage) {
     TempDir cwd;
     writeFile(cwd / "s.toml", SMALL_SOLVE);
