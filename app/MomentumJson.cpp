@@ -11,9 +11,6 @@ nlohmann::json momentumJson(const sim::MomentumReport& m, const sim::MomentumSet
                            {"iteration", it.iteration},
                            {"momentum_residual", it.momentumResidual},
                            {"max_momentum_residual", it.maxMomentumResidual},
-                           {"steady_residual", it.steadyResidual},
-                           {"max_steady_residual", it.maxSteadyResidual},
-                           {"wake_steady_residual", it.wakeSteadyResidual},
                            {"max_div_u_h_over_U", it.maxDivergenceScaled},
                            {"projection_iterations", it.projectionIterations},
                            {"projection_converged", it.projectionConverged},
@@ -30,13 +27,7 @@ nlohmann::json momentumJson(const sim::MomentumReport& m, const sim::MomentumSet
                           {"iterations", l.iterations},
                           {"min_iterations", l.minIterations},
                           {"momentum_residual", l.momentumResidual},
-                          {"steady_residual", l.steadyResidual},
-                          {"max_steady_residual", l.maxSteadyResidual},
-                          {"wake_steady_residual", l.wakeSteadyResidual},
-                          {"wake_faces", l.wakeFaces},
                           {"converged", l.converged},
-                          {"at_step_limit", l.atStepLimit},
-                          {"message", l.message},
                           {"seconds", l.seconds}});
     return {
         {"closure", "mixing_length"},
@@ -50,13 +41,6 @@ nlohmann::json momentumJson(const sim::MomentumReport& m, const sim::MomentumSet
         {"momentum_residual", m.momentumResidual},
         {"residual_definition",
          "open-fraction weighted RMS over faces of |u(n+1) - u(n)| / dt * h / U^2"},
-        {"steady_residual", m.steadyResidual},
-        {"steady_residual_definition",
-         "open-fraction weighted RMS over open faces of |(u.grad)u + grad p - div tau - F| * h / "
-         "U^2 on the iterate (max_: the largest; wake_: over the wake faces)"},
-        {"criterion", s.criterionInUse() == sim::MomentumSettings::Criterion::SteadyResidual
-                          ? "steady_residual"
-                          : "momentum_residual"},
         {"tolerance", s.residualTolerance},
         {"max_div_u_h_over_U", m.maxDivergenceScaled},
         {"pseudo_dt_s", m.dt_s},

@@ -179,14 +179,13 @@ TraceStart traceStart(const MacGrid& g, const FaceVelocitySampler<Lattice>& velo
                       const double* x0, double groundTop_m, const Placement* p = nullptr, int i = 0,
                       int j = 0, int k = 0) {
     TraceStart s{};
-    // Only a trace that starts above the surface is stopped by it on the way (samples inside cut
-    // cells may sit below the bilinear surface: they are traced freely until they emerge, and
-    // one that ends below the surface ends on it instead; traceWs).
-    s.above = x0[2] > groundTop_m || aboveGround_m(g, x0) >= 0.0;
     if (p)
         velocityWs.atSample(*p, i, j, k, x0, s.u, &s.layer_m);
     else
         velocityWs(x0, s.u, &s.layer_m);
+    // Only a trace that starts above the surface is stopped by it (samples inside cut cells may
+    // sit below the bilinear surface; they are traced freely until they emerge).
+    s.above = x0[2] > groundTop_m || aboveGround_m(g, x0) >= 0.0;
     return s;
 }
 
@@ -194,15 +193,11 @@ TraceStart traceStart(const MacGrid& g, const FaceVelocitySampler<Lattice>& velo
 /// substep moves by s u metres; its length s holds the travel to at most
 /// MAX_TRACE_CELLS_PER_SUBSTEP cells along every axis, horizontal cells of h and vertical ones
 /// of the local layer's thickness (so a trace through thin stretched layers takes short
-/// substeps). x0 and dep are world metres. A trace that ends below the surface (one that started
-/// below it and did not emerge) ends on the surface straight above. Returns true when the trace
-/// was clipped: stopped on the surface, ended on it from below, or left the box (its value is
-/// then the far field's, not the grid's).
+/// substeps). x0 and dep are world metres.
 template <class Lattice>
-bool traceWs(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs, const double* x0,
+void traceWs(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs, const double* x0,
              const TraceStart& start, double dt, double groundTop_m, double* dep) {
     double x[3] = {x0[0], x0[1], x0[2]};
-    bool clipped = false;
     const double sign = dt < 0.0 ? -1.0 : 1.0;
     double remaining = std::abs(dt);
     bool above = start.above;
@@ -245,33 +240,26 @@ bool traceWs(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs, c
                 (aboveGround_m(g, p) >= 0.0 ? lo : hi) = mid;
             }
             for (int a = 0; a < 3; ++a) x[a] += lo * (xn[a] - x[a]);
-            clipped = true;
             break;
         }
         above = above || heightNew >= 0.0;
         for (int a = 0; a < 3; ++a) x[a] = xn[a];
         remaining -= s;
     }
-    if (!above && !velocityWs.box.outside(x) && x[2] <= groundTop_m) {
-        const double ground_m = g.terrain->sample(x[0], x[1]);
-        if (x[2] < ground_m) x[2] = ground_m, clipped = true;
-    }
     for (int a = 0; a < 3; ++a) dep[a] = x[a];
-    return clipped || velocityWs.box.outside(x);
 }
 
 /// One semi-Lagrangian pass; optionally records the min/max of the interpolation neighbours and
 /// whether the departure point left the box. `starts`: the TraceStart of every sample of this
 /// placement (index as its array), or null to compute each on the way; `record` (with null
 /// starts): where to keep the ones computed, for the scheme's later passes (masked-out samples
-/// are not written). `clipped` (optional, one entry per sample): set to 1 where a trace was
-/// clipped (traceWs), left alone elsewhere. groundTop: terrainTop_m(g).
+/// are not written). groundTop: terrainTop_m(g).
 template <class Lattice>
 void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                     const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
                     double dt, std::vector<double>& out, const std::vector<uint8_t>* mask,
                     std::vector<double>* lo, std::vector<double>* hi, const TraceStart* starts,
-                    TraceStart* record, double groundTop, uint8_t* clipped = nullptr) {
+                    TraceStart* record, double groundTop) {
     const auto n = g.dims(p);
     out.resize(q.size());
     if (lo) lo->resize(q.size()), hi->resize(q.size());
@@ -293,11 +281,10 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                 else
                     start = traceStart(g, velocityWs, x0.data(), groundTop, &p, i, j, k);
                 if (record) record[idx] = start;
-                if (traceWs(g, velocityWs, x0.data(), start, dt, groundTop, dep) && clipped)
-                    clipped[idx] = 1;
+                traceWs(g, velocityWs, x0.data(), start, dt, groundTop, dep);
                 if (outside && velocityWs.box.outside(dep)) {
                     out[idx] = outside({dep[0], dep[1], dep[2]});
-                    if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;
+                    if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;  // no limiter on inflow
                     continue;
                 }
                 out[idx] =
@@ -322,22 +309,17 @@ void advectWith(const MacGrid& g, Placement p, const std::vector<double>& q, con
     // forward pass computes each sample's start and keeps it for the others. Default-initialised
     // (not zeroed): a masked-out sample's entry is never written nor read.
     const std::unique_ptr<TraceStart[]> starts(new TraceStart[q.size()]);
-    // Samples whose forward or backward trace was clipped by the terrain or left the box: there
-    // the backward pass does not return to the sample's own neighbourhood, so its error estimate
-    // (q - phi_b) / 2 is not an error estimate, and the scheme keeps the semi-Lagrangian value.
-    std::vector<uint8_t> clipped(q.size(), 0);
     std::vector<double> fwd, back, lo, hi;
     semiLagrangian<Lattice>(g, p, q, vel, far, outside, dt, fwd, mask, &lo, &hi, nullptr,
-                            starts.get(), groundTop, clipped.data());
+                            starts.get(), groundTop);
     semiLagrangian<Lattice>(g, p, fwd, vel, far, outside, -dt, back, mask, nullptr, nullptr,
-                            starts.get(), nullptr, groundTop, clipped.data());
+                            starts.get(), nullptr, groundTop);
     out.resize(q.size());
     if (scheme == AdvectionScheme::MacCormack) {
         // Selle et al. 2008: phi^{n+1} = phi_f + (phi^n - phi_b) / 2, limited.
         tbb::parallel_for(size_t(0), q.size(), [&](size_t idx) {
             const double v = fwd[idx] + 0.5 * (q[idx] - back[idx]);
-            out[idx] =
-                std::isfinite(v) && !clipped[idx] ? std::clamp(v, lo[idx], hi[idx]) : fwd[idx];
+            out[idx] = std::isfinite(v) ? std::clamp(v, lo[idx], hi[idx]) : fwd[idx];
         });
         return;
     }
@@ -350,7 +332,7 @@ void advectWith(const MacGrid& g, Placement p, const std::vector<double>& q, con
                             starts.get(), nullptr, groundTop);
     tbb::parallel_for(size_t(0), q.size(), [&](size_t idx) {
         const double v = out[idx];
-        out[idx] = std::isfinite(v) && !clipped[idx] ? std::clamp(v, lo[idx], hi[idx]) : fwd[idx];
+        out[idx] = std::isfinite(v) ? std::clamp(v, lo[idx], hi[idx]) : fwd[idx];
     });
 }
 
@@ -360,8 +342,8 @@ Vec3d traceBackWith(const MacGrid& g, const MacVelocity& vel, const FarField& fa
     const FaceVelocitySampler<Lattice> velocityWs(g, vel, far);
     Vec3d dep;
     const double groundTop = terrainTop_m(g);
-    (void)traceWs(g, velocityWs, ws.data(), traceStart(g, velocityWs, ws.data(), groundTop), dt,
-                  groundTop, dep.data());
+    traceWs(g, velocityWs, ws.data(), traceStart(g, velocityWs, ws.data(), groundTop), dt,
+            groundTop, dep.data());
     return dep;
 }
 

@@ -21,23 +21,15 @@
 /// thickness; the substep length follows the local speed, so a trace at CFL 50 follows the
 /// streamline through ~25 midpoint steps instead of jumping 50 cells in one), and, when the grid
 /// names its terrain (MacGrid::terrain), a trace that crosses from above the terrain surface to
-/// below it stops on the surface (the crossing found by bisection along the substep); a trace
-/// whose sample lies below the bilinear surface (a face inside a cut cell) is traced freely until
-/// it emerges, is stopped like any other after that, and ends on the surface straight above its
-/// end when it never emerges: every departure point inside the box lies on or above the surface,
-/// and air next to the ground is never read from inside the rock. A trace that leaves the box
-/// finishes its remaining time in one midpoint step through the far field. A trace is clipped
-/// when it was stopped on the surface, ended on it from below, or left the box.
+/// below it stops on the surface (the crossing found by bisection along the substep): air next to
+/// the ground is never read from inside the rock. A trace that leaves the box finishes its
+/// remaining time in one midpoint step through the far field.
 ///  - MacCormack: Selle, Fedkiw, Kim, Liu, Osher 2008 ("An unconditionally stable MacCormack
 ///    method"): forward and backward semi-Lagrangian passes, phi = phi_f + (phi - phi_b) / 2,
 ///    clamped to the min/max of the 8 interpolation neighbours of the forward departure point
-///    (their limiter, so the scheme stays bounded). Where the forward or the backward trace of a
-///    sample was clipped, the backward pass does not come back to the sample, (phi - phi_b) / 2
-///    estimates nothing, and the sample keeps the semi-Lagrangian value phi_f (Selle et al.
-///    revert to it where their limiter trips; a wall or an inflow side is the same failure).
+///    (their limiter, so the scheme stays bounded).
 ///  - Bfecc: Kim, Liu, Llamas, Rossignac 2005 (back and forth error compensation and correction):
-///    phi' = phi + (phi - phi_b) / 2 advected forward once more, clamped the same way, and the
-///    semi-Lagrangian value where a trace was clipped.
+///    phi' = phi + (phi - phi_b) / 2 advected forward once more, clamped the same way.
 ///
 /// Outside the box (x, y sides and the top) the caller supplies the far field (FarField): a trace
 /// that leaves the box reads the state of the air that enters through that side (the unsteady
@@ -112,9 +104,7 @@ Vec3d velocityAt(const MacGrid& g, const MacVelocity& vel, const FarField& far,
 /// arrival point), by explicit midpoint substeps through the frozen velocity,
 ///   x_mid = x - s/2 u(x),  x_next = x - s u(x_mid),
 /// each substep s at most MAX_TRACE_CELLS_PER_SUBSTEP cells long; stopped on the terrain surface
-/// (g.terrain) when it crosses it from above, and ended on the surface above its end when it
-/// started below the surface and never emerged (inside the box the result lies on or above the
-/// surface). Metres in, metres out.
+/// (g.terrain) when it crosses it from above. Metres in, metres out.
 Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, const Vec3d& wsPos_m,
                 double dt_s);
 

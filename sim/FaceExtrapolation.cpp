@@ -36,18 +36,4 @@ void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid0
         if (!valid[p]) a[p] = 0.0;
 }
 
-std::vector<size_t> terrainClosedFaces(const std::vector<uint8_t>& valid, const GridIndex& g,
-                                       Placement pl) {
-    const auto n = g.dims(pl);
-    const int levels = pl == Placement::FaceZ ? n[2] - 1 : n[2];  // the top z-level: a lid's
-    std::vector<size_t> closed;
-    for (int k = 0; k < levels; ++k)
-        for (int j = 0; j < n[1]; ++j)
-            for (int i = 0; i < n[0]; ++i) {
-                const size_t f = g.index(pl, i, j, k);
-                if (!valid[f]) closed.push_back(f);
-            }
-    return closed;
-}
-
 }  // namespace gale::sim::detail

@@ -4,7 +4,6 @@
 /// Values for MAC faces that carry none (closed by the terrain), so that interpolating the field
 /// near the ground stays smooth. Shared by the steady and unsteady solvers.
 
-#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,13 +16,5 @@ namespace gale::sim::detail {
 /// 0. Velocities, m/s; `valid` is not changed.
 void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid, const GridIndex& g,
                       Placement p, int layers);
-
-/// The faces of placement p that the terrain closes (valid == 0: inside the rock, or between a
-/// solid and an air cell), as indices into g.count(p) values, ascending; the box's top level of
-/// z-faces is left out (a lid's closed faces carry the lid's own velocity, not a wall's). The
-/// unsteady solver's advection reads them as 0 under a wall stress (sim/UnsteadyWind.h,
-/// step 2).
-std::vector<size_t> terrainClosedFaces(const std::vector<uint8_t>& valid, const GridIndex& g,
-                                       Placement p);
 
 }  // namespace gale::sim::detail

@@ -45,7 +45,6 @@
 /// top holds that profile (Dirichlet).
 
 #include <cstdint>
-#include <stdexcept>
 #include <vector>
 
 #include "sim/AirDomain.h"
@@ -101,13 +100,6 @@ class KEpsilonTransport {
     }
     const std::vector<double>& tke_m2ps2() const { return mK; }            ///< k on cells
     const std::vector<double>& dissipation_m2ps3() const { return mEps; }  ///< epsilon on cells
-    /// Puts back k and epsilon saved from tke_m2ps2() and dissipation_m2ps3() (a probe step that
-    /// must leave no trace: TurbulentStress::tendency). Throws std::logic_error on wrong sizes.
-    void setState(std::vector<double> tke_m2ps2, std::vector<double> dissipation_m2ps3) {
-        if (tke_m2ps2.size() != mK.size() || dissipation_m2ps3.size() != mEps.size())
-            throw std::logic_error("KEpsilonTransport::setState: sizes do not match the domain");
-        mK = std::move(tke_m2ps2), mEps = std::move(dissipation_m2ps3);
-    }
     /// The lowest air cell's k index of a cell column, -1 when the column has no air.
     int wallCell(size_t column) const { return mWallK[column]; }
     /// u*_k = C_mu^(1/4) sqrt(k) (m/s) of a column's wall cell, 0 without air.

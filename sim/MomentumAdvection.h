@@ -32,14 +32,10 @@
 /// (the momentum model's start field held at the box side), so an outflow face is advected by
 /// its own upwind values and needs no boundary condition. Below the box's bottom the lowest sample
 /// is repeated. Faces the solver does not update (mask 0: inside the terrain, or between a solid
-/// and an air cell) are the wall: under the wall stress of the momentum model the unsteady
-/// solver hands them in as the ground at rest (0 in q and in the velocity; sim/UnsteadyWind.h,
-/// step 2), so no velocity crosses a closed face (its normal component is 0), the frozen velocity
-/// at an open face beside the wall averages in the wall's 0, and an upwind stencil that reaches
-/// into the wall reads fluid at rest: the first cells behind a lee riser are not fed the
-/// crest-level momentum of the faces above the riser. The ground's stress is the wall function's
-/// (sim/MomentumTurbulence.h); the wall's 0 only stops the advection from carrying momentum out of
-/// the rock.
+/// and an air cell) hold the values the solver extrapolates into them after every projection (the
+/// face above's), so the stencil sees zero gradient into the ground; the ground's stress is the
+/// wall function's, not the advection's, and no velocity crosses a closed face because closed faces
+/// are never updated here.
 
 #include <array>
 #include <cstdint>

@@ -703,24 +703,4 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
     return rep;
 }
 
-void TurbulentStress::tendency(double probeDt_s, const std::vector<double>& u,
-                               const std::vector<double>& v, const std::vector<double>& w,
-                               std::array<std::vector<double>, 3>& out) {
-    // What apply() leaves for its callers to read is the last real step's: set it aside (apply()
-    // recomputes these arrays from the velocities before reading them) and put it back after.
-    std::vector<double> nuZ, shearZ, tke, strainH;
-    nuZ.swap(mNuZ), shearZ.swap(mShearZ), tke.swap(mTke), strainH.swap(mStrainH);
-    // The k-epsilon transport's state too: the probe step must not advance it.
-    std::vector<double> keK, keEps;
-    if (mKEpsilon) keK = mKEpsilon->tke_m2ps2(), keEps = mKEpsilon->dissipation_m2ps3();
-    out[0] = u, out[1] = v, out[2] = w;
-    (void)apply(probeDt_s, out[0], out[1], out[2]);
-    if (mKEpsilon) mKEpsilon->setState(std::move(keK), std::move(keEps));
-    const std::vector<double>* in[3] = {&u, &v, &w};
-    for (size_t c = 0; c < 3; ++c)
-        for (size_t f = 0; f < out[c].size(); ++f)
-            out[c][f] = (out[c][f] - (*in[c])[f]) / probeDt_s;
-    mNuZ.swap(nuZ), mShearZ.swap(shearZ), mTke.swap(tke), mStrainH.swap(strainH);
-}
-
 }  // namespace gale::sim

@@ -134,15 +134,6 @@ class TurbulentStress {
     TurbulenceReport apply(double dt_s, std::vector<double>& u, std::vector<double>& v,
                            std::vector<double>& w);
 
-    /// The operator of apply() at the given face velocities (m/s, WindField layout), without
-    /// changing them or what this object reports (nu_t, k): out receives, per face, the stress
-    /// divergence plus the wall and top stresses and the balance force, m/s^2 (0 outside the
-    /// masks). Evaluated as one apply() of probeDt_s (> 0) seconds on copies, (u' - u) /
-    /// probeDt_s: backward Euler gives (I - dt L)^-1 (L u + F), the operator L u + F to a relative
-    /// O(probeDt_s |L|). The steady momentum residual reads it (sim/MomentumWind.h).
-    void tendency(double probeDt_s, const std::vector<double>& u, const std::vector<double>& v,
-                  const std::vector<double>& w, std::array<std::vector<double>, 3>& out);
-
     /// nu_t (m^2/s) on the z-faces of the last apply() (WindField's w layout), 0 before.
     const std::vector<double>& eddyViscosityZ_m2ps() const { return mNuZ; }
     /// Turbulent kinetic energy k (m^2/s^2) on the cells of the last apply() (GridIndex's cell

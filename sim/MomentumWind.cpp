@@ -54,79 +54,6 @@ Change changeOver(const std::vector<double>& a, const std::vector<double>& b,
         });
 }
 
-/// Open-fraction weighted sums of a per-face residual r (m/s^2): over all open faces (sumSq,
-/// weight, max of theta |r|) and, separately, over the wake's faces (wakeSumSq, wakeWeight).
-struct ResidualNorms {
-    double sumSq = 0, weight = 0, max = 0, wakeSumSq = 0, wakeWeight = 0;
-};
-
-ResidualNorms residualNorms(const std::vector<double>& r, const std::vector<float>& open,
-                            const std::vector<uint8_t>& wake) {
-    return tbb::parallel_reduce(
-        tbb::blocked_range<size_t>(0, r.size(), 1 << 14), ResidualNorms{},
-        [&](const tbb::blocked_range<size_t>& range, ResidualNorms n) {
-            for (size_t f = range.begin(); f != range.end(); ++f) {
-                if (!(open[f] > 0.f)) continue;
-                const double a = std::abs(r[f]), th = open[f];
-                n.sumSq += th * a * a, n.weight += th;
-                if (!(th * a <= n.max)) n.max = th * a;
-                if (wake[f]) n.wakeSumSq += th * a * a, n.wakeWeight += th;
-            }
-            return n;
-        },
-        [](ResidualNorms x, const ResidualNorms& y) {
-            x.sumSq += y.sumSq, x.weight += y.weight;
-            x.wakeSumSq += y.wakeSumSq, x.wakeWeight += y.wakeWeight;
-            x.max = std::isnan(y.max) || y.max > x.max ? y.max : x.max;
-            return x;
-        });
-}
-
-/// The wake faces of each placement (MomentumLevel::wakeFaces): open faces behind the terrain's
-/// highest point along the wind, within WAKE_LENGTH_H H downstream, WAKE_HALF_WIDTH_H H across
-/// and WAKE_HEIGHT_H H above the local ground. The highest point is the centroid of the samples
-/// within 0.1 % of H of the top (the middle of a ridge's crest line, not its end). Empty masks
-/// (all 0) over flat ground.
-std::array<std::vector<uint8_t>, 3> wakeMasks(const AirDomain& domain, const AmbientWind& wind,
-                                              size_t& faces) {
-    const Heightfield& T = domain.terrain();
-    const GridLayout& G = domain.layout();
-    std::array<std::vector<uint8_t>, 3> masks;
-    for (int c = 0; c < 3; ++c) masks[size_t(c)].assign(G.count(Placement(c)), 0);
-    faces = 0;
-    const double top = T.maxHeight_m(), H = top - T.minHeight_m();
-    if (!(H > 0.0)) return masks;
-    double cx = 0.0, cy = 0.0;
-    int n = 0;
-    for (int j = 0; j < T.ny; ++j)
-        for (int i = 0; i < T.nx; ++i)
-            if (T.at(i, j) >= top - 1e-3 * H)
-                cx += T.originX_m + i * T.spacing_m, cy += T.originY_m + j * T.spacing_m, ++n;
-    cx /= n, cy /= n;
-    const double a = gale::radiansFromDegrees(wind.direction_deg);
-    const double dx = std::cos(a), dy = std::sin(a);
-    const std::vector<float>* open[3] = {&domain.openFractionsX(), &domain.openFractionsY(),
-                                         &domain.openFractionsZ()};
-    for (int c = 0; c < 3; ++c) {
-        const Placement p = Placement(c);
-        const auto dims = G.dims(p);
-        for (int k = 0; k < dims[2]; ++k)
-            for (int j = 0; j < dims[1]; ++j)
-                for (int i = 0; i < dims[0]; ++i) {
-                    const size_t f = G.index(p, i, j, k);
-                    if (!((*open[c])[f] > 0.f)) continue;
-                    const Vec3d x = G.wsPosition(p, i, j, k);
-                    const double along = (x[0] - cx) * dx + (x[1] - cy) * dy;
-                    const double across = -(x[0] - cx) * dy + (x[1] - cy) * dx;
-                    const double above = x[2] - T.sample(x[0], x[1]);
-                    if (along > 0.0 && along <= WAKE_LENGTH_H * H &&
-                        std::abs(across) <= WAKE_HALF_WIDTH_H * H && above <= WAKE_HEIGHT_H * H)
-                        masks[size_t(c)][f] = 1, ++faces;
-                }
-    }
-    return masks;
-}
-
 }  // namespace
 
 const char* pseudoTimeAdvectionName(PseudoTimeAdvection a) {
@@ -367,11 +294,6 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
                                ? int(std::ceil(crossing_m / (ambient.speed_mps * lv.dt_s)))
                                : 1;
     }
-    const std::array<std::vector<uint8_t>, 3> wake = wakeMasks(domain, ambient, lv.wakeFaces);
-    const std::vector<float>* openFractions[3] = {
-        &domain.openFractionsX(), &domain.openFractionsY(), &domain.openFractionsZ()};
-    const double steadyScale = h / (uRef * uRef);
-    std::array<std::vector<double>, 3> residual;
     std::vector<double> prevU, prevV, prevW;
     // One pseudo-time step, recorded in the history; false when the field became non-finite.
     auto stepOnce = [&](int it) {
@@ -389,20 +311,6 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
         m.iteration = it;
         m.momentumResidual = c.weight > 0.0 ? std::sqrt(c.sumSq / c.weight) * scale : 0.0;
         m.maxMomentumResidual = c.max * scale;
-        if (sr.finite) {
-            solver.steadyResidual(lv.dt_s, residual);
-            ResidualNorms r;
-            for (size_t a = 0; a < 3; ++a) {
-                const ResidualNorms ra = residualNorms(residual[a], *openFractions[a], wake[a]);
-                r.sumSq += ra.sumSq, r.weight += ra.weight, r.max = std::max(r.max, ra.max);
-                r.wakeSumSq += ra.wakeSumSq, r.wakeWeight += ra.wakeWeight;
-                if (std::isnan(ra.max)) r.max = ra.max;
-            }
-            m.steadyResidual = r.weight > 0.0 ? std::sqrt(r.sumSq / r.weight) * steadyScale : 0.0;
-            m.maxSteadyResidual = r.max * steadyScale;
-            m.wakeSteadyResidual =
-                r.wakeWeight > 0.0 ? std::sqrt(r.wakeSumSq / r.wakeWeight) * steadyScale : 0.0;
-        }
         m.maxDivergenceScaled = sr.maxDivergenceScaled;
         m.projectionIterations = sr.projection.iterations;
         m.projectionConverged = sr.projection.converged;
@@ -427,45 +335,27 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
         }
         return true;
     };
-    const bool steadyCriterion =
-        settings.criterionInUse() == MomentumSettings::Criterion::SteadyResidual;
-    const char* criterionName = steadyCriterion ? "steady residual" : "change per step";
-    auto criterionOf = [&](const MomentumIteration& m) {
-        return steadyCriterion ? m.steadyResidual : m.momentumResidual;
-    };
-    auto keep = [&](const MomentumIteration& m) {
-        lv.momentumResidual = m.momentumResidual;
-        lv.steadyResidual = m.steadyResidual;
-        lv.maxSteadyResidual = m.maxSteadyResidual;
-        lv.wakeSteadyResidual = m.wakeSteadyResidual;
-    };
     for (int it = 1; it <= settings.maxIterations; ++it) {
         if (!stepOnce(it)) break;
         const MomentumIteration& m = rep.history.back();
         lv.iterations = it;
-        keep(m);
+        lv.momentumResidual = m.momentumResidual;
         if (rep.stopped) break;
-        if (criterionOf(m) <= settings.residualTolerance && m.projectionConverged &&
+        if (m.momentumResidual <= settings.residualTolerance && m.projectionConverged &&
             it >= lv.minIterations) {
             lv.converged = true;
-            lv.message = std::string(criterionName) + " " + num(criterionOf(m)) +
+            lv.message = "momentum residual " + num(m.momentumResidual) +
                          " <= " + num(settings.residualTolerance) + " after " + std::to_string(it) +
                          " iterations";
             break;
         }
     }
-    lv.atStepLimit =
-        lv.finite && !lv.converged && !rep.stopped && lv.iterations == settings.maxIterations;
-    if (level == 0 && lv.finite && !lv.converged && !rep.stopped && settings.averageCycles) {
+    if (level == 0 && lv.finite && !lv.converged && !rep.stopped && settings.averageCycles)
         averageOverCycles(solver, settings, lv, rep, stepOnce);
-        if (rep.averagedSteps > 0) keep(rep.history.back());
-    }
     if (lv.message.empty() || rep.averagedSteps > 0)
-        lv.message = "not converged: " + std::string(criterionName) + " " +
-                     num(steadyCriterion ? lv.steadyResidual : lv.momentumResidual) + " > " +
+        lv.message = "not converged: momentum residual " + num(lv.momentumResidual) + " > " +
                      num(settings.residualTolerance) + " after " + std::to_string(lv.iterations) +
-                     " iterations, the step limit (raise solver.momentum_max_iterations)" +
-                     lv.message;
+                     " iterations (raise solver.momentum_max_iterations)" + lv.message;
     lv.iterations += rep.averagedSteps;
     if (level == 0 && lv.finite) {
         rep.finalProjection = solver.project(settings.finalProjection);
@@ -550,20 +440,11 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
     rep.fineIterations = fine.iterations;
     rep.minIterations = fine.minIterations;
     rep.momentumResidual = fine.momentumResidual;
-    rep.steadyResidual = fine.steadyResidual;
     rep.dt_s = fine.dt_s;
     rep.finite = fine.finite;
     rep.converged = fine.converged;
     rep.message = fine.message;
     if (levels > 0 && !fromCoarse) rep.message += " (a coarse level became non-finite)";
-    // A coarse level at its step limit is no converged start: the solve is not converged, and
-    // the message names the level (the finest level's own verdict stays in its MomentumLevel).
-    for (const MomentumLevel& lv : rep.levels) {
-        if (lv.level == 0 || lv.converged) continue;
-        rep.converged = false;
-        rep.message += "; level " + std::to_string(lv.level) + " (" + num(lv.voxelSize_m) +
-                       " m cells) " + lv.message;
-    }
     if (rep.finite && !rep.finalProjection.converged) {
         rep.converged = false;
         rep.message += "; the final projection did not converge: " + rep.finalProjection.message;

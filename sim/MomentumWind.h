@@ -25,28 +25,18 @@
 /// profile over the sides), outflow is zero-gradient (the advection reads the box), the top is
 /// open (p = 0) with the ambient profile's shear stress, the ground has the wall function.
 ///
-/// Convergence. Each iteration records two residuals, both scaled by h / U^2 (U = the ambient
-/// speed: units of the advective acceleration U^2 / h). The change per step: the RMS over open
-/// faces, weighted by their open fractions, of (u^{n+1} - u^n) / dt, and its maximum. The steady
-/// residual: the steady equations themselves on the iterate, r = (u . grad) u + grad p -
-/// div tau - F (UnsteadyWindSolver::steadyResidual: the Eulerian operator's convection whichever
-/// step advects, p = -psi / dt from the step's projection, the stress step's operator without
-/// stepping), as the open-fraction weighted RMS, its maximum, and the RMS over the wake behind
-/// the highest terrain (MomentumLevel::wakeFaces); a steady solution has r = 0 whatever dt was,
-/// while the change per step vanishes at any fixed point of the step, also one the step's own
-/// errors moved off the equations (the semi-Lagrangian numerical viscosity; the O(dt) splitting).
-/// Also recorded: the largest divergence after the projection, max |div u| h / U. Converged: the
-/// criterion's RMS residual (MomentumSettings::criterion) at or below residualTolerance with a
-/// converged projection, and at least as many steps as the ambient wind needs to cross the box
-/// once (MomentumReport::minIterations; a low hill's small disturbance changes the field little
-/// per step from the start), within the level's step limit. A level, coarse or fine, that takes
-/// maxIterations steps without that is not converged, and neither is the solve
-/// (MomentumReport::converged; the message names the level). Otherwise the report says why, and
-/// the field is the last iterate, except when the finest level's residual cycles (a periodic
-/// wake that the pseudo-time iteration follows instead of settling: residualCyclePeriod finds a
-/// period of P steps): then whole periods more are stepped and their mean field is returned
-/// (MomentumSettings::averageCycles; MomentumReport::averagedSteps says so, and the report stays
-/// "not converged").
+/// Convergence. Each iteration records the momentum residual, the RMS over open faces, weighted
+/// by their open fractions, of (u^{n+1} - u^n) / dt scaled by h / U^2 (U = the ambient speed; the
+/// steady momentum equations' imbalance in units of the advective acceleration U^2 / h), its
+/// maximum, and the largest divergence after the projection, max |div u| h / U. Converged: the RMS
+/// residual at or below residualTolerance with a converged projection, and at least as many steps
+/// as the ambient wind needs to cross the box once (MomentumReport::minIterations; a low hill's
+/// small disturbance changes the field little per step from the start). Otherwise the report says
+/// why, and the field is the last iterate, except when the finest level's residual cycles (a
+/// periodic wake that the pseudo-time iteration follows instead of settling: residualCyclePeriod
+/// finds a period of P steps): then whole periods more are stepped and their mean field is
+/// returned (MomentumSettings::averageCycles; MomentumReport::averagedSteps says so, and the
+/// report stays "not converged").
 ///
 /// @code
 ///   gale::sim::AirDomain domain(terrain, {/*voxelSize_m=*/5.0});
@@ -109,24 +99,8 @@ struct MomentumSettings {
     /// size (docs/validation.md, "Pseudo-time step and its error"). A diagnostic, no scene key;
     /// its 24 B per cell (the summed gradient) are not in MOMENTUM_EXTRA_BYTES_PER_CELL.
     bool incrementalPressure = false;
-    int maxIterations = 300;  ///< pseudo-time steps at most per level, >= 1
-    /// The convergence criterion (the file comment, "Convergence"; no scene key): the steady
-    /// equations' residual or the change per pseudo-step; Automatic is the change per step for
-    /// both advections today. Both residuals are recorded either way. Measured on the lee
-    /// example (docs/validation.md, "Walls in the advection and the steady residual"), the
-    /// steady residual of either step's fixed point has a floor far above residualTolerance:
-    /// about 9e-3 for the semi-Lagrangian step (its numerical viscosity) and 1.5e-3 for the
-    /// Eulerian one (the stress step's splitting against the projection, O(dt)), so with it as
-    /// the criterion every solve of a steep scene would stop at its step limit.
-    enum class Criterion { Automatic, SteadyResidual, ChangePerStep };
-    Criterion criterion = Criterion::Automatic;
-    /// The criterion Automatic resolves to.
-    Criterion criterionInUse() const {
-        return criterion == Criterion::SteadyResidual ? Criterion::SteadyResidual
-                                                      : Criterion::ChangePerStep;
-    }
-    /// Converged when the criterion's RMS residual (scaled by h / U^2) is <= this, > 0.
-    double residualTolerance = 1e-4;
+    int maxIterations = 300;          ///< pseudo-time steps at most, >= 1
+    double residualTolerance = 1e-4;  ///< converged when the RMS momentum residual is <= this, > 0
     double displacementHeight_m = 0.0;  ///< d of the log law (about 2/3 of tall grass), m, >= 0
     double mixingLengthMax_m = surface::BLACKADAR_MAX_MIXING_LENGTH_M;  ///< l_max, metres, > 0
     /// Projection of each pseudo-time step: loose, since every step projects the whole current
@@ -177,13 +151,6 @@ struct MomentumIteration {
     int iteration = 0;  ///< 1, 2, ... within its level
     double momentumResidual = 0;  ///< open-fraction weighted RMS over faces of |du| / dt * h / U^2
     double maxMomentumResidual = 0;  ///< max over faces of theta |du| / dt * h / U^2
-    /// The steady equations' residual on the iterate after the step (the file comment,
-    /// "Convergence"; UnsteadyWindSolver::steadyResidual), scaled by h / U^2: open-fraction
-    /// weighted RMS over the open faces, max of theta |r|, and the RMS over the wake
-    /// (MomentumLevel::wakeFaces; 0 when the level has none).
-    double steadyResidual = 0;
-    double maxSteadyResidual = 0;
-    double wakeSteadyResidual = 0;
     double maxDivergenceScaled = 0;  ///< max over air cells |div u| h / U after the projection
     int projectionIterations = 0;
     bool projectionConverged = false;
@@ -201,34 +168,16 @@ struct MomentumLevel {
     /// Steps it had to take at least: the ambient wind's crossing of the box for a level started
     /// from the mass-consistent field, MomentumSettings::minIterationsAfterProlongation otherwise.
     int minIterations = 0;
-    double momentumResidual = 0;  ///< of its last iteration (RMS change per step)
-    /// Of its last iteration: the steady residual's RMS, max and wake RMS (MomentumIteration).
-    double steadyResidual = 0, maxSteadyResidual = 0, wakeSteadyResidual = 0;
-    /// Open faces in the wake region the wake residual covers: behind the terrain's highest
-    /// point along the ambient wind, within WAKE_LENGTH_H terrain heights H (highest minus
-    /// lowest ground) downstream, WAKE_HALF_WIDTH_H H across and WAKE_HEIGHT_H H above the local
-    /// ground. 0 over flat ground.
-    size_t wakeFaces = 0;
-    /// Converged: the criterion (MomentumSettings::criterion) met within the level's step
-    /// budget. A level that stops at MomentumSettings::maxIterations is not converged, coarse or
-    /// fine, and neither is the solve (MomentumReport::converged).
+    double momentumResidual = 0;  ///< of its last iteration (RMS)
     bool converged = false;
-    bool atStepLimit = false;  ///< it took maxIterations steps without meeting the criterion
     bool finite = true;
     double seconds = 0;  ///< wall time, its mass-consistent solve included
     std::string message;
 };
 
-/// The wake region of MomentumLevel::wakeFaces, in terrain heights H.
-inline constexpr double WAKE_LENGTH_H = 10.0;
-inline constexpr double WAKE_HALF_WIDTH_H = 5.0;
-inline constexpr double WAKE_HEIGHT_H = 2.0;
-
 struct [[nodiscard]] MomentumReport {
-    /// Every level converged (MomentumLevel::converged): a coarse level stopped at its step
-    /// limit hands the finer level an unconverged start, and the report says which one.
-    bool converged = false;
-    bool finite = true;  ///< no NaN/Inf in the field
+    bool converged = false;  ///< the finest level converged (coarse levels are only a start)
+    bool finite = true;      ///< no NaN/Inf in the field
     /// MomentumSettings::onStep returned false: the solve stopped after the last history entry,
     /// not converged; the field is the last iterate of the finest level, or the mass-consistent
     /// start when it stopped on a coarse level.
@@ -236,8 +185,7 @@ struct [[nodiscard]] MomentumReport {
     int iterations = 0;                  ///< pseudo-time steps over all levels
     int fineIterations = 0;              ///< of them, steps on the domain's own cells
     int minIterations = 0;               ///< the finest level's (MomentumLevel::minIterations)
-    double momentumResidual = 0;         ///< of the last iteration (RMS change per step)
-    double steadyResidual = 0;           ///< of the last iteration (RMS steady residual)
+    double momentumResidual = 0;         ///< of the last iteration (RMS)
     double maxDivergenceScaled = 0;      ///< max |div u| h / U after the final projection
     SolveReport finalProjection;         ///< the final projection's solve
     double dt_s = 0;                     ///< the finest level's pseudo-time step

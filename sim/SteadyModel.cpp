@@ -38,12 +38,9 @@ SteadyModelResult solveSteadyModel(const AirDomain& domain, const AmbientWind& a
     SolveReport& s = out.report;
     s.converged = r.report.converged && r.report.finite;
     s.iterations = r.report.iterations;
-    // The residual the convergence criterion reads (MomentumSettings::criterion).
-    const bool steady = ms.criterionInUse() == MomentumSettings::Criterion::SteadyResidual;
-    s.relativeResidual = steady ? r.report.steadyResidual : r.report.momentumResidual;
-    s.initialRelativeResidual = r.report.history.empty() ? 0.0
-                                : steady                 ? r.report.history.front().steadyResidual
-                                         : r.report.history.front().momentumResidual;
+    s.relativeResidual = r.report.momentumResidual;
+    s.initialRelativeResidual =
+        r.report.history.empty() ? 0.0 : r.report.history.front().momentumResidual;
     s.solveSeconds = r.report.seconds;
     s.setupSeconds = r.report.start.setupSeconds;
     s.levels = r.report.finalProjection.levels;

@@ -137,16 +137,6 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
                     (k > 0 && k < nz) ? (air(i, j, k - 1) && air(i, j, k))
                     : k == nz         ? (mSettings.openTop ? air(i, j, nz - 1) : uint8_t(0))
                                       : 0;
-    // The wall's values in the advection (UnsteadyWind.h, step 2): under the wall stress the
-    // ground is at rest, every closed face 0 (no flow through it, no slip along it). On free-slip
-    // ground (the inviscid runs) the closed faces keep their extrapolated values: there the wall
-    // is the sloping cut surface, not the staircase of closed faces, and a face-normal 0 would
-    // turn a smooth slope into steps (measured: the CFL 5 ridge left its steady potential flow).
-    if (mSettings.surfaceLayer.enabled && mSettings.surfaceLayer.wallStress) {
-        mWallFaces[0] = detail::terrainClosedFaces(mOkX, mGrid, Placement::FaceX);
-        mWallFaces[1] = detail::terrainClosedFaces(mOkY, mGrid, Placement::FaceY);
-        mWallFaces[2] = detail::terrainClosedFaces(mOkZ, mGrid, Placement::FaceZ);
-    }
     mSeeded.assign(mSettings.whirlwinds.size(), 0);
     if (mSettings.surfaceLayer.enabled)
         mStress = std::make_unique<TurbulentStress>(domain, mSettings.surfaceLayer,
@@ -306,22 +296,7 @@ SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double d
             }
     });
     SolveReport rep = mPoisson.solve(rhs, mPsi, settings);
-    addPotentialGradient(mPsi, dt, U, V, W);
-    extrapolateClosedFaces();
-    if (!mSettings.openTop) closeLid();  // extrapolation must not reopen it
-    return rep;
-}
-
-void UnsteadyWindSolver::addPotentialGradient(const std::vector<double>& psi, double dt,
-                                              std::vector<double>& U, std::vector<double>& V,
-                                              std::vector<double>& W) const {
-    const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
-    const double h = mGrid.voxelSize_m;
-    const auto o = mGrid.wsMin_m;
-    const PoissonSystem& S = mSystem;
-    const auto& pressure = mSettings.boundaryPressure_m2ps2;
-    const bool data = pressure && dt > 0.0;
-    auto g = [&](double x, double y, double z) { return data ? -dt * pressure({x, y, z}) : 0.0; };
+    const std::vector<double>& psi = mPsi;
     auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
     tbb::parallel_for(0, nz, [&](int k) {
         const double zc = mGrid.zCentre_m(k);
@@ -359,61 +334,9 @@ void UnsteadyWindSolver::addPotentialGradient(const std::vector<double>& psi, do
                     (k == nz ? 2.0 * (top - P(i, j, nz - 1)) : P(i, j, k) - P(i, j, k - 1)) / gap;
             }
     });
-}
-
-void UnsteadyWindSolver::steadyResidual(double dt_s, std::array<std::vector<double>, 3>& r) {
-    if (!(dt_s > 0.0) || !std::isfinite(dt_s))
-        throw std::logic_error("UnsteadyWindSolver::steadyResidual: dt_s must be > 0, got " +
-                               num(dt_s));
-    // The iterate with the walls of step 2 (the closed faces as the ground at rest).
-    std::array<std::vector<double>, 3> q = {mField.u_mps(), mField.v_mps(), mField.w_mps()};
-    for (size_t c = 0; c < 3; ++c)
-        for (size_t f : mWallFaces[c]) q[c][f] = 0.0;
-    const MacVelocity vel{&q[0], &q[1], &q[2]};
-    const std::vector<uint8_t>* masks[3] = {&mOkX, &mOkY, &mOkZ};
-    // Convection, (a . grad) q = (q - q') / 1 s with q' the Eulerian step of 1 s (exact: the
-    // step is q - dt (a . grad) q).
-    for (size_t c = 0; c < 3; ++c) {
-        const OutsideValue outside = [&, c](const Vec3d& p) { return farField_mps(p, mTime_s)[c]; };
-        std::vector<double> stepped;
-        (void)advectEulerian(mGrid, Placement(c), q[c], vel, outside, /*dt_s=*/1.0, stepped,
-                             masks[c]);
-        r[c].resize(q[c].size());
-        for (size_t f = 0; f < q[c].size(); ++f) r[c][f] = q[c][f] - stepped[f];
-    }
-    // Pressure: the projection adds grad(psi) = -dt grad(p) (the incremental form: the sum of
-    // its corrections, mGradPsi), so grad(p) = -grad(psi) / dt.
-    std::array<std::vector<double>, 3> gradPsi;
-    if (mSettings.incrementalPressure && !mGradPsi[0].empty()) {
-        for (size_t c = 0; c < 3; ++c) gradPsi[c] = mGradPsi[c];
-    } else {
-        for (size_t c = 0; c < 3; ++c) gradPsi[c].assign(q[c].size(), 0.0);
-        if (!mPsi.empty()) addPotentialGradient(mPsi, dt_s, gradPsi[0], gradPsi[1], gradPsi[2]);
-    }
-    // Stresses and forces on the iterate itself (its closed faces as extrapolated: what the
-    // stress step reads).
-    std::array<std::vector<double>, 3> stress;
-    const double probeDt_s = STRESS_PROBE_STEP * mGrid.voxelSize_m / mRefSpeed_mps;
-    if (mStress) {
-        mStress->tendency(probeDt_s, mField.u_mps(), mField.v_mps(), mField.w_mps(), stress);
-    } else if (mSettings.viscosity_m2ps > 0.0) {
-        stress = {mField.u_mps(), mField.v_mps(), mField.w_mps()};
-        (void)diffuseImplicit(mGrid, mSettings.viscosity_m2ps, probeDt_s, {&mOkX, &mOkY, &mOkZ},
-                              stress[0], stress[1], stress[2]);
-        const std::vector<double>* in[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
-        for (size_t c = 0; c < 3; ++c)
-            for (size_t f = 0; f < stress[c].size(); ++f)
-                stress[c][f] = (stress[c][f] - (*in[c])[f]) / probeDt_s;
-    }
-    for (size_t c = 0; c < 3; ++c)
-        for (size_t f = 0; f < r[c].size(); ++f) {
-            if (!(*masks[c])[f]) {
-                r[c][f] = 0.0;
-                continue;
-            }
-            r[c][f] -= gradPsi[c][f] / dt_s;
-            if (!stress[c].empty()) r[c][f] -= stress[c][f];
-        }
+    extrapolateClosedFaces();
+    if (!mSettings.openTop) closeLid();  // extrapolation must not reopen it
+    return rep;
 }
 
 std::array<double, 2> UnsteadyWindSolver::regionCentre_m(const GustEvent& g, double t) const {
@@ -553,22 +476,11 @@ StepReport UnsteadyWindSolver::step(double dt) {
     // 2. advection of each component through the frozen field.
     t = Clock::now();
     {
-        std::vector<double> u0 = mField.u_mps(), v0 = mField.v_mps(), w0 = mField.w_mps();
-        std::vector<double>* src[3] = {&u0, &v0, &w0};
-        std::vector<double>* dst[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
-        // Walls (the file comment of UnsteadyWind.h, step 2): the closed faces read as the ground
-        // at rest; their extrapolated values are kept for after the advection.
-        std::array<std::vector<double>, 3> kept;
-        for (int c = 0; c < 3; ++c) {
-            const std::vector<size_t>& wall = mWallFaces[size_t(c)];
-            kept[size_t(c)].resize(wall.size());
-            for (size_t n = 0; n < wall.size(); ++n) {
-                kept[size_t(c)][n] = (*src[c])[wall[n]];
-                (*src[c])[wall[n]] = 0.0;
-            }
-        }
+        const std::vector<double> u0 = mField.u_mps(), v0 = mField.v_mps(), w0 = mField.w_mps();
         const MacVelocity vel{&u0, &v0, &w0};
         const FarField far = [&](const Vec3d& p) { return farField_mps(p, t1); };
+        const std::vector<double>* src[3] = {&u0, &v0, &w0};
+        std::vector<double>* dst[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
         const std::vector<uint8_t>* masks[3] = {&mOkX, &mOkY, &mOkZ};
         for (int c = 0; c < 3; ++c) {
             const OutsideValue outside = [&, c](const Vec3d& p) { return farField_mps(p, t1)[c]; };
@@ -578,10 +490,6 @@ StepReport UnsteadyWindSolver::step(double dt) {
             else
                 advect(mGrid, Placement(c), *src[c], vel, far, outside, dt, mSettings.advection,
                        *dst[c], masks[c]);
-        }
-        for (int c = 0; c < 3; ++c) {
-            const std::vector<size_t>& wall = mWallFaces[size_t(c)];
-            for (size_t n = 0; n < wall.size(); ++n) (*dst[c])[wall[n]] = kept[size_t(c)][n];
         }
     }
     rep.advection_s = since(t);

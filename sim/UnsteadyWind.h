@@ -12,14 +12,7 @@
 ///     MacCormack or BFECC, both limited). Traces that leave the box through a side or the top
 ///     read the far field: the steady field (clamped to the box) plus the gusts' added velocity
 ///     at the end of the step (sim/Gusts.h). That makes every side an inflow where the air comes
-///     in and zero-gradient where it goes out. Walls: under the surface layer's wall stress
-///     (no slip) every face the terrain closes reads 0, the ground at rest (no flow through the
-///     wall, none along it), both as the advected value and as the velocity the traces follow,
-///     so a lee cell behind a riser imports no crest-level momentum through the riser's face;
-///     after the advection the closed faces get their extrapolated values back (what sampling
-///     near the ground and the stress step read). On free-slip ground (no wall stress) they keep
-///     their extrapolated values: the wall is then the sloping cut surface, and a 0 on the
-///     staircase of closed faces would turn the slope into steps;
+///     in and zero-gradient where it goes out;
 ///  3. forces: region gusts (GustEntry::Region: a moving disc relaxing the flow towards the mean
 ///     plus the gust), whirlwind forcing during a forced whirlwind's lifetime (relaxes its
 ///     circulation at 2 r_c back to the seeded one; injects, never removes), vorticity confinement
@@ -194,32 +187,9 @@ class UnsteadyWindSolver {
     /// UnsteadySettings::boundaryPressure_m2ps2 there when it is set.
     SolveReport project(const SolverSettings& settings);
 
-    /// The steady momentum equations' residual on the current field, per face (m/s^2, the
-    /// WindField layout; 0 on faces the projection does not update), free of any step's
-    /// splitting:
-    ///   r = (u . grad) u + grad p - (div tau + F),
-    /// with the convection the Eulerian operator's (sim/MomentumAdvection.h, whichever
-    /// advection the steps use; the closed faces as the ground at rest, as in step 2; the far
-    /// field at time_s() outside the box), p = -psi / dt_s from the last projection's potential
-    /// psi (the sum of the projections' corrections with UnsteadySettings::incrementalPressure;
-    /// dt_s must be the fixed step the steps took), and the stresses and forces those of step 4
-    /// at this field (TurbulentStress::tendency; the constant viscosity's Laplacian without the
-    /// surface layer; none when both are off). A steady solution has r = 0 whatever dt was. With
-    /// UnsteadySettings::boundaryPressure_m2ps2 the open boundaries' data of dt_s enter as in a
-    /// step. Throws std::logic_error for dt_s <= 0.
-    void steadyResidual(double dt_s, std::array<std::vector<double>, 3>& r);
-    /// The stress operator's probe step (TurbulentStress::tendency) in units of h / U: short
-    /// against every rate of the operator (nu_t / dz^2, the wall's C |U| / dz), long enough that
-    /// (u' - u) / dt keeps eight digits.
-    static constexpr double STRESS_PROBE_STEP = 1e-6;
-
   private:
     /// The projection with the boundary potential -dt_s p / rho (dt_s 0: p = 0 data).
     SolveReport project(const SolverSettings& settings, double dt_s);
-    /// Adds grad(psi) (psi on the cells, m^2/s) to the faces the projection updates, with the
-    /// open boundaries' potential -dt_s p / rho (0 without boundary pressure or dt_s 0).
-    void addPotentialGradient(const std::vector<double>& psi, double dt_s, std::vector<double>& U,
-                              std::vector<double>& V, std::vector<double>& W) const;
     void seedDue(double t0, double t1);
     void applyForcing(double t0, double dt);
     void extrapolateClosedFaces();
@@ -242,10 +212,6 @@ class UnsteadyWindSolver {
     std::vector<double> mMeanU, mMeanV, mMeanW;
     std::vector<uint8_t> mOkX, mOkY,
         mOkZ;  // faces the projection updates (between air cells or on the box)
-    /// Closed faces the advection reads as 0 (step 2 of the file comment: all of them under a
-    /// wall stress, none on free-slip ground), per component; the rest of the step reads their
-    /// extrapolated values.
-    std::array<std::vector<size_t>, 3> mWallFaces;
     PoissonSystem mSystem;
     PoissonSolver mPoisson;
     std::vector<double> mPsi;         // projection potential (m^2/s), warm start

@@ -112,9 +112,8 @@ class MomentumProgress {
                 (m.iteration <= levelMaxIterations
                      ? " of at most " + std::to_string(levelMaxIterations)
                      : std::string(" (averaging the residual's cycles)")) +
-                ", steady residual " + formatG(m.steadyResidual, 3) + ", change per step " +
-                formatG(m.momentumResidual, 3) + " (converged at " + formatG(mTolerance, 3) +
-                "), " + duration(secondsSince(mStart)) + " so far" +
+                ", residual " + formatG(m.momentumResidual, 3) + " (converged at " +
+                formatG(mTolerance, 3) + "), " + duration(secondsSince(mStart)) + " so far" +
                 (m.iteration <= levelMaxIterations
                      ? ", at most " + duration(perStep * (levelMaxIterations - m.iteration)) +
                            " more on this level"
@@ -238,11 +237,7 @@ std::vector<std::string> describeSceneField(const Scene& scene, const sim::AirDo
                   (m.coarseLevels > 0 ? "up to " + std::to_string(m.coarseLevels) +
                                             " coarser levels first (solver.momentum_coarse_levels)"
                                       : std::string("no coarser levels")) +
-                  ", converged at a " +
-                  (m.criterionInUse() == sim::MomentumSettings::Criterion::SteadyResidual
-                       ? "steady residual"
-                       : "change per step") +
-                  " of " + formatG(m.residualTolerance, 3) + " within each level's step limit";
+                  ", converged at a momentum residual of " + formatG(m.residualTolerance, 3);
     }
     lines.push_back("budgets: " + budget);
     if (unsteady) {
@@ -389,25 +384,6 @@ ProvenanceDiff compareProvenance(const std::map<std::string, std::string>& file,
     return d;
 }
 
-namespace {
-
-/// "; level 2 (4 m cells) stopped at its step limit (300 steps)" for every level that did not
-/// converge, coarse ones included (MomentumLevel::converged), or "".
-std::string unconvergedLevels(const sim::MomentumReport& m) {
-    std::string out;
-    for (const sim::MomentumLevel& lv : m.levels) {
-        if (lv.converged) continue;
-        out += "; level " + std::to_string(lv.level) + " (" + formatG(lv.voxelSize_m, 3) +
-               " m cells) " +
-               (lv.atStepLimit
-                    ? "stopped at its step limit (" + std::to_string(lv.iterations) + " steps)"
-                    : std::string("did not converge"));
-    }
-    return out;
-}
-
-}  // namespace
-
 std::string SceneField::summary() const {
     const sim::SolveReport& r = report;
     std::string head = modelText + ": ";
@@ -420,10 +396,9 @@ std::string SceneField::summary() const {
                std::to_string(m.iterations) + " pseudo-time steps (" +
                std::to_string(m.fineIterations) + " on the scene's cells, " +
                std::to_string(m.levels.size()) + " level" + (m.levels.size() == 1 ? "" : "s") +
-               "), steady residual " + formatG(m.steadyResidual, 3) + " (change per step " +
-               formatG(m.momentumResidual, 3) + "), max|div u| h/U " +
+               "), momentum residual " + formatG(m.momentumResidual, 3) + ", max|div u| h/U " +
                formatG(m.maxDivergenceScaled, 3) + ", " + formatFixed(solve_s, 2) + " s, field " +
-               fieldDigest + unconvergedLevels(m);
+               fieldDigest;
     }
     return head + (r.converged ? "converged in " : "DID NOT CONVERGE in ") +
            std::to_string(r.iterations) + " iterations, relative residual " +
