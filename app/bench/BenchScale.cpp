@@ -47,6 +47,7 @@ std::string sizeText(const std::array<int, 3>& s) {
     return std::to_string(s[0]) + "x" + std::to_string(s[1]) + "x" + std::to_string(s[2]);
 }
 
+#ifdef GALE_HAVE_DIST  // the parent runs children only when it can run the distributed solve
 /// Runs a child `mpirun ... gale bench scale --worker ...` and parses its result line.
 Result runChild(int ranks, int threads, const std::string& extra, const BenchScaleOptions& o) {
     std::ostringstream cmd;
@@ -75,6 +76,7 @@ Result runChild(int ranks, int threads, const std::string& extra, const BenchSca
                                  std::to_string(status) + ")");
     return r;
 }
+#endif
 
 #ifdef GALE_HAVE_DIST
 int runWorker(const BenchScaleOptions& o) {
