@@ -36,6 +36,7 @@ using Result = std::map<std::string, double>;
 constexpr double MIN_RANKS_OVER_THREADS = 0.8;
 constexpr double MIN_SPEEDUP_OVER_GAMG = 10.0;
 
+#ifdef GALE_HAVE_DIST  // the parent runs children only when it can run the distributed solve
 std::string selfExe() {
     char buf[4096];
     const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
@@ -47,7 +48,6 @@ std::string sizeText(const std::array<int, 3>& s) {
     return std::to_string(s[0]) + "x" + std::to_string(s[1]) + "x" + std::to_string(s[2]);
 }
 
-#ifdef GALE_HAVE_DIST  // the parent runs children only when it can run the distributed solve
 /// Runs a child `mpirun ... gale bench scale --worker ...` and parses its result line.
 Result runChild(int ranks, int threads, const std::string& extra, const BenchScaleOptions& o) {
     std::ostringstream cmd;
