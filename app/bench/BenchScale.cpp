@@ -31,12 +31,12 @@ namespace {
 
 using Result = std::map<std::string, double>;
 
+#ifdef GALE_HAVE_DIST  // the parent runs children only when it can run the distributed solve
 /// The targets (issue 28): MPI costs little over shared memory, and gale's own multigrid beats
 /// PETSc's algebraic one by an order of magnitude on the same box and rank count.
 constexpr double MIN_RANKS_OVER_THREADS = 0.8;
 constexpr double MIN_SPEEDUP_OVER_GAMG = 10.0;
 
-#ifdef GALE_HAVE_DIST  // the parent runs children only when it can run the distributed solve
 std::string selfExe() {
     char buf[4096];
     const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
