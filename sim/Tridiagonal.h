@@ -3,7 +3,7 @@
 /// \file Tridiagonal.h
 /// Many tridiagonal systems at once, stored level-major so that the inner loops run along
 /// contiguous memory: the column-implicit steps of the surface-layer stresses and of the
-/// k-epsilon transport (sim/MomentumTurbulence.cpp, sim/KEpsilon.cpp).
+/// k-epsilon transport (sim/MomentumStressStep.cpp, sim/KEpsilon.cpp).
 
 #include <cstddef>
 

@@ -76,10 +76,7 @@ CaoTamuraStudy runCaoTamura(const CaoTamuraOptions& o, const std::vector<RidgeMe
     r.converged = res.report.converged;
     if (o.momentum)
         r.cfl = o.advection == sim::PseudoTimeAdvection::Eulerian ? ms.eulerianCfl : o.cfl;
-    if (res.momentum)
-        for (const sim::MomentumLevel& l : res.momentum->levels)
-            r.levels.push_back(
-                {l.level, l.voxelSize_m, l.momentumResidual, l.iterations, l.converged});
+    if (res.momentum) r.levels = studyLevels(*res.momentum);
     const double y = terrain.sizeY_m() / 2;
     auto u = [&](double xOverH, double dzOverH) {
         const double x = xOverH * ridge::H_M;

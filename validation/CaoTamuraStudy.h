@@ -18,6 +18,7 @@
 
 #include "sim/MomentumWind.h"
 #include "validation/CaoTamuraRidge.h"
+#include "validation/StudyLevels.h"
 
 namespace gale::validation {
 
@@ -77,12 +78,7 @@ struct CaoTamuraStudy {
     /// them within LEE_DEFICIT_TOLERANCE of the measurement.
     int leePoints = 0, leeSameSign = 0, leeWithin = 0;
     /// Momentum only, per level (coarsest first): voxel size, steps, final residual, converged.
-    struct Level {
-        int level = 0;
-        double voxelSize_m = 0, momentumResidual = 0;
-        int iterations = 0;
-        bool converged = false;
-    };
+    using Level = StudyLevel;
     std::vector<Level> levels;
 };
 

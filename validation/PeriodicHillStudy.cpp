@@ -176,9 +176,7 @@ PeriodicHillStudy runPeriodicHill(const PeriodicHillOptions& o, const PeriodicHi
     r.converged = res.report.converged;
     r.z0_h = z0_m / h;
     if (res.momentum) {
-        for (const sim::MomentumLevel& l : res.momentum->levels)
-            r.levels.push_back(
-                {l.level, l.voxelSize_m, l.momentumResidual, l.iterations, l.converged});
+        r.levels = studyLevels(*res.momentum);
         r.cyclePeriod = res.momentum->cyclePeriod, r.averagedSteps = res.momentum->averagedSteps;
     }
 

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "sim/MomentumWind.h"
+#include "validation/StudyLevels.h"
 
 namespace gale::validation {
 
@@ -117,12 +118,7 @@ struct PeriodicHillStudy {
     double minFloorU_Ub = NAN;     ///< the most reversed along-wall velocity on the measured floor
     std::vector<WallSample> wall;  ///< the model's along-wall line on the measured period
     /// Per level (coarsest first): voxel size, steps, final RMS residual, converged.
-    struct Level {
-        int level = 0;
-        double voxelSize_m = 0, momentumResidual = 0;
-        int iterations = 0;
-        bool converged = false;
-    };
+    using Level = StudyLevel;
     std::vector<Level> levels;
     int cyclePeriod = 0, averagedSteps = 0;  ///< MomentumReport's cycle average, if it ran
 };

@@ -133,7 +133,7 @@ struct SceneField {
     sim::SolveReport report;
     std::optional<sim::MomentumReport> momentum;  ///< solver.model = "momentum"
     /// Turbulent kinetic energy k (m^2/s^2) on the domain's cells (GridIndex cell layout; sample it
-    /// with sim::sampleAt(grid, Placement::Cell, ...)), from the momentum model's closure
+    /// with coupling::sampleTke_m2ps2, coupling/Turbulence.h), from the momentum model's closure
     /// (sim/MomentumTurbulence.h); empty for the mass-consistent model, which has no turbulence.
     std::vector<double> tke_m2ps2;
     double domain_s = 0.0;            ///< building the domain, seconds
