@@ -60,7 +60,8 @@ struct ViewOptions {
 /// The view's (and `gale bench view`'s) change to an unsteady scene: an adaptive time step of
 /// at most one output frame (1 / output.fps), so that wind dropped into the flow shows in the
 /// grass at the next frame instead of after a long step (calm air steps up to max_dt_s). A fixed
-/// unsteady.dt_s is kept. Other scenes are left as they are.
+/// unsteady.dt_s is kept. The projection stops at unsteady.live_tolerance instead of
+/// unsteady.tolerance. Other scenes are left as they are.
 void limitUnsteadyStepToAFrame(Scene& scene);
 
 /// Opens the window, runs until closed (or --frames), returns 0. Throws std::runtime_error

@@ -222,9 +222,11 @@ void addStability(CLI::App& bench, VerbTable& verbs) {
 
 /// A scene's unsteady solver as `gale view` builds it (the step limited to an output frame), for
 /// `gale bench unsteady --live`; a non-empty `advection` (a scheme's name) replaces the scene's
-/// unsteady.advection. Throws what scene loading throws, and std::invalid_argument (exit 2,
+/// unsteady.advection, a non-empty `precision` its unsteady.precision, a `tolerance` > 0 its
+/// unsteady.tolerance. Throws what scene loading throws, and std::invalid_argument (exit 2,
 /// naming FILE:LINE of wind.kind) when the scene's wind is not unsteady.
-LiveStepScene loadLiveStepScene(const std::string& path, const std::string& advection) {
+LiveStepScene loadLiveStepScene(const std::string& path, const std::string& advection,
+                                const std::string& precision, double tolerance) {
     struct Owned {
         Scene scene;
         BuiltScene built;
@@ -240,6 +242,9 @@ LiveStepScene loadLiveStepScene(const std::string& path, const std::string& adve
     limitUnsteadyStepToAFrame(owned->scene);  // as gale view does
     if (!advection.empty())
         owned->scene.unsteady.settings.advection = sim::advectionSchemeFromName(advection);
+    if (!precision.empty())
+        owned->scene.unsteady.settings.precision = sim::advectionPrecisionFromName(precision);
+    if (tolerance > 0.0) owned->scene.unsteady.settings.projection.relativeTolerance = tolerance;
     BuildOptions build;
     build.progress = [](const std::string& text) {
         std::fprintf(stderr, "gale: %s\n", text.c_str());
@@ -250,6 +255,8 @@ LiveStepScene loadLiveStepScene(const std::string& path, const std::string& adve
         throw std::logic_error("bench unsteady --live: the unsteady scene built no solver");
     std::string name = std::filesystem::path(path).stem().string();
     if (!advection.empty()) name += " (" + advection + ")";
+    if (!precision.empty()) name += " (" + precision + ")";
+    if (tolerance > 0.0) name += " (tol " + std::to_string(tolerance).substr(0, 8) + ")";
     return {name, &unsteady->solver(), owned};
 }
 
@@ -264,7 +271,7 @@ void addUnsteady(CLI::App& bench, VerbTable& verbs) {
             if (live->scenes.empty()) return runBenchUnsteady(options);
             live->jsonPath = options.jsonPath;
             live->loader = [live](const std::string& path) {
-                return loadLiveStepScene(path, live->advection);
+                return loadLiveStepScene(path, live->advection, live->precision, live->tolerance);
             };
             return runBenchLiveStep(*live);
         });
@@ -278,6 +285,14 @@ void addUnsteady(CLI::App& bench, VerbTable& verbs) {
                      "With --live: step every scene with this advection scheme instead of its "
                      "unsteady.advection")
         ->check(CLI::IsMember({"semi_lagrangian", "maccormack", "bfecc"}));
+    verb->add_option("--precision", live->precision,
+                     "With --live: the advection's arithmetic instead of the scene's "
+                     "unsteady.precision")
+        ->check(CLI::IsMember({"single", "double"}));
+    verb->add_option("--tolerance", live->tolerance,
+                     "With --live: the projection's tolerance instead of the scene's "
+                     "unsteady.tolerance")
+        ->check(CLI::Range(1e-12, 0.5));
     verb->add_option("--steps", live->steps, "Timed steps per --live scene")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));

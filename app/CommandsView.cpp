@@ -178,6 +178,7 @@ void limitUnsteadyStepToAFrame(Scene& scene) {
     sim::UnsteadySettings& u = scene.unsteady.settings;
     if (scene.wind.kind == WindKind::Unsteady && !(u.dt_s > 0.0))
         u.maxDt_s = std::min(u.maxDt_s, 1.0 / scene.output.fps);
+    u.projection.relativeTolerance = scene.unsteady.liveTolerance;
 }
 
 int runView(const ViewOptions& options) {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "base/ParameterError.h"
+#include "sim/AdvectionRows.h"
 #include "sim/UniformLattice.h"
 
 namespace gale::sim {
@@ -33,6 +34,16 @@ AdvectionScheme advectionSchemeFromName(const std::string& name) {
     if (name == "bfecc") return AdvectionScheme::Bfecc;
     throw ParameterError("unsteady.advection", "\"" + name + "\"",
                          "one of semi_lagrangian, maccormack, bfecc");
+}
+
+const char* advectionPrecisionName(AdvectionPrecision p) {
+    return p == AdvectionPrecision::Single ? "single" : "double";
+}
+
+AdvectionPrecision advectionPrecisionFromName(const std::string& name) {
+    if (name == "single") return AdvectionPrecision::Single;
+    if (name == "double") return AdvectionPrecision::Double;
+    throw ParameterError("unsteady.precision", "\"" + name + "\"", "one of single, double");
 }
 
 double sampleAt(const MacGrid& g, Placement p, const std::vector<double>& q, const Vec3d& ws,
@@ -249,7 +260,8 @@ void traceWs(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs, c
     for (int a = 0; a < 3; ++a) dep[a] = x[a];
 }
 
-/// One semi-Lagrangian pass; optionally records the min/max of the interpolation neighbours and
+/// One semi-Lagrangian pass (`only`: just the samples it flags, the rest left as they are);
+/// optionally records the min/max of the interpolation neighbours and
 /// whether the departure point left the box. `starts`: the TraceStart of every sample of this
 /// placement (index as its array), or null to compute each on the way; `record` (with null
 /// starts): where to keep the ones computed, for the scheme's later passes (masked-out samples
@@ -259,7 +271,7 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                     const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
                     double dt, std::vector<double>& out, const std::vector<uint8_t>* mask,
                     std::vector<double>* lo, std::vector<double>* hi, const TraceStart* starts,
-                    TraceStart* record, double groundTop) {
+                    TraceStart* record, double groundTop, const uint8_t* only = nullptr) {
     const auto n = g.dims(p);
     out.resize(q.size());
     if (lo) lo->resize(q.size()), hi->resize(q.size());
@@ -268,6 +280,7 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
         for (int j = 0; j < n[1]; ++j)
             for (int i = 0; i < n[0]; ++i) {
                 const size_t idx = g.index(p, i, j, k);
+                if (only && !only[idx]) continue;  // written by the row pass
                 if (mask && !(*mask)[idx]) {
                     out[idx] = q[idx];
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;
@@ -294,26 +307,22 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
     });
 }
 
-/// advect() after its argument checks, through one lattice.
-template <class Lattice>
-void advectWith(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
-                const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
-                std::vector<double>& out, const std::vector<uint8_t>* mask) {
-    const double groundTop = terrainTop_m(g);  // a scan of the heightfield: once per call
+/// Which of a scheme's passes a pass is: its only one, the first of several (which may keep
+/// its trace starts for the others), or a later one.
+enum class PassRole { Only, First, Later };
+
+/// The scheme's combination of semi-Lagrangian passes; `pass(q, dt, out, lo, hi, role)` is one
+/// pass (lo/hi: the limiter's bounds, or null).
+template <class Pass>
+void combinePasses(const std::vector<double>& q, double dt, AdvectionScheme scheme,
+                   std::vector<double>& out, const Pass& pass) {
     if (scheme == AdvectionScheme::SemiLagrangian) {
-        semiLagrangian<Lattice>(g, p, q, vel, far, outside, dt, out, mask, nullptr, nullptr,
-                                nullptr, nullptr, groundTop);
+        pass(q, dt, out, nullptr, nullptr, PassRole::Only);
         return;
     }
-    // Every pass starts its traces from the same samples through the same frozen velocity: the
-    // forward pass computes each sample's start and keeps it for the others. Default-initialised
-    // (not zeroed): a masked-out sample's entry is never written nor read.
-    const std::unique_ptr<TraceStart[]> starts(new TraceStart[q.size()]);
     std::vector<double> fwd, back, lo, hi;
-    semiLagrangian<Lattice>(g, p, q, vel, far, outside, dt, fwd, mask, &lo, &hi, nullptr,
-                            starts.get(), groundTop);
-    semiLagrangian<Lattice>(g, p, fwd, vel, far, outside, -dt, back, mask, nullptr, nullptr,
-                            starts.get(), nullptr, groundTop);
+    pass(q, dt, fwd, &lo, &hi, PassRole::First);
+    pass(fwd, -dt, back, nullptr, nullptr, PassRole::Later);
     out.resize(q.size());
     if (scheme == AdvectionScheme::MacCormack) {
         // Selle et al. 2008: phi^{n+1} = phi_f + (phi^n - phi_b) / 2, limited.
@@ -328,12 +337,83 @@ void advectWith(const MacGrid& g, Placement p, const std::vector<double>& q, con
     std::vector<double> corrected(q.size());
     tbb::parallel_for(size_t(0), q.size(),
                       [&](size_t idx) { corrected[idx] = q[idx] + 0.5 * (q[idx] - back[idx]); });
-    semiLagrangian<Lattice>(g, p, corrected, vel, far, outside, dt, out, mask, nullptr, nullptr,
-                            starts.get(), nullptr, groundTop);
+    pass(corrected, dt, out, nullptr, nullptr, PassRole::Later);
     tbb::parallel_for(size_t(0), q.size(), [&](size_t idx) {
         const double v = out[idx];
         out[idx] = std::isfinite(v) ? std::clamp(v, lo[idx], hi[idx]) : fwd[idx];
     });
+}
+
+/// advect() after its argument checks, through one lattice, in double.
+template <class Lattice>
+void advectWith(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
+                const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
+                std::vector<double>& out, const std::vector<uint8_t>* mask) {
+    const double groundTop = terrainTop_m(g);  // a scan of the heightfield: once per call
+    // Every pass starts its traces from the same samples through the same frozen velocity: the
+    // first pass computes each sample's start and keeps it for the others. Default-initialised
+    // (not zeroed): a masked-out sample's entry is never written nor read.
+    std::unique_ptr<TraceStart[]> starts;
+    if (scheme != AdvectionScheme::SemiLagrangian) starts.reset(new TraceStart[q.size()]);
+    combinePasses(q, dt, scheme, out,
+                  [&](const std::vector<double>& a, double t, std::vector<double>& b,
+                      std::vector<double>* lo, std::vector<double>* hi, PassRole role) {
+                      semiLagrangian<Lattice>(g, p, a, vel, far, outside, t, b, mask, lo, hi,
+                                              role == PassRole::Later ? starts.get() : nullptr,
+                                              role == PassRole::First ? starts.get() : nullptr,
+                                              groundTop);
+                  });
+}
+
+/// advect() on cubic cells in single precision (AdvectionPrecision::Single): each pass runs the
+/// row kernel over every x row, then the general double path over the samples it flagged.
+void advectSingle(const MacGrid& g, Placement p, const std::vector<double>& q,
+                  const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
+                  double dt, AdvectionScheme scheme, std::vector<double>& out,
+                  const std::vector<uint8_t>* mask) {
+    const double groundTop = terrainTop_m(g);
+    std::vector<float> uf(vel.u->begin(), vel.u->end()), vf(vel.v->begin(), vel.v->end()),
+        wf(vel.w->begin(), vel.w->end());
+    std::vector<uint8_t> all;
+    if (!mask) all.assign(q.size(), 1);
+    const double h = g.voxelSize_m;
+    detail::RowPassInput in;
+    in.n[0] = g.nx, in.n[1] = g.ny, in.n[2] = g.nz;
+    in.placement = int(p);
+    in.u = uf.data(), in.v = vf.data(), in.w = wf.data();
+    in.mask = mask ? mask->data() : all.data();
+    if (g.terrain) {
+        const Heightfield& T = *g.terrain;
+        in.heights = T.height_m.data();
+        in.hnx = T.nx, in.hny = T.ny;
+        in.hScale = float(h / T.spacing_m);
+        in.hOffsetX = float((g.wsMin_m[0] - T.originX_m) / T.spacing_m);
+        in.hOffsetY = float((g.wsMin_m[1] - T.originY_m) / T.spacing_m);
+        in.zScale = float(1.0 / h);
+        in.zOffset = float(-g.wsMin_m[2] / h);
+        in.groundTop = float((groundTop - g.wsMin_m[2]) / h);
+    }
+    const auto d = g.dims(p);
+    std::vector<float> qf(q.size());
+    std::vector<uint8_t> general(q.size());
+    combinePasses(q, dt, scheme, out,
+                  [&](const std::vector<double>& a, double t, std::vector<double>& b,
+                      std::vector<double>* lo, std::vector<double>* hi, PassRole) {
+                      b.resize(a.size());
+                      if (lo) lo->resize(a.size()), hi->resize(a.size());
+                      std::copy(a.begin(), a.end(), qf.begin());
+                      detail::RowPassInput pass = in;
+                      pass.q = qf.data();
+                      pass.qExact = a.data();
+                      pass.cellsPerMps = float(t / h);
+                      tbb::parallel_for(0, d[2], [&](int k) {
+                          for (int j = 0; j < d[1]; ++j)
+                              detail::rowPass(pass, j, k, b.data(), lo ? lo->data() : nullptr,
+                                              hi ? hi->data() : nullptr, general.data());
+                      });
+                      semiLagrangian<CubicLattice>(g, p, a, vel, far, outside, t, b, mask, lo, hi,
+                                                   nullptr, nullptr, groundTop, general.data());
+                  });
 }
 
 template <class Lattice>
@@ -357,14 +437,18 @@ Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, c
 
 void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
             const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
-            std::vector<double>& out, const std::vector<uint8_t>* mask) {
+            std::vector<double>& out, const std::vector<uint8_t>* mask,
+            AdvectionPrecision precision) {
     if (q.size() != g.count(p)) throw std::logic_error("advect: quantity has the wrong size");
     if (!vel.u || !vel.v || !vel.w || vel.u->size() != g.count(Placement::FaceX) ||
         vel.v->size() != g.count(Placement::FaceY) || vel.w->size() != g.count(Placement::FaceZ))
         throw std::logic_error("advect: velocity arrays have the wrong size");
     if (mask && mask->size() != q.size()) throw std::logic_error("advect: mask has the wrong size");
-    // Cubic cells (the live scenes) take the fast lattice; stretched layers the layout's sampler.
-    if (UniformLattice::usable(g))
+    // Cubic cells (the live scenes) take the fast lattice, in float if asked; stretched layers
+    // the layout's sampler.
+    if (UniformLattice::usable(g) && precision == AdvectionPrecision::Single)
+        advectSingle(g, p, q, vel, far, outside, dt, scheme, out, mask);
+    else if (UniformLattice::usable(g))
         advectWith<CubicLattice>(g, p, q, vel, far, outside, dt, scheme, out, mask);
     else
         advectWith<LayoutLattice>(g, p, q, vel, far, outside, dt, scheme, out, mask);

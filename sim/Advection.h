@@ -50,6 +50,17 @@ namespace gale::sim {
 
 enum class AdvectionScheme { SemiLagrangian, MacCormack, Bfecc };
 
+/// The arithmetic of the traces and samples on cubic cells (docs/unsteady.md, "Single precision
+/// and rows"). Double: the general path in double. Single: each placement's x rows as SIMD
+/// lanes in float (sim/AdvectionRows.h), the samples a one-substep trace does not cover (longer
+/// traces, the box sides, the terrain) redone on the general path; the result is rounded to
+/// float, the limiter in double. Stretched layers always take the general path.
+enum class AdvectionPrecision { Double, Single };
+
+/// "double", "single" and back; fromName throws gale::ParameterError (unsteady.precision).
+const char* advectionPrecisionName(AdvectionPrecision precision);
+AdvectionPrecision advectionPrecisionFromName(const std::string& name);
+
 /// "semi_lagrangian", "maccormack", "bfecc" and back; fromName throws gale::ParameterError
 /// (unsteady.advection) listing the valid names.
 const char* advectionSchemeName(AdvectionScheme scheme);
@@ -115,9 +126,11 @@ using OutsideValue = std::function<double(const Vec3d& wsPos_m)>;
 /// the result to `out` (resized). Samples with mask[idx] == 0 (if mask is given) are copied
 /// unchanged. `outside` gives q where a trace leaves the box (empty: clamp to the box). Each
 /// sample's trace starts at its world position (GridLayout::wsPosition). Multithreaded (TBB).
+/// `precision` chooses the arithmetic on cubic cells (AdvectionPrecision).
 /// Throws std::logic_error on wrong sizes (a caller's bug).
 void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
             const FarField& far, const OutsideValue& outside, double dt_s, AdvectionScheme scheme,
-            std::vector<double>& out, const std::vector<uint8_t>* mask = nullptr);
+            std::vector<double>& out, const std::vector<uint8_t>* mask = nullptr,
+            AdvectionPrecision precision = AdvectionPrecision::Double);
 
 }  // namespace gale::sim

@@ -270,6 +270,7 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
     us.dt_s = lv.dt_s;
     us.openTop = true;
     us.eulerianAdvection = eulerian;
+    us.precision = AdvectionPrecision::Double;  // the validated figures (docs/validation.md)
     us.incrementalPressure = eulerian && settings.incrementalPressure;
     us.projection = settings.projection;
     us.surfaceLayer = momentumSurfaceLayer(ambient, settings);

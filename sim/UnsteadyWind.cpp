@@ -5,8 +5,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -60,6 +62,21 @@ double cellRate_ps(const GridLayout& g, const std::vector<double>& U, const std:
         rate = std::max(rate, wMax / dz);
     }
     return rate;
+}
+
+/// f(k) for every k in [0, n), in parallel, the answers in k order: a reduction over them in
+/// that order gives the serial loop's answer whatever the threads did.
+template <class F>
+std::vector<double> perLayer(int n, const F& f) {
+    std::vector<double> r(size_t(std::max(n, 0)));
+    tbb::parallel_for(0, n, [&](int k) { r[size_t(k)] = f(k); });
+    return r;
+}
+
+/// The larger of a and b, NaN if either is NaN (a field that blew up is never hidden).
+double maxKeepingNaN(double a, double b) {
+    if (std::isnan(a) || std::isnan(b)) return std::numeric_limits<double>::quiet_NaN();
+    return a > b ? a : b;
 }
 
 }  // namespace
@@ -168,15 +185,18 @@ Vec3d UnsteadyWindSolver::farField_mps(const Vec3d& ws, double t) const {
 }
 
 double UnsteadyWindSolver::maxSpeed_mps() const {
-    double m = 0.0;
-    for (int k = 0; k < mGrid.nz; ++k)
+    const std::vector<double> layers = perLayer(mGrid.nz, [&](int k) {
+        double m = 0.0;
         for (int j = 0; j < mGrid.ny; ++j)
             for (int i = 0; i < mGrid.nx; ++i) {
                 if (!mDomain.isAir(i, j, k)) continue;
                 const auto c = mField.cellVelocity_mps(i, j, k);
-                const double s = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-                if (!(s <= m)) m = s;  // NaN propagates
+                m = maxKeepingNaN(m, std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
             }
+        return m;
+    });
+    double m = 0.0;
+    for (double x : layers) m = maxKeepingNaN(m, x);
     return m;
 }
 
@@ -200,13 +220,17 @@ double UnsteadyWindSolver::kineticEnergy_m5ps2() const {
                                        &mDomain.openFractionsZ()};
     for (int c = 0; c < 3; ++c) {
         const Placement p = Placement(c);
-        for (int k = 0; k < mGrid.dims(p)[2]; ++k) {
-            // The face's control volume: h^2 times its layer (x, y) or the centre gap (z).
-            const double volume = h * h * (c == 2 ? mGrid.centreGap_m(k) : mGrid.dz_m(k));
+        // Each layer's sum in parallel, the layers added in order: the serial loop's answer.
+        const std::vector<double> layers = perLayer(mGrid.dims(p)[2], [&](int k) {
             double layer = 0.0;
             for (size_t f = mGrid.index(p, 0, 0, k); f < mGrid.index(p, 0, 0, k + 1); ++f)
                 layer += double((*th[c])[f]) * (*a[c])[f] * (*a[c])[f];
-            e += layer * volume;
+            return layer;
+        });
+        for (int k = 0; k < mGrid.dims(p)[2]; ++k) {
+            // The face's control volume: h^2 times its layer (x, y) or the centre gap (z).
+            const double volume = h * h * (c == 2 ? mGrid.centreGap_m(k) : mGrid.dz_m(k));
+            e += layers[size_t(k)] * volume;
         }
     }
     return 0.5 * e;
@@ -214,14 +238,16 @@ double UnsteadyWindSolver::kineticEnergy_m5ps2() const {
 
 double UnsteadyWindSolver::maxDivergenceScaled() const {
     const auto &U = mField.u_mps(), &V = mField.v_mps(), &W = mField.w_mps();
-    double maxDiv = 0.0;
-    for (int k = 0; k < mGrid.nz; ++k)
+    const std::vector<double> layers = perLayer(mGrid.nz, [&](int k) {
+        double m = 0.0;
         for (int j = 0; j < mGrid.ny; ++j)
-            for (int i = 0; i < mGrid.nx; ++i) {
-                if (!mDomain.isAir(i, j, k)) continue;
-                const double div = mDomain.openOutflux(U, V, W, i, j, k);
-                if (!(std::abs(div) <= maxDiv)) maxDiv = std::abs(div);
-            }
+            for (int i = 0; i < mGrid.nx; ++i)
+                if (mDomain.isAir(i, j, k))
+                    m = maxKeepingNaN(m, std::abs(mDomain.openOutflux(U, V, W, i, j, k)));
+        return m;
+    });
+    double maxDiv = 0.0;
+    for (double x : layers) maxDiv = maxKeepingNaN(maxDiv, x);
     return maxDiv / mRefSpeed_mps;
 }
 
@@ -489,7 +515,7 @@ StepReport UnsteadyWindSolver::step(double dt) {
                                      masks[c]);
             else
                 advect(mGrid, Placement(c), *src[c], vel, far, outside, dt, mSettings.advection,
-                       *dst[c], masks[c]);
+                       *dst[c], masks[c], mSettings.precision);
         }
     }
     rep.advection_s = since(t);
@@ -559,9 +585,16 @@ StepReport UnsteadyWindSolver::step(double dt) {
     rep.projection.maxDivergenceScaled = rep.maxDivergenceScaled;
     rep.finite = std::isfinite(rep.maxSpeed_mps) && std::isfinite(rep.kineticEnergy_m5ps2);
     if (rep.finite)
-        for (const auto* a : {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()})
-            for (double x : *a)
-                if (!std::isfinite(x)) rep.finite = false;
+        for (const auto* a : {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()}) {
+            const auto& v = *a;
+            const size_t n = v.size(), chunk = 4096;
+            std::atomic<bool> bad{false};
+            tbb::parallel_for(size_t(0), (n + chunk - 1) / chunk, [&](size_t c) {
+                for (size_t f = c * chunk; f < std::min(n, (c + 1) * chunk); ++f)
+                    if (!std::isfinite(v[f])) bad = true;
+            });
+            if (bad) rep.finite = false;
+        }
     rep.total_s = since(tStart);
     return rep;
 }

@@ -68,6 +68,10 @@ namespace gale::sim {
 
 struct UnsteadySettings {
     AdvectionScheme advection = AdvectionScheme::SemiLagrangian;
+    /// The advection's arithmetic on cubic cells (sim/Advection.h, AdvectionPrecision): float
+    /// SIMD rows by default (docs/unsteady.md "Single precision and rows" has the accuracy
+    /// both ways); the steady momentum model keeps double.
+    AdvectionPrecision precision = AdvectionPrecision::Single;
     /// The steady momentum model's explicit Eulerian step (sim/MomentumAdvection.h) instead of
     /// `advection`; stable only for dt within EULERIAN_MAX_CFL (the caller's choice of dt).
     bool eulerianAdvection = false;

@@ -28,6 +28,8 @@ struct BenchLiveStepOptions {
     std::vector<std::string> scenes;  ///< scene files with wind.kind = "unsteady"
     int steps = 30;                   ///< timed steps per scene (after one untimed warm-up step)
     std::string advection;  ///< a scheme's name replacing every scene's unsteady.advection, or ""
+    std::string precision;  ///< "single"/"double" replacing every scene's unsteady.precision, or ""
+    double tolerance = 0;   ///< > 0: replaces every scene's unsteady.tolerance
     std::string jsonPath;   ///< if set, the rows as JSON (atomically)
     /// Builds a scene (app/bench cannot read scenes itself); throws what scene loading throws.
     std::function<LiveStepScene(const std::string& path)> loader;

@@ -108,6 +108,12 @@ struct UnsteadySection {
     sim::UnsteadySettings settings;  ///< time step, advection, viscosity, gusts, whirlwinds
     double duration_s = 10.0;        ///< `gale solve`: simulated time, seconds
     double outputEvery_s = 1.0;      ///< `gale solve`: a .vdb every this many seconds
+    /// The projection's tolerance when the wind runs live (gale view, bench unsteady --live):
+    /// unsteady.live_tolerance. The grass reads the velocity near the ground, where a net flux
+    /// of 1e-3 U through a cell is a thousandth of the wind (docs/unsteady.md, "The projection's
+    /// tolerance"), and each step projects again, so it does not build up; `gale solve` writes
+    /// fields for analysis and keeps unsteady.tolerance.
+    double liveTolerance = 1e-3;
     int64_t maxFiles = 10000;        ///< refuse runs planning more .vdb files (docs/reliability.md)
     int64_t maxSteps = 1000000;      ///< refuse runs planning more time steps
     /// Refuse runs whose .vdb files would total more (estimated), bytes; unsteady.max_output_gib.

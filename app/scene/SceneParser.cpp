@@ -323,6 +323,12 @@ void readUnsteady(Context& ctx, Section s) {
     } catch (const std::invalid_argument& e) {
         s.failKey("advection", e.what());
     }
+    const std::string precision = s.string("precision", sim::advectionPrecisionName(v.precision));
+    try {
+        v.precision = sim::advectionPrecisionFromName(precision);
+    } catch (const ParameterError& e) {
+        s.failParameter(e);
+    }
     v.viscosity_m2ps = s.number("viscosity_m2ps", v.viscosity_m2ps, closed(0.0, 1e6));
     v.vorticityConfinement =
         s.number("vorticity_confinement", v.vorticityConfinement, closed(0.0, 100.0));
@@ -341,6 +347,7 @@ void readUnsteady(Context& ctx, Section s) {
         s.number("tolerance", v.projection.relativeTolerance, above(0.0, 0.5));
     v.projection.maxIterations =
         static_cast<int>(s.integer("max_iterations", v.projection.maxIterations, 1, 100000));
+    u.liveTolerance = s.number("live_tolerance", u.liveTolerance, above(0.0, 0.5));
     u.outputEvery_s = s.number("output_every_s", u.outputEvery_s, above(0.0, 1e7));
     u.maxFiles = s.integer("max_files", u.maxFiles, 1, 100000000);
     u.maxSteps = s.integer("max_steps", u.maxSteps, 1, 1000000000000);
