@@ -114,8 +114,8 @@ struct UnsteadySection {
     /// tolerance"), and each step projects again, so it does not build up; `gale solve` writes
     /// fields for analysis and keeps unsteady.tolerance.
     double liveTolerance = 1e-3;
-    int64_t maxFiles = 10000;        ///< refuse runs planning more .vdb files (docs/reliability.md)
-    int64_t maxSteps = 1000000;      ///< refuse runs planning more time steps
+    int64_t maxFiles = 10000;    ///< refuse runs planning more .vdb files (docs/reliability.md)
+    int64_t maxSteps = 1000000;  ///< refuse runs planning more time steps
     /// Refuse runs whose .vdb files would total more (estimated), bytes; unsteady.max_output_gib.
     double maxOutputBytes = 1024.0 * 1024 * 1024 * 1024;
 };
