@@ -372,15 +372,21 @@ void advectSingle(const MacGrid& g, Placement p, const std::vector<double>& q,
                   double dt, AdvectionScheme scheme, std::vector<double>& out,
                   const std::vector<uint8_t>* mask) {
     const double groundTop = terrainTop_m(g);
-    std::vector<float> uf(vel.u->begin(), vel.u->end()), vf(vel.v->begin(), vel.v->end()),
-        wf(vel.w->begin(), vel.w->end());
+    std::vector<float> uf, vf, wf;
+    if (!vel.uSingle) {
+        uf.assign(vel.u->begin(), vel.u->end());
+        vf.assign(vel.v->begin(), vel.v->end());
+        wf.assign(vel.w->begin(), vel.w->end());
+    }
     std::vector<uint8_t> all;
     if (!mask) all.assign(q.size(), 1);
     const double h = g.voxelSize_m;
     detail::RowPassInput in;
     in.n[0] = g.nx, in.n[1] = g.ny, in.n[2] = g.nz;
     in.placement = int(p);
-    in.u = uf.data(), in.v = vf.data(), in.w = wf.data();
+    in.u = vel.uSingle ? vel.uSingle->data() : uf.data();
+    in.v = vel.vSingle ? vel.vSingle->data() : vf.data();
+    in.w = vel.wSingle ? vel.wSingle->data() : wf.data();
     in.mask = mask ? mask->data() : all.data();
     if (g.terrain) {
         const Heightfield& T = *g.terrain;
@@ -396,9 +402,13 @@ void advectSingle(const MacGrid& g, Placement p, const std::vector<double>& q,
     const auto d = g.dims(p);
     std::vector<float> qf(q.size());
     std::vector<uint8_t> general(q.size());
+    // The velocity at the samples, kept by the first of several passes for the others.
+    std::vector<float> starts;
+    if (scheme != AdvectionScheme::SemiLagrangian)
+        starts.resize(3 * q.size() + detail::ROW_PASS_PADDING);
     combinePasses(q, dt, scheme, out,
                   [&](const std::vector<double>& a, double t, std::vector<double>& b,
-                      std::vector<double>* lo, std::vector<double>* hi, PassRole) {
+                      std::vector<double>* lo, std::vector<double>* hi, PassRole role) {
                       b.resize(a.size());
                       if (lo) lo->resize(a.size()), hi->resize(a.size());
                       std::copy(a.begin(), a.end(), qf.begin());
@@ -406,6 +416,9 @@ void advectSingle(const MacGrid& g, Placement p, const std::vector<double>& q,
                       pass.q = qf.data();
                       pass.qExact = a.data();
                       pass.cellsPerMps = float(t / h);
+                      pass.count = a.size();
+                      if (role == PassRole::First) pass.recordStart = starts.data();
+                      if (role == PassRole::Later) pass.start = starts.data();
                       tbb::parallel_for(0, d[2], [&](int k) {
                           for (int j = 0; j < d[1]; ++j)
                               detail::rowPass(pass, j, k, b.data(), lo ? lo->data() : nullptr,
@@ -444,6 +457,10 @@ void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const M
         vel.v->size() != g.count(Placement::FaceY) || vel.w->size() != g.count(Placement::FaceZ))
         throw std::logic_error("advect: velocity arrays have the wrong size");
     if (mask && mask->size() != q.size()) throw std::logic_error("advect: mask has the wrong size");
+    if (vel.uSingle && (!vel.vSingle || !vel.wSingle || vel.uSingle->size() != vel.u->size() ||
+                        vel.vSingle->size() != vel.v->size() ||
+                        vel.wSingle->size() != vel.w->size()))
+        throw std::logic_error("advect: single-precision velocity arrays have the wrong size");
     // Cubic cells (the live scenes) take the fast lattice, in float if asked; stretched layers
     // the layout's sampler.
     if (UniformLattice::usable(g) && precision == AdvectionPrecision::Single)

@@ -96,6 +96,12 @@ struct MacVelocity {
     const std::vector<double>* u = nullptr;
     const std::vector<double>* v = nullptr;
     const std::vector<double>* w = nullptr;
+    /// Optional: u, v, w rounded to float, for AdvectionPrecision::Single, which otherwise rounds
+    /// them on every call (a caller advecting three components through one velocity rounds it
+    /// once). All three or none; the same values as u, v, w.
+    const std::vector<float>* uSingle = nullptr;
+    const std::vector<float>* vSingle = nullptr;
+    const std::vector<float>* wSingle = nullptr;
 };
 
 /// The state outside the box at a world position: velocity in m/s (world axes).

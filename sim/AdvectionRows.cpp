@@ -146,12 +146,25 @@ void RowPassImpl(const RowPassInput& in, int j, int k, double* HWY_RESTRICT out,
     const size_t N = hn::Lanes(df);
     constexpr size_t MAX_LANES = 64;  // more than any x86 vector holds (16 floats)
     HWY_ALIGN float value[MAX_LANES] = {}, low[MAX_LANES] = {}, high[MAX_LANES] = {},
-                    redoF[MAX_LANES] = {};
+                    redoF[MAX_LANES] = {}, startU[MAX_LANES] = {}, startV[MAX_LANES] = {},
+                    startW[MAX_LANES] = {};
     for (int i0 = 0; i0 < nxp; i0 += int(N)) {
         // Lanes past the row's end trace clamped points and are not written.
         const VF X0 = hn::Iota(df, float(i0)) + offX;
         VF u0, v0, w0;
-        velocity(in, X0, Y0, Z0, u0, v0, w0);
+        const size_t at = size_t(row + i0);
+        if (in.start) {
+            u0 = hn::LoadU(df, in.start + at);
+            v0 = hn::LoadU(df, in.start + in.count + at);
+            w0 = hn::LoadU(df, in.start + 2 * in.count + at);
+        } else {
+            velocity(in, X0, Y0, Z0, u0, v0, w0);
+            if (in.recordStart) {
+                hn::Store(u0, df, startU);
+                hn::Store(v0, df, startV);
+                hn::Store(w0, df, startW);
+            }
+        }
         const VF dx0 = u0 * s, dy0 = v0 * s, dz0 = w0 * s;
         const VF m = hn::Max(hn::Max(hn::Abs(dx0), hn::Abs(dy0)), hn::Abs(dz0));
         MF redo = hn::Not(m <= maxCells);  // a NaN displacement too
@@ -188,6 +201,13 @@ void RowPassImpl(const RowPassInput& in, int j, int k, double* HWY_RESTRICT out,
             }
             general[idx] = moves && redoF[l] > 0.0f ? 1 : 0;
         }
+        if (in.recordStart && !in.start)  // only this row's lanes: rows run on other threads
+            for (int l = 0; l < lanes; ++l) {
+                const size_t idx = at + size_t(l);
+                in.recordStart[idx] = startU[l];
+                in.recordStart[in.count + idx] = startV[l];
+                in.recordStart[2 * in.count + idx] = startW[l];
+            }
     }
 }
 

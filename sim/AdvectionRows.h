@@ -32,6 +32,14 @@ struct RowPassInput {
     const double* qExact = nullptr;  ///< the same in double: what a masked-out sample keeps
     const uint8_t* mask = nullptr;   ///< 0: copy the sample unchanged (never null)
     float cellsPerMps = 0;           ///< dt / h, s/m (negative: a forward trace)
+    /// The velocity at every sample (m/s; u at [idx], v at [count + idx], w at [2 count + idx],
+    /// count = samples of the placement), which depends on neither the pass nor q: a first pass
+    /// writes it (recordStart), later passes of the same call read it (start) instead of
+    /// interpolating again. The array holds 3 count + ROW_PASS_PADDING floats (reads run past the
+    /// last row by up to a vector). Both null: interpolated in every pass.
+    float* recordStart = nullptr;
+    const float* start = nullptr;
+    size_t count = 0;
     /// The terrain, or heights == nullptr: heights (metres, i fastest, hnx * hny), index
     /// coordinate of the heightfield = X * hScale + hOffsetX (Y likewise), and the index-space
     /// height Z of a world height z_m = z_m * zScale + zOffset. groundTop: index-space Z above
@@ -41,6 +49,9 @@ struct RowPassInput {
     float hScale = 0, hOffsetX = 0, hOffsetY = 0, zScale = 0, zOffset = 0;
     float groundTop = -1e30f;
 };
+
+/// Floats past 3 count that a `start` array must hold.
+constexpr size_t ROW_PASS_PADDING = 64;
 
 /// Writes out, lo and hi (lo/hi may both be null) and general (1: redo on the general path; the
 /// other three are then unspecified) for every sample of row (j, k) of the input's placement.

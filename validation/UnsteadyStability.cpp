@@ -61,10 +61,16 @@ Whirlwind vortex(double x, double y, double rc, double peak) {
     return w;
 }
 
+/// The advection's arithmetic of the case runStabilityCase is running (its argument): every
+/// case builds its solver through setUp, which applies it, so the cases' definitions need not
+/// carry it.
+thread_local AdvectionPrecision gCasePrecision = AdvectionPrecision::Single;
+
 /// The domain, its steady potential flow (the start and the far field) and the solver.
 StabilityRun setUp(const Heightfield& terrain, double voxel_m, std::optional<double> top_m,
                    const AmbientWind& wind, UnsteadySettings settings) {
     StabilityRun r;
+    settings.precision = gCasePrecision;
     settings.projection.relativeTolerance = 1e-7;
     settings.projection.maxIterations = 200;
     r.domain = std::make_unique<AirDomain>(terrain, DomainSpec{voxel_m, top_m, 2e9});
@@ -265,9 +271,18 @@ std::string stabilityCaseDescription(const std::string& name) {
     return caseNamed(name).description;
 }
 
-StabilityRun runStabilityCase(const std::string& name) {
+StabilityRun runStabilityCase(const std::string& name, AdvectionPrecision precision) {
     const CaseDef& c = caseNamed(name);
-    StabilityRun r = c.run();
+    const AdvectionPrecision before = gCasePrecision;
+    gCasePrecision = precision;
+    StabilityRun r;
+    try {
+        r = c.run();
+    } catch (...) {
+        gCasePrecision = before;
+        throw;
+    }
+    gCasePrecision = before;
     r.name = c.name, r.description = c.description;
     return r;
 }

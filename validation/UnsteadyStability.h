@@ -72,8 +72,10 @@ struct StabilityRun {
 std::vector<std::string> stabilityCaseNames(bool fastOnly = false);
 /// Description of a case (throws std::invalid_argument for an unknown name).
 std::string stabilityCaseDescription(const std::string& name);
-/// Runs one case. Throws std::invalid_argument for an unknown name.
-StabilityRun runStabilityCase(const std::string& name);
+/// Runs one case with the advection in `precision` (sim::AdvectionPrecision). Throws
+/// std::invalid_argument for an unknown name.
+StabilityRun runStabilityCase(const std::string& name,
+                              sim::AdvectionPrecision precision = sim::AdvectionPrecision::Single);
 
 /// The translating vortex of the file comment (parameters in metres, m/s and seconds).
 struct TranslatingVortexSpec {

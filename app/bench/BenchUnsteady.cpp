@@ -47,6 +47,7 @@ constexpr double OUTER_FACTOR = 3.0, HALF_BOX_CORES = 5.0;
 
 struct AccuracyRow {
     std::string scheme;
+    std::string precision;  ///< the advection's arithmetic (sim::AdvectionPrecision)
     int cellsPerCore = 0;
     double courant = 0;  ///< V_PEAK dt / h
     int steps = 0;
@@ -56,9 +57,11 @@ struct AccuracyRow {
     bool finite = true;
 };
 
-AccuracyRow lambOseen(sim::AdvectionScheme scheme, int cellsPerCore, double courant) {
+AccuracyRow lambOseen(sim::AdvectionScheme scheme, int cellsPerCore, double courant,
+                      sim::AdvectionPrecision precision) {
     AccuracyRow row;
     row.scheme = sim::advectionSchemeName(scheme);
+    row.precision = sim::advectionPrecisionName(precision);
     row.cellsPerCore = cellsPerCore, row.courant = courant;
     const double h = R0_M / cellsPerCore, half = HALF_BOX_CORES * R0_M;
     sim::TerrainSpec ts;
@@ -74,6 +77,7 @@ AccuracyRow lambOseen(sim::AdvectionScheme scheme, int cellsPerCore, double cour
     const auto t0 = Clock::now();
     sim::UnsteadySettings s;
     s.advection = scheme;
+    s.precision = precision;
     s.viscosity_m2ps = NU_M2PS;
     row.steps = std::max(1, int(std::ceil(T_END_S * V_PEAK_MPS / (courant * h))));
     row.dt_s = T_END_S / row.steps, row.h_m = h;
@@ -176,43 +180,50 @@ constexpr double MIN_H_ORDER = validation::limits::MIN_VORTEX_H_ORDER;
 int runBenchStability(const BenchStabilityOptions& opt) {
     bool all = true;
     nlohmann::json rows = nlohmann::json::array();
-    std::printf("%-24s %5s %7s %7s %11s %11s %8s %9s %9s %9s %6s %7s  %s\n", "case", "steps",
-                "dt s", "CFL", "KE start", "KE end", "KE %", "forcing", "deviation", "max div",
-                "finite", "wall s", "verdict");
-    for (const std::string& n : validation::stabilityCaseNames(opt.quick)) {
-        std::fprintf(stderr, "bench stability: %s...\n", n.c_str());
-        const validation::StabilityRun r = validation::runStabilityCase(n);
-        const bool cflCase = n.rfind("cfl", 0) == 0;
-        std::string why;
-        if (!r.finite) why += "NaN/Inf; ";
-        if (!(r.maxDivergenceScaled <= DIVERGENCE_LIMIT)) why += "divergence; ";
-        if (!r.forced && !(r.keEnd_m5ps2 <= r.keStart_m5ps2 * (1 + ENERGY_GROWTH_LIMIT)))
-            why += "energy grew; ";
-        if (cflCase && !(r.deviationFromStart <= STEADY_DEVIATION_LIMIT))
-            why += "left the steady flow; ";
-        all = all && why.empty();
-        const double change =
-            r.keStart_m5ps2 > 0 ? 100.0 * (r.keEnd_m5ps2 - r.keStart_m5ps2) / r.keStart_m5ps2 : 0.0;
-        std::printf("%-24s %5d %7.3f %7.2f %11.4g %11.4g %+8.2f %9.3g %9.2e %9.2e %6s %7.2f  %s\n",
-                    n.c_str(), r.steps, r.dt_s, r.maxCfl, r.keStart_m5ps2, r.keEnd_m5ps2, change,
-                    r.forcingEnergy_m5ps2, r.deviationFromStart, r.maxDivergenceScaled,
-                    r.finite ? "yes" : "NO", r.wall_s, why.empty() ? "ok" : why.c_str());
-        rows.push_back({{"case", n},
-                        {"description", r.description},
-                        {"steps", r.steps},
-                        {"dt_s", r.dt_s},
-                        {"max_cfl", r.maxCfl},
-                        {"max_speed_mps", r.maxSpeed_mps},
-                        {"kinetic_energy_start_m5ps2", r.keStart_m5ps2},
-                        {"kinetic_energy_end_m5ps2", r.keEnd_m5ps2},
-                        {"kinetic_energy_max_m5ps2", r.keMax_m5ps2},
-                        {"forcing_energy_m5ps2", r.forcingEnergy_m5ps2},
-                        {"deviation_from_start", r.deviationFromStart},
-                        {"max_div_u_h_over_U", r.maxDivergenceScaled},
-                        {"finite", r.finite},
-                        {"wall_s", r.wall_s},
-                        {"failed", why}});
-    }
+    std::printf("%-24s %9s %5s %7s %7s %11s %11s %8s %9s %9s %9s %6s %7s  %s\n", "case",
+                "precision", "steps", "dt s", "CFL", "KE start", "KE end", "KE %", "forcing",
+                "deviation", "max div", "finite", "wall s", "verdict");
+    // Every case with the advection in single precision (the default) and in double.
+    for (const std::string& n : validation::stabilityCaseNames(opt.quick))
+        for (sim::AdvectionPrecision pr :
+             {sim::AdvectionPrecision::Single, sim::AdvectionPrecision::Double}) {
+            const char* prName = sim::advectionPrecisionName(pr);
+            std::fprintf(stderr, "bench stability: %s, %s...\n", n.c_str(), prName);
+            const validation::StabilityRun r = validation::runStabilityCase(n, pr);
+            const bool cflCase = n.rfind("cfl", 0) == 0;
+            std::string why;
+            if (!r.finite) why += "NaN/Inf; ";
+            if (!(r.maxDivergenceScaled <= DIVERGENCE_LIMIT)) why += "divergence; ";
+            if (!r.forced && !(r.keEnd_m5ps2 <= r.keStart_m5ps2 * (1 + ENERGY_GROWTH_LIMIT)))
+                why += "energy grew; ";
+            if (cflCase && !(r.deviationFromStart <= STEADY_DEVIATION_LIMIT))
+                why += "left the steady flow; ";
+            all = all && why.empty();
+            const double change = r.keStart_m5ps2 > 0
+                                      ? 100.0 * (r.keEnd_m5ps2 - r.keStart_m5ps2) / r.keStart_m5ps2
+                                      : 0.0;
+            std::printf(
+                "%-24s %9s %5d %7.3f %7.2f %11.4g %11.4g %+8.2f %9.3g %9.2e %9.2e %6s %7.2f  %s\n",
+                n.c_str(), prName, r.steps, r.dt_s, r.maxCfl, r.keStart_m5ps2, r.keEnd_m5ps2,
+                change, r.forcingEnergy_m5ps2, r.deviationFromStart, r.maxDivergenceScaled,
+                r.finite ? "yes" : "NO", r.wall_s, why.empty() ? "ok" : why.c_str());
+            rows.push_back({{"case", n},
+                            {"precision", prName},
+                            {"description", r.description},
+                            {"steps", r.steps},
+                            {"dt_s", r.dt_s},
+                            {"max_cfl", r.maxCfl},
+                            {"max_speed_mps", r.maxSpeed_mps},
+                            {"kinetic_energy_start_m5ps2", r.keStart_m5ps2},
+                            {"kinetic_energy_end_m5ps2", r.keEnd_m5ps2},
+                            {"kinetic_energy_max_m5ps2", r.keMax_m5ps2},
+                            {"forcing_energy_m5ps2", r.forcingEnergy_m5ps2},
+                            {"deviation_from_start", r.deviationFromStart},
+                            {"max_div_u_h_over_U", r.maxDivergenceScaled},
+                            {"finite", r.finite},
+                            {"wall_s", r.wall_s},
+                            {"failed", why}});
+        }
     std::printf(
         "deviation: |u_end - u_start| / |u_start| (open-fraction weighted); the CFL cases start "
         "from the "
@@ -322,39 +333,44 @@ int runBenchUnsteady(const BenchUnsteadyOptions& opt) {
         opt.quick ? std::vector<int>{2, 4} : std::vector<int>{2, 4, 8, 16};
     constexpr double COURANT = 1.0, LARGE_COURANT = 4.0;
     std::vector<AccuracyRow> rows;
-    for (AdvectionScheme s : schemes) {
-        for (int c : cores) {
-            std::fprintf(stderr, "bench unsteady: Lamb-Oseen, %s, %d cells per core...\n",
-                         sim::advectionSchemeName(s), c);
-            rows.push_back(lambOseen(s, c, COURANT));
+    // Each scheme in the default single precision, then in double (the same arithmetic as
+    // before single precision existed): the error columns side by side.
+    using sim::AdvectionPrecision;
+    for (AdvectionPrecision pr : {AdvectionPrecision::Single, AdvectionPrecision::Double})
+        for (AdvectionScheme s : schemes) {
+            for (int c : cores) {
+                std::fprintf(stderr, "bench unsteady: Lamb-Oseen, %s, %s, %d cells per core...\n",
+                             sim::advectionSchemeName(s), sim::advectionPrecisionName(pr), c);
+                rows.push_back(lambOseen(s, c, COURANT, pr));
+            }
+            if (!opt.quick) rows.push_back(lambOseen(s, cores.back(), LARGE_COURANT, pr));
         }
-        if (!opt.quick) rows.push_back(lambOseen(s, cores.back(), LARGE_COURANT));
-    }
     std::printf(
         "Lamb-Oseen vortex under viscosity (r0 %.0f m, peak %.0f m/s, nu %.0f m^2/s, t = %.0f s): "
         "error = max "
         "|v - v_exact| / v_peak on rings 0.25..2 r(t)\n",
         R0_M, V_PEAK_MPS, NU_M2PS, T_END_S);
-    std::printf("%-16s %10s %8s %8s %8s %8s %10s %10s %7s\n", "scheme", "cells/core", "h m",
-                "Courant", "dt s", "steps", "error", "wall s", "order");
+    std::printf("%-16s %9s %10s %8s %8s %8s %8s %10s %10s %7s\n", "scheme", "precision",
+                "cells/core", "h m", "Courant", "dt s", "steps", "error", "wall s", "order");
     std::ostringstream csv;
-    csv << "scheme,cells_per_core,h_m,courant,dt_s,steps,error,wall_s,order\n";
+    csv << "scheme,precision,cells_per_core,h_m,courant,dt_s,steps,error,wall_s,order\n";
     nlohmann::json jrows = nlohmann::json::array();
     bool finite = true;
     for (size_t i = 0; i < rows.size(); ++i) {
         const AccuracyRow& r = rows[i];
         double order = NAN;
-        if (i > 0 && rows[i - 1].scheme == r.scheme && rows[i - 1].courant == r.courant &&
-            rows[i - 1].cellsPerCore * 2 == r.cellsPerCore)
+        if (i > 0 && rows[i - 1].scheme == r.scheme && rows[i - 1].precision == r.precision &&
+            rows[i - 1].courant == r.courant && rows[i - 1].cellsPerCore * 2 == r.cellsPerCore)
             order = std::log2(rows[i - 1].error / r.error);
         finite = finite && r.finite;
-        std::printf("%-16s %10d %8.3g %8.3g %8.3g %8d %10.3e %10.3f %7s\n", r.scheme.c_str(),
-                    r.cellsPerCore, r.h_m, r.courant, r.dt_s, r.steps, r.error, r.wall_s,
-                    std::isnan(order) ? "" : formatG(order, 2).c_str());
-        csv << r.scheme << "," << r.cellsPerCore << "," << r.h_m << "," << r.courant << ","
-            << r.dt_s << "," << r.steps << "," << r.error << "," << r.wall_s << ","
-            << (std::isnan(order) ? "" : formatG(order, 3)) << "\n";
+        std::printf("%-16s %9s %10d %8.3g %8.3g %8.3g %8d %10.3e %10.3f %7s\n", r.scheme.c_str(),
+                    r.precision.c_str(), r.cellsPerCore, r.h_m, r.courant, r.dt_s, r.steps, r.error,
+                    r.wall_s, std::isnan(order) ? "" : formatG(order, 2).c_str());
+        csv << r.scheme << "," << r.precision << "," << r.cellsPerCore << "," << r.h_m << ","
+            << r.courant << "," << r.dt_s << "," << r.steps << "," << r.error << "," << r.wall_s
+            << "," << (std::isnan(order) ? "" : formatG(order, 3)) << "\n";
         jrows.push_back({{"scheme", r.scheme},
+                         {"precision", r.precision},
                          {"cells_per_core", r.cellsPerCore},
                          {"h_m", r.h_m},
                          {"courant", r.courant},
@@ -373,7 +389,8 @@ int runBenchUnsteady(const BenchUnsteadyOptions& opt) {
         Series line{name + ", Courant 1", colours[k], false, {}, {}};
         Series big{name + ", Courant 4", colours[k], true, {}, {}};
         for (const AccuracyRow& r : rows) {
-            if (r.scheme != name || !(r.error > 0)) continue;
+            // The default precision only; the table and CSV hold both.
+            if (r.scheme != name || r.precision != "single" || !(r.error > 0)) continue;
             Series& into = r.courant == COURANT ? line : big;
             into.xy.push_back({r.wall_s, r.error});
             into.labels.push_back(std::to_string(r.cellsPerCore));
@@ -427,18 +444,18 @@ int runBenchUnsteady(const BenchUnsteadyOptions& opt) {
                                {"steady_solve_s", t.steady_s}});
         }
     writeJson(opt.jsonPath, {{"lamb_oseen", jrows}, {"timing", jtiming}});
-    double finest = NAN;
+    double finest = 0.0;  // the larger of the two precisions' finest semi-Lagrangian errors
     for (const AccuracyRow& r : rows)
         if (r.scheme == "semi_lagrangian" && r.courant == COURANT && r.cellsPerCore == cores.back())
-            finest = r.error;
+            finest = std::isnan(r.error) ? r.error : std::max(finest, r.error);
     // Targets: the error falls with resolution for every scheme (observed order above
     // MIN_ORDER at Courant 1), and the full run's finest semi-Lagrangian error is within
     // TARGET_ERROR of the peak speed.
     constexpr double TARGET_ERROR = 0.05, MIN_ORDER = 0.5;
     bool ordersOk = true;
     for (size_t i = 1; i < rows.size(); ++i)
-        if (rows[i - 1].scheme == rows[i].scheme && rows[i].courant == COURANT &&
-            rows[i - 1].courant == COURANT &&
+        if (rows[i - 1].scheme == rows[i].scheme && rows[i - 1].precision == rows[i].precision &&
+            rows[i].courant == COURANT && rows[i - 1].courant == COURANT &&
             !(std::log2(rows[i - 1].error / rows[i].error) > MIN_ORDER))
             ordersOk = false;
     const bool ok = finite && ordersOk && (opt.quick || finest <= TARGET_ERROR);

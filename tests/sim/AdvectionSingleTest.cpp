@@ -218,6 +218,32 @@ TEST(AdvectionSingle, MaskedSamplesKeepTheirValuesExactly) {
     }
 }
 
+TEST(AdvectionSingle, AVelocityRoundedByTheCallerGivesTheSameAnswer) {
+    const MacGrid g(NX, NY, NZ, H_M, WS_MIN_M);
+    std::mt19937 rng(23);
+    const std::vector<double> U = randomField(g.count(Placement::FaceX), rng, 2.0, 0.5),
+                              V = randomField(g.count(Placement::FaceY), rng, 0.5, 0.5),
+                              W = randomField(g.count(Placement::FaceZ), rng, 0.0, 0.5);
+    const std::vector<float> Uf(U.begin(), U.end()), Vf(V.begin(), V.end()),
+        Wf(W.begin(), W.end());
+    const MacVelocity rounded{&U, &V, &W, &Uf, &Vf, &Wf};
+    for (Placement p : ALL) {
+        const std::vector<double> q = randomField(g.count(p), rng, 0.0, 1.0);
+        std::vector<double> a, b;
+        advect(g, p, q, {&U, &V, &W}, {}, {}, H_M / 2.5, AdvectionScheme::Bfecc, a, nullptr,
+               AdvectionPrecision::Single);
+        advect(g, p, q, rounded, {}, {}, H_M / 2.5, AdvectionScheme::Bfecc, b, nullptr,
+               AdvectionPrecision::Single);
+        ASSERT_EQ(a, b) << "placement " << int(p);
+    }
+    const std::vector<float> shortU(Uf.begin(), Uf.end() - 1);
+    std::vector<double> out;
+    EXPECT_THROW(advect(g, Placement::Cell, std::vector<double>(g.count(Placement::Cell)),
+                        {&U, &V, &W, &shortU, &Vf, &Wf}, {}, {}, 0.1,
+                        AdvectionScheme::SemiLagrangian, out, nullptr, AdvectionPrecision::Single),
+                 std::logic_error);
+}
+
 TEST(AdvectionSingle, PrecisionNamesRoundTripAndABadOneNamesTheKey) {
     for (AdvectionPrecision p : {AdvectionPrecision::Double, AdvectionPrecision::Single})
         EXPECT_EQ(advectionPrecisionFromName(advectionPrecisionName(p)), p);
