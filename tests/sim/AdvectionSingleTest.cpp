@@ -224,8 +224,7 @@ TEST(AdvectionSingle, AVelocityRoundedByTheCallerGivesTheSameAnswer) {
     const std::vector<double> U = randomField(g.count(Placement::FaceX), rng, 2.0, 0.5),
                               V = randomField(g.count(Placement::FaceY), rng, 0.5, 0.5),
                               W = randomField(g.count(Placement::FaceZ), rng, 0.0, 0.5);
-    const std::vector<float> Uf(U.begin(), U.end()), Vf(V.begin(), V.end()),
-        Wf(W.begin(), W.end());
+    const std::vector<float> Uf(U.begin(), U.end()), Vf(V.begin(), V.end()), Wf(W.begin(), W.end());
     const MacVelocity rounded{&U, &V, &W, &Uf, &Vf, &Wf};
     for (Placement p : ALL) {
         const std::vector<double> q = randomField(g.count(p), rng, 0.0, 1.0);
