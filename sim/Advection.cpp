@@ -457,9 +457,9 @@ void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const M
         vel.v->size() != g.count(Placement::FaceY) || vel.w->size() != g.count(Placement::FaceZ))
         throw std::logic_error("advect: velocity arrays have the wrong size");
     if (mask && mask->size() != q.size()) throw std::logic_error("advect: mask has the wrong size");
-    if (vel.uSingle && (!vel.vSingle || !vel.wSingle || vel.uSingle->size() != vel.u->size() ||
-                        vel.vSingle->size() != vel.v->size() ||
-                        vel.wSingle->size() != vel.w->size()))
+    if (vel.uSingle &&
+        (!vel.vSingle || !vel.wSingle || vel.uSingle->size() != vel.u->size() ||
+         vel.vSingle->size() != vel.v->size() || vel.wSingle->size() != vel.w->size()))
         throw std::logic_error("advect: single-precision velocity arrays have the wrong size");
     // Cubic cells (the live scenes) take the fast lattice, in float if asked; stretched layers
     // the layout's sampler.
