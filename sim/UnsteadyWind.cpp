@@ -344,7 +344,25 @@ SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double d
                 rhs[S.cellIndex(i, j, k)] = b;
             }
     });
+    // Warm start. A step's potential is psi = -dt p / rho (Chorin 1968), and p moves smoothly
+    // with the flow, so the guess is -dt times p extrapolated linearly from the last two
+    // steps' (what the last step left, after two steps). Projections outside a step (a source
+    // dropped in, a reset) are no pressure: they start the history again.
+    const bool history = dt > 0.0 && !mSettings.incrementalPressure;
+    if (history && mPressureSteps == 2) {
+        tbb::parallel_for(size_t(0), mPsi.size(), [&](size_t c) {
+            mPsi[c] = -dt * (2.0 * mPressureLast[c] - mPressureBefore[c]);
+        });
+    }
     SolveReport rep = mPoisson.solve(rhs, mPsi, settings);
+    if (history) {
+        std::swap(mPressureBefore, mPressureLast);
+        mPressureLast.resize(mPsi.size());
+        for (size_t c = 0; c < mPsi.size(); ++c) mPressureLast[c] = -mPsi[c] / dt;
+        mPressureSteps = std::min(mPressureSteps + 1, 2);
+    } else {
+        mPressureSteps = 0;
+    }
     const std::vector<double>& psi = mPsi;
     auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
     tbb::parallel_for(0, nz, [&](int k) {

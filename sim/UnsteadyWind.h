@@ -218,7 +218,11 @@ class UnsteadyWindSolver {
         mOkZ;  // faces the projection updates (between air cells or on the box)
     PoissonSystem mSystem;
     PoissonSolver mPoisson;
-    std::vector<double> mPsi;         // projection potential (m^2/s), warm start
+    std::vector<double> mPsi;  // projection potential (m^2/s), warm start
+    /// The last two steps' potentials' pressures, for the next step's warm start extrapolated in
+    /// time (project(settings, dt)); mPressureSteps counts how many are valid (0-2).
+    std::vector<double> mPressureLast, mPressureBefore;
+    int mPressureSteps = 0;
     std::vector<double> mGradPsi[3];  // incrementalPressure: sum of the projections' corrections
     std::unique_ptr<TurbulentStress> mStress;  // surface-layer stresses, when enabled
     std::vector<std::array<double, 2>> mAxes;
