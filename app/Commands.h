@@ -63,6 +63,14 @@ struct ViewOptions {
 /// unsteady.dt_s is kept. The projection stops at unsteady.live_tolerance instead of
 /// unsteady.tolerance. Other scenes are left as they are.
 void limitUnsteadyStepToAFrame(Scene& scene);
+/// The CPU policy when the wind is stepped live beside the renderer (docs/unsteady.md, "Two
+/// jobs on two cores"): llvmpipe's rasteriser threads take half the cores (LP_NUM_THREADS, at
+/// least 1), the wind's worker thread and its TBB threads keep theirs. With every core given to
+/// llvmpipe as well, the two jobs thrash: measured on 2 cores, the whirlwind meadow's wind ran
+/// at 9.5 Hz beside 27 fps, and with the rasteriser on one core at 21 Hz beside 22.5 fps. A
+/// user's own LP_NUM_THREADS wins. Must run before the first GL context is made; says what it
+/// did on stderr.
+void shareCoresWithLiveWind();
 
 /// Opens the window, runs until closed (or --frames), returns 0. Throws std::runtime_error
 /// "no display: ..." when there is no display (exit 1).

@@ -374,6 +374,27 @@ void addView(CLI::App& bench, VerbTable& verbs) {
     verb->footer(EXIT_CODES_FOOTER);
     verbs.add(verb, [o] {
         o->loader = loadViewScene;
+        o->beforeRenderer = [](const std::vector<std::string>& files) {
+            // gale view's policy for live wind (each file read once more, not built). One
+            // renderer serves the whole run, so the policy holds for all its scenes or none:
+            // it is applied when every scene steps live wind, so that static scenes keep the
+            // rasteriser's every core as gale view gives them.
+            size_t live = 0;
+            for (const std::string& f : files) {
+                SceneRunOptions run;
+                run.scenePath = f;
+                live += loadScene(run).wind.kind == WindKind::Unsteady;
+            }
+            if (live == files.size()) {
+                shareCoresWithLiveWind();
+            } else if (live > 0) {
+                std::fprintf(stderr,
+                             "bench view: %zu of %zu scenes step live wind; gale view gives "
+                             "those llvmpipe half the cores (bench them on their own to see "
+                             "it), this run gives every scene all of them\n",
+                             live, files.size());
+            }
+        };
         return runBench([o] { return runBenchView(*o); });
     });
 }

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -181,6 +182,17 @@ void limitUnsteadyStepToAFrame(Scene& scene) {
     u.projection.relativeTolerance = scene.unsteady.liveTolerance;
 }
 
+void shareCoresWithLiveWind() {
+    if (std::getenv("LP_NUM_THREADS")) return;  // the user's choice
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const std::string n = std::to_string(std::max(1u, cores / 2));
+    setenv("LP_NUM_THREADS", n.c_str(), 1);
+    std::fprintf(stderr,
+                 "gale: live wind beside the renderer: llvmpipe on %s of %u cores "
+                 "(LP_NUM_THREADS), the wind solver on the rest\n",
+                 n.c_str(), cores);
+}
+
 int runView(const ViewOptions& options) {
     SceneRunOptions sceneOptions;
     sceneOptions.scenePath = options.scenePath;
@@ -188,6 +200,7 @@ int runView(const ViewOptions& options) {
     sceneOptions.height = options.height;
     Scene scene = loadScene(sceneOptions);
     limitUnsteadyStepToAFrame(scene);
+    if (scene.wind.kind == WindKind::Unsteady) shareCoresWithLiveWind();
     const OutputSection& out = scene.output;
     // Bad --input is bad input, found before the window opens or anything is solved.
     const std::map<int, std::vector<render::InputEvent>> inputScript =

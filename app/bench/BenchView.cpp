@@ -134,6 +134,7 @@ int runBenchView(const BenchViewOptions& options) {
     const int frames = options.quick ? 3 : options.frames;
     const int warmup = options.quick ? 1 : 5;
 
+    if (options.beforeRenderer) options.beforeRenderer(files);
     std::unique_ptr<render::GlContext> context;
     if (options.window)
         context = render::GlfwWindow::open(options.width, options.height, "gale bench view");

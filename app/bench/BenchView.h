@@ -47,6 +47,9 @@ struct BenchViewOptions {
     bool window = false;   ///< draw into a GLFW window (needs a display) instead of headless OSMesa
     std::string jsonPath;  ///< if set, the table is also written there as JSON (atomically)
     ViewSceneLoader loader;  ///< required
+    /// Called with the scene files before the renderer starts (optional): where the CPU
+    /// policy of live wind beside the renderer is applied (shareCoresWithLiveWind).
+    std::function<void(const std::vector<std::string>& files)> beforeRenderer;
 };
 
 /// Loads every scene through options.loader, runs its frames through the view's pipeline, prints
