@@ -22,6 +22,21 @@ namespace gale::sim {
 
 namespace {
 
+/// The size metadata OpenVDB writes beside a grid (voxel count, index bounding box, bytes in
+/// memory), each null when the file lacks it: what the readers check before loading a grid.
+struct SizeMetadata {
+    openvdb::Int64Metadata::ConstPtr count, bytes;
+    openvdb::Vec3IMetadata::ConstPtr lo, hi;
+};
+
+SizeMetadata sizeMetadata(const openvdb::GridBase& meta) {
+    using openvdb::GridBase;
+    return {meta.getMetadata<openvdb::Int64Metadata>(GridBase::META_FILE_VOXEL_COUNT),
+            meta.getMetadata<openvdb::Int64Metadata>(GridBase::META_FILE_MEM_BYTES),
+            meta.getMetadata<openvdb::Vec3IMetadata>(GridBase::META_FILE_BBOX_MIN),
+            meta.getMetadata<openvdb::Vec3IMetadata>(GridBase::META_FILE_BBOX_MAX)};
+}
+
 using detail::CUBIC_FACES_GRID, detail::STRETCHED_FACES_GRID, detail::levelsText;
 
 /// A .vdb refused by readFaceVelocities's own checks, told apart from other std::runtime_errors
@@ -59,15 +74,10 @@ double checkVdbAgainstField(const std::string& path, openvdb::io::File& file, co
                             " x " + std::to_string(field.nz()) + " cells can take (" +
                             std::to_string(static_cast<long long>(fileBound)) +
                             "): not a field of this scene");
-    const openvdb::GridBase::Ptr meta = file.readGridMetadata(facesName);
-    const auto count =
-        meta->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT);
-    const auto lo =
-        meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
-    const auto hi =
-        meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
-    const auto bytes =
-        meta->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_MEM_BYTES);
+    const SizeMetadata m = sizeMetadata(*file.readGridMetadata(facesName));
+    const auto& count = m.count;
+    const auto &lo = m.lo, &hi = m.hi;
+    const auto& bytes = m.bytes;
     if (!count || !lo || !hi || !bytes)
         refuseVdb(path, std::string("grid '") + facesName +
                             "' has no size metadata (file_voxel_count, file_bbox_min/max, "
@@ -279,13 +289,9 @@ std::vector<double> readCellTke(const std::string& path, const WindField& field)
             file.close();
             return {};
         }
-        const openvdb::GridBase::Ptr meta = file.readGridMetadata(name);
-        const auto count =
-            meta->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT);
-        const auto lo =
-            meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
-        const auto hi =
-            meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
+        const SizeMetadata m = sizeMetadata(*file.readGridMetadata(name));
+        const auto& count = m.count;
+        const auto &lo = m.lo, &hi = m.hi;
         const bool emptyGrid = count && count->value() == 0;
         if (!count || (!emptyGrid && (!lo || !hi)) || count->value() < 0 ||
             double(count->value()) > double(g.cellCount()) ||

@@ -33,6 +33,16 @@ std::vector<double> randomField(size_t n, std::mt19937& rng, double mean, double
     return f;
 }
 
+/// A random MAC wind: each component uniform in mean +- spread (m/s).
+struct Wind {
+    std::vector<double> u, v, w;
+    Wind(const GridIndex& g, std::mt19937& rng, const Vec3d& mean, double spread)
+        : u(randomField(g.count(Placement::FaceX), rng, mean[0], spread)),
+          v(randomField(g.count(Placement::FaceY), rng, mean[1], spread)),
+          w(randomField(g.count(Placement::FaceZ), rng, mean[2], spread)) {}
+    MacVelocity vel() const { return {&u, &v, &w}; }
+};
+
 /// A hill whose flanks cut the lowest layers and whose foot lies below the box.
 Heightfield hill(const GridLayout& g) {
     Heightfield hf;
@@ -109,9 +119,8 @@ TEST(AdvectionSingle, EqualsTheDoublePathToFloatRoundOffOverAHill) {
     const Heightfield hf = hill(layout);
     const MacGrid g(layout, &hf);
     std::mt19937 rng(11);
-    const std::vector<double> U = randomField(g.count(Placement::FaceX), rng, 3.0, 1.5),
-                              V = randomField(g.count(Placement::FaceY), rng, -1.0, 1.5),
-                              W = randomField(g.count(Placement::FaceZ), rng, -1.5, 1.5);
+    const Wind wind(g, rng, {3.0, -1.0, -1.5}, 1.5);
+    const std::vector<double>&U = wind.u, &V = wind.v, &W = wind.w;
     const FarField far = [](const Vec3d& x) { return Vec3d{3.0, -1.0, -0.5 + 0.01 * x[2]}; };
     const OutsideValue inflow = [](const Vec3d& x) { return 0.3 + 0.02 * x[2]; };
     const double dt_s = 1.2 * H_M / 4.5;
@@ -145,9 +154,8 @@ TEST(AdvectionSingle, HandsLongTracesToTheGeneralPathBitForBit) {
     const Heightfield hf = hill(layout);
     const MacGrid g(layout, &hf);
     std::mt19937 rng(13);
-    const std::vector<double> U = randomField(g.count(Placement::FaceX), rng, 6.0, 0.5),
-                              V = randomField(g.count(Placement::FaceY), rng, 5.0, 0.5),
-                              W = randomField(g.count(Placement::FaceZ), rng, -5.0, 0.5);
+    const Wind wind(g, rng, {6.0, 5.0, -5.0}, 0.5);
+    const std::vector<double>&U = wind.u, &V = wind.v, &W = wind.w;
     const double dt_s = 5.0 * H_M / 4.5;
     for (Placement p : ALL) {
         const std::vector<double> q = randomField(g.count(p), rng, 0.0, 1.0);
@@ -166,9 +174,8 @@ TEST(AdvectionSingle, NonFiniteWindStaysWhereTheDoublePathPutsIt) {
     // sample is finite exactly where the double path's is, and close to it there.
     const MacGrid g(NX, NY, NZ, H_M, WS_MIN_M);
     std::mt19937 rng(17);
-    std::vector<double> U = randomField(g.count(Placement::FaceX), rng, 2.0, 0.5),
-                        V = randomField(g.count(Placement::FaceY), rng, 0.5, 0.5),
-                        W = randomField(g.count(Placement::FaceZ), rng, 0.0, 0.5);
+    Wind wind(g, rng, {2.0, 0.5, 0.0}, 0.5);
+    std::vector<double>&U = wind.u, &V = wind.v, &W = wind.w;
     U[g.index(Placement::FaceX, 10, 5, 4)] = std::numeric_limits<double>::quiet_NaN();
     W[g.index(Placement::FaceZ, 3, 7, 2)] = std::numeric_limits<double>::infinity();
     const double dt_s = 1.0 * H_M / 2.5;
@@ -197,9 +204,8 @@ TEST(AdvectionSingle, NonFiniteWindStaysWhereTheDoublePathPutsIt) {
 TEST(AdvectionSingle, MaskedSamplesKeepTheirValuesExactly) {
     const MacGrid g(NX, NY, NZ, H_M, WS_MIN_M);
     std::mt19937 rng(19);
-    const std::vector<double> U = randomField(g.count(Placement::FaceX), rng, 2.0, 0.5),
-                              V = randomField(g.count(Placement::FaceY), rng, 0.5, 0.5),
-                              W = randomField(g.count(Placement::FaceZ), rng, 0.0, 0.5);
+    const Wind wind(g, rng, {2.0, 0.5, 0.0}, 0.5);
+    const std::vector<double>&U = wind.u, &V = wind.v, &W = wind.w;
     for (Placement p : ALL) {
         const std::vector<double> q = randomField(g.count(p), rng, 0.0, 1.0);
         std::vector<uint8_t> mask(q.size());
@@ -221,9 +227,8 @@ TEST(AdvectionSingle, MaskedSamplesKeepTheirValuesExactly) {
 TEST(AdvectionSingle, AVelocityRoundedByTheCallerGivesTheSameAnswer) {
     const MacGrid g(NX, NY, NZ, H_M, WS_MIN_M);
     std::mt19937 rng(23);
-    const std::vector<double> U = randomField(g.count(Placement::FaceX), rng, 2.0, 0.5),
-                              V = randomField(g.count(Placement::FaceY), rng, 0.5, 0.5),
-                              W = randomField(g.count(Placement::FaceZ), rng, 0.0, 0.5);
+    const Wind wind(g, rng, {2.0, 0.5, 0.0}, 0.5);
+    const std::vector<double>&U = wind.u, &V = wind.v, &W = wind.w;
     const std::vector<float> Uf(U.begin(), U.end()), Vf(V.begin(), V.end()), Wf(W.begin(), W.end());
     const MacVelocity rounded{&U, &V, &W, &Uf, &Vf, &Wf};
     for (Placement p : ALL) {
