@@ -6,6 +6,7 @@
 #include <string>
 
 #include "AppTestSupport.h"
+#include "app/Commands.h"
 #include "app/io/Errors.h"
 #include "app/scene/SceneParser.h"
 
@@ -35,6 +36,29 @@ TEST(UnsteadyScene, DefaultsApply) {
     EXPECT_FALSE(s.unsteady.settings.openTop);
     EXPECT_EQ(s.unsteady.settings.gusts[0].direction_deg, 0.0);
     EXPECT_EQ(s.unsteady.settings.gusts[0].duration_s, 4.0);
+    EXPECT_EQ(s.unsteady.settings.precision, sim::AdvectionPrecision::Single);
+    EXPECT_EQ(s.unsteady.liveTolerance, 1e-3);
+    EXPECT_EQ(s.unsteady.settings.projection.relativeTolerance, 1e-5);  // gale solve's
+}
+
+TEST(UnsteadyScene, TheLiveWindProjectsToTheLiveTolerance) {
+    // gale view and the live benches step what limitUnsteadyStepToAFrame leaves: the
+    // projection at unsteady.live_tolerance, a step of at most one frame.
+    Scene s = parseSceneString(std::string(BASE) + "[unsteady]\ntolerance = 1e-6\n" +
+                                   "live_tolerance = 2e-3\n[output]\nfps = 20\n",
+                               "scene.toml");
+    EXPECT_EQ(s.unsteady.settings.projection.relativeTolerance, 1e-6);
+    limitUnsteadyStepToAFrame(s);
+    EXPECT_EQ(s.unsteady.settings.projection.relativeTolerance, 2e-3);
+    EXPECT_EQ(s.unsteady.settings.maxDt_s, 1.0 / 20);
+}
+
+TEST(UnsteadyScene, PrecisionAndLiveToleranceAreRead) {
+    const Scene s = parseSceneString(
+        std::string(BASE) + "[unsteady]\nprecision = \"double\"\nlive_tolerance = 1e-4\n",
+        "scene.toml");
+    EXPECT_EQ(s.unsteady.settings.precision, sim::AdvectionPrecision::Double);
+    EXPECT_EQ(s.unsteady.liveTolerance, 1e-4);
 }
 
 TEST(UnsteadyScene, SurfaceLayerAndMomentumModelAcceptStretchedLayers) {
@@ -53,6 +77,10 @@ TEST(UnsteadyScene, BadKeysNameFileLineAndKey) {
     EXPECT_NE(m.find("not both"), std::string::npos) << m;
     m = errorOf(std::string(BASE) + "[unsteady]\nadvection = \"rk4\"\n");
     EXPECT_NE(m.find("unsteady.advection"), std::string::npos) << m;
+    m = errorOf(std::string(BASE) + "[unsteady]\nprecision = \"half\"\n");
+    EXPECT_NE(m.find("scene.toml:5: unsteady.precision"), std::string::npos) << m;
+    m = errorOf(std::string(BASE) + "[unsteady]\nlive_tolerance = 0.9\n");
+    EXPECT_NE(m.find("scene.toml:5: unsteady.live_tolerance"), std::string::npos) << m;
     m = errorOf(std::string(BASE) + "[[wind.gusts]]\nenvelope = \"square\"\n");
     EXPECT_NE(m.find("wind.gusts[0].envelope"), std::string::npos) << m;
     m = errorOf(std::string(BASE) + "[[wind.gusts]]\npeak = 3\n");
