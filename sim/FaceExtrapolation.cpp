@@ -10,10 +10,22 @@ void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid0
                       const GridIndex& g, Placement pl, int layers) {
     const auto n = g.dims(pl);
     const int n0 = n[0], n1 = n[1], n2 = n[2];
+    // Only the levels k that hold a closed face change (filling reads its neighbours but writes
+    // only closed faces); over terrain they are the lowest few, so the rest are skipped.
+    std::vector<uint8_t> holdsClosed(size_t(n2), 0);
+    tbb::parallel_for(0, n2, [&](int k) {
+        const size_t begin = g.index(pl, 0, 0, k), end = begin + size_t(n0) * size_t(n1);
+        for (size_t p = begin; p < end; ++p)
+            if (!valid0[p]) {
+                holdsClosed[size_t(k)] = 1;
+                break;
+            }
+    });
     std::vector<uint8_t> valid = valid0, next;
     for (int layer = 0; layer < layers; ++layer) {
         next = valid;
         tbb::parallel_for(0, n2, [&](int k) {
+            if (!holdsClosed[size_t(k)]) return;
             for (int j = 0; j < n1; ++j)
                 for (int i = 0; i < n0; ++i) {
                     const size_t p = g.index(pl, i, j, k);
@@ -32,8 +44,12 @@ void extrapolateFaces(std::vector<double>& a, const std::vector<uint8_t>& valid0
         });
         valid.swap(next);
     }
-    for (size_t p = 0; p < a.size(); ++p)
-        if (!valid[p]) a[p] = 0.0;
+    for (int k = 0; k < n2; ++k) {
+        if (!holdsClosed[size_t(k)]) continue;
+        const size_t begin = g.index(pl, 0, 0, k), end = begin + size_t(n0) * size_t(n1);
+        for (size_t p = begin; p < end; ++p)
+            if (!valid[p]) a[p] = 0.0;
+    }
 }
 
 }  // namespace gale::sim::detail
