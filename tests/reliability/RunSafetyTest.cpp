@@ -175,9 +175,13 @@ TEST(Signals, SigtermOrSighupDuringASteadySolveWritesNothingAndSaysWhere) {
         const RunResult r = child.wait(STOP_TIMEOUT_S);
         ASSERT_FALSE(r.timedOut) << r.describe();
         EXPECT_EQ(r.exitCode, 128 + sig) << r.describe();
-        EXPECT_NE(r.err.find(std::string("interrupted (SIG") + sigabbrev_np(sig) +
-                             ") while solving: nothing written"),
-                  std::string::npos)
+        // "solving..." is printed before the air domain is built, and on a loaded machine the
+        // signal can land in that phase (seen in CI): either place is a steady solve's, and the
+        // message must name the one it was.
+        const std::string said = std::string("interrupted (SIG") + sigabbrev_np(sig) + ") while ";
+        EXPECT_TRUE(r.err.find(said + "solving: nothing written") != std::string::npos ||
+                    r.err.find(said + "building the air domain: nothing written") !=
+                        std::string::npos)
             << r.err;
         EXPECT_TRUE(listTree(cwd / "field").empty()) << describeTree(listTree(cwd / "field"));
     }
