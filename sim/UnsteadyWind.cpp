@@ -1,5 +1,7 @@
 /// \file UnsteadyWind.cpp
-/// Operator-split incompressible steps on the MAC grid (Stam 1999; projection as SteadyWind.cpp).
+/// Operator-split incompressible steps on the MAC grid (Stam 1999; projection as SteadyWind.cpp):
+/// set-up, the far field, forcing and the step itself. The projection is in
+/// UnsteadyProjection.cpp, the step's field diagnostics in UnsteadyDiagnostics.cpp.
 #include "sim/UnsteadyWind.h"
 
 #include <tbb/parallel_for.h>
@@ -8,13 +10,11 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
-#include "sim/FaceExtrapolation.h"
 #include "sim/Format.h"
 #include "sim/MomentumAdvection.h"
 #include "sim/SteadyWind.h"
@@ -31,8 +31,6 @@ double since(Clock::time_point t) {
 
 using detail::num;
 
-/// Layers of closed faces refilled from their neighbours after each projection (as SteadyWind).
-constexpr int EXTRAPOLATION_LAYERS = SteadyWindSolver::EXTRAPOLATION_LAYERS;
 /// Smallest whirlwind forcing time scale, in steps: relaxing faster than one step over-shoots.
 constexpr double MIN_FORCING_STEPS = 1.0;
 /// Forcing and circulation are measured on a ring of this many core radii (at least 2 cells).
@@ -80,21 +78,6 @@ double cellRate_ps(const GridLayout& g, const std::vector<double>& U, const std:
     rate /= g.voxelSize_m;
     for (double r : vertical) rate = std::max(rate, r);
     return rate;
-}
-
-/// f(k) for every k in [0, n), in parallel, the answers in k order: a reduction over them in
-/// that order gives the serial loop's answer whatever the threads did.
-template <class F>
-std::vector<double> perLayer(int n, const F& f) {
-    std::vector<double> r(size_t(std::max(n, 0)));
-    tbb::parallel_for(0, n, [&](int k) { r[size_t(k)] = f(k); });
-    return r;
-}
-
-/// The larger of a and b, NaN if either is NaN (a field that blew up is never hidden).
-double maxKeepingNaN(double a, double b) {
-    if (std::isnan(a) || std::isnan(b)) return std::numeric_limits<double>::quiet_NaN();
-    return a > b ? a : b;
 }
 
 }  // namespace
@@ -207,22 +190,6 @@ Vec3d UnsteadyWindSolver::farField_mps(const Vec3d& ws, double t) const {
     return m;
 }
 
-double UnsteadyWindSolver::maxSpeed_mps() const {
-    const std::vector<double> layers = perLayer(mGrid.nz, [&](int k) {
-        double m = 0.0;
-        for (int j = 0; j < mGrid.ny; ++j)
-            for (int i = 0; i < mGrid.nx; ++i) {
-                if (!mDomain.isAir(i, j, k)) continue;
-                const auto c = mField.cellVelocity_mps(i, j, k);
-                m = maxKeepingNaN(m, std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
-            }
-        return m;
-    });
-    double m = 0.0;
-    for (double x : layers) m = maxKeepingNaN(m, x);
-    return m;
-}
-
 double UnsteadyWindSolver::cellRate_ps() const {
     const double own = sim::cellRate_ps(mGrid, mField.u_mps(), mField.v_mps(), mField.w_mps());
     return std::isfinite(own) ? std::max(own, mFarRate_ps) : own;
@@ -235,59 +202,9 @@ double UnsteadyWindSolver::nextDt_s() const {
     return std::min(mSettings.maxDt_s, mSettings.cfl / rate);
 }
 
-double UnsteadyWindSolver::kineticEnergy_m5ps2() const {
-    const double h = mGrid.voxelSize_m;
-    double e = 0.0;
-    const std::vector<double>* a[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
-    const std::vector<float>* th[3] = {&mDomain.openFractionsX(), &mDomain.openFractionsY(),
-                                       &mDomain.openFractionsZ()};
-    for (int c = 0; c < 3; ++c) {
-        const Placement p = Placement(c);
-        // Each layer's sum in parallel, the layers added in order: the serial loop's answer.
-        const std::vector<double> layers = perLayer(mGrid.dims(p)[2], [&](int k) {
-            double layer = 0.0;
-            for (size_t f = mGrid.index(p, 0, 0, k); f < mGrid.index(p, 0, 0, k + 1); ++f)
-                layer += double((*th[c])[f]) * (*a[c])[f] * (*a[c])[f];
-            return layer;
-        });
-        for (int k = 0; k < mGrid.dims(p)[2]; ++k) {
-            // The face's control volume: h^2 times its layer (x, y) or the centre gap (z).
-            const double volume = h * h * (c == 2 ? mGrid.centreGap_m(k) : mGrid.dz_m(k));
-            e += layers[size_t(k)] * volume;
-        }
-    }
-    return 0.5 * e;
-}
-
-double UnsteadyWindSolver::maxDivergenceScaled() const {
-    const auto &U = mField.u_mps(), &V = mField.v_mps(), &W = mField.w_mps();
-    const std::vector<double> layers = perLayer(mGrid.nz, [&](int k) {
-        double m = 0.0;
-        for (int j = 0; j < mGrid.ny; ++j)
-            for (int i = 0; i < mGrid.nx; ++i)
-                if (mDomain.isAir(i, j, k))
-                    m = maxKeepingNaN(m, std::abs(mDomain.openOutflux(U, V, W, i, j, k)));
-        return m;
-    });
-    double maxDiv = 0.0;
-    for (double x : layers) maxDiv = maxKeepingNaN(maxDiv, x);
-    return maxDiv / mRefSpeed_mps;
-}
-
 const std::vector<double>& UnsteadyWindSolver::turbulentKineticEnergy_m2ps2() const {
     static const std::vector<double> none;
     return mStress ? mStress->turbulentKineticEnergy_m2ps2() : none;
-}
-
-void UnsteadyWindSolver::extrapolateClosedFaces() {
-    detail::extrapolateFaces(mField.u_mps(), mOkX, mGrid, Placement::FaceX, EXTRAPOLATION_LAYERS);
-    detail::extrapolateFaces(mField.v_mps(), mOkY, mGrid, Placement::FaceY, EXTRAPOLATION_LAYERS);
-    if (mDomain.closedSidesY())  // free-slip walls: nothing flows through them
-        for (int k = 0; k < mGrid.nz; ++k)
-            for (int i = 0; i < mGrid.nx; ++i)
-                mField.v_mps()[mGrid.faceYIndex(i, 0, k)] =
-                    mField.v_mps()[mGrid.faceYIndex(i, mGrid.ny, k)] = 0.0;
-    detail::extrapolateFaces(mField.w_mps(), mOkZ, mGrid, Placement::FaceZ, EXTRAPOLATION_LAYERS);
 }
 
 void UnsteadyWindSolver::resetState(const WindField& state) {
@@ -299,111 +216,6 @@ void UnsteadyWindSolver::resetState(const WindField& state) {
             "domain");
     mField.u_mps() = state.u_mps(), mField.v_mps() = state.v_mps(), mField.w_mps() = state.w_mps();
     extrapolateClosedFaces();
-}
-
-SolveReport UnsteadyWindSolver::project() { return project(mSettings.projection); }
-
-SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {
-    return project(settings, 0.0);
-}
-
-SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double dt) {
-    const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
-    const double h = mGrid.voxelSize_m;
-    const auto o = mGrid.wsMin_m;
-    const PoissonSystem& S = mSystem;
-    std::vector<double>&U = mField.u_mps(), &V = mField.v_mps(), &W = mField.w_mps();
-    auto air = [&](int i, int j, int k) { return mDomain.isAir(i, j, k); };
-    // The potential on the open boundaries: -dt p / rho of the given pressure, else 0.
-    const auto& pressure = mSettings.boundaryPressure_m2ps2;
-    const bool data = pressure && dt > 0.0;
-    auto g = [&](double x, double y, double z) { return data ? -dt * pressure({x, y, z}) : 0.0; };
-    const std::vector<float>&thX = mDomain.openFractionsX(), &thY = mDomain.openFractionsY(),
-          &thZ = mDomain.openFractionsZ();
-    // Right-hand side: h times the outward open flux plus the boundary data, with the factor 2 of
-    // a boundary value half a cell from the centre, as SteadyWind.cpp assembles it.
-    std::vector<double> rhs(S.cellCount(), 0.0);
-    tbb::parallel_for(0, nz, [&](int k) {
-        const double zc = mGrid.zCentre_m(k), side = mGrid.dz_m(k) / h;
-        for (int j = 0; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) {
-                if (!air(i, j, k)) continue;
-                double b = h * mDomain.openOutflux(U, V, W, i, j, k);
-                if (data) {
-                    const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h;
-                    if (i == 0) b += 2.0 * side * thX[S.faceXIndex(0, j, k)] * g(o[0], yc, zc);
-                    if (i == nx - 1)
-                        b += 2.0 * side * thX[S.faceXIndex(nx, j, k)] * g(o[0] + nx * h, yc, zc);
-                    if (j == 0) b += 2.0 * side * thY[S.faceYIndex(i, 0, k)] * g(xc, o[1], zc);
-                    if (j == ny - 1)
-                        b += 2.0 * side * thY[S.faceYIndex(i, ny, k)] * g(xc, o[1] + ny * h, zc);
-                    if (k == nz - 1 && mSettings.openTop)
-                        b += 2.0 * (h / mGrid.dz_m(k)) * thZ[S.faceZIndex(i, j, nz)] *
-                             g(xc, yc, mGrid.wsTop_m());
-                }
-                rhs[S.cellIndex(i, j, k)] = b;
-            }
-    });
-    // Warm start. A step's potential is psi = -dt p / rho (Chorin 1968), and p moves smoothly
-    // with the flow, so the guess is -dt times p extrapolated linearly from the last two
-    // steps' (what the last step left, after two steps). Projections outside a step (a source
-    // dropped in, a reset) are no pressure: they start the history again.
-    const bool history = dt > 0.0 && !mSettings.incrementalPressure;
-    if (history && mPressureSteps == 2) {
-        tbb::parallel_for(size_t(0), mPsi.size(), [&](size_t c) {
-            mPsi[c] = -dt * (2.0 * mPressureLast[c] - mPressureBefore[c]);
-        });
-    }
-    SolveReport rep = mPoisson.solve(rhs, mPsi, settings);
-    if (history) {
-        std::swap(mPressureBefore, mPressureLast);
-        mPressureLast.resize(mPsi.size());
-        for (size_t c = 0; c < mPsi.size(); ++c) mPressureLast[c] = -mPsi[c] / dt;
-        mPressureSteps = std::min(mPressureSteps + 1, 2);
-    } else {
-        mPressureSteps = 0;
-    }
-    const std::vector<double>& psi = mPsi;
-    auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
-    tbb::parallel_for(0, nz, [&](int k) {
-        const double zc = mGrid.zCentre_m(k);
-        for (int j = 0; j < ny; ++j) {
-            const double yc = o[1] + (j + 0.5) * h;
-            for (int i = 0; i <= nx; ++i) {
-                const size_t f = S.faceXIndex(i, j, k);
-                if (!mOkX[f]) continue;
-                U[f] += (i == 0    ? 2.0 * (P(0, j, k) - g(o[0], yc, zc))
-                         : i == nx ? 2.0 * (g(o[0] + nx * h, yc, zc) - P(nx - 1, j, k))
-                                   : P(i, j, k) - P(i - 1, j, k)) /
-                        h;
-            }
-        }
-        for (int j = 0; j <= ny; ++j)
-            for (int i = 0; i < nx; ++i) {
-                const size_t f = S.faceYIndex(i, j, k);
-                if (!mOkY[f]) continue;
-                const double xc = o[0] + (i + 0.5) * h;
-                V[f] += (j == 0    ? 2.0 * (P(i, 0, k) - g(xc, o[1], zc))
-                         : j == ny ? 2.0 * (g(xc, o[1] + ny * h, zc) - P(i, ny - 1, k))
-                                   : P(i, j, k) - P(i, j - 1, k)) /
-                        h;
-            }
-    });
-    tbb::parallel_for(0, nz + 1, [&](int k) {
-        const double gap = mGrid.centreGap_m(k);  // h on cubic cells
-        for (int j = 0; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) {
-                const size_t f = S.faceZIndex(i, j, k);
-                if (!mOkZ[f]) continue;
-                const double top =
-                    k == nz ? g(o[0] + (i + 0.5) * h, o[1] + (j + 0.5) * h, mGrid.wsTop_m()) : 0.0;
-                W[f] +=
-                    (k == nz ? 2.0 * (top - P(i, j, nz - 1)) : P(i, j, k) - P(i, j, k - 1)) / gap;
-            }
-    });
-    extrapolateClosedFaces();
-    if (!mSettings.openTop) closeLid();  // extrapolation must not reopen it
-    return rep;
 }
 
 std::array<double, 2> UnsteadyWindSolver::regionCentre_m(const GustEvent& g, double t) const {
@@ -460,16 +272,6 @@ void UnsteadyWindSolver::applyRegionGusts(double t, double dt) {
             });
         }
     }
-}
-
-void UnsteadyWindSolver::closeLid() {
-    std::vector<double>& W = mField.w_mps();
-    const auto& lid = mSettings.lidVelocity_mps;
-    const double h = mGrid.voxelSize_m;
-    for (int j = 0; j < mGrid.ny; ++j)
-        for (int i = 0; i < mGrid.nx; ++i)
-            W[mSystem.faceZIndex(i, j, mGrid.nz)] =
-                lid ? lid(mGrid.wsMin_m[0] + (i + 0.5) * h, mGrid.wsMin_m[1] + (j + 0.5) * h) : 0.0;
 }
 
 void UnsteadyWindSolver::seedDue(double t0, double t1) {

@@ -1,0 +1,147 @@
+/// \file UnsteadyProjection.cpp
+/// The unsteady solver's projection (UnsteadyWind.h, step 5): the right-hand side from the open
+/// fluxes and the boundary pressure, the MGPCG solve warm-started from the pressure of the last
+/// two steps, the gradient update, the closed faces refilled and the lid closed again.
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "sim/FaceExtrapolation.h"
+#include "sim/SteadyWind.h"
+#include "sim/UnsteadyWind.h"
+
+namespace gale::sim {
+
+namespace {
+/// Layers of closed faces refilled from their neighbours after each projection (as SteadyWind).
+constexpr int EXTRAPOLATION_LAYERS = SteadyWindSolver::EXTRAPOLATION_LAYERS;
+}  // namespace
+
+void UnsteadyWindSolver::extrapolateClosedFaces() {
+    detail::extrapolateFaces(mField.u_mps(), mOkX, mGrid, Placement::FaceX, EXTRAPOLATION_LAYERS);
+    detail::extrapolateFaces(mField.v_mps(), mOkY, mGrid, Placement::FaceY, EXTRAPOLATION_LAYERS);
+    if (mDomain.closedSidesY())  // free-slip walls: nothing flows through them
+        for (int k = 0; k < mGrid.nz; ++k)
+            for (int i = 0; i < mGrid.nx; ++i)
+                mField.v_mps()[mGrid.faceYIndex(i, 0, k)] =
+                    mField.v_mps()[mGrid.faceYIndex(i, mGrid.ny, k)] = 0.0;
+    detail::extrapolateFaces(mField.w_mps(), mOkZ, mGrid, Placement::FaceZ, EXTRAPOLATION_LAYERS);
+}
+
+SolveReport UnsteadyWindSolver::project() { return project(mSettings.projection); }
+
+SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {
+    return project(settings, 0.0);
+}
+
+SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double dt) {
+    const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
+    const double h = mGrid.voxelSize_m;
+    const auto o = mGrid.wsMin_m;
+    const PoissonSystem& S = mSystem;
+    std::vector<double>&U = mField.u_mps(), &V = mField.v_mps(), &W = mField.w_mps();
+    auto air = [&](int i, int j, int k) { return mDomain.isAir(i, j, k); };
+    // The potential on the open boundaries: -dt p / rho of the given pressure, else 0.
+    const auto& pressure = mSettings.boundaryPressure_m2ps2;
+    const bool data = pressure && dt > 0.0;
+    auto g = [&](double x, double y, double z) { return data ? -dt * pressure({x, y, z}) : 0.0; };
+    const std::vector<float>&thX = mDomain.openFractionsX(), &thY = mDomain.openFractionsY(),
+          &thZ = mDomain.openFractionsZ();
+    // Right-hand side: h times the outward open flux plus the boundary data, with the factor 2 of
+    // a boundary value half a cell from the centre, as SteadyWind.cpp assembles it.
+    std::vector<double> rhs(S.cellCount(), 0.0);
+    tbb::parallel_for(0, nz, [&](int k) {
+        const double zc = mGrid.zCentre_m(k), side = mGrid.dz_m(k) / h;
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                if (!air(i, j, k)) continue;
+                double b = h * mDomain.openOutflux(U, V, W, i, j, k);
+                if (data) {
+                    const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h;
+                    if (i == 0) b += 2.0 * side * thX[S.faceXIndex(0, j, k)] * g(o[0], yc, zc);
+                    if (i == nx - 1)
+                        b += 2.0 * side * thX[S.faceXIndex(nx, j, k)] * g(o[0] + nx * h, yc, zc);
+                    if (j == 0) b += 2.0 * side * thY[S.faceYIndex(i, 0, k)] * g(xc, o[1], zc);
+                    if (j == ny - 1)
+                        b += 2.0 * side * thY[S.faceYIndex(i, ny, k)] * g(xc, o[1] + ny * h, zc);
+                    if (k == nz - 1 && mSettings.openTop)
+                        b += 2.0 * (h / mGrid.dz_m(k)) * thZ[S.faceZIndex(i, j, nz)] *
+                             g(xc, yc, mGrid.wsTop_m());
+                }
+                rhs[S.cellIndex(i, j, k)] = b;
+            }
+    });
+    // Warm start. A step's potential is psi = -dt p / rho (Chorin 1968), and p moves smoothly
+    // with the flow, so the guess is -dt times p extrapolated linearly from the last two
+    // steps' (what the last step left, after two steps). Projections outside a step (a source
+    // dropped in, a reset) are no pressure: they start the history again.
+    const bool history = dt > 0.0 && !mSettings.incrementalPressure;
+    if (history && mPressureSteps == 2) {
+        tbb::parallel_for(size_t(0), mPsi.size(), [&](size_t c) {
+            mPsi[c] = -dt * (2.0 * mPressureLast[c] - mPressureBefore[c]);
+        });
+    }
+    SolveReport rep = mPoisson.solve(rhs, mPsi, settings);
+    if (history) {
+        std::swap(mPressureBefore, mPressureLast);
+        mPressureLast.resize(mPsi.size());
+        for (size_t c = 0; c < mPsi.size(); ++c) mPressureLast[c] = -mPsi[c] / dt;
+        mPressureSteps = std::min(mPressureSteps + 1, 2);
+    } else {
+        mPressureSteps = 0;
+    }
+    const std::vector<double>& psi = mPsi;
+    auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
+    tbb::parallel_for(0, nz, [&](int k) {
+        const double zc = mGrid.zCentre_m(k);
+        for (int j = 0; j < ny; ++j) {
+            const double yc = o[1] + (j + 0.5) * h;
+            for (int i = 0; i <= nx; ++i) {
+                const size_t f = S.faceXIndex(i, j, k);
+                if (!mOkX[f]) continue;
+                U[f] += (i == 0    ? 2.0 * (P(0, j, k) - g(o[0], yc, zc))
+                         : i == nx ? 2.0 * (g(o[0] + nx * h, yc, zc) - P(nx - 1, j, k))
+                                   : P(i, j, k) - P(i - 1, j, k)) /
+                        h;
+            }
+        }
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const size_t f = S.faceYIndex(i, j, k);
+                if (!mOkY[f]) continue;
+                const double xc = o[0] + (i + 0.5) * h;
+                V[f] += (j == 0    ? 2.0 * (P(i, 0, k) - g(xc, o[1], zc))
+                         : j == ny ? 2.0 * (g(xc, o[1] + ny * h, zc) - P(i, ny - 1, k))
+                                   : P(i, j, k) - P(i, j - 1, k)) /
+                        h;
+            }
+    });
+    tbb::parallel_for(0, nz + 1, [&](int k) {
+        const double gap = mGrid.centreGap_m(k);  // h on cubic cells
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const size_t f = S.faceZIndex(i, j, k);
+                if (!mOkZ[f]) continue;
+                const double top =
+                    k == nz ? g(o[0] + (i + 0.5) * h, o[1] + (j + 0.5) * h, mGrid.wsTop_m()) : 0.0;
+                W[f] +=
+                    (k == nz ? 2.0 * (top - P(i, j, nz - 1)) : P(i, j, k) - P(i, j, k - 1)) / gap;
+            }
+    });
+    extrapolateClosedFaces();
+    if (!mSettings.openTop) closeLid();  // extrapolation must not reopen it
+    return rep;
+}
+
+void UnsteadyWindSolver::closeLid() {
+    std::vector<double>& W = mField.w_mps();
+    const auto& lid = mSettings.lidVelocity_mps;
+    const double h = mGrid.voxelSize_m;
+    for (int j = 0; j < mGrid.ny; ++j)
+        for (int i = 0; i < mGrid.nx; ++i)
+            W[mSystem.faceZIndex(i, j, mGrid.nz)] =
+                lid ? lid(mGrid.wsMin_m[0] + (i + 0.5) * h, mGrid.wsMin_m[1] + (j + 0.5) * h) : 0.0;
+}
+
+}  // namespace gale::sim
