@@ -348,7 +348,8 @@ StepReport UnsteadyWindSolver::step(double dt) {
         const std::vector<double> u0 = mField.u_mps(), v0 = mField.v_mps(), w0 = mField.w_mps();
         MacVelocity vel{&u0, &v0, &w0};
         std::vector<float> uf, vf, wf;  // rounded once for the three components
-        if (mSettings.precision == AdvectionPrecision::Single && !mSettings.eulerianAdvection) {
+        if (mSettings.precision == AdvectionPrecision::Single && !mSettings.eulerianAdvection &&
+            UniformLattice::usable(mGrid)) {  // the rows run on cubic cells only
             uf.assign(u0.begin(), u0.end()), vf.assign(v0.begin(), v0.end()),
                 wf.assign(w0.begin(), w0.end());
             vel.uSingle = &uf, vel.vSingle = &vf, vel.wSingle = &wf;
