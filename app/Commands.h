@@ -61,7 +61,7 @@ struct ViewOptions {
 /// at most one output frame (1 / output.fps), so that wind dropped into the flow shows in the
 /// grass at the next frame instead of after a long step (calm air steps up to max_dt_s). A fixed
 /// unsteady.dt_s is kept. The projection stops at unsteady.live_tolerance instead of
-/// unsteady.tolerance. Other scenes are left as they are.
+/// unsteady.tolerance, or after unsteady.live_iterations. Other scenes are left as they are.
 void limitUnsteadyStepToAFrame(Scene& scene);
 /// The CPU policy when the wind is stepped live beside the renderer (docs/unsteady.md, "Two
 /// jobs on two cores"): llvmpipe's rasteriser threads take half the cores (LP_NUM_THREADS, at

@@ -223,10 +223,11 @@ void addStability(CLI::App& bench, VerbTable& verbs) {
 /// A scene's unsteady solver as `gale view` builds it (the step limited to an output frame), for
 /// `gale bench unsteady --live`; a non-empty `advection` (a scheme's name) replaces the scene's
 /// unsteady.advection, a non-empty `precision` its unsteady.precision, a `tolerance` > 0 its
-/// unsteady.tolerance. Throws what scene loading throws, and std::invalid_argument (exit 2,
-/// naming FILE:LINE of wind.kind) when the scene's wind is not unsteady.
+/// unsteady.tolerance, `iterations` > 0 its unsteady.live_iterations. Throws what scene loading
+/// throws, and std::invalid_argument (exit 2, naming FILE:LINE of wind.kind) when the scene's
+/// wind is not unsteady.
 LiveStepScene loadLiveStepScene(const std::string& path, const std::string& advection,
-                                const std::string& precision, double tolerance) {
+                                const std::string& precision, double tolerance, int iterations) {
     struct Owned {
         Scene scene;
         BuiltScene built;
@@ -245,6 +246,7 @@ LiveStepScene loadLiveStepScene(const std::string& path, const std::string& adve
     if (!precision.empty())
         owned->scene.unsteady.settings.precision = sim::advectionPrecisionFromName(precision);
     if (tolerance > 0.0) owned->scene.unsteady.settings.projection.relativeTolerance = tolerance;
+    if (iterations > 0) owned->scene.unsteady.settings.projection.maxIterations = iterations;
     BuildOptions build;
     build.progress = [](const std::string& text) {
         std::fprintf(stderr, "gale: %s\n", text.c_str());
@@ -257,6 +259,7 @@ LiveStepScene loadLiveStepScene(const std::string& path, const std::string& adve
     if (!advection.empty()) name += " (" + advection + ")";
     if (!precision.empty()) name += " (" + precision + ")";
     if (tolerance > 0.0) name += " (tol " + std::to_string(tolerance).substr(0, 8) + ")";
+    if (iterations > 0) name += " (its " + std::to_string(iterations) + ")";
     return {name, &unsteady->solver(), owned};
 }
 
@@ -271,7 +274,8 @@ void addUnsteady(CLI::App& bench, VerbTable& verbs) {
             if (live->scenes.empty()) return runBenchUnsteady(options);
             live->jsonPath = options.jsonPath;
             live->loader = [live](const std::string& path) {
-                return loadLiveStepScene(path, live->advection, live->precision, live->tolerance);
+                return loadLiveStepScene(path, live->advection, live->precision, live->tolerance,
+                                         live->iterations);
             };
             return runBenchLiveStep(*live);
         });
@@ -293,6 +297,10 @@ void addUnsteady(CLI::App& bench, VerbTable& verbs) {
                      "With --live: the projection's tolerance instead of the scene's "
                      "unsteady.tolerance")
         ->check(CLI::Range(1e-12, 0.5));
+    verb->add_option("--iterations", live->iterations,
+                     "With --live: the projection's budget (MGPCG iterations a step) instead of "
+                     "the scene's unsteady.live_iterations")
+        ->check(CLI::Range(1, 1000));
     verb->add_option("--steps", live->steps, "Timed steps per --live scene")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));

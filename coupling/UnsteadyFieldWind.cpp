@@ -45,6 +45,8 @@ void UnsteadyFieldWind::advanceTo(double t_s, const std::function<bool()>& stop)
         mStats.maxDivergenceScaled = std::max(mStats.maxDivergenceScaled, r.maxDivergenceScaled);
         mStats.maxProjectionIterations =
             std::max(mStats.maxProjectionIterations, r.projection.iterations);
+        mStats.maxProjectionResidual =
+            std::max(mStats.maxProjectionResidual, r.projection.relativeResidual);
         mStats.allConverged = mStats.allConverged && r.projection.converged;
         if (!r.finite) {
             // A non-finite field would freeze the grass with garbage; stop stepping and say so.
@@ -88,10 +90,11 @@ std::string UnsteadyFieldWind::stepReport() const {
     char buf[200];
     std::snprintf(
         buf, sizeof buf,
-        "%d step%s, <= %d projection its%s, CFL <= %.2f, div %.1e, %.0f ms solve + %.0f ms "
-        "sampling",
+        "%d step%s, <= %d projection its (residual <= %.1e%s), CFL <= %.2f, div %.1e, %.0f ms "
+        "solve + %.0f ms sampling",
         mLastUpdate.steps, mLastUpdate.steps == 1 ? "" : "s", mStats.maxProjectionIterations,
-        mStats.allConverged ? "" : " (NOT converged)", mStats.maxCfl, mStats.maxDivergenceScaled,
+        mStats.maxProjectionResidual, mStats.allConverged ? "" : ", at the budget",
+        mStats.maxCfl, mStats.maxDivergenceScaled,
         mLastUpdate.solve_s * 1e3, mLastUpdate.sampling_s * 1e3);
     return buf;
 }

@@ -31,6 +31,10 @@ struct UnsteadyRunStats {
     double maxCfl = 0;
     double maxDivergenceScaled = 0;
     int maxProjectionIterations = 0;
+    /// The largest relative residual a step's projection left (a live step that reaches
+    /// unsteady.live_iterations before the tolerance keeps its residual; the next step starts
+    /// from it).
+    double maxProjectionResidual = 0;
     bool allConverged = true;
     bool allFinite = true;
     double solve_s = 0;     ///< wall time inside the solver's steps

@@ -129,6 +129,59 @@ HWY_INLINE VF groundZ(const RowPassInput& in, VF X, VF Y) {
     return z * hn::Set(df, in.zScale) + hn::Set(df, in.zOffset);
 }
 
+/// Indices along one axis whose mean is a velocity component at a sample of the row: the
+/// trilinear weights at a lattice point are 0, 1/2 or 1, so the sample's own velocity is a mean of
+/// at most 2 x 2 x 2 stored values (lo == hi: one value). A component on this axis's faces, at a
+/// sample on a face (integer coordinate m), is face m; at a sample between faces (m + 0.5),
+/// faces m and m + 1. A component on the centres, at a sample between centres (on a face, m),
+/// is cells m - 1 and m clamped to [0, n - 1] (cellStencil's clamp); at a centre, cell m.
+struct AxisPair {
+    int lo, hi;
+};
+HWY_INLINE AxisPair axisPair(int m, bool sampleOnFace, bool componentOnFaces, int n) {
+    if (componentOnFaces) return sampleOnFace ? AxisPair{m, m} : AxisPair{m, m + 1};
+    if (!sampleOnFace) return {m, m};
+    return {m > 0 ? m - 1 : 0, m < n ? m : n - 1};
+}
+
+/// The mean of a component over the pairs, for the N lanes of a row from i0: x offsets relative to
+/// the lane's own index (contiguous loads), y and z pairs the same for every lane of the row.
+HWY_INLINE VF rowMean(const float* HWY_RESTRICT a, int sy, int sz, size_t i0, AxisPair x,
+                      AxisPair y, AxisPair z) {
+    const DF df;
+    const VF half = hn::Set(df, 0.5f);
+    auto alongX = [&](int jj, int kk) {
+        const float* r = a + size_t(kk) * size_t(sz) + size_t(jj) * size_t(sy) + i0;
+        return (hn::LoadU(df, r + x.lo) + hn::LoadU(df, r + x.hi)) * half;
+    };
+    const VF low = (alongX(y.lo, z.lo) + alongX(y.hi, z.lo)) * half;
+    const VF high = (alongX(y.lo, z.hi) + alongX(y.hi, z.hi)) * half;
+    return (low + high) * half;
+}
+
+/// The velocity at the samples of row (j, k) from lane i0 on, read by loads instead of gathers
+/// (the samples sit on the lattice, so the trilinear stencils collapse to means; velocity() gives
+/// the same up to rounding). Returns false, writing nothing, where a lane's x pair would need
+/// cellStencil's clamp (the row's first and last samples of x faces) or a load would leave the
+/// row: the caller then gathers.
+HWY_INLINE bool startByLoads(const RowPassInput& in, int p, int j, int k, size_t i0, size_t N,
+                             int nxp, VF& u, VF& v, VF& w) {
+    const int nx = in.n[0], ny = in.n[1], nz = in.n[2];
+    const bool onX = p == 0, onY = p == 1, onZ = p == 2;
+    if (i0 + N > size_t(nxp)) return false;  // a partial vector: loads would leave the row
+    // Lanes i in [i0, i0 + N): x pairs (offsets from i) of u and of v, w.
+    const AxisPair ux = onX ? AxisPair{0, 0} : AxisPair{0, 1};
+    const AxisPair cx = onX ? AxisPair{-1, 0} : AxisPair{0, 0};
+    if (onX && (i0 < 1 || i0 + N > size_t(nx))) return false;  // the clamped ends of v, w
+    u = rowMean(in.u, nx + 1, (nx + 1) * ny, i0, ux, axisPair(j, onY, false, ny),
+                axisPair(k, onZ, false, nz));
+    v = rowMean(in.v, nx, nx * (ny + 1), i0, cx, axisPair(j, onY, true, ny),
+                axisPair(k, onZ, false, nz));
+    w = rowMean(in.w, nx, nx * ny, i0, cx, axisPair(j, onY, false, ny),
+                axisPair(k, onZ, true, nz));
+    return true;
+}
+
 void RowPassImpl(const RowPassInput& in, int j, int k, double* HWY_RESTRICT out,
                  double* HWY_RESTRICT lo, double* HWY_RESTRICT hi, uint8_t* HWY_RESTRICT general) {
     const DF df;
@@ -158,7 +211,8 @@ void RowPassImpl(const RowPassInput& in, int j, int k, double* HWY_RESTRICT out,
             v0 = hn::LoadU(df, in.start + in.count + at);
             w0 = hn::LoadU(df, in.start + 2 * in.count + at);
         } else {
-            velocity(in, X0, Y0, Z0, u0, v0, w0);
+            if (!startByLoads(in, p, j, k, size_t(i0), N, nxp, u0, v0, w0))
+                velocity(in, X0, Y0, Z0, u0, v0, w0);
             if (in.recordStart) {
                 hn::Store(u0, df, startU);
                 hn::Store(v0, df, startV);
@@ -174,7 +228,11 @@ void RowPassImpl(const RowPassInput& in, int j, int k, double* HWY_RESTRICT out,
         velocity(in, Xm, Ym, Zm, um, vm, wm);
         const VF Xd = X0 - um * s, Yd = Y0 - vm * s, Zd = Z0 - wm * s;
         redo = hn::Or(redo, outside(in, Xd, Yd, Zd));
-        if (in.heights) redo = hn::Or(redo, hn::And(Zd < groundTop, Zd < groundZ(in, Xd, Yd)));
+        if (in.heights) {  // the terrain's gathers only for vectors with a lane low enough
+            const MF nearGround = Zd < groundTop;
+            if (!hn::AllFalse(df, nearGround))
+                redo = hn::Or(redo, hn::And(nearGround, Zd < groundZ(in, Xd, Yd)));
+        }
         // q at the departure: the face stencil along the placement's own axis.
         const Stencil sx = faceX ? faceStencil(Xd, in.n[0]) : cellStencil(Xd, in.n[0]);
         const Stencil sY = faceY ? faceStencil(Yd, in.n[1]) : cellStencil(Yd, in.n[1]);

@@ -43,6 +43,8 @@ struct LiveRow {
     double advection = 0, forcing = 0, viscosity = 0, projection = 0, other = 0;  ///< wall shares
     double projectionIterations = 0, viscosityIterations = 0;                     ///< per step
     double maxDivergence = 0;  ///< largest StepReport::maxDivergenceScaled of the timed steps
+    double maxResidual = 0;    ///< largest relative residual a step's projection left
+    double simulated_s = 0;    ///< simulated time of the timed steps
     double load = 0;
 };
 
@@ -62,6 +64,8 @@ LiveRow measure(const LiveStepScene& scene, int steps) {
         row.projectionIterations += r.projection.iterations;
         row.viscosityIterations += r.viscosityIterations;
         row.maxDivergence = std::max(row.maxDivergence, r.maxDivergenceScaled);
+        row.maxResidual = std::max(row.maxResidual, r.projection.relativeResidual);
+        row.simulated_s += r.dt_s;
     }
     row.cpu_ms = 1e3 * (processCpu_s() - cpu0_s) / steps;
     row.wall_ms = msSince(wall0) / steps;
@@ -83,9 +87,13 @@ int runBenchLiveStep(const BenchLiveStepOptions& opt) {
         "live-wind step (scene as gale view builds it; CPU ms: the process's CPU time per step, "
         "all threads; parts: the step's wall-time shares; target %.0f Hz = %.1f ms a step)\n",
         TARGET_STEP_HZ, 1e3 / TARGET_STEP_HZ);
-    std::printf("%-22s %-12s %5s %8s %8s %7s %7s %7s %7s %7s %7s %7s %8s %6s\n", "scene", "box",
-                "steps", "CPU ms", "wall ms", "advect", "force", "visc", "project", "other",
-                "p its", "v its", "max div", "load");
+    std::printf("(ms: the step's wall time and its parts; steps/s and sim/wall: steps and simulated "
+                "seconds per wall second; p its: projection iterations a step, max res: the largest "
+                "relative residual a projection left, max div: the largest scaled divergence)\n");
+    std::printf("%-22s %-12s %5s %8s %8s %7s %8s %7s %7s %7s %7s %7s %6s %6s %8s %8s %6s\n",
+                "scene", "box", "steps", "CPU ms", "wall ms", "steps/s", "sim/wall", "advect",
+                "force", "visc", "project", "other", "p its", "v its", "max res", "max div",
+                "load");
     nlohmann::json rows = nlohmann::json::array();
     for (const std::string& path : opt.scenes) {
         std::fprintf(stderr, "bench unsteady: live step, %s...\n", path.c_str());
@@ -93,12 +101,16 @@ int runBenchLiveStep(const BenchLiveStepOptions& opt) {
         const LiveRow r = measure(scene, opt.steps);
         const std::string box =
             std::to_string(r.nx) + "x" + std::to_string(r.ny) + "x" + std::to_string(r.nz);
+        const double stepsPerSecond = r.wall_ms > 0 ? 1e3 / r.wall_ms : 0.0;
+        const double simPerWall =
+            r.wall_ms > 0 ? r.simulated_s / (1e-3 * r.wall_ms * r.steps) : 0.0;
         std::printf(
-            "%-22s %-12s %5d %8.1f %8.1f %6.0f%% %6.0f%% %6.0f%% %6.0f%% %6.0f%% %7.1f "
-            "%7.1f %8.1e %6.1f\n",
-            r.name.c_str(), box.c_str(), r.steps, r.cpu_ms, r.wall_ms, 100 * r.advection,
-            100 * r.forcing, 100 * r.viscosity, 100 * r.projection, 100 * r.other,
-            r.projectionIterations, r.viscosityIterations, r.maxDivergence, r.load);
+            "%-22s %-12s %5d %8.1f %8.1f %7.1f %8.2f %7.1f %7.1f %7.1f %7.1f %7.1f %6.1f %6.1f "
+            "%8.1e %8.1e %6.1f\n",
+            r.name.c_str(), box.c_str(), r.steps, r.cpu_ms, r.wall_ms, stepsPerSecond, simPerWall,
+            r.advection * r.wall_ms, r.forcing * r.wall_ms, r.viscosity * r.wall_ms,
+            r.projection * r.wall_ms, r.other * r.wall_ms, r.projectionIterations,
+            r.viscosityIterations, r.maxResidual, r.maxDivergence, r.load);
         rows.push_back({{"scene", r.name},
                         {"box", {r.nx, r.ny, r.nz}},
                         {"steps", r.steps},
@@ -112,6 +124,9 @@ int runBenchLiveStep(const BenchLiveStepOptions& opt) {
                         {"projection_iterations", r.projectionIterations},
                         {"viscosity_iterations", r.viscosityIterations},
                         {"max_divergence_scaled", r.maxDivergence},
+                        {"max_projection_residual", r.maxResidual},
+                        {"steps_per_second", stepsPerSecond},
+                        {"simulated_per_wall_second", simPerWall},
                         {"load_average", r.load}});
     }
     if (!opt.jsonPath.empty()) {

@@ -30,6 +30,7 @@ struct BenchLiveStepOptions {
     std::string advection;  ///< a scheme's name replacing every scene's unsteady.advection, or ""
     std::string precision;  ///< "single"/"double" replacing every scene's unsteady.precision, or ""
     double tolerance = 0;   ///< > 0: replaces every scene's unsteady.tolerance
+    int iterations = 0;     ///< > 0: replaces every scene's unsteady.live_iterations
     std::string jsonPath;   ///< if set, the rows as JSON (atomically)
     /// Builds a scene (app/bench cannot read scenes itself); throws what scene loading throws.
     std::function<LiveStepScene(const std::string& path)> loader;

@@ -114,6 +114,11 @@ struct UnsteadySection {
     /// tolerance"), and each step projects again, so it does not build up; `gale solve` writes
     /// fields for analysis and keeps unsteady.tolerance.
     double liveTolerance = 1e-3;
+    /// The projection's budget when the wind runs live: at most this many MGPCG iterations (one
+    /// V-cycle each) a step, unsteady.live_iterations; a step that reaches it before the
+    /// tolerance keeps its residual, which the view's heads-up line and the bench report, and the
+    /// next step starts from it (docs/unsteady.md, "The projection sized to the step").
+    int liveIterations = 3;
     int64_t maxFiles = 10000;    ///< refuse runs planning more .vdb files (docs/reliability.md)
     int64_t maxSteps = 1000000;  ///< refuse runs planning more time steps
     /// Refuse runs whose .vdb files would total more (estimated), bytes; unsteady.max_output_gib.

@@ -38,6 +38,7 @@ TEST(UnsteadyScene, DefaultsApply) {
     EXPECT_EQ(s.unsteady.settings.gusts[0].duration_s, 4.0);
     EXPECT_EQ(s.unsteady.settings.precision, sim::AdvectionPrecision::Single);
     EXPECT_EQ(s.unsteady.liveTolerance, 1e-3);
+    EXPECT_EQ(s.unsteady.liveIterations, 3);
     EXPECT_EQ(s.unsteady.settings.projection.relativeTolerance, 1e-5);  // gale solve's
 }
 
@@ -45,11 +46,14 @@ TEST(UnsteadyScene, TheLiveWindProjectsToTheLiveTolerance) {
     // gale view and the live benches step what limitUnsteadyStepToAFrame leaves: the
     // projection at unsteady.live_tolerance, a step of at most one frame.
     Scene s = parseSceneString(std::string(BASE) + "[unsteady]\ntolerance = 1e-6\n" +
-                                   "live_tolerance = 2e-3\n[output]\nfps = 20\n",
+                                   "live_tolerance = 2e-3\nlive_iterations = 2\n" +
+                                   "max_iterations = 40\n[output]\nfps = 20\n",
                                "scene.toml");
     EXPECT_EQ(s.unsteady.settings.projection.relativeTolerance, 1e-6);
+    EXPECT_EQ(s.unsteady.settings.projection.maxIterations, 40);  // gale solve's budget
     limitUnsteadyStepToAFrame(s);
     EXPECT_EQ(s.unsteady.settings.projection.relativeTolerance, 2e-3);
+    EXPECT_EQ(s.unsteady.settings.projection.maxIterations, 2);  // the live budget
     EXPECT_EQ(s.unsteady.settings.maxDt_s, 1.0 / 20);
 }
 
@@ -81,6 +85,8 @@ TEST(UnsteadyScene, BadKeysNameFileLineAndKey) {
     EXPECT_NE(m.find("scene.toml:5: unsteady.precision"), std::string::npos) << m;
     m = errorOf(std::string(BASE) + "[unsteady]\nlive_tolerance = 0.9\n");
     EXPECT_NE(m.find("scene.toml:5: unsteady.live_tolerance"), std::string::npos) << m;
+    m = errorOf(std::string(BASE) + "[unsteady]\nlive_iterations = 0\n");
+    EXPECT_NE(m.find("scene.toml:5: unsteady.live_iterations"), std::string::npos) << m;
     m = errorOf(std::string(BASE) + "[[wind.gusts]]\nenvelope = \"square\"\n");
     EXPECT_NE(m.find("wind.gusts[0].envelope"), std::string::npos) << m;
     m = errorOf(std::string(BASE) + "[[wind.gusts]]\npeak = 3\n");
