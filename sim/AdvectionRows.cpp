@@ -177,8 +177,7 @@ HWY_INLINE bool startByLoads(const RowPassInput& in, int p, int j, int k, size_t
                 axisPair(k, onZ, false, nz));
     v = rowMean(in.v, nx, nx * (ny + 1), i0, cx, axisPair(j, onY, true, ny),
                 axisPair(k, onZ, false, nz));
-    w = rowMean(in.w, nx, nx * ny, i0, cx, axisPair(j, onY, false, ny),
-                axisPair(k, onZ, true, nz));
+    w = rowMean(in.w, nx, nx * ny, i0, cx, axisPair(j, onY, false, ny), axisPair(k, onZ, true, nz));
     return true;
 }
 

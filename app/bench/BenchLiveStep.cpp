@@ -87,9 +87,10 @@ int runBenchLiveStep(const BenchLiveStepOptions& opt) {
         "live-wind step (scene as gale view builds it; CPU ms: the process's CPU time per step, "
         "all threads; parts: the step's wall-time shares; target %.0f Hz = %.1f ms a step)\n",
         TARGET_STEP_HZ, 1e3 / TARGET_STEP_HZ);
-    std::printf("(ms: the step's wall time and its parts; steps/s and sim/wall: steps and simulated "
-                "seconds per wall second; p its: projection iterations a step, max res: the largest "
-                "relative residual a projection left, max div: the largest scaled divergence)\n");
+    std::printf(
+        "(ms: the step's wall time and its parts; steps/s and sim/wall: steps and simulated "
+        "seconds per wall second; p its: projection iterations a step, max res: the largest "
+        "relative residual a projection left, max div: the largest scaled divergence)\n");
     std::printf("%-22s %-12s %5s %8s %8s %7s %8s %7s %7s %7s %7s %7s %6s %6s %8s %8s %6s\n",
                 "scene", "box", "steps", "CPU ms", "wall ms", "steps/s", "sim/wall", "advect",
                 "force", "visc", "project", "other", "p its", "v its", "max res", "max div",

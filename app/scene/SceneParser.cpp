@@ -348,8 +348,7 @@ void readUnsteady(Context& ctx, Section s) {
     v.projection.maxIterations =
         static_cast<int>(s.integer("max_iterations", v.projection.maxIterations, 1, 100000));
     u.liveTolerance = s.number("live_tolerance", u.liveTolerance, above(0.0, 0.5));
-    u.liveIterations =
-        static_cast<int>(s.integer("live_iterations", u.liveIterations, 1, 1000));
+    u.liveIterations = static_cast<int>(s.integer("live_iterations", u.liveIterations, 1, 1000));
     u.outputEvery_s = s.number("output_every_s", u.outputEvery_s, above(0.0, 1e7));
     u.maxFiles = s.integer("max_files", u.maxFiles, 1, 100000000);
     u.maxSteps = s.integer("max_steps", u.maxSteps, 1, 1000000000000);
