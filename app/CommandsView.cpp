@@ -180,7 +180,7 @@ void limitUnsteadyStepToAFrame(Scene& scene) {
     if (scene.wind.kind == WindKind::Unsteady && !(u.dt_s > 0.0))
         u.maxDt_s = std::min(u.maxDt_s, 1.0 / scene.output.fps);
     u.projection.relativeTolerance = scene.unsteady.liveTolerance;
-    u.projection.maxIterations = int(scene.unsteady.liveIterations);
+    u.projection.maxIterations = scene.unsteady.liveIterations;
 }
 
 void shareCoresWithLiveWind() {

@@ -93,8 +93,9 @@ std::string UnsteadyFieldWind::stepReport() const {
         "%d step%s, <= %d projection its (residual <= %.1e%s), CFL <= %.2f, div %.1e, %.0f ms "
         "solve + %.0f ms sampling",
         mLastUpdate.steps, mLastUpdate.steps == 1 ? "" : "s", mStats.maxProjectionIterations,
-        mStats.maxProjectionResidual, mStats.allConverged ? "" : ", at the budget", mStats.maxCfl,
-        mStats.maxDivergenceScaled, mLastUpdate.solve_s * 1e3, mLastUpdate.sampling_s * 1e3);
+        mStats.maxProjectionResidual, mStats.allConverged ? "" : ", not all converged",
+        mStats.maxCfl, mStats.maxDivergenceScaled, mLastUpdate.solve_s * 1e3,
+        mLastUpdate.sampling_s * 1e3);
     return buf;
 }
 

@@ -85,7 +85,8 @@ LiveRow measure(const LiveStepScene& scene, int steps) {
 int runBenchLiveStep(const BenchLiveStepOptions& opt) {
     std::printf(
         "live-wind step (scene as gale view builds it; CPU ms: the process's CPU time per step, "
-        "all threads; parts: the step's wall-time shares; target %.0f Hz = %.1f ms a step)\n",
+        "all threads; parts: the step's wall time split by phase; target %.0f Hz = %.1f ms a "
+        "step)\n",
         TARGET_STEP_HZ, 1e3 / TARGET_STEP_HZ);
     std::printf(
         "(ms: the step's wall time and its parts; steps/s and sim/wall: steps and simulated "

@@ -117,7 +117,7 @@ struct UnsteadySection {
     /// The projection's budget when the wind runs live: at most this many MGPCG iterations (one
     /// V-cycle each) a step, unsteady.live_iterations; a step that reaches it before the
     /// tolerance keeps its residual, which the view's heads-up line and the bench report, and the
-    /// next step starts from it (docs/unsteady.md, "The projection sized to the step").
+    /// next step starts from it (docs/unsteady.md, "The step's start, the projection's budget").
     int liveIterations = 3;
     int64_t maxFiles = 10000;    ///< refuse runs planning more .vdb files (docs/reliability.md)
     int64_t maxSteps = 1000000;  ///< refuse runs planning more time steps
