@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 
@@ -277,10 +278,15 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
     if (lo) lo->resize(q.size()), hi->resize(q.size());
     const FaceVelocitySampler<Lattice> velocityWs(g, vel, far);
     tbb::parallel_for(0, n[2], [&](int k) {
-        for (int j = 0; j < n[1]; ++j)
+        for (int j = 0; j < n[1]; ++j) {
+            const size_t row = g.index(p, 0, j, k);
             for (int i = 0; i < n[0]; ++i) {
-                const size_t idx = g.index(p, i, j, k);
-                if (only && !only[idx]) continue;  // written by the row pass
+                if (only) {  // the row pass wrote the rest: jump to the next sample it flagged
+                    const void* next = std::memchr(only + row + i, 1, size_t(n[0] - i));
+                    if (!next) break;
+                    i = int(static_cast<const uint8_t*>(next) - (only + row));
+                }
+                const size_t idx = row + size_t(i);
                 if (mask && !(*mask)[idx]) {
                     out[idx] = q[idx];
                     if (lo) (*lo)[idx] = -HUGE_VAL, (*hi)[idx] = HUGE_VAL;
@@ -304,8 +310,51 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                     lo ? velocityWs.lattice.sample(p, q.data(), dep, &(*lo)[idx], &(*hi)[idx])
                        : velocityWs.lattice.sample(p, q.data(), dep, nullptr, nullptr);
             }
+        }
     });
 }
+
+/// Scratch of T kept between calls on one thread: a step advects three components of about one
+/// size, and fresh vectors would be zeroed and faulted in every time. A call that finds the
+/// thread's copy in use (a TBB thread that took another advection while it waited inside one)
+/// gets a fresh T of its own.
+template <class T>
+class ScratchLease {
+  public:
+    ScratchLease() : mShared(slot().busy ? nullptr : &slot()) {
+        if (mShared) mShared->busy = true;
+    }
+    ~ScratchLease() {
+        if (mShared) mShared->busy = false;
+    }
+    ScratchLease(const ScratchLease&) = delete;
+    ScratchLease& operator=(const ScratchLease&) = delete;
+    T& get() { return mShared ? mShared->value : mOwn; }
+
+  private:
+    struct Slot {
+        T value;
+        bool busy = false;
+    };
+    static Slot& slot() {
+        thread_local Slot s;
+        return s;
+    }
+    Slot* mShared;
+    T mOwn;
+};
+
+/// combinePasses' vectors: the forward and backward passes, the limiter's bounds, BFECC's
+/// corrected quantity.
+struct PassScratch {
+    std::vector<double> fwd, back, lo, hi, corrected;
+};
+
+/// advectSingle's vectors: the quantity in float, the recorded trace starts, the row pass's flags.
+struct RowScratch {
+    std::vector<float> qf, starts;
+    std::vector<uint8_t> general;
+};
 
 /// Which of a scheme's passes a pass is: its only one, the first of several (which may keep
 /// its trace starts for the others), or a later one.
@@ -320,7 +369,11 @@ void combinePasses(const std::vector<double>& q, double dt, AdvectionScheme sche
         pass(q, dt, out, nullptr, nullptr, PassRole::Only);
         return;
     }
-    std::vector<double> fwd, back, lo, hi;
+    // Kept between calls (ScratchLease): every pass writes all of them.
+    ScratchLease<PassScratch> lease;
+    PassScratch& scratch = lease.get();
+    std::vector<double>&fwd = scratch.fwd, &back = scratch.back, &lo = scratch.lo, &hi = scratch.hi,
+    &corrected = scratch.corrected;
     pass(q, dt, fwd, &lo, &hi, PassRole::First);
     pass(fwd, -dt, back, nullptr, nullptr, PassRole::Later);
     out.resize(q.size());
@@ -334,7 +387,7 @@ void combinePasses(const std::vector<double>& q, double dt, AdvectionScheme sche
     }
     // Kim et al. 2005: advect phi + (phi - phi_b) / 2 forward once more, limited by the
     // neighbours of the plain forward pass.
-    std::vector<double> corrected(q.size());
+    corrected.resize(q.size());
     tbb::parallel_for(size_t(0), q.size(),
                       [&](size_t idx) { corrected[idx] = q[idx] + 0.5 * (q[idx] - back[idx]); });
     pass(corrected, dt, out, nullptr, nullptr, PassRole::Later);
@@ -400,10 +453,14 @@ void advectSingle(const MacGrid& g, Placement p, const std::vector<double>& q,
         in.groundTop = float((groundTop - g.wsMin_m[2]) / h);
     }
     const auto d = g.dims(p);
-    std::vector<float> qf(q.size());
-    std::vector<uint8_t> general(q.size());
+    // Kept between calls (ScratchLease): the row pass writes every entry of `general` and of
+    // `starts` that is read, and each pass copies its quantity into qf whole.
+    ScratchLease<RowScratch> lease;
+    RowScratch& scratch = lease.get();
+    std::vector<float>&qf = scratch.qf, &starts = scratch.starts;
+    std::vector<uint8_t>& general = scratch.general;
+    qf.resize(q.size()), general.resize(q.size());
     // The velocity at the samples, kept by the first of several passes for the others.
-    std::vector<float> starts;
     if (scheme != AdvectionScheme::SemiLagrangian)
         starts.resize(3 * q.size() + detail::ROW_PASS_PADDING);
     combinePasses(q, dt, scheme, out,

@@ -309,4 +309,23 @@ size_t AirDomain::memory_bytes() const {
 
 openvdb::BoolGrid::ConstPtr airMaskGrid(const AirDomain& domain) { return domain.vdb().mask; }
 
+void AirDomain::openOutfluxRow(const std::vector<double>& U, const std::vector<double>& V,
+                               const std::vector<double>& W, int j, int k, double* out) const {
+    const GridLayout& g = mLayout;
+    const size_t x0 = g.faceXIndex(0, j, k), y0 = g.faceYIndex(0, j, k),
+                 y1 = g.faceYIndex(0, j + 1, k), z0 = g.faceZIndex(0, j, k),
+                 z1 = g.faceZIndex(0, j, k + 1);
+    const double *u = U.data() + x0, *v0 = V.data() + y0, *v1 = V.data() + y1, *w0 = W.data() + z0,
+                 *w1 = W.data() + z1;
+    const float *ox = mOpenX.data() + x0, *oy0 = mOpenY.data() + y0, *oy1 = mOpenY.data() + y1,
+                *oz0 = mOpenZ.data() + z0, *oz1 = mOpenZ.data() + z1;
+    const bool uniform = g.uniformZ();
+    const double side = uniform ? 1.0 : g.dz_m(k) / g.voxelSize_m;
+    for (int i = 0; i < g.nx; ++i) {
+        const double horizontal =
+            ox[i + 1] * u[i + 1] - ox[i] * u[i] + oy1[i] * v1[i] - oy0[i] * v0[i];
+        out[i] = (uniform ? horizontal : horizontal * side) + oz1[i] * w1[i] - oz0[i] * w0[i];
+    }
+}
+
 }  // namespace gale::sim

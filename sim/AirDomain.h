@@ -165,6 +165,11 @@ class AirDomain : public LayoutAccessors<AirDomain> {
                mOpenZ[zm] * W[zm];
     }
 
+    /// openOutflux of every cell of row (j, k) into out[0, nx), solid cells too (the caller masks
+    /// them): the same expression term for term, in a loop the compiler vectorises.
+    void openOutfluxRow(const std::vector<double>& U, const std::vector<double>& V,
+                        const std::vector<double>& W, int j, int k, double* out) const;
+
     /// True if cell (i, j, k) holds air (an unknown of the solve).
     bool isAir(int i, int j, int k) const { return mAir[cellIndex(i, j, k)] != 0; }
     const std::vector<uint8_t>& airFlags() const { return mAir; }

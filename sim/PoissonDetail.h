@@ -48,6 +48,11 @@ namespace gale::sim::multigrid {
 
 /// Below this many cells a level runs serially: TBB's scheduling costs more than it saves.
 inline constexpr size_t PARALLEL_MIN_CELLS = 16 * 1024;
+/// Levels of at most this many cells smooth phase by phase (each colour over the whole level in
+/// one parallel loop) instead of slab by slab: they fit in a core's cache, so the pipeline saves
+/// no memory traffic and its fork and join per slab costs more than the slab's work. Both orders
+/// give the same x to the bit (PoissonSmoothing.cpp).
+inline constexpr size_t PHASED_MAX_CELLS = 256 * 1024;
 
 /// Cell-centred linear transfer along one axis between a level and the next coarser one.
 struct Transfer1D {

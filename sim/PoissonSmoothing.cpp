@@ -103,8 +103,34 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
                               });
         }
     };
-    const int steps = L.nz + (residualOut ? 3 : 1);
     const bool serial = L.cells() < PARALLEL_MIN_CELLS;
+    if (!serial && L.cells() <= PHASED_MAX_CELLS) {
+        // The unpipelined sweep the pipeline reproduces, phase by phase: a level this small sits
+        // in cache, and a pipeline would pay a fork and join per slab where each slab is only a
+        // few microseconds of work (docs/unsteady.md, session 12).
+        if (C) {
+            for (int k = 0; k < L.nz; ++k) prolongRedirects(L, xc, x, k);
+            forRows(L, [&](int j, int k) { prolongRow(*C, xc, L, x, j, k, 0, L.nx); });
+        }
+        forRows(L, [&](int j, int k) {
+            if (fromZero)
+                startRow(j, k);
+            else
+                update(j, k, first);
+        });
+        forRows(L, [&](int j, int k) {
+            update(j, k, 1 - first);
+            if (dotOut) dotRow(j, k);
+        });
+        if (residualOut) forRows(L, residualRow);
+        if (dotOut) {
+            double acc = 0.0;
+            for (double v : rowDots) acc += v;
+            *dotOut = acc;
+        }
+        return;
+    }
+    const int steps = L.nz + (residualOut ? 3 : 1);
     if (C) prolongSlab(0, serial);
     for (int s = 0; s < steps; ++s) {
         const bool prolongNext = C && s + 1 < L.nz;

@@ -36,6 +36,7 @@ SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {
 }
 
 SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double dt) {
+    mFieldRateKnown = false;  // the projection changes the field (a step measures it after)
     const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
     const double h = mGrid.voxelSize_m;
     const auto o = mGrid.wsMin_m;
@@ -51,26 +52,31 @@ SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double d
     // Right-hand side: h times the outward open flux plus the boundary data, with the factor 2 of
     // a boundary value half a cell from the centre, as SteadyWind.cpp assembles it.
     std::vector<double> rhs(S.cellCount(), 0.0);
+    const uint8_t* airFlags = mDomain.airFlags().data();
     tbb::parallel_for(0, nz, [&](int k) {
         const double zc = mGrid.zCentre_m(k), side = mGrid.dz_m(k) / h;
-        for (int j = 0; j < ny; ++j)
+        for (int j = 0; j < ny; ++j) {
+            const size_t c0 = S.cellIndex(0, j, k);
+            double* b = rhs.data() + c0;
+            mDomain.openOutfluxRow(U, V, W, j, k, b);
+            for (int i = 0; i < nx; ++i) b[i] = airFlags[c0 + size_t(i)] ? h * b[i] : 0.0;
+            if (!data) continue;
             for (int i = 0; i < nx; ++i) {
-                if (!air(i, j, k)) continue;
-                double b = h * mDomain.openOutflux(U, V, W, i, j, k);
-                if (data) {
-                    const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h;
-                    if (i == 0) b += 2.0 * side * thX[S.faceXIndex(0, j, k)] * g(o[0], yc, zc);
-                    if (i == nx - 1)
-                        b += 2.0 * side * thX[S.faceXIndex(nx, j, k)] * g(o[0] + nx * h, yc, zc);
-                    if (j == 0) b += 2.0 * side * thY[S.faceYIndex(i, 0, k)] * g(xc, o[1], zc);
-                    if (j == ny - 1)
-                        b += 2.0 * side * thY[S.faceYIndex(i, ny, k)] * g(xc, o[1] + ny * h, zc);
-                    if (k == nz - 1 && mSettings.openTop)
-                        b += 2.0 * (h / mGrid.dz_m(k)) * thZ[S.faceZIndex(i, j, nz)] *
-                             g(xc, yc, mGrid.wsTop_m());
-                }
-                rhs[S.cellIndex(i, j, k)] = b;
+                if (!air(i, j, k) || (i > 0 && i < nx - 1 && j > 0 && j < ny - 1 &&
+                                      !(k == nz - 1 && mSettings.openTop)))
+                    continue;
+                const double xc = o[0] + (i + 0.5) * h, yc = o[1] + (j + 0.5) * h;
+                if (i == 0) b[i] += 2.0 * side * thX[S.faceXIndex(0, j, k)] * g(o[0], yc, zc);
+                if (i == nx - 1)
+                    b[i] += 2.0 * side * thX[S.faceXIndex(nx, j, k)] * g(o[0] + nx * h, yc, zc);
+                if (j == 0) b[i] += 2.0 * side * thY[S.faceYIndex(i, 0, k)] * g(xc, o[1], zc);
+                if (j == ny - 1)
+                    b[i] += 2.0 * side * thY[S.faceYIndex(i, ny, k)] * g(xc, o[1] + ny * h, zc);
+                if (k == nz - 1 && mSettings.openTop)
+                    b[i] += 2.0 * (h / mGrid.dz_m(k)) * thZ[S.faceZIndex(i, j, nz)] *
+                            g(xc, yc, mGrid.wsTop_m());
             }
+        }
     });
     // Warm start. A step's potential is psi = -dt p / rho (Chorin 1968), and p moves smoothly
     // with the flow, so the guess is -dt times p extrapolated linearly from the last two
@@ -86,48 +92,59 @@ SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double d
     if (history) {
         std::swap(mPressureBefore, mPressureLast);
         mPressureLast.resize(mPsi.size());
-        for (size_t c = 0; c < mPsi.size(); ++c) mPressureLast[c] = -mPsi[c] / dt;
+        tbb::parallel_for(size_t(0), mPsi.size(),
+                          [&](size_t c) { mPressureLast[c] = -mPsi[c] / dt; });
         mPressureSteps = std::min(mPressureSteps + 1, 2);
     } else {
         mPressureSteps = 0;
     }
     const std::vector<double>& psi = mPsi;
     auto P = [&](int i, int j, int k) { return psi[S.cellIndex(i, j, k)]; };
+    // u += grad psi on the faces the projection updates: the interior faces row by row (a blend
+    // where a face is closed, which the compiler vectorises), the box's faces with their data.
+    auto interior = [](double* u, const uint8_t* ok, const double* hi, const double* lo, int n,
+                       double gap) {
+        for (int i = 0; i < n; ++i) u[i] = ok[i] ? u[i] + (hi[i] - lo[i]) / gap : u[i];
+    };
     tbb::parallel_for(0, nz, [&](int k) {
         const double zc = mGrid.zCentre_m(k);
         for (int j = 0; j < ny; ++j) {
             const double yc = o[1] + (j + 0.5) * h;
-            for (int i = 0; i <= nx; ++i) {
-                const size_t f = S.faceXIndex(i, j, k);
-                if (!mOkX[f]) continue;
-                U[f] += (i == 0    ? 2.0 * (P(0, j, k) - g(o[0], yc, zc))
-                         : i == nx ? 2.0 * (g(o[0] + nx * h, yc, zc) - P(nx - 1, j, k))
-                                   : P(i, j, k) - P(i - 1, j, k)) /
-                        h;
+            const size_t f0 = S.faceXIndex(0, j, k);
+            const double* row = psi.data() + S.cellIndex(0, j, k);
+            interior(U.data() + f0 + 1, mOkX.data() + f0 + 1, row + 1, row, nx - 1, h);
+            if (mOkX[f0]) U[f0] += 2.0 * (P(0, j, k) - g(o[0], yc, zc)) / h;
+            if (mOkX[f0 + size_t(nx)])
+                U[f0 + size_t(nx)] += 2.0 * (g(o[0] + nx * h, yc, zc) - P(nx - 1, j, k)) / h;
+        }
+        for (int j = 1; j < ny; ++j) {
+            const size_t f0 = S.faceYIndex(0, j, k);
+            interior(V.data() + f0, mOkY.data() + f0, psi.data() + S.cellIndex(0, j, k),
+                     psi.data() + S.cellIndex(0, j - 1, k), nx, h);
+        }
+        for (int i = 0; i < nx; ++i) {
+            const double xc = o[0] + (i + 0.5) * h;
+            const size_t f = S.faceYIndex(i, 0, k), l = S.faceYIndex(i, ny, k);
+            if (mOkY[f]) V[f] += 2.0 * (P(i, 0, k) - g(xc, o[1], zc)) / h;
+            if (mOkY[l]) V[l] += 2.0 * (g(xc, o[1] + ny * h, zc) - P(i, ny - 1, k)) / h;
+        }
+    });
+    // z-faces: level 0 is the ground (never updated), level nz the top.
+    tbb::parallel_for(1, nz + 1, [&](int k) {
+        const double gap = mGrid.centreGap_m(k);  // h on cubic cells
+        for (int j = 0; j < ny; ++j) {
+            const size_t f0 = S.faceZIndex(0, j, k);
+            if (k < nz) {
+                interior(W.data() + f0, mOkZ.data() + f0, psi.data() + S.cellIndex(0, j, k),
+                         psi.data() + S.cellIndex(0, j, k - 1), nx, gap);
+                continue;
+            }
+            for (int i = 0; i < nx; ++i) {
+                if (!mOkZ[f0 + size_t(i)]) continue;
+                const double top = g(o[0] + (i + 0.5) * h, o[1] + (j + 0.5) * h, mGrid.wsTop_m());
+                W[f0 + size_t(i)] += 2.0 * (top - P(i, j, nz - 1)) / gap;
             }
         }
-        for (int j = 0; j <= ny; ++j)
-            for (int i = 0; i < nx; ++i) {
-                const size_t f = S.faceYIndex(i, j, k);
-                if (!mOkY[f]) continue;
-                const double xc = o[0] + (i + 0.5) * h;
-                V[f] += (j == 0    ? 2.0 * (P(i, 0, k) - g(xc, o[1], zc))
-                         : j == ny ? 2.0 * (g(xc, o[1] + ny * h, zc) - P(i, ny - 1, k))
-                                   : P(i, j, k) - P(i, j - 1, k)) /
-                        h;
-            }
-    });
-    tbb::parallel_for(0, nz + 1, [&](int k) {
-        const double gap = mGrid.centreGap_m(k);  // h on cubic cells
-        for (int j = 0; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) {
-                const size_t f = S.faceZIndex(i, j, k);
-                if (!mOkZ[f]) continue;
-                const double top =
-                    k == nz ? g(o[0] + (i + 0.5) * h, o[1] + (j + 0.5) * h, mGrid.wsTop_m()) : 0.0;
-                W[f] +=
-                    (k == nz ? 2.0 * (top - P(i, j, nz - 1)) : P(i, j, k) - P(i, j, k - 1)) / gap;
-            }
     });
     extrapolateClosedFaces();
     if (!mSettings.openTop) closeLid();  // extrapolation must not reopen it

@@ -7,7 +7,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -42,42 +41,6 @@ PoissonSystem projectionSystem(const AirDomain& domain, bool openTop) {
     PoissonSystem s = SteadyWindSolver::makeSystem(domain, /*verticalRatio=*/1.0);
     if (!openTop) s.sides[SIDE_ZMAX] = BoundaryKind::Neumann;
     return s;
-}
-
-/// How fast the field moves through the cells, 1/s: the largest |u| / h and |v| / h over the
-/// x- and y-faces and |w| / dz over the z-faces, dz the thinner of the two layers a z-face
-/// touches (the thinnest layer is where w crosses cells fastest). Times dt: the CFL number.
-/// The largest |x| over [begin, end), NaN skipped (std::max(m, NaN) keeps m).
-double maxAbs(const double* begin, const double* end) {
-    double m = 0.0;
-    for (const double* x = begin; x < end; ++x) m = std::max(m, std::abs(*x));
-    return m;
-}
-
-double cellRate_ps(const GridLayout& g, const std::vector<double>& U, const std::vector<double>& V,
-                   const std::vector<double>& W) {
-    // Per layer in parallel; the maximum of the layers' maxima is the serial scan's (a NaN is
-    // skipped either way: std::max(m, NaN) keeps m).
-    std::vector<double> horizontal(size_t(g.nz)), vertical(size_t(g.nz) + 1);
-    tbb::parallel_for(0, g.nz + 1, [&](int k) {
-        if (k < g.nz) {
-            double m = 0.0;
-            for (const auto* a : {&U, &V}) {
-                const Placement p = a == &U ? Placement::FaceX : Placement::FaceY;
-                m = std::max(m, maxAbs(a->data() + g.index(p, 0, 0, k),
-                                       a->data() + g.index(p, 0, 0, k + 1)));
-            }
-            horizontal[size_t(k)] = m;
-        }
-        const double dz = std::min(g.dz_m(std::max(k - 1, 0)), g.dz_m(std::min(k, g.nz - 1)));
-        vertical[size_t(k)] =
-            maxAbs(W.data() + g.faceZIndex(0, 0, k), W.data() + g.faceZIndex(0, 0, k + 1)) / dz;
-    });
-    double rate = 0.0;
-    for (double m : horizontal) rate = std::max(rate, m);
-    rate /= g.voxelSize_m;
-    for (double r : vertical) rate = std::max(rate, r);
-    return rate;
 }
 
 }  // namespace
@@ -126,8 +89,7 @@ UnsteadyWindSolver::UnsteadyWindSolver(const AirDomain& domain, const WindField&
         for (double x : *a) mMeanMax_mps = std::max(mMeanMax_mps, std::abs(x));
     for (const GustEvent& g : mSettings.gusts) mGustMax_mps += std::abs(g.peak_mps);
     // The far field: the mean flow plus the (horizontal) gusts at their peaks.
-    mFarRate_ps =
-        sim::cellRate_ps(mGrid, mMeanU, mMeanV, mMeanW) + mGustMax_mps / mGrid.voxelSize_m;
+    mFarRate_ps = summarise(mMeanU, mMeanV, mMeanW).cellRate_ps + mGustMax_mps / mGrid.voxelSize_m;
     const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
     mOkX.assign(mGrid.count(Placement::FaceX), 0);
     mOkY.assign(mGrid.count(Placement::FaceY), 0);
@@ -191,7 +153,12 @@ Vec3d UnsteadyWindSolver::farField_mps(const Vec3d& ws, double t) const {
 }
 
 double UnsteadyWindSolver::cellRate_ps() const {
-    const double own = sim::cellRate_ps(mGrid, mField.u_mps(), mField.v_mps(), mField.w_mps());
+    // A step leaves its field's rate from its diagnostics pass; edits from outside clear it.
+    if (!mFieldRateKnown) {
+        mFieldRate_ps = summarise(mField.u_mps(), mField.v_mps(), mField.w_mps()).cellRate_ps;
+        mFieldRateKnown = true;
+    }
+    const double own = mFieldRate_ps;
     return std::isfinite(own) ? std::max(own, mFarRate_ps) : own;
 }
 
@@ -215,6 +182,7 @@ void UnsteadyWindSolver::resetState(const WindField& state) {
             "UnsteadyWindSolver::resetState: the field does not match the "
             "domain");
     mField.u_mps() = state.u_mps(), mField.v_mps() = state.v_mps(), mField.w_mps() = state.w_mps();
+    mFieldRateKnown = false;
     extrapolateClosedFaces();
 }
 
@@ -345,14 +313,21 @@ StepReport UnsteadyWindSolver::step(double dt) {
     // 2. advection of each component through the frozen field.
     t = Clock::now();
     {
-        const std::vector<double> u0 = mField.u_mps(), v0 = mField.v_mps(), w0 = mField.w_mps();
+        // The field before the step moves to mBefore (a swap, not a copy); each component is
+        // advected from there back into the field, which the advection writes whole.
+        std::vector<double>* now[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
+        for (int c = 0; c < 3; ++c) {
+            std::swap(mBefore[c], *now[c]);
+            now[c]->resize(mBefore[c].size());
+        }
+        const std::vector<double>&u0 = mBefore[0], &v0 = mBefore[1], &w0 = mBefore[2];
         MacVelocity vel{&u0, &v0, &w0};
-        std::vector<float> uf, vf, wf;  // rounded once for the three components
         if (mSettings.precision == AdvectionPrecision::Single && !mSettings.eulerianAdvection &&
             UniformLattice::usable(mGrid)) {  // the rows run on cubic cells only
-            uf.assign(u0.begin(), u0.end()), vf.assign(v0.begin(), v0.end()),
-                wf.assign(w0.begin(), w0.end());
-            vel.uSingle = &uf, vel.vSingle = &vf, vel.wSingle = &wf;
+            for (int c = 0; c < 3; ++c)       // rounded once for the three components
+                mBeforeSingle[c].assign(mBefore[c].begin(), mBefore[c].end());
+            vel.uSingle = &mBeforeSingle[0], vel.vSingle = &mBeforeSingle[1],
+            vel.wSingle = &mBeforeSingle[2];
         }
         const FarField far = [&](const Vec3d& p) { return farField_mps(p, t1); };
         const std::vector<double>* src[3] = {&u0, &v0, &w0};
@@ -429,22 +404,15 @@ StepReport UnsteadyWindSolver::step(double dt) {
 
     mTime_s = t1;
     rep.t_s = t1;
-    rep.maxSpeed_mps = maxSpeed_mps();
-    rep.kineticEnergy_m5ps2 = kineticEnergy_m5ps2();
-    rep.maxDivergenceScaled = maxDivergenceScaled();
+    // One pass over the new field: the report's diagnostics and the next step's cell rate.
+    const FieldSummary sum = summarise(mField.u_mps(), mField.v_mps(), mField.w_mps());
+    rep.maxSpeed_mps = sum.maxSpeed_mps;
+    rep.kineticEnergy_m5ps2 = sum.kineticEnergy_m5ps2;
+    rep.maxDivergenceScaled = sum.maxOutflux / mRefSpeed_mps;
     rep.projection.maxDivergenceScaled = rep.maxDivergenceScaled;
-    rep.finite = std::isfinite(rep.maxSpeed_mps) && std::isfinite(rep.kineticEnergy_m5ps2);
-    if (rep.finite)
-        for (const auto* a : {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()}) {
-            const auto& v = *a;
-            const size_t n = v.size(), chunk = 4096;
-            std::atomic<bool> bad{false};
-            tbb::parallel_for(size_t(0), (n + chunk - 1) / chunk, [&](size_t c) {
-                for (size_t f = c * chunk; f < std::min(n, (c + 1) * chunk); ++f)
-                    if (!std::isfinite(v[f])) bad = true;
-            });
-            if (bad) rep.finite = false;
-        }
+    rep.finite =
+        sum.finite && std::isfinite(rep.maxSpeed_mps) && std::isfinite(rep.kineticEnergy_m5ps2);
+    mFieldRate_ps = sum.cellRate_ps, mFieldRateKnown = true;
     rep.total_s = since(tStart);
     return rep;
 }

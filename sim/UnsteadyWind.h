@@ -160,7 +160,10 @@ class UnsteadyWindSolver {
     const std::vector<double>& turbulentKineticEnergy_m2ps2() const;
     /// The field for edits from outside the step (sources the viewer drops in, tests' seeding);
     /// call project() after editing.
-    WindField& editField() { return mField; }
+    WindField& editField() {
+        mFieldRateKnown = false;  // the caller edits: cellRate_ps() measures the field again
+        return mField;
+    }
     double time_s() const { return mTime_s; }
     const MacGrid& grid() const { return mGrid; }
     const UnsteadySettings& settings() const { return mSettings; }
@@ -199,6 +202,18 @@ class UnsteadyWindSolver {
     void extrapolateClosedFaces();
     void closeLid();
     void applyRegionGusts(double t, double dt);
+    /// What the step reports of a field, from one pass over its faces and cells
+    /// (UnsteadyDiagnostics.cpp): each layer in parallel, the layers reduced in order, so every
+    /// number is the serial loop's.
+    struct FieldSummary {
+        double maxSpeed_mps = 0;         ///< the largest cell-centred speed over air cells
+        double kineticEnergy_m5ps2 = 0;  ///< as StepReport::kineticEnergy_m5ps2
+        double maxOutflux = 0;   ///< the largest |AirDomain::openOutflux| of an air cell, m/s
+        double cellRate_ps = 0;  ///< as cellRate_ps() of these arrays alone (no far field)
+        bool finite = true;      ///< no NaN or Inf on any face
+    };
+    FieldSummary summarise(const std::vector<double>& U, const std::vector<double>& V,
+                           const std::vector<double>& W) const;
 
   public:
     /// Centre of a region gust's forcing disc at time t_s, world metres (GustEntry::Region).
@@ -212,6 +227,10 @@ class UnsteadyWindSolver {
     double mTime_s = 0.0;
     double mMeanMax_mps = 0.0, mGustMax_mps = 0.0;
     double mFarRate_ps = 0.0;  // cellRate_ps of the mean flow plus the gusts' peaks
+    /// cellRate_ps of mField alone, valid while mFieldRateKnown: the step's diagnostics leave it,
+    /// every change to the field from outside a step (editField, resetState, project) clears it.
+    mutable double mFieldRate_ps = 0.0;
+    mutable bool mFieldRateKnown = false;
     WindField mField;
     std::vector<double> mMeanU, mMeanV, mMeanW;
     std::vector<uint8_t> mOkX, mOkY,
@@ -223,6 +242,10 @@ class UnsteadyWindSolver {
     /// time (project(settings, dt)); mPressureSteps counts how many are valid (0-2).
     std::vector<double> mPressureLast, mPressureBefore;
     int mPressureSteps = 0;
+    /// The step's velocity before its advection (swapped out of mField, kept for its storage)
+    /// and that velocity in float for the row kernels.
+    std::vector<double> mBefore[3];
+    std::vector<float> mBeforeSingle[3];
     std::vector<double> mGradPsi[3];  // incrementalPressure: sum of the projections' corrections
     std::unique_ptr<TurbulentStress> mStress;  // surface-layer stresses, when enabled
     std::vector<std::array<double, 2>> mAxes;
