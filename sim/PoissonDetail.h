@@ -145,10 +145,12 @@ struct Level {
     }
 };
 
-/// Runs body(j, k) over every row of a level, in parallel when the level is big enough.
+/// Runs body(j, k) over every row of a level, in parallel when the work is big enough: `cells`,
+/// the cells the rows' work touches (a restriction's rows on the coarse level read the finer
+/// level's cells), by default the level's own.
 template <class Body>
-void forRows(const Level& L, const Body& body) {
-    if (L.cells() < PARALLEL_MIN_CELLS) {
+void forRows(const Level& L, const Body& body, size_t cells) {
+    if (cells < PARALLEL_MIN_CELLS) {
         for (int k = 0; k < L.nz; ++k)
             for (int j = 0; j < L.ny; ++j) body(j, k);
         return;
@@ -158,6 +160,11 @@ void forRows(const Level& L, const Body& body) {
                           for (int k = r.rows().begin(); k < r.rows().end(); ++k)
                               for (int j = r.cols().begin(); j < r.cols().end(); ++j) body(j, k);
                       });
+}
+
+template <class Body>
+void forRows(const Level& L, const Body& body) {
+    forRows(L, body, L.cells());
 }
 
 /// Deterministic reduction of body(j, k) -> double over rows (sum or max), so solves repeat
@@ -228,6 +235,9 @@ double applyDot(const Level& L, const double* in, double* out);
 
 /// r = b - A x on level L, 0 in inactive cells.
 void residual(const Level& L, const double* x, const double* b, double* r);
+/// residual() that also returns max |r| over the level's cells (exact, so the same bits for any
+/// thread count): one pass instead of two.
+double residualMaxAbs(const Level& L, const double* x, const double* b, double* r);
 
 /// r = b - A x through each cell's own weights on padded cells [pBegin, pEnd) of one row, 0 in
 /// inactive cells. Inline: fusedSweep calls it on every segment between uniform runs.

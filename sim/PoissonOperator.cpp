@@ -9,6 +9,9 @@
 /// constant-coefficient row kernels for runs of full-open cells that the smoother shares
 /// (docs/solver.md, "The linear solver").
 
+#include <algorithm>
+#include <cmath>
+
 #include "sim/PoissonDetail.h"
 
 namespace gale::sim::multigrid {
@@ -110,6 +113,19 @@ void residual(const Level& L, const double* x, const double* b, double* r) {
         const size_t p0 = L.at(0, j, k);
         residualSpan(L, x, b, r, p0, p0 + size_t(L.nx));
     });
+}
+
+double residualMaxAbs(const Level& L, const double* x, const double* b, double* r) {
+    return reduceRows(
+        L,
+        [&](int j, int k) {
+            const size_t p0 = L.at(0, j, k);
+            residualSpan(L, x, b, r, p0, p0 + size_t(L.nx));
+            double mx = 0.0;
+            for (size_t p = p0; p < p0 + size_t(L.nx); ++p) mx = std::max(mx, std::abs(r[p]));
+            return mx;
+        },
+        MAX);
 }
 
 }  // namespace gale::sim::multigrid

@@ -67,13 +67,13 @@ const char* pcg(const Level& L, const PcgVectors& v, bool warm, const SolverSett
         rep.converged = true;
         return "right-hand side is zero: solution is zero";
     }
-    // Keep b in p temporarily to form r = b - A x0.
+    // Keep b in p temporarily to form r = b - A x0; from zero r = b, whose max is normB.
+    double res = 1.0;
     if (warm) {
         std::copy(r, r + L.total, p);  // p = b
         comm.exchange(x);
-        residual(L, x, p, r);
+        res = comm.max(residualMaxAbs(L, x, p, r)) / normB;
     }
-    double res = maxAbs(r) / normB;
     rep.initialRelativeResidual = res;
     rep.relativeResidual = res;
     const double tol = settings.relativeTolerance;
@@ -147,8 +147,7 @@ const char* pcg(const Level& L, const PcgVectors& v, bool warm, const SolverSett
     // Report the true residual, not the recurrence's: b - A x, recomputed once.
     loadRhs(z);
     comm.exchange(x);
-    residual(L, x, z, r);
-    const double trueRes = maxAbs(r) / normB;
+    const double trueRes = comm.max(residualMaxAbs(L, x, z, r)) / normB;
     rep.relativeResidual = trueRes;
     // Rounding can leave the true residual a little above the recurrence's.
     constexpr double RECURRENCE_DRIFT = 10.0;

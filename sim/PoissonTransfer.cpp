@@ -143,22 +143,25 @@ void buildRedirects(Level& F, const Level& C, const std::array<BoundaryKind, 6>&
 // combined first (y and z weights), then the x weights applied: ~5 loads per fine cell.
 void restrictTo(const Level& F, const double* rf, Level& C) {
     double* bc = C.b.data();
-    forRows(C, [&](int J, int K) {
-        thread_local std::vector<double> t;
-        t.assign(size_t(F.sx), 0.0);
-        for (int a = 0; a < F.tz.count[K]; ++a)
-            for (int bb = 0; bb < F.ty.count[J]; ++bb) {
-                const double w = F.tz.w[K][a] * F.ty.w[J][bb];
-                const double* row = rf + F.at(-1, F.ty.f[J][bb], F.tz.f[K][a]);
-                for (int i = 0; i < F.sx; ++i) t[i] += w * row[i];
+    forRows(
+        C,
+        [&](int J, int K) {
+            thread_local std::vector<double> t;
+            t.assign(size_t(F.sx), 0.0);
+            for (int a = 0; a < F.tz.count[K]; ++a)
+                for (int bb = 0; bb < F.ty.count[J]; ++bb) {
+                    const double w = F.tz.w[K][a] * F.ty.w[J][bb];
+                    const double* row = rf + F.at(-1, F.ty.f[J][bb], F.tz.f[K][a]);
+                    for (int i = 0; i < F.sx; ++i) t[i] += w * row[i];
+                }
+            const size_t pc0 = C.at(0, J, K);
+            for (int I = 0; I < C.nx; ++I) {
+                double s = 0.0;
+                for (int c = 0; c < F.tx.count[I]; ++c) s += F.tx.w[I][c] * t[F.tx.f[I][c] + 1];
+                bc[pc0 + I] = C.active[pc0 + I] ? s : 0.0;
             }
-        const size_t pc0 = C.at(0, J, K);
-        for (int I = 0; I < C.nx; ++I) {
-            double s = 0.0;
-            for (int c = 0; c < F.tx.count[I]; ++c) s += F.tx.w[I][c] * t[F.tx.f[I][c] + 1];
-            bc[pc0 + I] = C.active[pc0 + I] ? s : 0.0;
-        }
-    });
+        },
+        F.cells());  // the coarse rows read every fine cell: parallel by the fine level's size
     for (const Level::Redirect& r : F.redirects) bc[r.home] += r.weight * rf[r.fine];
 }
 

@@ -19,14 +19,20 @@ constexpr int EXTRAPOLATION_LAYERS = SteadyWindSolver::EXTRAPOLATION_LAYERS;
 }  // namespace
 
 void UnsteadyWindSolver::extrapolateClosedFaces() {
-    detail::extrapolateFaces(mField.u_mps(), mOkX, mGrid, Placement::FaceX, EXTRAPOLATION_LAYERS);
-    detail::extrapolateFaces(mField.v_mps(), mOkY, mGrid, Placement::FaceY, EXTRAPOLATION_LAYERS);
+    if (!mRefill[0]) {  // the masks are set once, in the constructor: so are the refills
+        const std::vector<uint8_t>* masks[3] = {&mOkX, &mOkY, &mOkZ};
+        for (int c = 0; c < 3; ++c)
+            mRefill[size_t(c)] = std::make_shared<const detail::FaceExtrapolation>(
+                *masks[c], mGrid, Placement(c), EXTRAPOLATION_LAYERS);
+    }
+    mRefill[0]->apply(mField.u_mps());
+    mRefill[1]->apply(mField.v_mps());
     if (mDomain.closedSidesY())  // free-slip walls: nothing flows through them
         for (int k = 0; k < mGrid.nz; ++k)
             for (int i = 0; i < mGrid.nx; ++i)
                 mField.v_mps()[mGrid.faceYIndex(i, 0, k)] =
                     mField.v_mps()[mGrid.faceYIndex(i, mGrid.ny, k)] = 0.0;
-    detail::extrapolateFaces(mField.w_mps(), mOkZ, mGrid, Placement::FaceZ, EXTRAPOLATION_LAYERS);
+    mRefill[2]->apply(mField.w_mps());
 }
 
 SolveReport UnsteadyWindSolver::project() { return project(mSettings.projection); }
@@ -51,7 +57,8 @@ SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double d
           &thZ = mDomain.openFractionsZ();
     // Right-hand side: h times the outward open flux plus the boundary data, with the factor 2 of
     // a boundary value half a cell from the centre, as SteadyWind.cpp assembles it.
-    std::vector<double> rhs(S.cellCount(), 0.0);
+    std::vector<double>& rhs = mRhs;  // kept between steps: every entry is written below
+    rhs.resize(S.cellCount());
     const uint8_t* airFlags = mDomain.airFlags().data();
     tbb::parallel_for(0, nz, [&](int k) {
         const double zc = mGrid.zCentre_m(k), side = mGrid.dz_m(k) / h;

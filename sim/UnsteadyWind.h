@@ -66,6 +66,10 @@
 
 namespace gale::sim {
 
+namespace detail {
+class FaceExtrapolation;
+}
+
 struct UnsteadySettings {
     AdvectionScheme advection = AdvectionScheme::SemiLagrangian;
     /// The advection's arithmetic on cubic cells (sim/Advection.h, AdvectionPrecision): float
@@ -235,9 +239,13 @@ class UnsteadyWindSolver {
     std::vector<double> mMeanU, mMeanV, mMeanW;
     std::vector<uint8_t> mOkX, mOkY,
         mOkZ;  // faces the projection updates (between air cells or on the box)
+    /// The closed faces' refill after each projection, one list per component, worked out once
+    /// from the masks (sim/FaceExtrapolation.h).
+    std::array<std::shared_ptr<const detail::FaceExtrapolation>, 3> mRefill;
     PoissonSystem mSystem;
     PoissonSolver mPoisson;
     std::vector<double> mPsi;  // projection potential (m^2/s), warm start
+    std::vector<double> mRhs;  // the projection's right-hand side (storage kept between steps)
     /// The last two steps' potentials' pressures, for the next step's warm start extrapolated in
     /// time (project(settings, dt)); mPressureSteps counts how many are valid (0-2).
     std::vector<double> mPressureLast, mPressureBefore;

@@ -125,8 +125,8 @@ void addWhirlwind(const MacGrid& g, const Whirlwind& given, std::array<double, 2
         updraft =
             std::abs(ww.tangentialSpeed_mps(1.1209 * rc)) / rc * 0.5 * std::min(column, 4.0 * rc);
     }
-    auto vertical = [&](double x, double y, double z) {
-        const double above = z - (ground ? ground(x, y) : g.wsMin_m[2]);
+    // The height window, of the height above the ground.
+    auto vertical = [&](double above) {
         if (ww.height_m <= 0.0) return 1.0;
         return 1.0 - smoothstep((above - ww.height_m) / (0.5 * ww.height_m));
     };
@@ -138,30 +138,52 @@ void addWhirlwind(const MacGrid& g, const Whirlwind& given, std::array<double, 2
     const int jLo = std::max(0, int(std::floor(isC[1] - rEnd / h)) - 1),
               jHi = std::min(g.ny, int(std::ceil(isC[1] + rEnd / h)) + 1);
     std::vector<double>* arrays[3] = {&u, &v, &w};
+    /// What a column of faces shares whatever its height: the radial window and the profile's
+    /// velocity along the component (or the updraft), and the ground under it.
+    struct Column {
+        bool skip = true;
+        double radialWeight = 0, speed = 0, direction = 0, ground = 0;
+    };
     for (int comp = 0; comp < 3; ++comp) {
         const Placement p = Placement(comp);
         const auto n = g.dims(p);
         std::vector<double>& a = *arrays[comp];
         const std::vector<uint8_t>* mask = masks[comp];
+        const int i1 = std::min(iHi, n[0] - 1), j1 = std::min(jHi, n[1] - 1);
+        if (i1 < iLo || j1 < jLo) continue;
+        const int width = i1 - iLo + 1;
+        std::vector<Column> columns(size_t(width) * size_t(j1 - jLo + 1));
+        tbb::parallel_for(jLo, j1 + 1, [&](int j) {
+            for (int i = iLo; i <= i1; ++i) {
+                Column& col = columns[size_t(j - jLo) * size_t(width) + size_t(i - iLo)];
+                const Vec3d ws = g.wsPosition(p, i, j, 0);
+                const double dx = ws[0] - c[0], dy = ws[1] - c[1], r = std::sqrt(dx * dx + dy * dy);
+                if (r >= rEnd) continue;
+                if (comp == 2 && updraft == 0.0) continue;
+                if (comp != 2 && r < AXIS_EPS_M) continue;
+                col.skip = false;
+                col.radialWeight = radial(r);
+                col.ground = ground ? ground(ws[0], ws[1]) : g.wsMin_m[2];
+                if (comp == 2) {
+                    col.speed = updraft, col.direction = std::exp(-r * r / (rc * rc));
+                } else {
+                    // e_theta = (-dy, dx) / r
+                    col.speed = ww.tangentialSpeed_mps(r),
+                    col.direction = comp == 0 ? -dy / r : dx / r;
+                }
+            }
+        });
         tbb::parallel_for(0, n[2], [&](int k) {
-            for (int j = jLo; j <= std::min(jHi, n[1] - 1); ++j)
-                for (int i = iLo; i <= std::min(iHi, n[0] - 1); ++i) {
+            const double z = g.wsPosition(p, 0, 0, k)[2];
+            for (int j = jLo; j <= j1; ++j)
+                for (int i = iLo; i <= i1; ++i) {
+                    const Column& col = columns[size_t(j - jLo) * size_t(width) + size_t(i - iLo)];
+                    if (col.skip) continue;
                     const size_t idx = g.index(p, i, j, k);
                     if (mask && !(*mask)[idx]) continue;
-                    const Vec3d ws = g.wsPosition(p, i, j, k);
-                    const double dx = ws[0] - c[0], dy = ws[1] - c[1],
-                                 r = std::sqrt(dx * dx + dy * dy);
-                    if (r >= rEnd) continue;
-                    const double wgt = scale * radial(r) * vertical(ws[0], ws[1], ws[2]);
+                    const double wgt = scale * col.radialWeight * vertical(z - col.ground);
                     if (wgt == 0.0) continue;
-                    if (comp == 2) {
-                        if (updraft != 0.0) a[idx] += wgt * updraft * std::exp(-r * r / (rc * rc));
-                        continue;
-                    }
-                    if (r < AXIS_EPS_M) continue;
-                    const double vt = ww.tangentialSpeed_mps(r);
-                    // e_theta = (-dy, dx) / r
-                    a[idx] += wgt * vt * (comp == 0 ? -dy / r : dx / r);
+                    a[idx] += wgt * col.speed * col.direction;
                 }
         });
     }
