@@ -66,10 +66,6 @@ double aboveGround_m(const MacGrid& g, const double* x) {
     return g.terrain ? x[2] - g.terrain->sample(x[0], x[1]) : HUGE_VAL;
 }
 
-/// World z above which no terrain lies (-inf: no terrain): traces above it skip the surface
-/// test, which is most of the box.
-double terrainTop_m(const MacGrid& g) { return g.terrain ? g.terrain->maxHeight_m() : -HUGE_VAL; }
-
 /// The general lattice: world points read through the layout's own sampler at
 /// GridLayout::isFromWs (cubic cells and stretched layers alike).
 struct LayoutLattice {
@@ -266,7 +262,7 @@ void traceWs(const MacGrid& g, const FaceVelocitySampler<Lattice>& velocityWs, c
 /// whether the departure point left the box. `starts`: the TraceStart of every sample of this
 /// placement (index as its array), or null to compute each on the way; `record` (with null
 /// starts): where to keep the ones computed, for the scheme's later passes (masked-out samples
-/// are not written). groundTop: terrainTop_m(g).
+/// are not written). groundTop: g.terrainTop_m().
 template <class Lattice>
 void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
                     const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
@@ -402,7 +398,7 @@ template <class Lattice>
 void advectWith(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
                 const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
                 std::vector<double>& out, const std::vector<uint8_t>* mask) {
-    const double groundTop = terrainTop_m(g);  // a scan of the heightfield: once per call
+    const double groundTop = g.terrainTop_m();
     // Every pass starts its traces from the same samples through the same frozen velocity: the
     // first pass computes each sample's start and keeps it for the others. Default-initialised
     // (not zeroed): a masked-out sample's entry is never written nor read.
@@ -424,7 +420,7 @@ void advectSingle(const MacGrid& g, Placement p, const std::vector<double>& q,
                   const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
                   double dt, AdvectionScheme scheme, std::vector<double>& out,
                   const std::vector<uint8_t>* mask) {
-    const double groundTop = terrainTop_m(g);
+    const double groundTop = g.terrainTop_m();
     std::vector<float> uf, vf, wf;
     if (!vel.uSingle) {
         uf.assign(vel.u->begin(), vel.u->end());
@@ -491,7 +487,7 @@ Vec3d traceBackWith(const MacGrid& g, const MacVelocity& vel, const FarField& fa
                     double dt) {
     const FaceVelocitySampler<Lattice> velocityWs(g, vel, far);
     Vec3d dep;
-    const double groundTop = terrainTop_m(g);
+    const double groundTop = g.terrainTop_m();
     traceWs(g, velocityWs, ws.data(), traceStart(g, velocityWs, ws.data(), groundTop), dt,
             groundTop, dep.data());
     return dep;

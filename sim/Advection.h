@@ -37,6 +37,7 @@
 /// interpolation clamps to the grid of each placement.
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -79,9 +80,21 @@ struct MacGrid : GridLayout {
     /// corner at wsMin.
     MacGrid(int nxCells, int nyCells, int nzCells, double voxelSize, const Vec3d& wsMin,
             const Heightfield* ground = nullptr)
-        : GridLayout(nxCells, nyCells, nzCells, voxelSize, wsMin), terrain(ground) {}
+        : GridLayout(nxCells, nyCells, nzCells, voxelSize, wsMin), terrain(ground) {
+        noteTerrainTop();
+    }
     MacGrid(const GridLayout& layout, const Heightfield* ground)
-        : GridLayout(layout), terrain(ground) {}
+        : GridLayout(layout), terrain(ground) {
+        noteTerrainTop();
+    }
+
+    /// The terrain's highest point, world metres (-inf without terrain): traces above it skip
+    /// the ground's sampling. Worked out when the grid is made; a grid whose terrain is set
+    /// afterwards works it out on every call.
+    double terrainTop_m() const {
+        if (!terrain) return -HUGE_VAL;
+        return terrain == mTopOf ? mTerrainTop_m : terrain->maxHeight_m();
+    }
 
     /// True if a world point lies outside the box through an x or y side or the top (the bottom
     /// lies under the terrain and clamps instead).
@@ -89,6 +102,14 @@ struct MacGrid : GridLayout {
         const Vec3d is = isFromWs(ws);
         return !(is[0] >= 0.0 && is[0] <= nx && is[1] >= 0.0 && is[1] <= ny && is[2] <= nz);
     }
+
+  private:
+    void noteTerrainTop() {
+        mTopOf = terrain;
+        mTerrainTop_m = terrain ? terrain->maxHeight_m() : -HUGE_VAL;
+    }
+    const Heightfield* mTopOf = nullptr;  ///< the terrain mTerrainTop_m belongs to
+    double mTerrainTop_m = -HUGE_VAL;
 };
 
 /// The MAC velocity arrays (m/s) a trace follows; not owned.

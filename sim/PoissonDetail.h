@@ -233,10 +233,8 @@ struct CoarseSolver {
 /// out = A in on level L; returns in . out (row partial sums in row order: deterministic).
 double applyDot(const Level& L, const double* in, double* out);
 
-/// r = b - A x on level L, 0 in inactive cells.
-void residual(const Level& L, const double* x, const double* b, double* r);
-/// residual() that also returns max |r| over the level's cells (exact, so the same bits for any
-/// thread count): one pass instead of two.
+/// r = b - A x on level L, 0 in inactive cells; returns max |r| over the level's cells (exact, so
+/// the same bits for any thread count).
 double residualMaxAbs(const Level& L, const double* x, const double* b, double* r);
 
 /// r = b - A x through each cell's own weights on padded cells [pBegin, pEnd) of one row, 0 in

@@ -108,19 +108,24 @@ double applyDot(const Level& L, const double* in, double* out) {
         SUM);
 }
 
-void residual(const Level& L, const double* x, const double* b, double* r) {
-    forRows(L, [&](int j, int k) {
-        const size_t p0 = L.at(0, j, k);
-        residualSpan(L, x, b, r, p0, p0 + size_t(L.nx));
-    });
-}
-
 double residualMaxAbs(const Level& L, const double* x, const double* b, double* r) {
+    const size_t sx = L.sx, sxy = L.sxy;
+    const double bx = L.bx, by = L.by, bz = L.bz, D = L.uniformDiag;
     return reduceRows(
         L,
         [&](int j, int k) {
             const size_t p0 = L.at(0, j, k);
-            residualSpan(L, x, b, r, p0, p0 + size_t(L.nx));
+            // Runs of full-open cells take the constant-coefficient kernel, as applyDot does.
+            L.segments(
+                j, k, [&](int i0, int i1) { residualSpan(L, x, b, r, p0 + i0, p0 + size_t(i1)); },
+                [&](int i0, int i1) {
+                    if (L.zLines)
+                        layerApply(x, b, r, p0, i0, i1, sx, sxy, L.layerBx[size_t(k)],
+                                   L.layerBy[size_t(k)], L.layerBz[size_t(k)],
+                                   L.layerBz[size_t(k) + 1]);
+                    else
+                        uniformApply(x, b, r, p0, i0, i1, sx, sxy, bx, by, bz, D);
+                });
             double mx = 0.0;
             for (size_t p = p0; p < p0 + size_t(L.nx); ++p) mx = std::max(mx, std::abs(r[p]));
             return mx;

@@ -148,12 +148,14 @@ double UnsteadyWindSolver::kineticEnergy_m5ps2() const {
     // The energy alone (the forcing's before and after): summarise's sums without the rest.
     std::vector<double> layers[3];
     const std::vector<double>* a[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
-    for (int c = 0; c < 3; ++c) {
-        layers[c].resize(size_t(mGrid.dims(Placement(c))[2]));
-        tbb::parallel_for(0, int(layers[c].size()), [&](int k) {
+    for (int c = 0; c < 3; ++c) layers[c].resize(size_t(mGrid.dims(Placement(c))[2]));
+    // Every (component, layer) in one parallel loop: one fork and join, not three.
+    const int nz = mGrid.nz;
+    tbb::parallel_for(0, 3 * (nz + 1), [&](int n) {
+        const int c = n / (nz + 1), k = n % (nz + 1);
+        if (k < int(layers[c].size()))
             layers[c][size_t(k)] = layerEnergy(mGrid, mDomain, *a[c], c, k);
-        });
-    }
+    });
     return energyFromLayers(mGrid, layers);
 }
 
