@@ -310,6 +310,19 @@ void semiLagrangian(const MacGrid& g, Placement p, const std::vector<double>& q,
     });
 }
 
+}  // namespace
+
+void detail::roundToFloat(const std::vector<double>& a, std::vector<float>& out) {
+    out.resize(a.size());
+    constexpr size_t CHUNK = 16384;
+    tbb::parallel_for(size_t(0), (a.size() + CHUNK - 1) / CHUNK, [&](size_t c) {
+        const size_t end = std::min(a.size(), (c + 1) * CHUNK);
+        for (size_t n = c * CHUNK; n < end; ++n) out[n] = float(a[n]);
+    });
+}
+
+namespace {
+
 /// Scratch of T kept between calls on one thread: a step advects three components of about one
 /// size, and fresh vectors would be zeroed and faulted in every time. A call that finds the
 /// thread's copy in use (a TBB thread that took another advection while it waited inside one)
@@ -455,7 +468,7 @@ void advectSingle(const MacGrid& g, Placement p, const std::vector<double>& q,
     RowScratch& scratch = lease.get();
     std::vector<float>&qf = scratch.qf, &starts = scratch.starts;
     std::vector<uint8_t>& general = scratch.general;
-    qf.resize(q.size()), general.resize(q.size());
+    general.resize(q.size());
     // The velocity at the samples, kept by the first of several passes for the others.
     if (scheme != AdvectionScheme::SemiLagrangian)
         starts.resize(3 * q.size() + detail::ROW_PASS_PADDING);
@@ -464,7 +477,7 @@ void advectSingle(const MacGrid& g, Placement p, const std::vector<double>& q,
                       std::vector<double>* lo, std::vector<double>* hi, PassRole role) {
                       b.resize(a.size());
                       if (lo) lo->resize(a.size()), hi->resize(a.size());
-                      std::copy(a.begin(), a.end(), qf.begin());
+                      detail::roundToFloat(a, qf);
                       detail::RowPassInput pass = in;
                       pass.q = qf.data();
                       pass.qExact = a.data();

@@ -18,6 +18,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace gale::sim::detail {
 
@@ -52,6 +53,9 @@ struct RowPassInput {
 
 /// Floats past 3 count that a `start` array must hold.
 constexpr size_t ROW_PASS_PADDING = 64;
+
+/// out = a rounded to float (resized to a's length), in parallel chunks: the row kernels' inputs.
+void roundToFloat(const std::vector<double>& a, std::vector<float>& out);
 
 /// Writes out, lo and hi (lo/hi may both be null) and general (1: redo on the general path; the
 /// other three are then unspecified) for every sample of row (j, k) of the input's placement.

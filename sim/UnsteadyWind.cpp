@@ -14,6 +14,7 @@
 
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
+#include "sim/AdvectionRows.h"
 #include "sim/Format.h"
 #include "sim/MomentumAdvection.h"
 #include "sim/SteadyWind.h"
@@ -325,7 +326,7 @@ StepReport UnsteadyWindSolver::step(double dt) {
         if (mSettings.precision == AdvectionPrecision::Single && !mSettings.eulerianAdvection &&
             UniformLattice::usable(mGrid)) {  // the rows run on cubic cells only
             for (int c = 0; c < 3; ++c)       // rounded once for the three components
-                mBeforeSingle[c].assign(mBefore[c].begin(), mBefore[c].end());
+                detail::roundToFloat(mBefore[c], mBeforeSingle[c]);
             vel.uSingle = &mBeforeSingle[0], vel.vSingle = &mBeforeSingle[1],
             vel.wSingle = &mBeforeSingle[2];
         }
