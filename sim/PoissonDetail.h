@@ -53,6 +53,10 @@ inline constexpr size_t PARALLEL_MIN_CELLS = 16 * 1024;
 /// no memory traffic and its fork and join per slab costs more than the slab's work. Both orders
 /// give the same x to the bit (PoissonSmoothing.cpp).
 inline constexpr size_t PHASED_MAX_CELLS = 256 * 1024;
+/// The threshold in force: PHASED_MAX_CELLS, unless a test compares the two orders on one system
+/// (setPhasedMaxCells; 0 pipelines every level, SIZE_MAX none).
+size_t phasedMaxCells();
+void setPhasedMaxCells(size_t cells);
 
 /// Cell-centred linear transfer along one axis between a level and the next coarser one.
 struct Transfer1D {

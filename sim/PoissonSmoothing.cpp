@@ -9,12 +9,20 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <cstddef>
 #include <vector>
 
 #include "sim/PoissonDetail.h"
 
 namespace gale::sim::multigrid {
+
+namespace {
+std::atomic<size_t> gPhasedMaxCells{PHASED_MAX_CELLS};
+}  // namespace
+
+size_t phasedMaxCells() { return gPhasedMaxCells.load(std::memory_order_relaxed); }
+void setPhasedMaxCells(size_t cells) { gPhasedMaxCells.store(cells, std::memory_order_relaxed); }
 
 // One Gauss-Seidel sweep in red-black order (colour `first`, then the other), pipelined slab
 // by slab so each slab's data is streamed from memory once: step s updates colour `first` on
@@ -104,10 +112,10 @@ void fusedSweep(const Level& L, double* x, const double* b, int first, bool from
         }
     };
     const bool serial = L.cells() < PARALLEL_MIN_CELLS;
-    if (!serial && L.cells() <= PHASED_MAX_CELLS) {
+    if (!serial && L.cells() <= phasedMaxCells()) {
         // The unpipelined sweep the pipeline reproduces, phase by phase: a level this small sits
         // in cache, and a pipeline would pay a fork and join per slab where each slab is only a
-        // few microseconds of work (docs/unsteady.md, session 12).
+        // few microseconds of work (docs/unsteady.md, "Forks, joins and passes").
         if (C) {
             for (int k = 0; k < L.nz; ++k) prolongRedirects(L, xc, x, k);
             forRows(L, [&](int j, int k) { prolongRow(*C, xc, L, x, j, k, 0, L.nx); });

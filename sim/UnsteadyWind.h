@@ -250,6 +250,7 @@ class UnsteadyWindSolver {
     /// time (project(settings, dt)); mPressureSteps counts how many are valid (0-2).
     std::vector<double> mPressureLast, mPressureBefore;
     int mPressureSteps = 0;
+    double mStepCfl = 0.0;  ///< the CFL of the step under way (StepReport::cfl), for project()
     /// The step's velocity before its advection (swapped out of mField, kept for its storage)
     /// and that velocity in float for the row kernels.
     std::vector<double> mBefore[3];

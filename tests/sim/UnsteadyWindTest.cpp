@@ -3,8 +3,10 @@
 // right sense of rotation, and a viscous Lamb-Oseen vortex decays as the exact solution.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <vector>
 
 #include "SimTestUtil.h"
@@ -221,6 +223,74 @@ TEST(UnsteadyWind, WhirlwindIsCarriedByTheWindWithItsSenseOfRotation) {
             circulationAround(solver.grid(), solver.velocity(), {f.x, f.y}, 8.0, 5.0);
         EXPECT_GT(sense * gamma, 0.0) << "circulation " << gamma;
     }
+}
+
+/// What a step reports of its field (one pass in UnsteadyDiagnostics.cpp) against the definitions
+/// written out here over the solver's field: the largest cell-centred speed over air cells, the
+/// kinetic energy 1/2 sum theta u^2 V, the largest |open outflux| / U, and the cell rate behind
+/// the next step's length (the field's or the far field's, whichever is faster).
+TEST(UnsteadyWind, TheStepReportsItsFieldByTheDefinitions) {
+    const Heightfield hf = terrain(TerrainKind::GaussianHill, 48, 32, 6.0, 6.0);
+    AirDomain d(hf, {2.0, std::optional<double>(20.0), 1e9});
+    const double U = 4.0;
+    const auto steady = solveSteadyWind(d, uniformWind(U), {}, tight());
+    UnsteadySettings s;
+    s.cfl = 2.0;
+    Whirlwind w;
+    w.wsPosition_m = {14.0, 16.0};
+    w.coreRadius_m = 3.0;
+    w.peakSpeed_mps = 6.0;
+    w.updraft_mps = 1.0;
+    w.forced = true;
+    s.whirlwinds.push_back(w);
+    UnsteadyWindSolver solver(d, steady.field, s, U);
+    const GridLayout& g = solver.grid();
+    auto rateOf = [&](const std::vector<double>& u, const std::vector<double>& v,
+                      const std::vector<double>& wz) {
+        double r = 0.0;
+        for (double x : u) r = std::max(r, std::abs(x) / g.voxelSize_m);
+        for (double x : v) r = std::max(r, std::abs(x) / g.voxelSize_m);
+        for (int k = 0; k <= g.nz; ++k) {
+            const double dz = std::min(g.dz_m(std::max(k - 1, 0)), g.dz_m(std::min(k, g.nz - 1)));
+            for (int j = 0; j < g.ny; ++j)
+                for (int i = 0; i < g.nx; ++i) r = std::max(r, std::abs(wz[g.faceZIndex(i, j, k)]) / dz);
+        }
+        return r;
+    };
+    const double farRate =
+        rateOf(steady.field.u_mps(), steady.field.v_mps(), steady.field.w_mps());
+    for (int n = 0; n < 4; ++n) {
+        const StepReport r = solver.step(solver.nextDt_s());
+        const WindField& f = solver.field();
+        const auto &u = f.u_mps(), &v = f.v_mps(), &wz = f.w_mps();
+        double speed = 0.0, outflux = 0.0, energy = 0.0;
+        for (int k = 0; k < g.nz; ++k)
+            for (int j = 0; j < g.ny; ++j)
+                for (int i = 0; i < g.nx; ++i) {
+                    if (!d.isAir(i, j, k)) continue;
+                    const auto c = f.cellVelocity_mps(i, j, k);
+                    speed = std::max(speed, std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
+                    outflux = std::max(outflux, std::abs(d.openOutflux(u, v, wz, i, j, k)));
+                }
+        const double h = g.voxelSize_m;
+        for (size_t a = 0; a < u.size(); ++a) energy += d.openFractionsX()[a] * u[a] * u[a] * h * h * h;
+        for (size_t a = 0; a < v.size(); ++a) energy += d.openFractionsY()[a] * v[a] * v[a] * h * h * h;
+        for (size_t a = 0; a < wz.size(); ++a)
+            energy += d.openFractionsZ()[a] * wz[a] * wz[a] * h * h * h;
+        energy *= 0.5;
+        EXPECT_EQ(r.maxSpeed_mps, speed);
+        EXPECT_EQ(r.maxDivergenceScaled, outflux / U);
+        EXPECT_NEAR(r.kineticEnergy_m5ps2, energy, 1e-12 * energy);
+        EXPECT_TRUE(r.finite);
+        // The rate the step left for the next one is the field's as it is now.
+        EXPECT_EQ(solver.cellRate_ps(), std::max(rateOf(u, v, wz), farRate));
+        EXPECT_NEAR(solver.nextDt_s(), std::min(s.maxDt_s, s.cfl / solver.cellRate_ps()), 1e-15);
+    }
+    // An edit from outside is measured again: a face twice as fast as any other sets the rate.
+    WindField& edit = solver.editField();
+    const double fast = 3.0 * solver.maxSpeed_mps() + 10.0;
+    edit.u_mps()[g.faceXIndex(5, 5, g.nz - 1)] = fast;
+    EXPECT_EQ(solver.cellRate_ps(), fast / g.voxelSize_m);
 }
 
 /// Mean tangential speed on a ring of radius r around (x, y) at height z, m/s.
