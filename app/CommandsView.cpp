@@ -110,6 +110,15 @@ struct LivePending {
     uint64_t work = 0;  ///< WindWorker::post's number
 };
 
+/// A move of the live wind to other cells (the C key), posted to the wind worker, until done.
+struct GridPending {
+    bool active = false;
+    uint64_t work = 0;                   ///< WindWorker::post's number
+    double cell_m = 0.0;                 ///< the cells asked for
+    std::shared_ptr<std::string> error;  ///< set by the worker when the move failed
+    std::shared_ptr<std::string> grid;   ///< set by the worker: the new grid's size, in words
+};
+
 /// The live source a gesture asks for, placed on the terrain under its pixels; nothing when the
 /// cursor is off the terrain. Sizes: a 3 m core / half-width / radius and 6 m/s, a little above
 /// a breeze, so the grass visibly answers in any of the examples.
@@ -248,6 +257,12 @@ int runView(const ViewOptions& options) {
     const bool liveWind = dynamic_cast<coupling::UnsteadyFieldWind*>(built.wind.get()) != nullptr;
     LiveGestures gestures;
     LivePending livePending;  // the last live source, until the grass has it
+    // The C key: the live wind on cells twice the scene's, for a view whose wind cannot keep up,
+    // and back. The scene's composition builds the other grid (buildLiveWindGrid) on the wind's
+    // worker, which carries the flow over (UnsteadyFieldWind::moveToGrid).
+    const double sceneCell_m = scene.solver.domain.voxelSize_m;
+    double liveCell_m = sceneCell_m;
+    GridPending gridPending;
 
     const bool scripted = options.frames.has_value();  // --frames: exact frames, then exit
     const int frameLimit = options.frames.value_or(0);
@@ -278,7 +293,8 @@ int runView(const ViewOptions& options) {
                  "gale: viewing %s (%s); space play/pause, right arrow step, +/- speed, R reset "
                  "camera, G grass, T terrain, O overlays, [ ] shells, S screenshot, H heads-up, "
                  "Esc/Q quit; mouse: left drag orbit, right drag pan, scroll zoom; live wind: "
-                 "click whirlwind, shift-drag gust front, W/B/D whirlwind/blast/downwash\n",
+                 "click whirlwind, shift-drag gust front, W/B/D whirlwind/blast/downwash, C "
+                 "coarser live grid\n",
                  scene.path.c_str(), window->description().c_str());
 
     while (!window->closeRequested()) {
@@ -354,6 +370,38 @@ int runView(const ViewOptions& options) {
                 case render::Key::H:
                     showHud = !showHud;
                     break;
+                case render::Key::C: {
+                    if (!liveWind) {
+                        note("a coarser live grid needs an unsteady scene");
+                        break;
+                    }
+                    if (gridPending.active) {
+                        note("the live wind is still moving to " + fmt("%g m", gridPending.cell_m) +
+                             " cells");
+                        break;
+                    }
+                    const double target =
+                        liveCell_m == sceneCell_m ? 2.0 * sceneCell_m : sceneCell_m;
+                    auto error = std::make_shared<std::string>();
+                    auto grid = std::make_shared<std::string>();
+                    const sim::Heightfield* terrain = &built.heightfield;
+                    const uint64_t number = view.worker().post([&scene, terrain, target, error,
+                                                                grid](coupling::WindSource& wind) {
+                        try {
+                            LiveWindGrid g = buildLiveWindGrid(scene, *terrain, target);
+                            *grid = std::to_string(g.domain->nx()) + " x " +
+                                    std::to_string(g.domain->ny()) + " x " +
+                                    std::to_string(g.domain->nz());
+                            (void)static_cast<coupling::UnsteadyFieldWind&>(wind).moveToGrid(
+                                std::move(g.domain), g.steady, g.settings, g.referenceSpeed_mps);
+                        } catch (const std::exception& failure) {
+                            *error = failure.what();  // the wind stays on its grid
+                        }
+                    });
+                    gridPending = GridPending{true, number, target, error, grid};
+                    note("moving the live wind to " + fmt("%g m", target) + " cells");
+                    break;
+                }
                 case render::Key::O:
                     overlayMode = OverlayMode((int(overlayMode) + 1) % int(OverlayMode::Count));
                     if (overlayMode == OverlayMode::Scene && !scene.overlay.any())
@@ -419,6 +467,17 @@ int runView(const ViewOptions& options) {
                          shown.t_s);
             livePending.active = false;
         }
+        if (gridPending.active && shown.workDone >= gridPending.work) {
+            gridPending.active = false;
+            if (gridPending.error->empty()) {
+                liveCell_m = gridPending.cell_m;
+                note("live wind on " + fmt("%g m", liveCell_m) + " cells (" + *gridPending.grid +
+                     ")");
+            } else {
+                note("live wind kept on " + fmt("%g m", liveCell_m) +
+                     " cells: " + *gridPending.error);
+            }
+        }
         const bool lastFrame = scripted && frames + 1 >= frameLimit;
         if (lastFrame && !options.screenshotPath.empty()) {
             // Before the heads-up line, so it matches `gale render` of the same frame.
@@ -443,9 +502,13 @@ int runView(const ViewOptions& options) {
         std::string hud = fmt("%.1f fps", fpsSmoothed) + "  " + fmt("%.0f ms", frame_ms) + "  t " +
                           fmt("%.2f s", shown.serial > 0 ? shown.t_s : 0.0) + "  step " +
                           fmt("%.1f ms", shown.step_ms);
-        if (behind) hud += "  simulation behind by " + fmt("%.2f s", lag_s);
+        if (behind) {
+            hud += "  simulation behind by " + fmt("%.2f s", lag_s);
+            if (liveWind && liveCell_m == sceneCell_m) hud += " (C: coarser live grid)";
+        }
         std::string hud2 = "x" + fmt("%g", speed) + (playing ? "" : "  paused") + "  shells " +
                            std::to_string(renderer.shellCount());
+        if (liveCell_m != sceneCell_m) hud2 += "  live grid " + fmt("%g m", liveCell_m);
         if (!shown.report.empty())
             hud2 += "  " + shown.report;
         else if (!solveLine.empty())

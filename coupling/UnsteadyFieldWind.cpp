@@ -59,6 +59,19 @@ void UnsteadyFieldWind::advanceTo(double t_s, const std::function<bool()>& stop)
     }
 }
 
+sim::SolveReport UnsteadyFieldWind::moveToGrid(std::unique_ptr<sim::AirDomain> domain,
+                                               const sim::WindField& steady,
+                                               const sim::UnsteadySettings& settings,
+                                               double referenceSpeed_mps) {
+    auto solver =
+        std::make_unique<sim::UnsteadyWindSolver>(*domain, steady, settings, referenceSpeed_mps);
+    const sim::SolveReport rep = solver->continueFrom(*mSolver);
+    mSolver = std::move(solver);  // the old solver goes before its domain
+    mDomain = std::move(domain);
+    resampleCurrentField();
+    return rep;
+}
+
 void UnsteadyFieldWind::resampleCurrentField() {
     std::vector<glm::vec3> velocity = mWind.spareStepBuffer();
     mSampler.sample(mSolver->field(), velocity);

@@ -78,6 +78,15 @@ class UnsteadyFieldWind : public WindSource {
     /// update() shows it, blended in over the last step interval, without waiting for a solver
     /// step. Only from the thread that calls update().
     void resampleCurrentField();
+    /// Moves the run onto another grid of the same scene (gale view's coarser live grid): a
+    /// solver on `domain` with `steady` as its mean flow takes up the current one's time,
+    /// whirlwinds and flow (sim::UnsteadyWindSolver::continueFrom), the grass samples it at once
+    /// (resampleCurrentField) and the old grid is freed. The steps the grass holds stay: they are
+    /// samples at the vertices, whatever grid they came from. Returns the take-over's projection.
+    /// Only from the thread that calls update().
+    sim::SolveReport moveToGrid(std::unique_ptr<sim::AirDomain> domain,
+                                const sim::WindField& steady, const sim::UnsteadySettings& settings,
+                                double referenceSpeed_mps);
     const UnsteadyRunStats& stats() const { return mStats; }
     /// The sampler the grass reads the field through (its near-ground law: nearGroundOf).
     GrassSampler& sampler() { return mSampler; }

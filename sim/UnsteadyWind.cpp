@@ -187,6 +187,32 @@ void UnsteadyWindSolver::resetState(const WindField& state) {
     extrapolateClosedFaces();
 }
 
+SolveReport UnsteadyWindSolver::continueFrom(const UnsteadyWindSolver& other) {
+    if (other.mSettings.whirlwinds.size() != mSettings.whirlwinds.size())
+        throw std::logic_error("UnsteadyWindSolver::continueFrom: the solvers' whirlwinds differ");
+    std::vector<double>* mine[3] = {&mField.u_mps(), &mField.v_mps(), &mField.w_mps()};
+    const std::vector<double>* theirs[3] = {&other.mField.u_mps(), &other.mField.v_mps(),
+                                            &other.mField.w_mps()};
+    for (int c = 0; c < 3; ++c) {
+        const Placement p = Placement(c);
+        const auto n = mGrid.dims(p);
+        tbb::parallel_for(0, n[2], [&](int k) {
+            for (int j = 0; j < n[1]; ++j)
+                for (int i = 0; i < n[0]; ++i)
+                    (*mine[c])[mGrid.index(p, i, j, k)] =
+                        sampleAt(other.mGrid, p, *theirs[c], mGrid.wsPosition(p, i, j, k));
+        });
+    }
+    mTime_s = other.mTime_s;
+    mSeeded = other.mSeeded;
+    mAxes = other.mAxes;
+    mPressureSteps = 0;
+    mFieldRateKnown = false;
+    extrapolateClosedFaces();
+    if (!mSettings.openTop) closeLid();
+    return project();
+}
+
 std::array<double, 2> UnsteadyWindSolver::regionCentre_m(const GustEvent& g, double t) const {
     const double a = radiansFromDegrees(g.direction_deg), dx = std::cos(a), dy = std::sin(a);
     std::array<double, 2> c = g.regionStart_m;

@@ -191,6 +191,12 @@ class UnsteadyWindSolver {
     /// are refilled by extrapolation as after a projection; the next step projects. Throws
     /// std::logic_error when the arrays do not match the domain.
     void resetState(const WindField& state);
+    /// Takes up the run of `other`, a solver of the same scene on another grid (gale view's
+    /// coarser live grid): its time, its whirlwinds' seeding and axis markers, and its current
+    /// flow sampled trilinearly at this grid's faces (clamped to `other`'s box), refilled under
+    /// the terrain and projected. The pressure history starts again. Throws std::logic_error
+    /// when the two do not hold the same whirlwinds.
+    SolveReport continueFrom(const UnsteadyWindSolver& other);
     /// Projects the current field (after external edits, e.g. seeding in tests).
     SolveReport project();
     /// The same with other criteria (the steady momentum model's final, tighter projection).

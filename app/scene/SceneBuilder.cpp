@@ -229,6 +229,24 @@ void buildUnsteadyWind(const Scene& scene, const BuildOptions& options, BuiltSce
 
 }  // namespace
 
+LiveWindGrid buildLiveWindGrid(const Scene& scene, const sim::Heightfield& terrain,
+                               double voxelSize_m) {
+    if (scene.solver.domain.firstCell_m)
+        failAt(scene, "solver.first_cell_m",
+               "the coarser live grid needs cubic cells; this scene has stretched layers");
+    Scene other = scene;
+    other.solver.domain.voxelSize_m = voxelSize_m;
+    SceneField result = solveSceneField(other, buildSceneDomain(other, terrain));
+    const UnsteadyStepping stepping = unsteadySteppingOf(other);
+    LiveWindGrid grid;
+    grid.summary = result.summary();
+    grid.domain = std::move(result.domain);
+    grid.steady = std::move(result.field);
+    grid.settings = stepping.settings;
+    grid.referenceSpeed_mps = stepping.referenceSpeed_mps;
+    return grid;
+}
+
 SceneTerrain buildTerrain(const Scene& scene) {
     const TerrainSection& t = scene.terrain;
     if (t.dem) {

@@ -14,8 +14,11 @@
 #include "render/DensityMap.h"
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"
+#include "sim/AirDomain.h"
 #include "sim/Heightfield.h"
 #include "sim/PoissonSolver.h"
+#include "sim/UnsteadyWind.h"
+#include "sim/WindField.h"
 
 namespace gale::app {
 
@@ -65,6 +68,24 @@ struct BuildOptions {
 /// when an input (heightmap, texture image) turns out bad; std::runtime_error for internal
 /// failures.
 BuiltScene buildScene(const Scene& scene, const BuildOptions& options = {});
+
+/// An unsteady scene's live wind on cells of another size: what UnsteadyFieldWind::moveToGrid
+/// takes (gale view's coarser live grid).
+struct LiveWindGrid {
+    std::unique_ptr<sim::AirDomain> domain;
+    sim::WindField steady;  ///< the steady field on `domain`: the mean flow there
+    sim::UnsteadySettings settings;
+    double referenceSpeed_mps = 1.0;
+    std::string summary;  ///< the steady solve's summary (SceneField::summary)
+};
+
+/// The scene's domain and steady field with solver.voxel_size_m = voxelSize_m (cubic cells only),
+/// through the composition every verb uses (buildSceneDomain, solveSceneField,
+/// unsteadySteppingOf), over `terrain` (the built scene's heightfield). Throws SceneError as
+/// buildScene for a grid the scene cannot have (memory, a box too small for the cells), and
+/// SceneError at solver.first_cell_m for stretched layers.
+LiveWindGrid buildLiveWindGrid(const Scene& scene, const sim::Heightfield& terrain,
+                               double voxelSize_m);
 
 /// A scene's terrain: the heightfield (local frame) and, for a DEM, where it sits.
 struct SceneTerrain {

@@ -300,6 +300,36 @@ TEST(SceneField, TheReportListsTheGridsTheFileHoldsAndTheLayers) {
     }
 }
 
+TEST(SceneField, TheLiveWindOnCoarserCellsIsTheScenesCompositionOnThoseCells) {
+    TempDir dir;
+    test::writeFile(dir / "hill.toml", HILL_SCENE);
+    SceneRunOptions o;
+    o.scenePath = dir / "hill.toml";
+    const Scene scene = loadScene(o);
+    const SceneTerrain terrain = buildTerrain(scene);
+    const double h = scene.solver.domain.voxelSize_m;
+    const LiveWindGrid grid = buildLiveWindGrid(scene, terrain.field, 2.0 * h);
+    // The same as every verb's composition of the scene with solver.voxel_size_m doubled.
+    Scene doubled = scene;
+    doubled.solver.domain.voxelSize_m = 2.0 * h;
+    const SceneField want = buildSceneField(doubled, terrain.field);
+    ASSERT_TRUE(grid.domain);
+    EXPECT_EQ(grid.domain->voxelSize_m(), 2.0 * h);
+    EXPECT_EQ(grid.domain->nx(), want.domain->nx());
+    EXPECT_EQ(grid.domain->nz(), want.domain->nz());
+    EXPECT_EQ(grid.steady.u_mps(), want.field.u_mps());
+    EXPECT_EQ(grid.steady.w_mps(), want.field.w_mps());
+    // Stretched layers are refused, naming the key.
+    Scene stretched = scene;
+    stretched.solver.domain.firstCell_m = 0.5 * h;
+    try {
+        (void)buildLiveWindGrid(stretched, terrain.field, 2.0 * h);
+        ADD_FAILURE() << "stretched layers were accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("solver.first_cell_m"), std::string::npos) << e.what();
+    }
+}
+
 TEST(SceneField, ProbeAtGrassHeightOverCutGroundReadsWhatTheGrassReads) {
     // The hill's slopes cut the first cells; at 0.25 m the grass reads the tangential law below
     // the solved faces (coupling/NearGround.h). A probe at a mesh vertex, 0.25 m up, must print

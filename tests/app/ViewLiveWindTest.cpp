@@ -97,6 +97,30 @@ TEST(View, UnderXvfbAScriptedClickDropsAWhirlwindThatTheGrassShowsWithinThreeFra
         << "the grass did not answer the click within " << FRAMES_TO_ANSWER << " frames";
 }
 
+TEST(View, UnderXvfbTheCKeyMovesTheLiveWindToCellsTwiceTheScenesAndBack) {
+    if (std::getenv("DISPLAY") == nullptr)
+        GTEST_SKIP() << "no display; ctest runs this under xvfb-run";
+    TempDir dir;
+    writeFile(dir / "calm.toml", CALM_SCENE);
+    const RunResult r =
+        runGale({"view", dir / "calm.toml", "--frames", "12", "--keys", ".c....c....."},
+                dir.path().string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    // 32 x 32 m under a 12 m top (the calm scene's automatic one): 16 x 16 cells of 2 m.
+    EXPECT_NE(r.err.find("live wind on 2 m cells (16 x 16 x"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("live wind on 1 m cells (32 x 32 x"), std::string::npos) << r.err;
+}
+
+TEST(View, TheCKeyInASteadySceneSaysItNeedsAnUnsteadyOne) {
+    if (std::getenv("DISPLAY") == nullptr)
+        GTEST_SKIP() << "no display; ctest runs this under xvfb-run";
+    const RunResult r = runGale(
+        {"view", sourcePath("tests/data/scenes/tiny.toml"), "--frames", "3", "--keys", ".c."});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("a coarser live grid needs an unsteady scene"), std::string::npos)
+        << r.err;
+}
+
 TEST(View, LiveWindInputThatCannotBeReadIsBadInput) {
     const RunResult r = runGale({"view", sourcePath("tests/data/scenes/tiny.toml"), "--input",
                                  "1:tornado:3,4", "--frames", "1"});

@@ -29,7 +29,7 @@ std::vector<double> byDefinition(std::vector<double> a, std::vector<uint8_t> val
                     if (valid[f]) continue;
                     double sum = 0.0;
                     int count = 0;
-                    const int d[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0},
+                    const int d[6][3] = {{-1, 0, 0}, {1, 0, 0},  {0, -1, 0},
                                          {0, 1, 0},  {0, 0, -1}, {0, 0, 1}};
                     for (const auto& o : d) {
                         const int ii = i + o[0], jj = j + o[1], kk = k + o[2];
@@ -60,7 +60,8 @@ TEST(FaceExtrapolation, TheListAppliedIsTheLayerByLayerDefinitionOnEveryPlacemen
         for (int k = 0; k < d[2]; ++k)
             for (int j = 0; j < d[1]; ++j)
                 for (int i = 0; i < d[0]; ++i)
-                    if (k < 1 + (i * 7 + j * 3) % 5 || rng() % 13 == 0) valid[g.index(p, i, j, k)] = 0;
+                    if (k < 1 + (i * 7 + j * 3) % 5 || rng() % 13 == 0)
+                        valid[g.index(p, i, j, k)] = 0;
         std::vector<double> a(n);
         for (double& v : a) v = value(rng);
         for (int layers : {1, 2, 4}) {
@@ -70,7 +71,8 @@ TEST(FaceExtrapolation, TheListAppliedIsTheLayerByLayerDefinitionOnEveryPlacemen
             plan.apply(got);
             ASSERT_EQ(got.size(), want.size());
             for (size_t f = 0; f < n; ++f)
-                ASSERT_EQ(got[f], want[f]) << "placement " << pl << ", layers " << layers << ", face " << f;
+                ASSERT_EQ(got[f], want[f])
+                    << "placement " << pl << ", layers " << layers << ", face " << f;
             EXPECT_GT(plan.filledCount(), 0u);
             // Applied again to other values, the same list fills them by the same rule.
             std::vector<double> b(n);

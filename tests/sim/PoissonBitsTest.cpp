@@ -107,10 +107,12 @@ TEST(PoissonBits, PhasedAndPipelinedSweepsGiveTheSameBits) {
         bool neumann;
         uint32_t seed;
     };
-    for (const Case& c : {Case{70, 52, 30, false, 1.f, false, 3}, Case{30, 20, 12, false, 1.f, true, 5},
-                          Case{96, 80, 40, false, 1.f, false, 7}}) {
+    for (const Case& c :
+         {Case{70, 52, 30, false, 1.f, false, 3}, Case{30, 20, 12, false, 1.f, true, 5},
+          Case{96, 80, 40, false, 1.f, false, 7}}) {
         multigrid::setPhasedMaxCells(0);
-        const uint64_t pipelined = solveHash(c.nx, c.ny, c.nz, c.zLines, c.zScale, c.neumann, c.seed);
+        const uint64_t pipelined =
+            solveHash(c.nx, c.ny, c.nz, c.zLines, c.zScale, c.neumann, c.seed);
         multigrid::setPhasedMaxCells(SIZE_MAX);
         const uint64_t phased = solveHash(c.nx, c.ny, c.nz, c.zLines, c.zScale, c.neumann, c.seed);
         multigrid::setPhasedMaxCells(multigrid::PHASED_MAX_CELLS);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "SimTestUtil.h"
@@ -253,12 +254,12 @@ TEST(UnsteadyWind, TheStepReportsItsFieldByTheDefinitions) {
         for (int k = 0; k <= g.nz; ++k) {
             const double dz = std::min(g.dz_m(std::max(k - 1, 0)), g.dz_m(std::min(k, g.nz - 1)));
             for (int j = 0; j < g.ny; ++j)
-                for (int i = 0; i < g.nx; ++i) r = std::max(r, std::abs(wz[g.faceZIndex(i, j, k)]) / dz);
+                for (int i = 0; i < g.nx; ++i)
+                    r = std::max(r, std::abs(wz[g.faceZIndex(i, j, k)]) / dz);
         }
         return r;
     };
-    const double farRate =
-        rateOf(steady.field.u_mps(), steady.field.v_mps(), steady.field.w_mps());
+    const double farRate = rateOf(steady.field.u_mps(), steady.field.v_mps(), steady.field.w_mps());
     for (int n = 0; n < 4; ++n) {
         const StepReport r = solver.step(solver.nextDt_s());
         const WindField& f = solver.field();
@@ -273,8 +274,10 @@ TEST(UnsteadyWind, TheStepReportsItsFieldByTheDefinitions) {
                     outflux = std::max(outflux, std::abs(d.openOutflux(u, v, wz, i, j, k)));
                 }
         const double h = g.voxelSize_m;
-        for (size_t a = 0; a < u.size(); ++a) energy += d.openFractionsX()[a] * u[a] * u[a] * h * h * h;
-        for (size_t a = 0; a < v.size(); ++a) energy += d.openFractionsY()[a] * v[a] * v[a] * h * h * h;
+        for (size_t a = 0; a < u.size(); ++a)
+            energy += d.openFractionsX()[a] * u[a] * u[a] * h * h * h;
+        for (size_t a = 0; a < v.size(); ++a)
+            energy += d.openFractionsY()[a] * v[a] * v[a] * h * h * h;
         for (size_t a = 0; a < wz.size(); ++a)
             energy += d.openFractionsZ()[a] * wz[a] * wz[a] * h * h * h;
         energy *= 0.5;
@@ -291,6 +294,52 @@ TEST(UnsteadyWind, TheStepReportsItsFieldByTheDefinitions) {
     const double fast = 3.0 * solver.maxSpeed_mps() + 10.0;
     edit.u_mps()[g.faceXIndex(5, 5, g.nz - 1)] = fast;
     EXPECT_EQ(solver.cellRate_ps(), fast / g.voxelSize_m);
+}
+
+/// gale view's coarser live grid: a solver on cells twice as large takes up a running one's time,
+/// whirlwind markers and flow. The flow stays divergence-free, the whirlwind keeps its sense and
+/// most of its circulation, and the run steps on.
+TEST(UnsteadyWind, ASolverOnCoarserCellsTakesUpTheRunWithItsWhirlwind) {
+    const Heightfield hf = terrain(TerrainKind::Flat, 64, 48);
+    AirDomain fine(hf, {1.0, std::optional<double>(16.0), 1e9});
+    AirDomain coarse(hf, {2.0, std::optional<double>(16.0), 1e9});
+    const double U = 2.0;
+    UnsteadySettings s;
+    s.dt_s = 0.25;
+    Whirlwind w;
+    w.wsPosition_m = {24.0, 24.0};
+    w.coreRadius_m = 4.0;
+    w.peakSpeed_mps = 5.0;
+    w.forced = true;
+    s.whirlwinds.push_back(w);
+    UnsteadyWindSolver a(fine, solveSteadyWind(fine, uniformWind(U), {}, tight()).field, s, U);
+    for (int n = 0; n < 6; ++n) ASSERT_TRUE(a.step(a.nextDt_s()).finite);
+    const std::array<double, 2> axis = a.whirlwindAxes_m()[0];
+    const double before = circulationAround(a.grid(), a.velocity(), axis, 8.0, 6.0);
+    UnsteadyWindSolver b(coarse, solveSteadyWind(coarse, uniformWind(U), {}, tight()).field, s, U);
+    const SolveReport rep = b.continueFrom(a);
+    EXPECT_TRUE(rep.converged) << rep.message;
+    EXPECT_EQ(b.time_s(), a.time_s());
+    EXPECT_EQ(b.whirlwindAxes_m()[0], axis);
+    EXPECT_LT(b.maxDivergenceScaled(), DIVERGENCE_TOLERANCE);
+    const double after = circulationAround(b.grid(), b.velocity(), axis, 8.0, 6.0);
+    std::printf("circulation at 8 m around the axis: %.2f m^2/s on 1 m cells, %.2f on 2 m\n",
+                before, after);
+    EXPECT_GT(before, 0.0);
+    EXPECT_GT(after, 0.7 * before);  // a 2 m grid resolves a 4 m core with some loss
+    EXPECT_LT(after, 1.1 * before);
+    for (int n = 0; n < 4; ++n) {
+        const StepReport r = b.step(b.nextDt_s());
+        ASSERT_TRUE(r.finite);
+        EXPECT_LT(r.maxDivergenceScaled, DIVERGENCE_TOLERANCE);
+    }
+    EXPECT_DOUBLE_EQ(b.time_s(), a.time_s() + 4 * 0.25);
+    // A solver of other whirlwinds cannot take the run up.
+    UnsteadySettings none = s;
+    none.whirlwinds.clear();
+    UnsteadyWindSolver c(coarse, solveSteadyWind(coarse, uniformWind(U), {}, tight()).field, none,
+                         U);
+    EXPECT_THROW((void)c.continueFrom(a), std::logic_error);
 }
 
 /// Mean tangential speed on a ring of radius r around (x, y) at height z, m/s.
