@@ -323,48 +323,6 @@ void detail::roundToFloat(const std::vector<double>& a, std::vector<float>& out)
 
 namespace {
 
-/// Scratch of T kept between calls on one thread: a step advects three components of about one
-/// size, and fresh vectors would be zeroed and faulted in every time. A call that finds the
-/// thread's copy in use (a TBB thread that took another advection while it waited inside one)
-/// gets a fresh T of its own.
-template <class T>
-class ScratchLease {
-  public:
-    ScratchLease() : mShared(slot().busy ? nullptr : &slot()) {
-        if (mShared) mShared->busy = true;
-    }
-    ~ScratchLease() {
-        if (mShared) mShared->busy = false;
-    }
-    ScratchLease(const ScratchLease&) = delete;
-    ScratchLease& operator=(const ScratchLease&) = delete;
-    T& get() { return mShared ? mShared->value : mOwn; }
-
-  private:
-    struct Slot {
-        T value;
-        bool busy = false;
-    };
-    static Slot& slot() {
-        thread_local Slot s;
-        return s;
-    }
-    Slot* mShared;
-    T mOwn;
-};
-
-/// combinePasses' vectors: the forward and backward passes, the limiter's bounds, BFECC's
-/// corrected quantity.
-struct PassScratch {
-    std::vector<double> fwd, back, lo, hi, corrected;
-};
-
-/// advectSingle's vectors: the quantity in float, the recorded trace starts, the row pass's flags.
-struct RowScratch {
-    std::vector<float> qf, starts;
-    std::vector<uint8_t> general;
-};
-
 /// Which of a scheme's passes a pass is: its only one, the first of several (which may keep
 /// its trace starts for the others), or a later one.
 enum class PassRole { Only, First, Later };
@@ -373,16 +331,13 @@ enum class PassRole { Only, First, Later };
 /// pass (lo/hi: the limiter's bounds, or null).
 template <class Pass>
 void combinePasses(const std::vector<double>& q, double dt, AdvectionScheme scheme,
-                   std::vector<double>& out, const Pass& pass) {
+                   std::vector<double>& out, AdvectionScratch& scratch, const Pass& pass) {
     if (scheme == AdvectionScheme::SemiLagrangian) {
         pass(q, dt, out, nullptr, nullptr, PassRole::Only);
         return;
     }
-    // Kept between calls (ScratchLease): every pass writes all of them.
-    ScratchLease<PassScratch> lease;
-    PassScratch& scratch = lease.get();
-    std::vector<double>&fwd = scratch.fwd, &back = scratch.back, &lo = scratch.lo, &hi = scratch.hi,
-    &corrected = scratch.corrected;
+    std::vector<double>&fwd = scratch.forward, &back = scratch.backward, &lo = scratch.low,
+    &hi = scratch.high, &corrected = scratch.corrected;
     pass(q, dt, fwd, &lo, &hi, PassRole::First);
     pass(fwd, -dt, back, nullptr, nullptr, PassRole::Later);
     out.resize(q.size());
@@ -410,14 +365,15 @@ void combinePasses(const std::vector<double>& q, double dt, AdvectionScheme sche
 template <class Lattice>
 void advectWith(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
                 const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
-                std::vector<double>& out, const std::vector<uint8_t>* mask) {
+                std::vector<double>& out, const std::vector<uint8_t>* mask,
+                AdvectionScratch& scratch) {
     const double groundTop = g.terrainTop_m();
     // Every pass starts its traces from the same samples through the same frozen velocity: the
     // first pass computes each sample's start and keeps it for the others. Default-initialised
     // (not zeroed): a masked-out sample's entry is never written nor read.
     std::unique_ptr<TraceStart[]> starts;
     if (scheme != AdvectionScheme::SemiLagrangian) starts.reset(new TraceStart[q.size()]);
-    combinePasses(q, dt, scheme, out,
+    combinePasses(q, dt, scheme, out, scratch,
                   [&](const std::vector<double>& a, double t, std::vector<double>& b,
                       std::vector<double>* lo, std::vector<double>* hi, PassRole role) {
                       semiLagrangian<Lattice>(g, p, a, vel, far, outside, t, b, mask, lo, hi,
@@ -432,7 +388,7 @@ void advectWith(const MacGrid& g, Placement p, const std::vector<double>& q, con
 void advectSingle(const MacGrid& g, Placement p, const std::vector<double>& q,
                   const MacVelocity& vel, const FarField& far, const OutsideValue& outside,
                   double dt, AdvectionScheme scheme, std::vector<double>& out,
-                  const std::vector<uint8_t>* mask) {
+                  const std::vector<uint8_t>* mask, AdvectionScratch& scratch) {
     const double groundTop = g.terrainTop_m();
     std::vector<float> uf, vf, wf;
     if (!vel.uSingle) {
@@ -462,17 +418,15 @@ void advectSingle(const MacGrid& g, Placement p, const std::vector<double>& q,
         in.groundTop = float((groundTop - g.wsMin_m[2]) / h);
     }
     const auto d = g.dims(p);
-    // Kept between calls (ScratchLease): the row pass writes every entry of `general` and of
-    // `starts` that is read, and each pass copies its quantity into qf whole.
-    ScratchLease<RowScratch> lease;
-    RowScratch& scratch = lease.get();
-    std::vector<float>&qf = scratch.qf, &starts = scratch.starts;
+    // The row pass writes every entry of `general` and of `starts` that is read, and each pass
+    // rounds its quantity into qf whole.
+    std::vector<float>&qf = scratch.quantity, &starts = scratch.starts;
     std::vector<uint8_t>& general = scratch.general;
     general.resize(q.size());
     // The velocity at the samples, kept by the first of several passes for the others.
     if (scheme != AdvectionScheme::SemiLagrangian)
         starts.resize(3 * q.size() + detail::ROW_PASS_PADDING);
-    combinePasses(q, dt, scheme, out,
+    combinePasses(q, dt, scheme, out, scratch,
                   [&](const std::vector<double>& a, double t, std::vector<double>& b,
                       std::vector<double>* lo, std::vector<double>* hi, PassRole role) {
                       b.resize(a.size());
@@ -517,7 +471,7 @@ Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, c
 void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
             const FarField& far, const OutsideValue& outside, double dt, AdvectionScheme scheme,
             std::vector<double>& out, const std::vector<uint8_t>* mask,
-            AdvectionPrecision precision) {
+            AdvectionPrecision precision, AdvectionScratch* scratch) {
     if (q.size() != g.count(p)) throw std::logic_error("advect: quantity has the wrong size");
     if (!vel.u || !vel.v || !vel.w || vel.u->size() != g.count(Placement::FaceX) ||
         vel.v->size() != g.count(Placement::FaceY) || vel.w->size() != g.count(Placement::FaceZ))
@@ -529,12 +483,14 @@ void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const M
         throw std::logic_error("advect: single-precision velocity arrays have the wrong size");
     // Cubic cells (the live scenes) take the fast lattice, in float if asked; stretched layers
     // the layout's sampler.
+    AdvectionScratch own;
+    AdvectionScratch& work = scratch ? *scratch : own;
     if (UniformLattice::usable(g) && precision == AdvectionPrecision::Single)
-        advectSingle(g, p, q, vel, far, outside, dt, scheme, out, mask);
+        advectSingle(g, p, q, vel, far, outside, dt, scheme, out, mask, work);
     else if (UniformLattice::usable(g))
-        advectWith<CubicLattice>(g, p, q, vel, far, outside, dt, scheme, out, mask);
+        advectWith<CubicLattice>(g, p, q, vel, far, outside, dt, scheme, out, mask, work);
     else
-        advectWith<LayoutLattice>(g, p, q, vel, far, outside, dt, scheme, out, mask);
+        advectWith<LayoutLattice>(g, p, q, vel, far, outside, dt, scheme, out, mask, work);
 }
 
 }  // namespace gale::sim

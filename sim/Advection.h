@@ -149,15 +149,26 @@ Vec3d traceBack(const MacGrid& g, const MacVelocity& vel, const FarField& far, c
 /// Value of the advected quantity outside the box at a world position (same units as q).
 using OutsideValue = std::function<double(const Vec3d& wsPos_m)>;
 
+/// Working arrays of advect(), kept by a caller that advects again and again (the unsteady
+/// solver: three components of about one size every step, where fresh vectors would be zeroed and
+/// faulted in each time). Every pass writes what it reads of them; one call at a time.
+struct AdvectionScratch {
+    std::vector<double> forward, backward, low, high, corrected;  ///< the schemes' passes
+    std::vector<float> quantity, starts;  ///< the float rows' quantity and trace starts
+    std::vector<uint8_t> general;         ///< the samples the rows leave to the double path
+};
+
 /// Advects q (placement p) through the frozen velocity over dt_s seconds with `scheme` and writes
 /// the result to `out` (resized). Samples with mask[idx] == 0 (if mask is given) are copied
 /// unchanged. `outside` gives q where a trace leaves the box (empty: clamp to the box). Each
 /// sample's trace starts at its world position (GridLayout::wsPosition). Multithreaded (TBB).
-/// `precision` chooses the arithmetic on cubic cells (AdvectionPrecision).
+/// `precision` chooses the arithmetic on cubic cells (AdvectionPrecision). `scratch`: working
+/// arrays to reuse (none: the call makes its own).
 /// Throws std::logic_error on wrong sizes (a caller's bug).
 void advect(const MacGrid& g, Placement p, const std::vector<double>& q, const MacVelocity& vel,
             const FarField& far, const OutsideValue& outside, double dt_s, AdvectionScheme scheme,
             std::vector<double>& out, const std::vector<uint8_t>* mask = nullptr,
-            AdvectionPrecision precision = AdvectionPrecision::Double);
+            AdvectionPrecision precision = AdvectionPrecision::Double,
+            AdvectionScratch* scratch = nullptr);
 
 }  // namespace gale::sim

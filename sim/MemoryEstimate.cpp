@@ -58,10 +58,10 @@ RunMemory unsteadyRunMemory(const UnsteadySettings& settings) {
     double arrays = 1.0;
     if (settings.advection == AdvectionScheme::MacCormack) arrays += 4 * 0.5;
     if (settings.advection == AdvectionScheme::Bfecc) arrays += 5 * 0.5;
+    run.scratchFaceArrays = arrays;
     // The implicit viscosity's conjugate gradients: six vectors of one component.
     if (settings.viscosity_m2ps > 0.0 || settings.surfaceLayer.enabled)
-        arrays = std::max(arrays, 1.0 + 6 * 0.5);
-    run.scratchFaceArrays = arrays;
+        run.viscosityFaceArrays = 6 * 0.5;
     // Vorticity confinement: centred velocity, vorticity and force (3 doubles each) and the
     // vorticity's magnitude, per cell.
     if (settings.vorticityConfinement > 0.0 || !settings.whirlwinds.empty())
@@ -90,12 +90,16 @@ double solveArrays_bytes(double nx, double ny, double nz, double terrainSamples,
     if (run.unsteady) {
         // UnsteadyWindSolver beside the steady solve: its own PoissonSystem weights and solver,
         // the mean field and the current field (a double per face each), face masks, the
-        // warm-start potential and the projection's right-hand side, then the widest step's
-        // scratch (the advected copies, MacCormack's or BFECC's passes, the viscosity's CG
-        // vectors, or vorticity confinement's cell vectors).
-        extra += faces * (4.0 + 2 * 8.0 + 1.0) + cells * (1.0 + 2 * 8.0) +
-                 PoissonSolver::estimatedBytes(nx, ny, nz) +
-                 std::max(faces * 8.0 * run.scratchFaceArrays, cells * run.scratchCellBytes);
+        // warm-start potential and the projection's right-hand side; the advection's arrays,
+        // which the solver keeps from step to step (the field before the step, MacCormack's or
+        // BFECC's passes, and for the float rows the velocity in float, one component's
+        // quantity, trace starts and flags: 4 + 0.5 (4 + 12 + 1) bytes a face); then the widest
+        // of the other scratch (the viscosity's CG vectors or vorticity confinement's cells).
+        const double advection = faces * (8.0 * run.scratchFaceArrays + 4.0 + 0.5 * 17.0);
+        const double viscosityFaces = run.viscosityFaceArrays * 8.0 * faces;
+        extra += faces * (4.0 + 2 * 8.0 + 1.0) + cells * (1.0 + 3 * 8.0) +
+                 PoissonSolver::estimatedBytes(nx, ny, nz) + advection +
+                 std::max(viscosityFaces, cells * run.scratchCellBytes);
     }
     return domain + steady + output + extra;
 }

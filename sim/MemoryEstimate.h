@@ -40,11 +40,13 @@ struct UnsteadySettings;
 /// What a run holds besides the air domain and the steady solve, and what the process held
 /// before it (DomainSpec::run: AirDomain counts it in its estimate and limit).
 struct RunMemory {
-    /// An unsteady run: a second solver for the projection, the mean and current fields and the
-    /// step's scratch, scratchFaceArrays doubles per face or scratchCellBytes per cell at the
-    /// widest step (unsteadyRunMemory fills these in).
+    /// An unsteady run: a second solver for the projection, the mean and current fields, the
+    /// advection's arrays the solver keeps (scratchFaceArrays doubles per face) and the widest
+    /// other scratch (viscosityFaceArrays doubles per face or scratchCellBytes per cell;
+    /// unsteadyRunMemory fills these in).
     bool unsteady = false;
     double scratchFaceArrays = 0;
+    double viscosityFaceArrays = 0;  ///< the implicit viscosity's CG vectors, doubles per face
     double scratchCellBytes = 0;
     /// Resident bytes of the process before the domain is built (the program, its libraries, the
     /// scene and terrain), counted in the estimate; 0 for the arrays alone.

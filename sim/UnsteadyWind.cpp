@@ -367,7 +367,7 @@ StepReport UnsteadyWindSolver::step(double dt) {
                                      masks[c]);
             else
                 advect(mGrid, Placement(c), *src[c], vel, far, outside, dt, mSettings.advection,
-                       *dst[c], masks[c], mSettings.precision);
+                       *dst[c], masks[c], mSettings.precision, &mAdvectionScratch);
         }
     }
     rep.advection_s = since(t);

@@ -261,7 +261,8 @@ class UnsteadyWindSolver {
     /// and that velocity in float for the row kernels.
     std::vector<double> mBefore[3];
     std::vector<float> mBeforeSingle[3];
-    std::vector<double> mGradPsi[3];  // incrementalPressure: sum of the projections' corrections
+    AdvectionScratch mAdvectionScratch;  ///< the advection's working arrays, kept between steps
+    std::vector<double> mGradPsi[3];     // incrementalPressure: sum of the projections' corrections
     std::unique_ptr<TurbulentStress> mStress;  // surface-layer stresses, when enabled
     std::vector<std::array<double, 2>> mAxes;
     std::vector<uint8_t> mSeeded;
