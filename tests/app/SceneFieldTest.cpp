@@ -300,12 +300,17 @@ TEST(SceneField, TheReportListsTheGridsTheFileHoldsAndTheLayers) {
     }
 }
 
-TEST(SceneField, TheLiveWindOnCoarserCellsIsTheScenesCompositionOnThoseCells) {
-    TempDir dir;
+/// HILL_SCENE written to `dir` and loaded.
+Scene loadHillScene(const TempDir& dir) {
     test::writeFile(dir / "hill.toml", HILL_SCENE);
     SceneRunOptions o;
     o.scenePath = dir / "hill.toml";
-    const Scene scene = loadScene(o);
+    return loadScene(o);
+}
+
+TEST(SceneField, TheLiveWindOnCoarserCellsIsTheScenesCompositionOnThoseCells) {
+    TempDir dir;
+    const Scene scene = loadHillScene(dir);
     const SceneTerrain terrain = buildTerrain(scene);
     const double h = scene.solver.domain.voxelSize_m;
     const LiveWindGrid grid = buildLiveWindGrid(scene, terrain.field, 2.0 * h);
@@ -336,10 +341,7 @@ TEST(SceneField, ProbeAtGrassHeightOverCutGroundReadsWhatTheGrassReads) {
     // the grass sampler's velocity there.
     constexpr double GRASS_HEIGHT_M = 0.25;
     TempDir dir;
-    test::writeFile(dir / "hill.toml", HILL_SCENE);
-    SceneRunOptions o;
-    o.scenePath = dir / "hill.toml";
-    const Scene scene = loadScene(o);
+    const Scene scene = loadHillScene(dir);
     const SceneTerrain terrain = buildTerrain(scene);
     const SceneField f = buildSceneField(scene, terrain.field);
     ASSERT_TRUE(f.converged());

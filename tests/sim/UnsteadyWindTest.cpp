@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -226,6 +227,18 @@ TEST(UnsteadyWind, WhirlwindIsCarriedByTheWindWithItsSenseOfRotation) {
     }
 }
 
+/// A forced Lamb-Oseen whirlwind at `at` (world metres) of core radius, peak speed and updraft.
+Whirlwind forcedWhirlwind(std::array<double, 2> at, double core_m, double peak_mps,
+                          double updraft_mps) {
+    Whirlwind w;
+    w.wsPosition_m = at;
+    w.coreRadius_m = core_m;
+    w.peakSpeed_mps = peak_mps;
+    w.updraft_mps = updraft_mps;
+    w.forced = true;
+    return w;
+}
+
 /// What a step reports of its field (one pass in UnsteadyDiagnostics.cpp) against the definitions
 /// written out here over the solver's field: the largest cell-centred speed over air cells, the
 /// kinetic energy 1/2 sum theta u^2 V, the largest |open outflux| / U, and the cell rate behind
@@ -237,13 +250,7 @@ TEST(UnsteadyWind, TheStepReportsItsFieldByTheDefinitions) {
     const auto steady = solveSteadyWind(d, uniformWind(U), {}, tight());
     UnsteadySettings s;
     s.cfl = 2.0;
-    Whirlwind w;
-    w.wsPosition_m = {14.0, 16.0};
-    w.coreRadius_m = 3.0;
-    w.peakSpeed_mps = 6.0;
-    w.updraft_mps = 1.0;
-    w.forced = true;
-    s.whirlwinds.push_back(w);
+    s.whirlwinds.push_back(forcedWhirlwind({14.0, 16.0}, 3.0, 6.0, 1.0));
     UnsteadyWindSolver solver(d, steady.field, s, U);
     const GridLayout& g = solver.grid();
     auto rateOf = [&](const std::vector<double>& u, const std::vector<double>& v,
@@ -306,12 +313,7 @@ TEST(UnsteadyWind, ASolverOnCoarserCellsTakesUpTheRunWithItsWhirlwind) {
     const double U = 2.0;
     UnsteadySettings s;
     s.dt_s = 0.25;
-    Whirlwind w;
-    w.wsPosition_m = {24.0, 24.0};
-    w.coreRadius_m = 4.0;
-    w.peakSpeed_mps = 5.0;
-    w.forced = true;
-    s.whirlwinds.push_back(w);
+    s.whirlwinds.push_back(forcedWhirlwind({24.0, 24.0}, 4.0, 5.0, 0.0));
     UnsteadyWindSolver a(fine, solveSteadyWind(fine, uniformWind(U), {}, tight()).field, s, U);
     for (int n = 0; n < 6; ++n) ASSERT_TRUE(a.step(a.nextDt_s()).finite);
     const std::array<double, 2> axis = a.whirlwindAxes_m()[0];
