@@ -119,6 +119,28 @@ struct GridPending {
     std::shared_ptr<std::string> grid;   ///< set by the worker: the new grid's size, in words
 };
 
+/// Posts the move of the live wind to cells of cell_m to the wind worker: the scene's grid there
+/// (buildLiveWindGrid, on the worker) takes up the run (UnsteadyFieldWind::moveToGrid). `scene`
+/// and `terrain` must outlive the worker.
+GridPending postLiveGridMove(coupling::ViewPipeline& view, const Scene& scene,
+                             const sim::Heightfield& terrain, double cell_m) {
+    GridPending pending{true, 0, cell_m, std::make_shared<std::string>(),
+                        std::make_shared<std::string>()};
+    pending.work = view.worker().post([&scene, &terrain, cell_m, error = pending.error,
+                                       grid = pending.grid](coupling::WindSource& wind) {
+        try {
+            LiveWindGrid g = buildLiveWindGrid(scene, terrain, cell_m);
+            *grid = std::to_string(g.domain->nx()) + " x " + std::to_string(g.domain->ny()) +
+                    " x " + std::to_string(g.domain->nz());
+            (void)static_cast<coupling::UnsteadyFieldWind&>(wind).moveToGrid(
+                std::move(g.domain), g.steady, g.settings, g.referenceSpeed_mps);
+        } catch (const std::exception& failure) {
+            *error = failure.what();  // the wind stays on its grid
+        }
+    });
+    return pending;
+}
+
 /// The live source a gesture asks for, placed on the terrain under its pixels; nothing when the
 /// cursor is off the terrain. Sizes: a 3 m core / half-width / radius and 6 m/s, a little above
 /// a breeze, so the grass visibly answers in any of the examples.
@@ -382,23 +404,7 @@ int runView(const ViewOptions& options) {
                     }
                     const double target =
                         liveCell_m == sceneCell_m ? 2.0 * sceneCell_m : sceneCell_m;
-                    auto error = std::make_shared<std::string>();
-                    auto grid = std::make_shared<std::string>();
-                    const sim::Heightfield* terrain = &built.heightfield;
-                    const uint64_t number = view.worker().post([&scene, terrain, target, error,
-                                                                grid](coupling::WindSource& wind) {
-                        try {
-                            LiveWindGrid g = buildLiveWindGrid(scene, *terrain, target);
-                            *grid = std::to_string(g.domain->nx()) + " x " +
-                                    std::to_string(g.domain->ny()) + " x " +
-                                    std::to_string(g.domain->nz());
-                            (void)static_cast<coupling::UnsteadyFieldWind&>(wind).moveToGrid(
-                                std::move(g.domain), g.steady, g.settings, g.referenceSpeed_mps);
-                        } catch (const std::exception& failure) {
-                            *error = failure.what();  // the wind stays on its grid
-                        }
-                    });
-                    gridPending = GridPending{true, number, target, error, grid};
+                    gridPending = postLiveGridMove(view, scene, built.heightfield, target);
                     note("moving the live wind to " + fmt("%g m", target) + " cells");
                     break;
                 }

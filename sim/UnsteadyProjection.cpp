@@ -41,10 +41,10 @@ void UnsteadyWindSolver::extrapolateClosedFaces() {
 SolveReport UnsteadyWindSolver::project() { return project(mSettings.projection); }
 
 SolveReport UnsteadyWindSolver::project(const SolverSettings& settings) {
-    return project(settings, 0.0);
+    return project(settings, 0.0, 0.0);
 }
 
-SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double dt) {
+SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double dt, double stepCfl) {
     mFieldRateKnown = false;  // the projection changes the field (a step measures it after)
     const int nx = mGrid.nx, ny = mGrid.ny, nz = mGrid.nz;
     const double h = mGrid.voxelSize_m;
@@ -96,7 +96,7 @@ SolveReport UnsteadyWindSolver::project(const SolverSettings& settings, double d
     // carries the pressure tens of cells, the line through the last two says nothing more than
     // the last one, and the different start moved that case's drift from 0.099 to 0.103.
     const bool history = dt > 0.0 && !mSettings.incrementalPressure;
-    if (history && mPressureSteps == 2 && mStepCfl <= PRESSURE_EXTRAPOLATION_MAX_CFL) {
+    if (history && mPressureSteps == 2 && stepCfl <= PRESSURE_EXTRAPOLATION_MAX_CFL) {
         tbb::parallel_for(size_t(0), mPsi.size(), [&](size_t c) {
             mPsi[c] = -dt * (2.0 * mPressureLast[c] - mPressureBefore[c]);
         });

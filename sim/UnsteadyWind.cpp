@@ -425,8 +425,7 @@ StepReport UnsteadyWindSolver::step(double dt) {
     // 5. projection.
     t = Clock::now();
     if (mSettings.incrementalPressure) addGradPsi(-1.0);
-    mStepCfl = rep.cfl;  // the warm start's extrapolation asks for it
-    rep.projection = project(mSettings.projection, dt);
+    rep.projection = project(mSettings.projection, dt, rep.cfl);
     if (mSettings.incrementalPressure) addGradPsi(+1.0);
     rep.projection_s = since(t);
 

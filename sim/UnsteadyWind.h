@@ -205,8 +205,9 @@ class UnsteadyWindSolver {
     SolveReport project(const SolverSettings& settings);
 
   private:
-    /// The projection with the boundary potential -dt_s p / rho (dt_s 0: p = 0 data).
-    SolveReport project(const SolverSettings& settings, double dt_s);
+    /// The projection with the boundary potential -dt_s p / rho (dt_s 0: p = 0 data) of a step
+    /// of CFL stepCfl (StepReport::cfl; the warm start extrapolates in time only on small ones).
+    SolveReport project(const SolverSettings& settings, double dt_s, double stepCfl);
     void seedDue(double t0, double t1);
     void applyForcing(double t0, double dt);
     void extrapolateClosedFaces();
@@ -256,7 +257,6 @@ class UnsteadyWindSolver {
     /// time (project(settings, dt)); mPressureSteps counts how many are valid (0-2).
     std::vector<double> mPressureLast, mPressureBefore;
     int mPressureSteps = 0;
-    double mStepCfl = 0.0;  ///< the CFL of the step under way (StepReport::cfl), for project()
     /// The step's velocity before its advection (swapped out of mField, kept for its storage)
     /// and that velocity in float for the row kernels.
     std::vector<double> mBefore[3];
