@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -31,6 +32,7 @@
 #include "app/scene/LoadScene.h"
 #include "app/scene/SceneBuilder.h"
 #include "app/scene/SceneParser.h"
+#include "base/Numbers.h"
 #include "coupling/UnsteadyFieldWind.h"
 #include "sim/Advection.h"
 
@@ -309,6 +311,82 @@ void addUnsteady(CLI::App& bench, VerbTable& verbs) {
 /// `gale bench view --quick`: momentum solves stop after this many pseudo-time steps.
 constexpr int QUICK_MOMENTUM_ITERATIONS = 5;
 
+/// The motion regions of `gale bench view --motion` (BenchView.h) from the scene's own geometry:
+/// - a ridge under a solved wind: the crest within one half-width (terrain.radius_m) of the ridge
+///   line, the lee 2 to 5 half-widths downwind of it (wind.direction_deg);
+/// - whirlwinds (unsteady): the core tracked in the field at every frame (the largest vertical
+///   vorticity, of the first whirlwind's sense, 1 m above the ground on a 1 m plan grid); agitated
+///   within 2 core radii of the track, calm (the meadow around) 4 to 8 core radii from it.
+/// Points within 2 m of the terrain's edge are neither. Empty for other scenes.
+MotionRegions motionRegionsOf(const Scene& scene, const BuiltScene& built) {
+    MotionRegions m;
+    const sim::Heightfield& field = built.heightfield;
+    const double x0 = field.originX_m, y0 = field.originY_m;
+    const double x1 = x0 + field.sizeX_m(), y1 = y0 + field.sizeY_m();
+    constexpr double EDGE_MARGIN_M = 2.0;
+    const auto inside = [=](double x, double y) {
+        return x > x0 + EDGE_MARGIN_M && x < x1 - EDGE_MARGIN_M && y > y0 + EDGE_MARGIN_M &&
+               y < y1 - EDGE_MARGIN_M;
+    };
+    const sim::TerrainSpec& t = scene.terrain.spec;
+    const std::vector<sim::Whirlwind>& whirlwinds = scene.unsteady.settings.whirlwinds;
+    if (scene.wind.kind == WindKind::Unsteady && !whirlwinds.empty() && built.wind) {
+        const sim::Whirlwind& ww = whirlwinds.front();
+        const double sense = ww.peakSpeed_mps != 0.0 ? ww.peakSpeed_mps : ww.circulation_m2ps;
+        const double rc_m = ww.coreRadius_m;
+        auto track = std::make_shared<std::vector<std::array<double, 2>>>();
+        const coupling::WindSource* source = built.wind.get();
+        m.agitated = "core";
+        m.calm = "meadow";
+        m.onFrame = [=, &field](double) {
+            const sim::WindField* f = source->currentField();
+            if (!f) return;
+            constexpr double H_M = 1.0;  // plan grid spacing and the height above the ground
+            double best = -1e300;
+            std::array<double, 2> at{ww.wsPosition_m};
+            for (double y = y0 + H_M; y < y1 - H_M; y += H_M)
+                for (double x = x0 + H_M; x < x1 - H_M; x += H_M) {
+                    const double z = field.sample(x, y) + H_M;
+                    const auto ue = f->velocityAt_mps(x + H_M, y, z);
+                    const auto uw = f->velocityAt_mps(x - H_M, y, z);
+                    const auto un = f->velocityAt_mps(x, y + H_M, z);
+                    const auto us = f->velocityAt_mps(x, y - H_M, z);
+                    const double wz = (ue[1] - uw[1] - un[0] + us[0]) / (2.0 * H_M);
+                    const double s = sense < 0.0 ? -wz : wz;
+                    if (s > best) {
+                        best = s;
+                        at = {x, y};
+                    }
+                }
+            track->push_back(at);
+        };
+        m.classify = [=](double x, double y) {
+            if (!inside(x, y) || track->empty()) return 0;
+            double d2 = 1e300;
+            for (const auto& c : *track)
+                d2 = std::min(d2, (x - c[0]) * (x - c[0]) + (y - c[1]) * (y - c[1]));
+            const double d = std::sqrt(d2) / rc_m;
+            return d <= 2.0 ? 1 : (d >= 4.0 && d <= 8.0 ? -1 : 0);
+        };
+    } else if (scene.wind.kind == WindKind::Solved && t.kind == sim::TerrainKind::Ridge &&
+               !scene.terrain.dem) {
+        const double a = radiansFromDegrees(t.axis_deg);
+        const double w = radiansFromDegrees(scene.wind.ambient.direction_deg);
+        // The normal of the ridge line pointing downwind.
+        double nx = -std::sin(a), ny = std::cos(a);
+        if (nx * std::cos(w) + ny * std::sin(w) < 0.0) nx = -nx, ny = -ny;
+        const double cx = t.centerX_m, cy = t.centerY_m, r_m = t.radius_m;
+        m.agitated = "crest";
+        m.calm = "lee";
+        m.classify = [=](double x, double y) {
+            if (!inside(x, y)) return 0;
+            const double d = ((x - cx) * nx + (y - cy) * ny) / r_m;
+            return std::abs(d) <= 1.0 ? 1 : (d >= 2.0 && d <= 5.0 ? -1 : 0);
+        };
+    }
+    return m;
+}
+
 /// A scene as `gale view` builds it, for the view benchmark (which cannot read scenes itself:
 /// app/bench sits beside app/scene).
 ViewBenchScene loadViewScene(const std::string& path, int width, int height, int shells,
@@ -349,6 +427,7 @@ ViewBenchScene loadViewScene(const std::string& path, int width, int height, int
     v.overlay = owned->scene.overlay;
     v.startTime_s = owned->scene.output.startTime_s;
     v.fps = owned->scene.output.fps;
+    v.motion = motionRegionsOf(owned->scene, owned->built);
     v.owner = owned;
     v.build_ms = msSince(start);
     return v;
@@ -379,6 +458,14 @@ void addView(CLI::App& bench, VerbTable& verbs) {
         "3 frames per scene after 1 warm-up, momentum solves cut to 5 steps: a smoke run "
         "(targets printed, not judged)");
     verb->add_option("--json", o->jsonPath, "Also write the table as JSON here");
+    verb->add_flag(
+        "--motion", o->motion,
+        "Measure the wind's readability instead: the grass's temporal standard deviation "
+        "where the scene's geometry says the air is agitated (a ridge's crest, a "
+        "whirlwind's core) against where it is calm (target: >= 2x)");
+    verb->add_option("--motion-frames", o->motionFrames, "Frames of the --motion measurement")
+        ->capture_default_str()
+        ->check(CLI::Range(2, MAX_FRAMES));
     verb->footer(EXIT_CODES_FOOTER);
     verbs.add(verb, [o] {
         o->loader = loadViewScene;

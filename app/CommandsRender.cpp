@@ -116,6 +116,12 @@ int runRender(const SceneRunOptions& options) {
     const auto runStart = Clock::now();
     InterruptScope interrupt("while reading and building the scene: nothing written");
     Scene scene = loadScene(options);
+    if (options.frames && scene.output.duration_s > 0.0) {
+        // A preview of N frames samples the scene's whole duration (docs/scene-format.md), so a
+        // contact sheet of `--frames 6` shows the gust the full run shows, not its first quarter
+        // second.
+        scene.output.fps = double(scene.output.frames) / scene.output.duration_s;
+    }
     const OutputSection& out = scene.output;
     const std::string folderWhere = outputFolderSource(scene, options);
     const OutputFolderStatus folder =

@@ -295,8 +295,10 @@ render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
             if (near) continue;
             kept.emplace_back(i, j, k);
             render::OverlayMarker m;
-            m.wsPosition_m = glm::vec3(origin[0] + (i + 0.5) * h, origin[1] + (j + 0.5) * h,
-                                       origin[2] + (k + 0.5) * h);
+            // Where the core touches the ground: the ring sits on the grass tops under the
+            // core's cell, so it marks the grass the core stirs instead of floating above it.
+            const double x = origin[0] + (i + 0.5) * h, y = origin[1] + (j + 0.5) * h;
+            m.wsPosition_m = glm::vec3(x, y, ground.at(x, y) + grassHeight_m);
             m.size_m = float(1.5 * h);
             data.vortexCores.push_back(m);
         }

@@ -112,14 +112,15 @@ double qCriterion(const std::array<std::array<double, 3>, 3>& gradient);
 /// neighbours, the strongest 24 at least 5 cells apart; the automatic threshold is
 /// max(0.25 max Q, (0.1 U / h)^2), U the largest speed and h the voxel size, and cells within two
 /// of the terrain are skipped (their differences read extrapolated faces), so an irrotational
-/// field marks nothing. Thread-safe for a const field.
+/// field marks nothing. A core's marker sits where it touches the ground: on the grass tops
+/// (grassHeight_m above the ground) under the core's cell. Thread-safe for a const field.
 render::FieldOverlayData buildFieldOverlay(const sim::WindField& field,
                                            const render::TerrainMesh& mesh, const OverlaySpec& spec,
                                            double grassHeight_m);
 
 /// Overlays of a wind without a velocity field (the point source): arrows only, along each
 /// nearest vertex's wind direction, coloured and scaled by its group's |intensity| (unit
-/// "intensity"; 1 lays the tip flat, the top of the map unless speedMax_mps is given).
+/// "intensity"; 1 tilts the tip 75.7 degrees, the top of the map unless speedMax_mps is given).
 render::FieldOverlayData buildGrassWindOverlay(const render::GrassWind& wind,
                                                const render::TerrainMesh& mesh,
                                                const OverlaySpec& spec, double grassHeight_m);

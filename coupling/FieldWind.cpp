@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "base/Numbers.h"
@@ -164,6 +165,15 @@ void FieldWind::dropStepsBefore(double t_s) {
     }
 }
 
+void FieldWind::setFlutter(std::vector<float> flutter_rad) {
+    if (!flutter_rad.empty() && flutter_rad.size() != mNormal.size())
+        throw std::logic_error("FieldWind::setFlutter: " + std::to_string(flutter_rad.size()) +
+                               " amplitudes for " + std::to_string(mNormal.size()) + " vertices");
+    // The current interval's buffer is shared with the renderer and never written: the next
+    // interval entered carries the new amplitudes (with no interval yet, the first one).
+    mFlutter = std::move(flutter_rad);
+}
+
 std::shared_ptr<render::VertexWind> FieldWind::newVertexBuffer(size_t count) {
     auto buffer = std::make_shared<render::VertexWind>();
     buffer->wsDirection.resize(count);
@@ -205,6 +215,7 @@ void FieldWind::enterInterval(size_t first) {
     next->groupColumns = mGroupColumns;
     std::vector<glm::vec2>& coord = next->groupCoord;
     coord.resize(blend ? count : 0);
+    next->flutter_rad = mFlutter;
     const double maxI = mSpec.maxIntensity;
     const double invBend = 1.0 / mSpec.bendSpeed_mps;
 
@@ -339,6 +350,7 @@ void FieldWind::update(double t_s, render::GrassWind& wind) {
         }
     }
     if (!mHaveInterval || mIntervalFirst != first) enterInterval(first);
+    wind.time_s = t_s;
     if (wind.revision != mRevision || wind.vertex != mVertex) {
         wind.vertex = mVertex;  // shared, not copied: it is never written while handed out
         wind.revision = mRevision;

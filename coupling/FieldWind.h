@@ -54,7 +54,7 @@ struct FieldWindSpec {
     BladeResponse response = BladeResponse::Static;
     Grouping grouping = Grouping::Levels;
     int groups = 64;             ///< K (ignored for PerVertex), 1..4096
-    double bendSpeed_mps = 8.0;  ///< tangent speed that bends the tip flat (I = 1), > 0
+    double bendSpeed_mps = 8.0;  ///< tangent speed that drives I = 1 (tip tilted 75.7 deg), > 0
     double maxIntensity = 1.3;   ///< clamp of |I| for the static map, > 0 (over 1 over-bends)
     double frequency_hz = 0.8;   ///< oscillator natural frequency f = omega / (2 pi), > 0
     double dampingRatio = 0.25;  ///< oscillator zeta, > 0
@@ -89,6 +89,11 @@ class FieldWind : public WindSource {
     /// next update() shows the change without a new step; the oscillators keep their state.
     /// Throws std::logic_error on a wrong size or when there is no step yet.
     void replaceLastStep(std::vector<glm::vec3> wsVelocity_mps);
+    /// The turbulent flutter amplitude per vertex, radians (coupling/Flutter.h; empty: none),
+    /// handed to the renderer with every interval entered from now on (the current one keeps
+    /// its amplitudes; render::VertexWind::flutter_rad). Throws std::logic_error on a size other
+    /// than 0 or the vertex count.
+    void setFlutter(std::vector<float> flutter_rad);
     /// Forgets steps older than t_s except the one bracketing it (streaming runs keep memory flat).
     void dropStepsBefore(double t_s);
     /// The storage of the last step dropped (its contents are stale; empty if none), for the next
@@ -131,6 +136,7 @@ class FieldWind : public WindSource {
     int mGroupColumns = 0;              // width of the group grid (render::VertexWind)
     std::deque<Step> mSteps;
     std::vector<glm::vec3> mSpare;  // a dropped step's storage
+    std::vector<float> mFlutter;    // setFlutter's amplitudes, copied into every interval
 
     // The interval [mSteps[mInterval], mSteps[mInterval + 1]] the per-vertex data describe.
     bool mHaveInterval = false;

@@ -66,6 +66,7 @@ PointSourceWind::PointSourceWind(const render::TerrainMesh& mesh, const PointSou
 }
 
 void PointSourceWind::update(double t_s, render::GrassWind& wind) {
+    wind.time_s = t_s;
     if (wind.vertex != mVertex) {
         wind.vertex = mVertex;
         ++wind.revision;

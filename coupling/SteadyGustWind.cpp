@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
@@ -139,8 +140,20 @@ const sim::WindField* SteadyGustWind::currentField() const {
     return &out;
 }
 
+void SteadyGustWind::setFlutter(std::vector<float> flutter_rad) {
+    if (!flutter_rad.empty() && flutter_rad.size() != mVertex->wsDirection.size())
+        throw std::logic_error("SteadyGustWind::setFlutter: " + std::to_string(flutter_rad.size()) +
+                               " amplitudes for " + std::to_string(mVertex->wsDirection.size()) +
+                               " vertices");
+    // A new buffer: the old one may be held by a renderer or a viewer's snapshot.
+    auto vertex = std::make_shared<render::VertexWind>(*mVertex);
+    vertex->flutter_rad = std::move(flutter_rad);
+    mVertex = std::move(vertex);
+}
+
 void SteadyGustWind::update(double t_s, render::GrassWind& wind) {
     mLastUpdate_s = t_s;
+    wind.time_s = t_s;
     if (wind.vertex != mVertex) {
         wind.vertex = mVertex;
         ++wind.revision;

@@ -60,6 +60,10 @@ class SteadyGustWind : public WindSource {
     /// Arrival delay of the front at plan position (x, y), seconds (negative upwind of the mesh).
     double arrivalAt_s(double wsX_m, double wsY_m) const;
 
+    /// The turbulent flutter amplitude per vertex, radians (coupling/Flutter.h; empty: none).
+    /// Throws std::logic_error on a size other than 0 or the vertex count.
+    void setFlutter(std::vector<float> flutter_rad);
+
   private:
     std::shared_ptr<const sim::WindField> mField;
     glm::vec2 mAlong{1.0f, 0.0f};  // unit plan direction the front travels

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <glm/geometric.hpp>
+
+#include "coupling/Flutter.h"
 
 namespace gale::coupling {
 
@@ -24,7 +27,27 @@ UnsteadyFieldWind::UnsteadyFieldWind(const render::TerrainMesh& mesh,
       mSampler(mesh, sampleHeight_m, nearGroundOf(settings)) {
     mSolver =
         std::make_unique<sim::UnsteadyWindSolver>(*mDomain, steady, settings, referenceSpeed_mps);
-    mWind.addFieldStep(0.0, mSampler.sample(mSolver->field()));
+    mBendSpeed_mps = response.bendSpeed_mps;
+    // The mean flow's shear k at grass height: the steady field at the sample height and at twice
+    // it (coupling/Flutter.h); calm air (the speed at both heights 0) gives 0.
+    mMean_mps = mSampler.sample(steady);
+    const double zLow_m = std::max(sampleHeight_m, 0.05);
+    GrassSampler above(mesh, 2.0 * zLow_m, nearGroundOf(settings));
+    const std::vector<glm::vec3> high = above.sample(steady);
+    mShearTke_m2ps2.resize(mMean_mps.size());
+    for (size_t v = 0; v < mMean_mps.size(); ++v)
+        mShearTke_m2ps2[v] =
+            shearTke_m2ps2(glm::length(mMean_mps[v]), glm::length(high[v]), zLow_m, 2.0 * zLow_m);
+    std::vector<glm::vec3> first = mSampler.sample(mSolver->field());
+    setFlutterFor(first);
+    mWind.addFieldStep(0.0, std::move(first));
+}
+
+void UnsteadyFieldWind::setFlutterFor(const std::vector<glm::vec3>& wsVelocity_mps) {
+    // k = the mean flow's shear k + the resolved fluctuation's about it (coupling/Flutter.h).
+    std::vector<double> k = resolvedTke_m2ps2(wsVelocity_mps, mMean_mps);
+    for (size_t v = 0; v < k.size(); ++v) k[v] += mShearTke_m2ps2[v];
+    mWind.setFlutter(flutterFromTke(k, wsVelocity_mps, mBendSpeed_mps));
 }
 
 void UnsteadyFieldWind::advanceTo(double t_s, const std::function<bool()>& stop) {
@@ -36,6 +59,7 @@ void UnsteadyFieldWind::advanceTo(double t_s, const std::function<bool()>& stop)
         const auto t1 = Clock::now();
         std::vector<glm::vec3> velocity = mWind.spareStepBuffer();
         mSampler.sample(mSolver->field(), velocity);
+        setFlutterFor(velocity);
         mWind.addFieldStep(r.t_s, std::move(velocity));
         mStats.sampling_s += std::chrono::duration<double>(Clock::now() - t1).count();
         mStats.solve_s += std::chrono::duration<double>(t1 - t0).count();

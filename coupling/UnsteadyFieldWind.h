@@ -100,6 +100,12 @@ class UnsteadyFieldWind : public WindSource {
     GrassSampler mSampler;
     UnsteadyRunStats mStats;
     UnsteadyRunStats mLastUpdate;  // the same totals over the last update() only
+    // The flutter (coupling/Flutter.h): the mean flow at grass height (the initial steady
+    // field), its shear k, and the bend speed that turns k into a tilt.
+    std::vector<glm::vec3> mMean_mps;
+    std::vector<double> mShearTke_m2ps2;
+    double mBendSpeed_mps = 1.0;
+    void setFlutterFor(const std::vector<glm::vec3>& wsVelocity_mps);
 };
 
 }  // namespace gale::coupling

@@ -64,8 +64,10 @@ struct FieldOverlayData {
     /// and where it is measured ("2 m above ground"). Empty lines are left out.
     std::string quantity;
     std::string where;
-    bool legend = true;         ///< draw the legend bar (only when something is coloured)
-    float sliceOpacity = 0.7f;  ///< alpha of the slice, [0, 1]
+    bool legend = true;  ///< draw the legend bar (only when something is coloured)
+    /// Alpha of the slice, [0, 1]. 1: the slice shows its true colour, so the legend reads the
+    /// speed `gale probe` gives at the slice (a translucent slice takes the grass tint beneath).
+    float sliceOpacity = 1.0f;
 };
 
 /// The shortest arrow drawn, in pixels on screen: a slow wind's arrows stay visible.

@@ -39,6 +39,11 @@ struct VertexWind {
     /// renderer blends the tip tilts of the four nearest groups bilinearly, so no stripes show
     /// where groups change; without it each vertex takes its group's tilt alone.
     std::vector<glm::vec2> groupCoord;
+    /// Optional, empty or one per vertex: the amplitude, radians, of the turbulent flutter added
+    /// to the tip tilt of the blades at this vertex (shell.vert, after the detail bending of
+    /// Sousa 2008, GPU Gems 3 ch. 16): >= 0, 0 in calm air; coupling/Flutter.h derives it from
+    /// the turbulent kinetic energy. Empty: no flutter.
+    std::vector<float> flutter_rad;
 };
 
 /// The wind as the shell renderer consumes it (paper section 3, Table 1): a tangent-plane wind
@@ -56,6 +61,8 @@ struct GrassWind {
     /// Per group: intensity I this frame (unitless). The tip tilts by (pi/2) I up to |I| = 1/2
     /// and saturates smoothly above, short of the ground (render/Bend.h, tipTilt_rad).
     std::vector<float> groupIntensity;
+    /// The time this wind is for, seconds: the phase of the flutter (VertexWind::flutter_rad).
+    double time_s = 0.0;
 
     /// The per-vertex arrays; empty when `vertex` is null.
     const std::vector<glm::vec3>& wsDirection() const {

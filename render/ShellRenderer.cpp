@@ -78,6 +78,9 @@ void ShellRenderer::Impl::init() {
     glEnableVertexAttribArray(GROUP_COORD_LOC);
     glVertexAttribPointer(GROUP_COORD_LOC, 2, GL_FLOAT, GL_FALSE, windStride,
                           reinterpret_cast<const void*>(offsetof(WindVertex, groupCoord)));
+    glEnableVertexAttribArray(FLUTTER_LOC);
+    glVertexAttribPointer(FLUTTER_LOC, 1, GL_FLOAT, GL_FALSE, windStride,
+                          reinterpret_cast<const void*>(offsetof(WindVertex, flutter_rad)));
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer.get());
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
@@ -110,8 +113,8 @@ ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
                                                     {&loc.shells, "uShells"},
                                                     {&loc.topShell, "uTopShell"},
                                                     {&loc.shellStride, "uShellStride"},
-                                                    {&loc.lodD1, "uLodD1"},
-                                                    {&loc.lastShell, "uLastShell"},
+                                                    {&loc.lodFar, "uLodFar"},
+                                                    {&loc.time, "uTime_s"},
                                                     {&loc.bladeColor, "uBladeColor"},
                                                     {&loc.bend, "uBend"},
                                                     {&loc.grass, "uGrass"},
@@ -210,11 +213,15 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
     const std::vector<glm::vec2>& coord = wind.vertex ? wind.vertex->groupCoord : NO_COORD;
     const bool blends = !none && !coord.empty();
     if (blends) checkSize("vertex->groupCoord", coord.size());
+    static const std::vector<float> NO_FLUTTER;
+    const std::vector<float>& flutter = wind.vertex ? wind.vertex->flutter_rad : NO_FLUTTER;
+    const bool flutters = !none && !flutter.empty();
+    if (flutters) checkSize("vertex->flutter_rad", flutter.size());
 
     const bool needUpload =
         !windUploaded || none != windWasNone || (!none && wind.revision != windRevision);
     if (needUpload) {
-        std::vector<WindVertex> data(n, WindVertex{{0.0f, 0.0f, 0.0f}, 0u, {0.0f, 0.0f}});
+        std::vector<WindVertex> data(n, WindVertex{{0.0f, 0.0f, 0.0f}, 0u, {0.0f, 0.0f}, 0.0f});
         uint32_t maxGroup = 0;
         if (!none) {
             for (size_t v = 0; v < n; ++v) {
@@ -228,7 +235,12 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
                     throw std::logic_error("GrassWind.vertex->groupCoord[" + std::to_string(v) +
                                            "] is not finite");
                 }
-                data[v] = WindVertex{{d.x, d.y, d.z}, group[v], {c.x, c.y}};
+                const float f = flutters ? flutter[v] : 0.0f;
+                if (!(f >= 0.0f) || !std::isfinite(f)) {
+                    throw std::logic_error("GrassWind.vertex->flutter_rad[" + std::to_string(v) +
+                                           "] is not finite and >= 0");
+                }
+                data[v] = WindVertex{{d.x, d.y, d.z}, group[v], {c.x, c.y}, f};
                 maxGroup = std::max(maxGroup, group[v]);
             }
         }

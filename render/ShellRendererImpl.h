@@ -44,6 +44,7 @@ constexpr GLuint UV_LOC = 2;
 constexpr GLuint WIND_DIR_LOC = 3;
 constexpr GLuint GROUP_LOC = 4;
 constexpr GLuint GROUP_COORD_LOC = 5;
+constexpr GLuint FLUTTER_LOC = 6;
 
 // Texture units.
 constexpr GLint GRASS_UNIT = 0;
@@ -64,6 +65,7 @@ struct WindVertex {
     float direction[3];
     uint32_t group;
     float groupCoord[2];  ///< position in the group grid (VertexWind::groupCoord), or unused
+    float flutter_rad;    ///< VertexWind::flutter_rad, or 0
 };
 
 inline GLint uniform(GLuint program, const char* name) {
@@ -90,7 +92,7 @@ std::string shellVariantDefines(unsigned bits);
 /// Uniform locations of one shell program (-1 for a name the compiler dropped).
 struct ShellLocations {
     GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns, maxTilt,
-        shellStride, lodD1, lastShell, bladeColor, density, densityCut, densityMin, densitySize;
+        shellStride, lodFar, time, bladeColor, density, densityCut, densityMin, densitySize;
     GLint lightCount, lightPos, lightColor, lightAtten;
     GLint ambient, specularPower, specularStrength, shadowMin;
 };

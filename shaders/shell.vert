@@ -31,17 +31,18 @@ layout(location = 2) in vec2 aUv;        // grass texture coordinates
 layout(location = 3) in vec3 aWindDir;   // unit tangent-plane wind direction, or zero
 layout(location = 4) in uint aGroup;     // animation-step group
 layout(location = 5) in vec2 aGroupCoord; // position in the group grid (when BLEND_GROUPS)
+layout(location = 6) in float aFlutter;   // turbulent flutter amplitude of the tip tilt, radians
 
 uniform mat4 uClipFromWorld;
 uniform vec3 uEyePos;          // camera position
 uniform int uShells;           // N
 uniform int uTopShell;         // shell of instance 0: N, or 0 when the grass is hidden (viewer)
-uniform int uShellStride;      // instance k draws shell uTopShell - k uShellStride (LOD)
-// Level of detail (render/TerrainChunks.h): shell i thins out between 0.7 D(i) and D(i), D(i) =
-// uLodD1 2^(trailing zero bits of i), metres from the eye; 0 = no level of detail.
-uniform float uLodD1;
-// The shell the level of detail drops last: the largest power of two <= N (render/TerrainChunks.h).
-uniform int uLastShell;
+uniform int uShellStride;      // instance k draws shell uTopShell - k uShellStride
+// Level of detail (render/TerrainChunks.h): every shell above the ground thins out between
+// 0.7 uLodFar and uLodFar, metres from the eye, while the ground takes over its look; 0 = no level
+// of detail.
+uniform float uLodFar;
+uniform float uTime_s;         // the wind's time (GrassWind::time_s), seconds
 // Bends over tip tilts (render/BendTables.h): texel (i, l) holds (n_i, w_i) in metres for shell i
 // of a blade whose tip tilts by -uMaxTilt + 2 uMaxTilt l / (L - 1) (Bakay 2003, 3.2), and in .ba
 // segment i, (n_i - n_{i-1}, w_i - w_{i-1}): interpolated between rows like the offsets, it is
@@ -99,10 +100,36 @@ vec4 shellBend(int i, float row) {
     return mix(a, b, row - float(r0));
 }
 
+// A smoothed triangle wave in [-1, 1] of period 1 (the cheap stand-in for a sine of the detail
+// bending in Sousa 2008, GPU Gems 3 ch. 16, section 16.4: |2 frac(x + 1/2) - 1| through the
+// smoothstep cubic).
+float smoothTriangle(float x) {
+    float t = abs(2.0 * fract(x + 0.5) - 1.0);
+    return 2.0 * t * t * (3.0 - 2.0 * t) - 1.0;
+}
+
+// The turbulent flutter of the tip tilt at this vertex, radians: aFlutter times two incommensurate
+// waves (0.9 and 2.3 Hz, the range of grass's first bending modes; unit peak), their phases set
+// per vertex by a hash of its plan position so neighbouring patches move out of step: agitation
+// where the air is turbulent, stillness where aFlutter is 0 (calm or sheltered air).
+float flutterTilt() {
+    if (aFlutter <= 0.0) return 0.0;
+    uvec2 h = uvec2(ivec2(floor(aPosition.xy * 4.0)) + 32768);
+    h = h * 1664525u + 1013904223u;
+    h.x += h.y * 1664525u;
+    h.y += h.x * 1664525u;
+    h ^= h >> 16u;
+    vec2 phase = vec2(h & 0xffffu) / 65535.0;
+    float wave = 0.6 * smoothTriangle(0.9 * uTime_s + phase.x) +
+                 0.4 * smoothTriangle(2.3 * uTime_s + phase.y);
+    return aFlutter * wave;
+}
+
 void main() {
     int i = uTopShell - gl_InstanceID * uShellStride;
     float last = float(textureSize(uBend, 0).y - 1);
-    float row = clamp((groupTilt() / uMaxTilt * 0.5 + 0.5) * last, 0.0, last);
+    float tilt = groupTilt() + flutterTilt();
+    float row = clamp((tilt / uMaxTilt * 0.5 + 0.5) * last, 0.0, last);
     vec4 bend = shellBend(i, row);
     vec3 pos = aPosition + bend.x * aNormal + bend.y * aWindDir;
     gl_Position = uClipFromWorld * vec4(pos, 1.0);
@@ -112,23 +139,24 @@ void main() {
     vFade = 1.0;
     vStandIn = 0.0;
 #if FADE
-    if (uLodD1 > 0.0 && i > 0) {
-        float drop = uLodD1 * float(1 << findLSB(i));
-        vFade = 1.0 - smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
-    }
+    // The whole stack fades together (render/TerrainChunks.h): dropping some shells before others
+    // lets the eye see deeper into the stack, onto the darker roots, and draws a band.
+    float ramp = (uLodFar > 0.0)
+                     ? smoothstep(0.7 * uLodFar, uLodFar, distance(aPosition, uEyePos))
+                     : 0.0;
+    if (i > 0) vFade = 1.0 - ramp;
 #if !DENSITY
     // Shell 0 keeps every texel; a full fade's cut is 0 (every blade kept).
     vFadeCut = (i > 0)
                    ? textureLod(uDensityCut, vec2((vFade * 255.0 + 0.5) / 256.0, 0.5), 0.0).r
                    : -1.0;
 #endif
-    // Where the last shell thins out the ground alone remains; it takes over the look of the
-    // grass it replaces (shaded as the top layer, in the mean blade colour), at the same pace, so
-    // the far field keeps the grass's brightness instead of the shaded soil's.
-    if (uLodD1 > 0.0 && i == 0 && uLastShell > 0) {
-        float drop = uLodD1 * float(uLastShell);
-        vStandIn = smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
-    }
+    // Where the shells thin out the ground alone remains; it takes over the look of the grass it
+    // replaces (shaded as the top layer, in the mean blade colour), at the same pace. At uLodFar
+    // the whole grass is P / 2 pixels tall on screen and its texture is read from MIP levels whose
+    // texels are nearly all blade tops: the full stack there looks like its top shell, which is
+    // what the stand-in draws.
+    if (i == 0) vStandIn = ramp;
 #endif
 
     // Thesis 3.1: shell i keeps texels with alpha >= i/N; the ground keeps every texel. Half an

@@ -20,6 +20,7 @@
 #include "render/GlContext.h"
 #include "render/GlInfo.h"
 #include "render/GlfwWindow.h"
+#include "render/RenderBench.h"
 #include "render/RenderLimits.h"
 
 namespace gale::app {
@@ -27,8 +28,26 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The frame-rate target of issue 13: every example at 640 x 480 with 17 shells.
+/// The frame-rate target of issue 13: every example at 640 x 480 with 17 shells; reported, not
+/// judged (absolute rates on a shared machine move 2-3x from day to day).
 constexpr double TARGET_FPS = 30.0;
+/// The judged target of issue 26: every scene's frame time at most this many times the fill
+/// floor's, measured in the same run (the floor: shells + 1 full-screen, nearest-sampled,
+/// alpha-tested layers of the same size, render::measureShellFill's nearest fill).
+constexpr double TARGET_FLOOR_RATIO = 2.0;
+
+/// The fill floor's frame time, ms: the nearest-sampled trivial fill of render::measureShellFill
+/// at the bench's size and layer count, in its own headless context.
+double fillFloor_ms(int width, int height, int shells, bool quick) {
+    render::ShellFillCase c;
+    c.width = width;
+    c.height = height;
+    c.layers = shells + 1;
+    c.frames = quick ? 2 : 20;
+    c.warmupFrames = quick ? 1 : 2;
+    const render::ShellFillResult r = render::measureShellFill(c);
+    return 1000.0 / std::max(r.nearestFps, 1e-9);
+}
 
 struct ViewRow {
     std::string name;
@@ -121,7 +140,12 @@ nlohmann::json rowJson(const ViewRow& r) {
 
 }  // namespace
 
+std::vector<std::string> benchViewSceneFiles(const std::vector<std::string>& paths) {
+    return sceneFiles(paths);
+}
+
 int runBenchView(const BenchViewOptions& options) {
+    if (options.motion) return runBenchViewMotion(options);
     if (!options.loader) throw std::invalid_argument("bench view: no scene loader");
     if (options.frames < 1)
         throw std::invalid_argument("bench view: --frames must be >= 1, got " +
@@ -143,6 +167,9 @@ int runBenchView(const BenchViewOptions& options) {
     context->makeCurrent();
     const render::GlInfo info = render::queryGlInfo();
 
+    // The floor before and after the scenes, so load that changes during the run hits both.
+    const double floorBefore_ms =
+        fillFloor_ms(options.width, options.height, options.shells, options.quick);
     std::vector<ViewRow> rows;
     Progress progress("scene", int(files.size()));
     for (size_t k = 0; k < files.size(); ++k) {
@@ -153,6 +180,9 @@ int runBenchView(const BenchViewOptions& options) {
         progress.step(int(k) + 1, msSince(sceneStart));
     }
     progress.finish();
+    const double floorAfter_ms =
+        fillFloor_ms(options.width, options.height, options.shells, options.quick);
+    const double floor_ms = 0.5 * (floorBefore_ms + floorAfter_ms);
 
     std::printf("gale view's frame loop (coupling/ViewPipeline), %d x %d, %d shells, %s\n",
                 options.width, options.height, options.shells,
@@ -163,21 +193,36 @@ int runBenchView(const BenchViewOptions& options) {
         "per frame on the render thread (ms): wind = ask the worker and take its snapshot, "
         "upload = group tables and uploads, draw = draw calls to glFinish (overlays included), "
         "present = the context's present; the wind step runs on its own thread\n\n");
-    std::printf("%-28s  %8s  %7s  %8s  %7s  %7s  %7s  %8s  %9s  %8s  %s\n", "scene", "vertices",
-                "fps", "frame ms", "wind", "upload", "draw", "present", "step ms", "wind Hz",
-                "30 fps");
-    bool allMet = true;
+    std::printf("%-28s  %8s  %7s  %8s  %7s  %7s  %7s  %8s  %9s  %8s  %7s  %s\n", "scene",
+                "vertices", "fps", "frame ms", "wind", "upload", "draw", "present", "step ms",
+                "wind Hz", "x floor", "<= 2x");
+    char floorName[64];
+    std::snprintf(floorName, sizeof floorName, "fill floor (%d layers)", options.shells + 1);
+    std::printf("%-28s  %8s  %7.1f  %8.1f  %7s  %7s  %7.1f  %8s  %9s  %8s  %7.2f  %s\n", floorName,
+                "", 1000.0 / floor_ms, floor_ms, "", "", floor_ms, "", "", "", 1.0, "");
+    bool allMet = true, all30 = true;
     nlohmann::json jsonRows = nlohmann::json::array();
     for (const ViewRow& r : rows) {
-        const bool met = r.fps >= TARGET_FPS;
+        const double ratio = r.mean.total_ms() / floor_ms;
+        const bool met = ratio <= TARGET_FLOOR_RATIO;
         allMet = allMet && met;
-        std::printf("%-28s  %8zu  %7.1f  %8.1f  %7.2f  %7.2f  %7.1f  %8.2f  %9.1f  %8.1f  %s\n",
-                    r.name.c_str(), r.vertices, r.fps, r.mean.total_ms(), r.mean.wind_ms,
-                    r.mean.upload_ms, r.mean.draw_ms, r.mean.present_ms, r.windStep_ms,
-                    r.windUpdates_per_s, met ? "met" : "MISSED");
-        jsonRows.push_back(rowJson(r));
+        all30 = all30 && r.fps >= TARGET_FPS;
+        std::printf(
+            "%-28s  %8zu  %7.1f  %8.1f  %7.2f  %7.2f  %7.1f  %8.2f  %9.1f  %8.1f  %7.2f  %s\n",
+            r.name.c_str(), r.vertices, r.fps, r.mean.total_ms(), r.mean.wind_ms, r.mean.upload_ms,
+            r.mean.draw_ms, r.mean.present_ms, r.windStep_ms, r.windUpdates_per_s, ratio,
+            met ? "met" : "MISSED");
+        nlohmann::json j = rowJson(r);
+        j["floor_ratio"] = ratio;
+        j["meets_floor_target"] = met;
+        jsonRows.push_back(j);
     }
-    std::printf("\ntarget: every scene >= %.0f fps: %s\n", TARGET_FPS, allMet ? "met" : "MISSED");
+    std::printf("\nfill floor: %.1f ms before the scenes, %.1f ms after\n", floorBefore_ms,
+                floorAfter_ms);
+    std::printf("target: every scene's frame time <= %.0fx the fill floor's: %s\n",
+                TARGET_FLOOR_RATIO, allMet ? "met" : "MISSED");
+    std::printf("every scene >= %.0f fps (not judged; rates move with the machine's load): %s\n",
+                TARGET_FPS, all30 ? "yes" : "no");
     if (options.quick) std::printf("(quick run: %d frames per scene, not a measurement)\n", frames);
 
     if (!options.jsonPath.empty()) {
@@ -192,6 +237,10 @@ int runBenchView(const BenchViewOptions& options) {
         doc["warmup_frames"] = warmup;
         doc["quick"] = options.quick;
         doc["target_fps"] = TARGET_FPS;
+        doc["fill_floor_ms"] = floor_ms;
+        doc["fill_floor_before_ms"] = floorBefore_ms;
+        doc["fill_floor_after_ms"] = floorAfter_ms;
+        doc["target_floor_ratio"] = TARGET_FLOOR_RATIO;
         doc["target_met"] = allMet;
         doc["rows"] = jsonRows;
         writeTextAtomic(options.jsonPath, doc.dump(2) + "\n");

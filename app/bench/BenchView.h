@@ -3,7 +3,9 @@
 /// `gale bench view [SCENE|FOLDER]...`: the frame rate of each scene through the window's own
 /// per-frame loop (coupling/ViewPipeline.h: wind worker, shell renderer, overlays, present),
 /// headless through OSMesa or in a GLFW window, with each frame split into wind, upload, draw and
-/// present, against the target of 30 fps at 640 x 480 with 17 shells.
+/// present, against the fill floor measured in the same run (shells + 1 full-screen,
+/// nearest-sampled, alpha-tested layers: render::measureShellFill): every scene's frame time at
+/// most 2x the floor's. 30 fps at 640 x 480 is reported beside it.
 
 #include <functional>
 #include <memory>
@@ -15,6 +17,20 @@
 #include "render/GrassInput.h"
 
 namespace gale::app {
+
+/// Ground regions whose grass motion `gale bench view --motion` compares (issue 26): over the
+/// frames, the mean per-pixel temporal standard deviation of luminance where the wind is agitated
+/// (a ridge's crest, a whirlwind's core) against where it is calm (the lee, the meadow around).
+/// Both come from the scene's own geometry.
+struct MotionRegions {
+    std::string agitated;  ///< names for the table, e.g. "crest"
+    std::string calm;      ///< e.g. "lee"
+    /// Called once per frame after the wind source's update to t_s (seconds), before it is
+    /// drawn: the source's current field may be read (e.g. to track a moving core).
+    std::function<void(double t_s)> onFrame;
+    /// After all frames: a ground point (plan, world metres) is +1 agitated, -1 calm, 0 neither.
+    std::function<int(double wsX_m, double wsY_m)> classify;
+};
 
 /// One scene, built on the CPU and ready for the view's pipeline (what `gale view` draws).
 struct ViewBenchScene {
@@ -28,6 +44,9 @@ struct ViewBenchScene {
     double startTime_s = 0.0;       ///< output.start_time_s
     double fps = 30.0;              ///< output.fps: frame i shows sim time start + i / fps
     double build_ms = 0.0;          ///< wall time of building it (solves included)
+    /// The scene's motion regions, when its geometry has them (a ridge under a solved wind,
+    /// whirlwinds); empty function members otherwise.
+    MotionRegions motion;
 };
 
 /// Builds the scene at `path` for a width x height view with `shells` shells; `quick` (a smoke
@@ -46,6 +65,10 @@ struct BenchViewOptions {
     bool quick = false;    ///< 3 timed frames after 1 warm-up: a smoke run, not a measurement
     bool window = false;   ///< draw into a GLFW window (needs a display) instead of headless OSMesa
     std::string jsonPath;  ///< if set, the table is also written there as JSON (atomically)
+    /// Measure the wind's readability instead of the frame rate: for every scene with motion
+    /// regions, motionFrames frames at its fps from 4 s after its start (runBenchViewMotion).
+    bool motion = false;
+    int motionFrames = 24;   ///< >= 2
     ViewSceneLoader loader;  ///< required
     /// Called with the scene files before the renderer starts (optional): where the CPU
     /// policy of live wind beside the renderer is applied (shareCoresWithLiveWind).
@@ -54,9 +77,23 @@ struct BenchViewOptions {
 
 /// Loads every scene through options.loader, runs its frames through the view's pipeline, prints
 /// the table to stdout (progress to stderr) and writes the JSON. Returns EXIT_OK, or EXIT_UNMET
-/// when a full run leaves a scene under 30 fps (a quick run is never judged). Throws
+/// when a full run leaves a scene's frame time over 2x the fill floor's (a quick run is never
+/// judged). Throws
 /// std::invalid_argument on bad options or when a path holds no scene, and what the loader and the
 /// renderer throw.
 int runBenchView(const BenchViewOptions& options);
+
+/// Scene files: each path as given, or every *.toml in a folder, sorted by name. Throws
+/// std::invalid_argument when a path holds no scene.
+std::vector<std::string> benchViewSceneFiles(const std::vector<std::string>& paths);
+
+/// `gale bench view --motion` (app/bench/BenchViewMotion.cpp): for each scene with motion regions,
+/// draws options.motionFrames frames with the scene's wind (source updated, then drawn, in one
+/// thread; the first 4 s after the scene's start only update the wind, so the blades' response
+/// has settled), the per-pixel temporal standard deviation of luminance over them, and its mean
+/// over the pixels whose ground (mesh vertices projected into the frame) is agitated and calm;
+/// prints the table and the ratio. Returns EXIT_OK, or EXIT_UNMET when a full run gives a ratio
+/// under 2 (a quick run is never judged). Throws as runBenchView.
+int runBenchViewMotion(const BenchViewOptions& options);
 
 }  // namespace gale::app

@@ -13,6 +13,7 @@ Scene loadScene(const SceneRunOptions& options) {
     Scene scene = parseSceneFile(options.scenePath);
     OutputSection& o = scene.output;
     if (!options.folder.empty()) o.folder = options.folder;
+    o.duration_s = static_cast<double>(o.frames) / o.fps;  // before --frames (Scene.h)
     if (options.frames) o.frames = *options.frames;
     if (options.width) o.width = *options.width;
     if (options.height) o.height = *options.height;

@@ -131,6 +131,9 @@ struct OutputSection {
     int frames = 48;
     double fps = 24.0;
     double startTime_s = 0.0;
+    /// frames / fps as the scene file gives them, seconds: the scene's duration, which `gale
+    /// render --frames N` previews whole (its frames stand duration_s / N apart). Set by loadScene.
+    double duration_s = 0.0;
     std::string folder = "out/scene";  ///< resolved against the current directory
     std::string prefix = "frame";      ///< frame files are <prefix>_0000.png ...
     bool contactSheet = true;          ///< <prefix>_sheet.png: a grid of evenly spaced frames

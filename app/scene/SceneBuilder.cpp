@@ -18,11 +18,13 @@
 #include "base/ParameterError.h"
 #include "coupling/FieldSampling.h"
 #include "coupling/FieldWind.h"
+#include "coupling/Flutter.h"
 #include "coupling/PointSourceWind.h"
 #include "coupling/SteadyGustWind.h"
 #include "coupling/TerrainMeshBuilder.h"
 #include "coupling/UnsteadyFieldWind.h"
 #include "render/ImageIO.h"
+#include "sim/Advection.h"
 #include "sim/AirDomain.h"
 #include "sim/MemoryEstimate.h"
 #include "sim/SteadyWind.h"
@@ -33,14 +35,14 @@ namespace {
 using gale::PI;
 /// Largest grass texture image we read; matches GrassTextureSpec::size's range.
 constexpr int MAX_TEXTURE_SIDE_PX = 4096;
-/// Default view: elevation of the camera above the horizontal, seen from the target.
-constexpr double DEFAULT_ELEVATION_DEG = 28.0;
-/// A default camera that would frame the terrain too far to show blades stands closer, at this
-/// elevation: low enough to see across the terrain beyond the target.
-constexpr double CLOSE_ELEVATION_DEG = 15.0;
-/// ...with the nearest ground at this fraction of the distance where a blade is one pixel wide
-/// (some room for relief and for texels narrower than a blade).
-constexpr double BLADE_VISIBLE_MARGIN = 0.8;
+/// Default view: elevation of the camera above the horizontal, seen from the target. Low, as the
+/// default scene's (examples/knoll.toml) three-quarter view: the relief reads in its shading and
+/// silhouettes, and the grass is seen at the grazing angles it is drawn for.
+constexpr double DEFAULT_ELEVATION_DEG = 20.0;
+/// The camera stands at this fraction of the distance at which the terrain's bounding sphere just
+/// fits the frame: the sphere's top and bottom fall outside, the terrain (flatter than the sphere)
+/// still spans the frame's width.
+constexpr double FRAME_FILL = 0.8;
 /// The default camera stays at least this high over the ground under it (a person's eyes).
 constexpr double MIN_EYE_HEIGHT_M = 1.7;
 
@@ -162,6 +164,34 @@ double sampleHeightOf(const Scene& scene) {
     return scene.wind.sampleHeight_m.value_or(double(scene.grass.params.height_m));
 }
 
+/// The turbulent flutter of a steady field's grass (coupling/Flutter.h), one amplitude per mesh
+/// vertex: from the momentum model's k where it has one, sampled (trilinear) at the grass point
+/// over each vertex; otherwise from the mixing-length k of the shear between the sample height
+/// and twice it.
+std::vector<float> steadyFlutter(const Scene& scene, const SceneField& result,
+                                 const sim::WindField& field, const BuiltScene& built,
+                                 const std::vector<glm::vec3>& velocity) {
+    const double bend_mps = scene.wind.response.bendSpeed_mps;
+    const double z_m = std::max(sampleHeightOf(scene), 0.05);
+    const render::TerrainMesh& mesh = built.mesh;
+    std::vector<double> k(mesh.wsPosition_m.size(), 0.0);
+    if (!result.tke_m2ps2.empty() && result.domain) {
+        const sim::MacGrid grid(result.domain->layout(), &result.domain->terrain());
+        for (size_t v = 0; v < k.size(); ++v) {
+            const glm::vec3& p = mesh.wsPosition_m[v];
+            k[v] = std::max(0.0, sim::sampleAt(grid, sim::Placement::Cell, result.tke_m2ps2,
+                                               sim::Vec3d{p.x, p.y, p.z + z_m}));
+        }
+    } else {
+        const std::vector<glm::vec3> high =
+            coupling::sampleAtGrass(field, mesh, 2.0 * z_m, nearGroundOf(scene));
+        for (size_t v = 0; v < k.size(); ++v)
+            k[v] = coupling::shearTke_m2ps2(glm::length(velocity[v]), glm::length(high[v]), z_m,
+                                            2.0 * z_m);
+    }
+    return coupling::flutterFromTke(k, velocity, bend_mps);
+}
+
 /// wind.kind = "solved": the steady mass-consistent field (docs/design.md 4.1) sampled at grass
 /// height, then either held (steady) or swept by travelling gusts (docs/design.md 4.2, kinematic
 /// mode).
@@ -177,6 +207,7 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
     auto field = std::make_shared<const sim::WindField>(std::move(result.field));
     const std::vector<glm::vec3> velocity =
         coupling::sampleAtGrass(*field, built.mesh, sampleHeightOf(scene), nearGroundOf(scene));
+    std::vector<float> flutter = steadyFlutter(scene, result, *field, built, velocity);
     try {
         if (scene.wind.gusts) {
             coupling::SteadyGustSpec spec;
@@ -191,10 +222,12 @@ void buildSolvedWind(const Scene& scene, const BuildOptions& options, BuiltScene
             auto wind = std::make_unique<coupling::SteadyGustWind>(built.mesh, velocity, spec,
                                                                    gustCurve(scene));
             wind->keepField(field);
+            wind->setFlutter(std::move(flutter));
             built.wind = std::move(wind);
         } else {
             auto wind = std::make_unique<coupling::FieldWind>(built.mesh, scene.wind.response);
             wind->addFieldStep(0.0, velocity);
+            wind->setFlutter(std::move(flutter));
             wind->keepField(field);
             built.wind = std::move(wind);
         }
@@ -275,12 +308,8 @@ SceneTerrain buildTerrain(const Scene& scene) {
 
 sim::Heightfield buildHeightfield(const Scene& scene) { return buildTerrain(scene).field; }
 
-double bladeVisibleDistance_m(float texel_m, int height_px, float fovY_deg) {
-    return texel_m * height_px / (2.0 * std::tan(radiansFromDegrees(0.5 * fovY_deg)));
-}
-
 render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera& base,
-                             bool keepPosition, bool keepTarget, double bladeVisible_m) {
+                             bool keepPosition, bool keepTarget) {
     render::Camera camera = base;
     const double minZ = field.minHeight_m(), maxZ = field.maxHeight_m();
     const double cx = field.originX_m + 0.5 * field.sizeX_m();
@@ -300,21 +329,8 @@ render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera
     const double radius =
         0.5 * std::sqrt(field.sizeX_m() * field.sizeX_m() + field.sizeY_m() * field.sizeY_m() +
                         (maxZ - minZ) * (maxZ - minZ));
-    double distance = std::max(1.0, 0.8 * radius / std::sin(halfFov));
-    double elevation = radiansFromDegrees(DEFAULT_ELEVATION_DEG);
-    // The frame's bottom edge meets ground at the target's height at the slant distance
-    // h / sin(elevation + fov / 2), h = distance sin(elevation) the camera's height above it.
-    auto nearestGround_m = [&] {
-        return distance * std::sin(elevation) / std::sin(elevation + halfFov);
-    };
-    if (nearestGround_m() > BLADE_VISIBLE_MARGIN * bladeVisible_m) {
-        // Too far to show a blade: stand closer and lower, looking at the ground at the centre,
-        // so the near grass at the bottom of the frame has blades wider than a pixel.
-        if (!keepTarget) camera.wsTarget_m.z = float(field.sample(cx, cy));
-        elevation = radiansFromDegrees(CLOSE_ELEVATION_DEG);
-        distance = BLADE_VISIBLE_MARGIN * bladeVisible_m * std::sin(elevation + halfFov) /
-                   std::sin(elevation);
-    }
+    const double distance = std::max(1.0, FRAME_FILL * radius / std::sin(halfFov));
+    const double elevation = radiansFromDegrees(DEFAULT_ELEVATION_DEG);
     place(distance, elevation);
     // Never inside a hill between the camera and the target.
     const float ground = float(field.sample(camera.wsPosition_m.x, camera.wsPosition_m.y));
@@ -388,11 +404,8 @@ BuiltScene buildScene(const Scene& scene, const BuildOptions& options) {
         }
     }
 
-    const float texel_m =
-        scene.grass.params.tile_m / float(std::max(1, built.texture.levels.at(0).width));
     built.camera =
-        defaultCamera(field, scene.camera, !scene.autoCameraPosition, !scene.autoCameraTarget,
-                      bladeVisibleDistance_m(texel_m, scene.output.height, scene.camera.fovY_deg));
+        defaultCamera(field, scene.camera, !scene.autoCameraPosition, !scene.autoCameraTarget);
     const glm::vec3 d = built.camera.wsTarget_m - built.camera.wsPosition_m;
     if (!(d.x * d.x + d.y * d.y + d.z * d.z > 1e-12f))
         failAt(scene, scene.autoCameraTarget ? "camera.position_m" : "camera.target_m",

@@ -100,17 +100,13 @@ SceneTerrain buildTerrain(const Scene& scene);
 /// buildTerrain's heightfield alone.
 sim::Heightfield buildHeightfield(const Scene& scene);
 
-/// The distance (metres) within which a texel of texel_m metres on the ground, seen face on, is
-/// at least one pixel of a view height_px pixels tall with vertical field of view fovY_deg.
-double bladeVisibleDistance_m(float texel_m, int height_px, float fovY_deg);
-
-/// The default camera for `field`: from the south-west, looking at the terrain's centre. A
-/// three-quarter view framing the whole terrain when its nearest ground is within 0.8
-/// bladeVisible_m (bladeVisibleDistance_m of the grass texture's texel); otherwise closer and
-/// lower (15 deg), so that the ground at the bottom of the frame is that near and blades there
-/// are wider than a pixel. Never less than 1.7 m above the ground under it. Keeps fov, near and
-/// far of `base`, and its position or target where keepPosition / keepTarget say so.
+/// The default camera for `field`: from the south-west (azimuth 235 deg), 20 deg above the
+/// horizon, looking at the terrain's centre (half way between the ground there and the lowest
+/// point), at 0.8 of the distance at which the terrain's bounding sphere just fits the frame: the
+/// whole terrain in view, as the default scene frames its knoll. Never less than 1.7 m above the
+/// ground under it. Keeps fov, near and far of `base`, and its position or target where
+/// keepPosition / keepTarget say so.
 render::Camera defaultCamera(const sim::Heightfield& field, const render::Camera& base,
-                             bool keepPosition, bool keepTarget, double bladeVisible_m);
+                             bool keepPosition, bool keepTarget);
 
 }  // namespace gale::app

@@ -1,10 +1,10 @@
 // A scene written from scratch renders usefully (issue 14, first hour): without lights the frame
-// is in daylight, not near black; from the default camera the blades at the bottom of the frame
-// are wider than a pixel.
+// is in daylight, not near black; the default camera frames the whole terrain.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "AppTestSupport.h"
 #include "app/scene/SceneBuilder.h"
@@ -78,23 +78,30 @@ BuiltScene fromScratch(double side_m, Scene& scene) {
     return buildScene(scene);
 }
 
-TEST(FirstHourRender, FromTheDefaultCameraBladesAtTheBottomOfTheFrameAreWiderThanAPixel) {
+TEST(FirstHourRender, TheDefaultCameraFramesTheWholeTerrain) {
+    // Issue 26: a scene without a camera shows its whole terrain, as the default scene shows its
+    // knoll (a close-up 9 m from the summit of a 200 m hill never showed the hill).
     for (double side_m : {40.0, 200.0, 1000.0}) {
         Scene scene;
         const BuiltScene built = fromScratch(side_m, scene);
         const render::Camera& camera = built.camera;
-        const int w = scene.output.width, h = scene.output.height;
-        // The ground under the bottom row's middle pixel, found by the test's own ray.
-        const render::WorldRay ray = render::pixelRay(camera, w, h, 0.5 * w, h - 0.5);
-        const auto hit = coupling::pickTerrain(built.mesh, ray.wsOrigin_m, ray.wsDirection);
-        ASSERT_TRUE(hit.has_value()) << side_m << " m: the bottom of the frame shows no ground";
-        const double distance_m = glm::length(*hit - ray.wsOrigin_m);
-        const double pixel_m =
-            2.0 * distance_m * std::tan(0.5 * radiansFromDegrees(camera.fovY_deg)) / double(h);
-        // A blade's cross-section: one texel of the grass texture.
-        const double blade_m = scene.grass.params.tile_m / double(built.texture.levels[0].width);
-        EXPECT_GT(blade_m, pixel_m)
-            << side_m << " m terrain: nearest grass " << distance_m << " m away";
+        const float aspect = float(scene.output.width) / float(scene.output.height);
+        const glm::mat4 clipFromWorld = render::clipFromWorld(camera, aspect);
+        // The terrain's corners and its summit, projected by the test: inside the frame, in front
+        // of the camera.
+        const sim::Heightfield& field = built.heightfield;
+        const double x0 = field.originX_m, y0 = field.originY_m;
+        const double x1 = x0 + field.sizeX_m(), y1 = y0 + field.sizeY_m();
+        const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+        for (const auto& [x, y] : {std::pair{x0, y0}, {x1, y0}, {x0, y1}, {x1, y1}, {cx, cy}}) {
+            const glm::vec4 clip =
+                clipFromWorld * glm::vec4(float(x), float(y), float(field.sample(x, y)), 1.0f);
+            ASSERT_GT(clip.w, 0.0f) << side_m << " m: (" << x << ", " << y << ") behind the camera";
+            EXPECT_LE(std::abs(clip.x / clip.w), 1.0f)
+                << side_m << " m: (" << x << ", " << y << ")";
+            EXPECT_LE(std::abs(clip.y / clip.w), 1.0f)
+                << side_m << " m: (" << x << ", " << y << ")";
+        }
         // Above the ground, looking at it.
         EXPECT_GT(camera.wsPosition_m.z,
                   built.heightfield.sample(camera.wsPosition_m.x, camera.wsPosition_m.y));
