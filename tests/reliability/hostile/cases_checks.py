@@ -17,8 +17,12 @@ ESTIMATE_RATIO_LIMIT = 1.3
 BOUNDED_INPUT_PEAK_MIB = 400
 # A refused run must stop within this wall time (it allocates nothing; seconds under load).
 REFUSED_WITHIN_S = 20.0
-# A frame counts as showing terrain when this share of its pixels differs from the sky frame.
-MIN_TERRAIN_SHARE = 0.3
+# A frame counts as showing terrain when this share of its pixels differs from the sky frame and
+# its middle pixel (the camera's target, on the terrain) does. The default camera frames the
+# whole terrain from 20 degrees above the horizontal (app/scene/SceneBuilder.cpp): a square seen
+# that low is foreshortened to a flat diamond, which covers about a quarter of a 4:3 frame (the
+# 2 km hill below: 22 %); a camera that lost the terrain shows far less, or none.
+MIN_TERRAIN_SHARE = 0.15
 # A pixel differs when a channel differs by more than this (8-bit; shading noise is far below).
 PIXEL_DIFFERENCE = 8
 # The swirl of a whirlwind 4 cells from its axis, against Gamma / (2 pi r): the seeded Lamb-Oseen
@@ -196,14 +200,17 @@ def silent_wrong_output(ctx):
             return False, "render %s, sky render %s: %s" % (r.ended(), s.ended(), first_error(r))
         _, _, frame = png_rgb(os.path.join(cwd, "out", "frame_0000.png"))
         _, _, sky = png_rgb(os.path.join(cwd, "sky", "frame_0000.png"))
-        differ = sum(1 for a, b in zip(frame, sky)
-                     if max(abs(x - y) for x, y in zip(a, b)) > PIXEL_DIFFERENCE)
-        share = differ / float(len(frame))
-        return share >= MIN_TERRAIN_SHARE, "%.0f %% of the pixels differ from the sky" % (
-            100 * share)
+        differs = [max(abs(x - y) for x, y in zip(a, b)) > PIXEL_DIFFERENCE
+                   for a, b in zip(frame, sky)]
+        share = sum(differs) / float(len(frame))
+        middle = differs[24 * 64 + 32]  # row 24 of 48, column 32 of 64
+        return share >= MIN_TERRAIN_SHARE and middle, (
+            "%.0f %% of the pixels differ from the sky; the middle pixel %s" % (
+                100 * share, "does" if middle else "does not"))
 
     table.check("silent", "2 km terrain, default camera (render 1 frame)",
-                "exit 0 and at least %.0f %% of the frame not sky" % (100 * MIN_TERRAIN_SHARE),
+                "exit 0, at least %.0f %% of the frame not sky, the middle of the frame terrain" % (
+                    100 * MIN_TERRAIN_SHARE),
                 two_km_default_camera)
     for name, what in (("physics_reference_height_near_large_roughness.toml",
                         "roughness_m = 100, reference_height_m = 100.0001"),

@@ -254,11 +254,13 @@ def concurrent_renders(ctx):
         return {k: v for k, v in snapshot(folder).items() if k.endswith((".png", ".gif"))}
 
     def started_one_after_the_other():
-        ref_a = reference(scene_a)
+        # The frames of a run sample its whole duration, so the lone run renders as many frames
+        # as the interrupted one for its first ones to be the same.
+        slow = ["--frames", "400"]
+        ref_a = reference(scene_a, slow)
         cwd = gale.folder("concurrent")
         write_text(os.path.join(cwd, "a.toml"), scene_a)
         write_text(os.path.join(cwd, "b.toml"), scene_b)
-        slow = ["--frames", "400"]
         a = gale.start(["render", "a.toml", "-o", "out"] + slow, cwd)
         if not a.wait_for(r"frame +2/400", 120):
             return False, "the first render never started"
