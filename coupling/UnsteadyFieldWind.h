@@ -82,7 +82,8 @@ class UnsteadyFieldWind : public WindSource {
     /// solver on `domain` with `steady` as its mean flow takes up the current one's time,
     /// whirlwinds and flow (sim::UnsteadyWindSolver::continueFrom), the grass samples it at once
     /// (resampleCurrentField) and the old grid is freed. The steps the grass holds stay: they are
-    /// samples at the vertices, whatever grid they came from. Returns the take-over's projection.
+    /// samples at the vertices, whatever grid they came from; so does the flutter's mean flow at
+    /// grass height, the scene grid's. Returns the take-over's projection.
     /// Only from the thread that calls update().
     sim::SolveReport moveToGrid(std::unique_ptr<sim::AirDomain> domain,
                                 const sim::WindField& steady, const sim::UnsteadySettings& settings,
