@@ -225,24 +225,30 @@ int runBenchView(const BenchViewOptions& options) {
                 TARGET_FPS, all30 ? "yes" : "no");
     if (options.quick) std::printf("(quick run: %d frames per scene, not a measurement)\n", frames);
 
+    // The JSON (written only with --json: finishViewBench).
+    nlohmann::json doc;
+    doc["benchmark"] = "view";
+    doc["renderer"] = info.renderer;
+    doc["width"] = options.width;
+    doc["height"] = options.height;
+    doc["shells"] = options.shells;
+    doc["window"] = options.window;
+    doc["frames_per_scene"] = frames;
+    doc["warmup_frames"] = warmup;
+    doc["quick"] = options.quick;
+    doc["target_fps"] = TARGET_FPS;
+    doc["fill_floor_ms"] = floor_ms;
+    doc["fill_floor_before_ms"] = floorBefore_ms;
+    doc["fill_floor_after_ms"] = floorAfter_ms;
+    doc["target_floor_ratio"] = TARGET_FLOOR_RATIO;
+    return finishViewBench(options, doc, jsonRows, allMet);
+}
+
+int finishViewBench(const BenchViewOptions& options, nlohmann::json& doc, nlohmann::json& rows,
+                    bool allMet) {
     if (!options.jsonPath.empty()) {
-        nlohmann::json doc;
-        doc["benchmark"] = "view";
-        doc["renderer"] = info.renderer;
-        doc["width"] = options.width;
-        doc["height"] = options.height;
-        doc["shells"] = options.shells;
-        doc["window"] = options.window;
-        doc["frames_per_scene"] = frames;
-        doc["warmup_frames"] = warmup;
-        doc["quick"] = options.quick;
-        doc["target_fps"] = TARGET_FPS;
-        doc["fill_floor_ms"] = floor_ms;
-        doc["fill_floor_before_ms"] = floorBefore_ms;
-        doc["fill_floor_after_ms"] = floorAfter_ms;
-        doc["target_floor_ratio"] = TARGET_FLOOR_RATIO;
         doc["target_met"] = allMet;
-        doc["rows"] = jsonRows;
+        doc["rows"] = std::move(rows);
         writeTextAtomic(options.jsonPath, doc.dump(2) + "\n");
         std::fprintf(stderr, "bench view: wrote %s\n", options.jsonPath.c_str());
     }

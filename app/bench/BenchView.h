@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,12 @@ struct BenchViewOptions {
     /// policy of live wind beside the renderer is applied (shareCoresWithLiveWind).
     std::function<void(const std::vector<std::string>& files)> beforeRenderer;
 };
+
+/// The end both view benches share: with options.jsonPath, `doc` gets the verdict and the rows
+/// and is written there (atomically); returns EXIT_OK, or EXIT_UNMET when a full run missed its
+/// target (a quick run is never judged).
+int finishViewBench(const BenchViewOptions& options, nlohmann::json& doc, nlohmann::json& rows,
+                    bool allMet);
 
 /// Loads every scene through options.loader, runs its frames through the view's pipeline, prints
 /// the table to stdout (progress to stderr) and writes the JSON. Returns EXIT_OK, or EXIT_UNMET

@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "app/bench/BenchView.h"
-#include "app/io/AtomicFile.h"
 #include "app/io/Errors.h"
 #include "app/io/Progress.h"
 #include "app/io/Timing.h"
@@ -175,22 +174,16 @@ int runBenchViewMotion(const BenchViewOptions& options) {
     std::printf("\ntarget: every agitated region's motion >= %.0fx its calm region's: %s\n",
                 TARGET_MOTION_RATIO, allMet ? "met" : "MISSED");
     if (options.quick) std::printf("(quick run: %d frames per scene, not a measurement)\n", frames);
-    if (!options.jsonPath.empty()) {
-        nlohmann::json doc;
-        doc["benchmark"] = "view --motion";
-        doc["width"] = options.width;
-        doc["height"] = options.height;
-        doc["shells"] = options.shells;
-        doc["frames_per_scene"] = frames;
-        doc["quick"] = options.quick;
-        doc["target_ratio"] = TARGET_MOTION_RATIO;
-        doc["target_met"] = allMet;
-        doc["rows"] = jsonRows;
-        writeTextAtomic(options.jsonPath, doc.dump(2) + "\n");
-        std::fprintf(stderr, "bench view: wrote %s\n", options.jsonPath.c_str());
-    }
-    if (options.quick) return EXIT_OK;
-    return allMet ? EXIT_OK : EXIT_UNMET;
+    // The JSON (written only with --json: finishViewBench).
+    nlohmann::json doc;
+    doc["benchmark"] = "view --motion";
+    doc["width"] = options.width;
+    doc["height"] = options.height;
+    doc["shells"] = options.shells;
+    doc["frames_per_scene"] = frames;
+    doc["quick"] = options.quick;
+    doc["target_ratio"] = TARGET_MOTION_RATIO;
+    return finishViewBench(options, doc, jsonRows, allMet);
 }
 
 }  // namespace gale::app
