@@ -6,6 +6,7 @@
 #include <string>
 
 #include "render/Bend.h"
+#include "render/RenderLimits.h"
 
 namespace gale::render::detail {
 Texture newTableTexture(GLint filter) {
@@ -91,9 +92,24 @@ void BendTables::setGroups(const GrassWind& wind, int columns, int maxTextureSiz
 }
 
 DensityTables::DensityTables()
-    : mMap(newTableTexture(GL_LINEAR)), mCuts(newTableTexture(GL_LINEAR)) {}
+    : mMap(newTableTexture(GL_LINEAR)),
+      mCuts(newTableTexture(GL_LINEAR)),
+      mPasses(newTableTexture(GL_NEAREST)) {}
+
+void DensityTables::setShells(int shells) {
+    if (shells == mPassShells) return;
+    std::vector<float> table = shellPassFractions(mAlphaCount, shells);
+    table.resize(MAX_SHELLS + 1, 0.0f);
+    glBindTexture(GL_TEXTURE_2D, mPasses.get());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, MAX_SHELLS + 1, 1, 0, GL_RED, GL_FLOAT, table.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+    mPassShells = shells;
+}
 
 void DensityTables::setCuts(const Image& level0) {
+    mAlphaCount = alphaHistogram(level0);
+    mPassShells = -1;
     const std::vector<float> cuts = densityCuts(level0);
     glBindTexture(GL_TEXTURE_2D, mCuts.get());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);

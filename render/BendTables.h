@@ -17,6 +17,7 @@
 
 #include <GL/gl.h>
 
+#include <array>
 #include <glm/vec2.hpp>
 #include <vector>
 
@@ -69,8 +70,12 @@ class DensityTables {
   public:
     /// Creates the textures (no map: density 1). Requires a current context.
     DensityTables();
-    /// The cut table of a new grass texture (its level 0).
+    /// The cut table of a new grass texture (its level 0); keeps its alpha histogram for the
+    /// pass table.
     void setCuts(const Image& level0);
+    /// Rebuilds the pass table (shellPassFractions, render/DensityMap.h) if the texture or N
+    /// changed: texel m of a (MAX_SHELLS + 1) x 1 table holds entry m, 0 beyond N.
+    void setShells(int shells);
     /// Uploads `map`, or removes it when map.width == 0. Throws std::logic_error naming the
     /// field on wrong sizes, non-finite values or a side above maxTextureSize.
     void setMap(const DensityMap& map, int maxTextureSize);
@@ -80,9 +85,12 @@ class DensityTables {
     const glm::vec2& wsSize_m() const { return mSize_m; }
     GLuint mapTexture() const { return mMap.get(); }
     GLuint cutTexture() const { return mCuts.get(); }
+    GLuint passTexture() const { return mPasses.get(); }
 
   private:
-    Texture mMap, mCuts;
+    Texture mMap, mCuts, mPasses;
+    std::array<size_t, 256> mAlphaCount{};
+    int mPassShells = -1;  ///< N of the pass table, -1 when the texture changed since
     bool mActive = false;
     glm::vec2 mMin_m{0.0f}, mSize_m{1.0f};
 };

@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -82,9 +83,31 @@ DensityMap loadDensityMap(const std::string& path, glm::vec2 wsMin_m, glm::vec2 
     return map;
 }
 
-std::vector<float> densityCuts(const Image& level0) {
+std::array<size_t, 256> alphaHistogram(const Image& level0) {
     std::array<size_t, 256> count{};
     for (size_t t = 0; t + 3 < level0.rgba.size(); t += 4) ++count[level0.rgba[t + 3]];
+    return count;
+}
+
+std::vector<float> shellPassFractions(const std::array<size_t, 256>& alphaCount, int shells) {
+    const int n = std::max(shells, 0);
+    std::vector<float> pass(static_cast<size_t>(n) + 1, 1.0f);
+    // atLeast[a]: texels with alpha >= a.
+    std::array<size_t, 257> atLeast{};
+    for (int a = 255; a >= 0; --a) atLeast[a] = atLeast[a + 1] + alphaCount[a];
+    if (atLeast[0] == 0 || n == 0) return pass;
+    double through = 1.0;
+    for (int k = 1; k <= n; ++k) {
+        // shell.vert keeps alpha / 255 >= k / N - 0.5 / 255: alpha >= ceil(255 k / N - 0.5).
+        const int a = std::clamp(static_cast<int>(std::ceil(255.0 * k / n - 0.5)), 0, 256);
+        through *= 1.0 - double(atLeast[a]) / double(atLeast[0]);
+        pass[static_cast<size_t>(k)] = static_cast<float>(through);
+    }
+    return pass;
+}
+
+std::vector<float> densityCuts(const Image& level0) {
+    const std::array<size_t, 256> count = alphaHistogram(level0);
     // atLeast[a]: blade texels (alpha > 0) with alpha >= a, for a = 1..255.
     std::array<size_t, 257> atLeast{};
     for (int a = 255; a >= 1; --a) atLeast[a] = atLeast[a + 1] + count[a];

@@ -7,6 +7,7 @@
 /// the blades that stay keep their full height and bend. docs/render.md.
 
 #include <glm/vec2.hpp>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -45,5 +46,15 @@ constexpr int DENSITY_CUTS = 256;
 /// k / 255 of all blade texels, rounded up to whole 8-bit heights; entry 0 (density 0) keeps none;
 /// entry 255 keeps every blade (cut 0). A texture without blades gives cuts of 0.
 std::vector<float> densityCuts(const Image& level0);
+
+/// How many texels of a grass texture's level 0 have each 8-bit alpha (blade height).
+std::array<size_t, 256> alphaHistogram(const Image& level0);
+
+/// The pass table of a grass texture for N = `shells` shells (level of detail, shell.vert): entry m
+/// (m = 0..N) is the share of rays that cross shells 1..m, each at a texel of its own, without
+/// stopping on a blade: the product over k = 1..m of (1 - c_k), c_k the share of texels shell k
+/// keeps (alpha >= 255 k / N less half a step, shell.vert's test). Entry 0 is 1; an empty
+/// histogram passes every ray.
+std::vector<float> shellPassFractions(const std::array<size_t, 256>& alphaCount, int shells);
 
 }  // namespace gale::render

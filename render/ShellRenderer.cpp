@@ -113,7 +113,8 @@ ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
                                                     {&loc.shells, "uShells"},
                                                     {&loc.topShell, "uTopShell"},
                                                     {&loc.shellStride, "uShellStride"},
-                                                    {&loc.lodFar, "uLodFar"},
+                                                    {&loc.lodD1, "uLodD1"},
+                                                    {&loc.lastShell, "uLastShell"},
                                                     {&loc.time, "uTime_s"},
                                                     {&loc.bladeColor, "uBladeColor"},
                                                     {&loc.bend, "uBend"},
@@ -123,6 +124,8 @@ ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
                                                     {&loc.maxTilt, "uMaxTilt"},
                                                     {&loc.density, "uDensity"},
                                                     {&loc.densityCut, "uDensityCut"},
+                                                    {&loc.shellPass, "uShellPass"},
+                                                    {&loc.shellFocal, "uShellFocal"},
                                                     {&loc.densityMin, "uDensityMin"},
                                                     {&loc.densitySize, "uDensitySize"},
                                                     {&loc.lightCount, "uLightCount"},
@@ -152,6 +155,7 @@ ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
     glUniform1i(loc.groups, GROUP_UNIT);
     glUniform1i(loc.density, DENSITY_UNIT);
     glUniform1i(loc.densityCut, DENSITY_CUT_UNIT);
+    glUniform1i(loc.shellPass, SHELL_PASS_UNIT);
     glUniform1f(loc.maxTilt, static_cast<float>(MAX_TIP_TILT_RAD));
     glUseProgram(0);
     uploadLighting(*p);

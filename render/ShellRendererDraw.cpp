@@ -57,23 +57,28 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     glBindTexture(GL_TEXTURE_2D, m.density->mapTexture());
     glActiveTexture(GL_TEXTURE0 + DENSITY_CUT_UNIT);
     glBindTexture(GL_TEXTURE_2D, m.density->cutTexture());
+    m.density->setShells(m.grass.shells);
+    glActiveTexture(GL_TEXTURE0 + SHELL_PASS_UNIT);
+    glBindTexture(GL_TEXTURE_2D, m.density->passTexture());
     // The viewer's toggles: without grass the top shell is the ground; without terrain the
     // ground (shell 0) is left out.
     const int shells = options.grass ? m.grass.shells : 0;
     const int bottom = options.terrain ? 0 : 1;
-    // Level of detail (render/TerrainChunks.h): the grass stands in for itself on the ground
-    // beyond D = 2 h f / P, f the focal length in pixels.
+    // Level of detail (render/TerrainChunks.h): D1 = 2 S f / P, f the focal length in pixels.
     const float focal_px = static_cast<float>(m.context.height()) /
                            (2.0f * std::tan(0.5f * float(radiansFromDegrees(camera.fovY_deg))));
-    const float grassFar_m =
-        shells > 0 ? detail::grassFarDistance_m(m.grass.height_m, focal_px, m.grass.lodPixels)
-                   : 0.0f;
+    const float d1_m =
+        m.grass.lodPixels > 0.0f && shells > 0
+            ? 2.0f * (m.grass.height_m / static_cast<float>(shells)) * focal_px / m.grass.lodPixels
+            : 0.0f;
     // The program of each chunk (ShellVariantBits): the scene's choices, plus the fade where a
     // chunk reaches the distance at which one of its shells starts to thin out. Each program gets
     // this frame's uniforms the first time a chunk uses it.
     const unsigned sceneBits = (m.grass.aperiodic ? VARIANT_APERIODIC : 0u) |
                                (m.density->active() ? VARIANT_DENSITY : 0u) |
                                (m.windBlends && groupCount > 0 ? VARIANT_BLEND : 0u);
+    int lastShell = 0;  // the largest power of two <= shells (the one dropped last), 0 without
+    while (shells > 0 && lastShell * 2 <= shells) lastShell = lastShell == 0 ? 1 : lastShell * 2;
     unsigned preparedPrograms = 0;  // bit k: variant k has this frame's uniforms
     GLuint boundProgram = 0;
     const auto useProgram = [&](unsigned bits) -> const ShellLocations& {
@@ -88,7 +93,10 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         glUniform3fv(loc.eyePos, 1, glm::value_ptr(camera.wsPosition_m));
         glUniform1i(loc.shells, m.grass.shells);
         glUniform1i(loc.groupColumns, m.tables->columns());
-        glUniform1f(loc.lodFar, grassFar_m);
+        glUniform1f(loc.lodD1, d1_m);
+        glUniform1f(loc.shellFocal,
+                    shells > 0 ? m.grass.height_m / static_cast<float>(shells) * focal_px : 0.0f);
+        glUniform1i(loc.lastShell, lastShell);
         // Wrapped to a day so the float keeps millisecond steps (the flutter's periods are
         // under 2 s and its phases are per vertex: the wrap is one jump a day).
         glUniform1f(loc.time, float(std::fmod(wind.time_s, 86400.0)));
@@ -134,7 +142,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     if (options.nearestTexels) glBindSampler(GRASS_UNIT, m.nearestSampler.get());
     glBindVertexArray(m.vao.get());
     for (const auto& [near_m, far_m, mesh] : visible) {
-        const detail::ShellRange range = detail::shellRange(shells, grassFar_m, near_m);
+        const detail::ShellRange range = detail::shellRange(shells, d1_m, near_m);
         // Instance k is shell top - k stride: top shell first, ground last. The thesis (3.1)
         // draws bottom to top because its shells were blended; ours are alpha-tested and opaque
         // with the depth test on, so the image does not depend on the order, and top first lets
@@ -142,7 +150,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         // +5-18 % fill rate on llvmpipe).
         if (range.top < bottom) continue;
         const int count = (range.top - bottom) / range.stride + 1;
-        const bool fades = detail::chunkMayFade(shells, grassFar_m, far_m);
+        const bool fades = detail::chunkMayFade(range, shells, d1_m, far_m);
         const ShellLocations& loc = useProgram(sceneBits | (fades ? VARIANT_FADE : 0u));
         glUniform1i(loc.topShell, range.top);
         glUniform1i(loc.shellStride, range.stride);

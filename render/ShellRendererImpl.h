@@ -52,6 +52,7 @@ constexpr GLint BEND_UNIT = 1;
 constexpr GLint GROUP_UNIT = 2;
 constexpr GLint DENSITY_UNIT = 3;
 constexpr GLint DENSITY_CUT_UNIT = 4;
+constexpr GLint SHELL_PASS_UNIT = 5;
 
 /// Static per-vertex data, interleaved.
 struct TerrainVertex {
@@ -91,8 +92,8 @@ std::string shellVariantDefines(unsigned bits);
 
 /// Uniform locations of one shell program (-1 for a name the compiler dropped).
 struct ShellLocations {
-    GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns, maxTilt,
-        shellStride, lodFar, time, bladeColor, density, densityCut, densityMin, densitySize;
+    GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns, maxTilt, shellPass, shellFocal,
+        shellStride, lodD1, lastShell, time, bladeColor, density, densityCut, densityMin, densitySize;
     GLint lightCount, lightPos, lightColor, lightAtten;
     GLint ambient, specularPower, specularStrength, shadowMin;
 };

@@ -162,16 +162,15 @@ float farthestInBox(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi
     return glm::length(glm::max(glm::abs(p - lo), glm::abs(hi - p)));
 }
 
-float grassFarDistance_m(float height_m, float focal_px, float lodPixels) {
-    if (!(lodPixels > 0.0f) || !(height_m > 0.0f)) return 0.0f;
-    return 2.0f * height_m * focal_px / lodPixels;
-}
-
-ShellRange shellRange(int shells, float far_m, float distance_m) {
+ShellRange shellRange(int shells, float d1_m, float distance_m) {
     ShellRange range;
     range.top = shells;
-    if (!(far_m > 0.0f) || !std::isfinite(far_m) || shells <= 0) return range;
-    if (far_m <= distance_m) range.top = 0;
+    if (!(d1_m > 0.0f) || !std::isfinite(d1_m) || shells <= 0) return range;
+    int stride = 1;
+    // Strides beyond the shell count draw the ground alone; stop doubling there.
+    while (stride <= shells && d1_m * static_cast<float>(stride) <= distance_m) stride *= 2;
+    range.stride = stride;
+    range.top = shells - shells % stride;
     return range;
 }
 
@@ -228,9 +227,12 @@ int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float 
     return std::max(level, flat);
 }
 
-bool chunkMayFade(int shells, float grassFar_m, float chunkFar_m) {
-    if (!(grassFar_m > 0.0f) || !std::isfinite(grassFar_m) || shells <= 0) return false;
-    return chunkFar_m >= LOD_FADE_START * grassFar_m;
+bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m) {
+    if (!(d1_m > 0.0f) || !std::isfinite(d1_m) || shells <= 0) return false;
+    int lastShell = 1;
+    while (lastShell * 2 <= shells) lastShell *= 2;
+    const int nearestDrop = range.top > 0 ? std::min(range.stride, lastShell) : lastShell;
+    return far_m >= LOD_FADE_START * d1_m * static_cast<float>(nearestDrop);
 }
 
 }  // namespace gale::render::detail

@@ -5,15 +5,14 @@
 /// transitions). The terrain grid is cut into square chunks; each frame a chunk outside the view
 /// frustum is skipped, and a visible chunk draws only the shells its distance needs.
 ///
-/// The rule (docs/render.md): the whole stack of shells 1..N is dropped together beyond
-/// D = 2 h f / P (h the grass height, f the focal length in pixels, P = GrassParams::lodPixels),
-/// where the grass is P / 2 pixels tall on screen. Between 0.7 D and D every shell thins out blade
-/// by blade (the density cut of render/DensityMap.h) while the ground (shell 0, never dropped)
-/// takes over the look of the grass's top, so at D the shells are empty and dropping them changes
-/// no pixel: no popping. Shells are not dropped one by one by distance (an earlier rule dropped
-/// every other shell at D / 8, and so on): a thinner stack lets a ray reach the darker roots and
-/// the soil, and drew a dark band across every hill seen from above (tests/render/SeamTest.cpp).
-/// A chunk whose nearest point is nearer than D draws every shell; beyond D, the ground alone.
+/// The rule (docs/render.md): shells i = 1..N are S = h / N apart. Shell i is dropped at distances
+/// beyond D(i) = D1 2^v(i), with v(i) the number of trailing zero bits of i and D1 = 2 S f / P (f
+/// the focal length in pixels, P = GrassParams::lodPixels): at D(i) the shells that remain are
+/// P pixels apart on screen or less. Before it is dropped, a shell thins out blade by blade (the
+/// density cut of render/DensityMap.h) between 0.7 D(i) and D(i), so at D(i) it is empty and
+/// dropping it changes no pixel: no popping. The ground (shell 0) is never dropped. A chunk whose
+/// nearest point is at distance d draws the shells with D(i) > d: every 2^k-th shell from the
+/// highest multiple of 2^k down to the ground.
 
 #include <cstdint>
 #include <glm/mat4x4.hpp>
@@ -101,11 +100,6 @@ float distanceToBox(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi
 /// Distance, metres, from p to the farthest point of the box [lo, hi] (its farthest corner).
 float farthestInBox(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi);
 
-/// The distance, metres, beyond which the ground stands in for the grass: 2 height_m focal_px /
-/// lodPixels (the grass height is lodPixels / 2 pixels on screen there); 0 (no level of detail)
-/// when lodPixels or height_m is not > 0.
-float grassFarDistance_m(float height_m, float focal_px, float lodPixels);
-
 /// The shells a chunk at distance d draws: every `stride`-th shell from `top` down to 0.
 struct ShellRange {
     int top = 0;
@@ -113,10 +107,9 @@ struct ShellRange {
     int count() const { return top / stride + 1; }
 };
 
-/// For N shells, the grass's far distance D (metres, grassFarDistance_m; 0 or infinite = no LOD)
-/// and a chunk's nearest distance d: all shells (top N, stride 1) when d < D, else the ground alone
-/// (top 0).
-ShellRange shellRange(int shells, float far_m, float distance_m);
+/// For N shells, drop distance D1 (metres, > 0; infinite = no LOD) and chunk distance d:
+/// the smallest stride 2^k with D1 2^k > d, and the highest multiple of it <= N.
+ShellRange shellRange(int shells, float d1_m, float distance_m);
 
 /// The mesh level of a chunk whose nearest ground point is `near_m` metres from the eye (focal_px
 /// the focal length in pixels), the coarser of two rules: the coarsest l < chunk.levelCount whose
@@ -132,10 +125,13 @@ int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float 
 float meshLevelError(int nx, const std::vector<glm::vec3>& wsPosition_m,
                      const std::vector<uint32_t>& indices, IndexRange range);
 
-/// True if, somewhere in a chunk whose ground reaches `chunkFar_m` metres from the eye, the shells
-/// may have started to thin out and the ground to stand in for them (shell.vert: beyond
-/// LOD_FADE_START grassFar_m). False when grassFar_m is 0 (no level of detail) or N = `shells` is
-/// 0. A chunk for which this is false can be drawn without the fade.
-bool chunkMayFade(int shells, float grassFar_m, float chunkFar_m);
+/// True if, somewhere in a chunk whose ground reaches `far_m` metres from the eye, a shell of
+/// `range` (of N = `shells`) may have started to thin out, or the ground may have started to stand
+/// in for the dropped grass (shells.vert: between 0.7 and 1 of the drop distance of the shell
+/// dropped last, D1 times the largest power of two <= N). The nearest drop distance among the
+/// drawn shells above the ground is D1 stride (an odd multiple of the stride has no more trailing
+/// zero bits); thinning starts at LOD_FADE_START of it. False when D1 is 0 (no level of detail) or
+/// N is 0. A chunk for which this is false can be drawn without the fade.
+bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m);
 
 }  // namespace gale::render::detail

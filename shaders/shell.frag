@@ -1,6 +1,7 @@
 #version 450 core
 // Shell grass fragment shader (Bakay 2003, 3.1): the alpha test against this shell's height, then
-// the texture colour times the per-vertex light. Opaque: no blending, depth test on.
+// the texture colour times the per-vertex light, self-shadowed for the height at which the blade is
+// seen. Opaque: no blending, depth test on.
 //
 // Two additions (docs/render.md): a density map thins the blades (a blade stays only where its
 // height is above the cut that leaves the map's fraction of the texture's blade area), and the
@@ -27,6 +28,9 @@ uniform sampler2D uGrass;       // RGB colour, alpha = blade height fraction, bl
 uniform sampler2D uDensity;     // density in [0, 1] over the plan (R channel)
 uniform sampler2D uDensityCut;  // 256 x 1: texel k is the alpha cut for density k / 255
 uniform vec3 uBladeColor;       // mean colour of the texture's blade texels (level 0)
+uniform int uShells;            // N
+uniform vec3 uAmbient;
+uniform float uShadowMin;       // Banks S_min
 
 in vec2 vUv;
 in vec2 vDensityUv;
@@ -35,7 +39,10 @@ in float vFade;
 in float vFadeCut;
 #endif
 in float vStandIn;
-in vec3 vLight;
+in vec3 vLit;
+flat in float vShell;
+in float vSpan;
+in float vCover;
 flat in float vThreshold;
 
 out vec4 oColor;
@@ -118,5 +125,20 @@ void main() {
     // The far ground standing in for the dropped grass (shell.vert) shows the blades' colour.
     texel.rgb = mix(texel.rgb, uBladeColor, vStandIn);
 #endif
-    oColor = vec4(texel.rgb * vLight, 1.0);
+    // Banks 1994 self-shadowing (thesis 3.3.3): S = (D_cur / D_max)(1 - S_min) + S_min, with
+    // D_cur / D_max = k / N for the shell k the blade is seen on; ambient added after attenuation
+    // and shadowing (thesis 3.3.4). With every shell drawn k = i. Where the level of detail has
+    // dropped the vSpan shells above this one, a ray that would have stopped on one of them at
+    // this texel now reaches this shell: seen from above, on the highest shell that keeps the
+    // texel, floor(N alpha) (shell.vert's alpha test), so the blade keeps the brightness it had
+    // and no darker band shows where shells are dropped (tests/render/SeamTest.cpp).
+    float n = float(max(uShells, 1));
+    float seen = clamp(floor((texel.a + 0.5 / 255.0) * n), vShell, vShell + vSpan);
+    // On the ground, the share vCover of rays the dropped shells would have stopped shows a blade
+    // of the mean colour halfway up them (shell.vert).
+    seen = mix(seen, vShell + 0.5 * (vSpan + 1.0), vCover);
+    texel.rgb = mix(texel.rgb, uBladeColor, vCover);
+    float S = seen / n * (1.0 - uShadowMin) + uShadowMin;
+    S = mix(S, 1.0, vStandIn);
+    oColor = vec4(texel.rgb * (vLit * S + uAmbient), 1.0);
 }

@@ -3,8 +3,8 @@
 // One instance per shell, drawn top first: shell i = uTopShell - gl_InstanceID (0 = ground, N =
 // top; uTopShell = N unless the viewer hides the grass); see
 // ShellRenderer::draw for why. Everything here is world space,
-// metres; lighting is evaluated per vertex, as in the thesis, so the fragment stage stays a texture
-// fetch, an alpha test and a multiply.
+// metres; the key lights are evaluated per vertex, as in the thesis; the fragment stage adds the
+// self-shadowing of the shell the blade is seen on and the ambient term (shell.frag).
 
 // Specialised by defines (ShellRenderer compiles one program per combination, see shell.frag):
 //   BLEND_GROUPS  1: blend the four nearest groups at aGroupCoord (bilinear), so no stripes show
@@ -37,11 +37,12 @@ uniform mat4 uClipFromWorld;
 uniform vec3 uEyePos;          // camera position
 uniform int uShells;           // N
 uniform int uTopShell;         // shell of instance 0: N, or 0 when the grass is hidden (viewer)
-uniform int uShellStride;      // instance k draws shell uTopShell - k uShellStride
-// Level of detail (render/TerrainChunks.h): every shell above the ground thins out between
-// 0.7 uLodFar and uLodFar, metres from the eye, while the ground takes over its look; 0 = no level
-// of detail.
-uniform float uLodFar;
+uniform int uShellStride;      // instance k draws shell uTopShell - k uShellStride (LOD)
+// Level of detail (render/TerrainChunks.h): shell i thins out between 0.7 D(i) and D(i), D(i) =
+// uLodD1 2^(trailing zero bits of i), metres from the eye; 0 = no level of detail.
+uniform float uLodD1;
+// The shell the level of detail drops last: the largest power of two <= N (render/TerrainChunks.h).
+uniform int uLastShell;
 uniform float uTime_s;         // the wind's time (GrassWind::time_s), seconds
 // Bends over tip tilts (render/BendTables.h): texel (i, l) holds (n_i, w_i) in metres for shell i
 // of a blade whose tip tilts by -uMaxTilt + 2 uMaxTilt l / (L - 1) (Bakay 2003, 3.2), and in .ba
@@ -57,10 +58,8 @@ uniform int uLightCount;
 uniform vec3 uLightPos[MAX_LIGHTS];
 uniform vec3 uLightColor[MAX_LIGHTS];
 uniform vec3 uLightAtten[MAX_LIGHTS];  // (k_c, k_l, k_q)
-uniform vec3 uAmbient;
 uniform float uSpecularPower;
 uniform float uSpecularStrength;
-uniform float uShadowMin;  // Banks S_min
 
 // The density map's plan rectangle (render/DensityMap.h), metres.
 uniform vec2 uDensityMin;
@@ -77,7 +76,19 @@ uniform sampler2D uDensityCut;
 out float vFadeCut;
 #endif
 out float vStandIn;        // ground only: how far it stands in for the dropped grass, [0, 1]
-out vec3 vLight;           // light reaching the vertex, multiplies the texture colour
+out vec3 vLit;             // key light reaching the vertex before self-shadowing (fragment: S)
+flat out float vShell;     // this shell's index i
+// How many shells above this one the level of detail has dropped (fractionally while they thin
+// out): their blades are now seen on this shell, which is shaded at the height they had.
+out float vSpan;
+// Ground only: the share of rays reaching it that the dropped shells above it would have stopped
+// on a blade (seen at a slant, a ray crosses each shell at a texel of its own); shell.frag shows
+// that share as the grass it hides.
+out float vCover;
+// Pass table (render/DensityMap.h, shellPassFractions): texel m, the share of rays that cross
+// shells 1..m at texels of their own without stopping on a blade.
+uniform sampler2D uShellPass;
+uniform float uShellFocal;  // S f: the shell spacing (metres) times the focal length (pixels)
 flat out float vThreshold; // alpha test: keep texels with alpha >= vThreshold
 
 float groupTilt() {
@@ -139,25 +150,57 @@ void main() {
     vFade = 1.0;
     vStandIn = 0.0;
 #if FADE
-    // The whole stack fades together (render/TerrainChunks.h): dropping some shells before others
-    // lets the eye see deeper into the stack, onto the darker roots, and draws a band.
-    float ramp = (uLodFar > 0.0)
-                     ? smoothstep(0.7 * uLodFar, uLodFar, distance(aPosition, uEyePos))
-                     : 0.0;
-    if (i > 0) vFade = 1.0 - ramp;
+    if (uLodD1 > 0.0 && i > 0) {
+        float drop = uLodD1 * float(1 << findLSB(i));
+        vFade = 1.0 - smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
+    }
 #if !DENSITY
     // Shell 0 keeps every texel; a full fade's cut is 0 (every blade kept).
     vFadeCut = (i > 0)
                    ? textureLod(uDensityCut, vec2((vFade * 255.0 + 0.5) / 256.0, 0.5), 0.0).r
                    : -1.0;
 #endif
-    // Where the shells thin out the ground alone remains; it takes over the look of the grass it
-    // replaces (shaded as the top layer, in the mean blade colour), at the same pace. At uLodFar
-    // the whole grass is P / 2 pixels tall on screen and its texture is read from MIP levels whose
-    // texels are nearly all blade tops: the full stack there looks like its top shell, which is
-    // what the stand-in draws.
-    if (i == 0) vStandIn = ramp;
+    // Where the last shell thins out the ground alone remains; it takes over the look of the
+    // grass it replaces (shaded as the top layer, in the mean blade colour), at the same pace, so
+    // the far field keeps the grass's brightness instead of the shaded soil's.
+    if (uLodD1 > 0.0 && i == 0 && uLastShell > 0) {
+        float drop = uLodD1 * float(uLastShell);
+        vStandIn = smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
+    }
 #endif
+    // The dropped shells this one stands for (render/TerrainChunks.h): the shells between i and
+    // the next drawn shell above it, i + 1 .. i + 2^v(i) - 1 (v the trailing zero bits; for the
+    // ground every shell up to the last dropped), are dropped level by level, 2^l of them at
+    // level l, each thinning out over 0.7 D1 2^l .. D1 2^l like its fade above.
+    vShell = float(i);
+    vSpan = 0.0;
+    if (uLodD1 > 0.0) {
+        float eye = distance(aPosition, uEyePos);
+        int levels = (i == 0) ? findLSB(max(uLastShell, 1)) + 1 : findLSB(i);
+        for (int l = 0; l < levels; ++l) {
+            float drop = uLodD1 * float(1 << l);
+            vSpan += float(1 << l) * smoothstep(0.7 * drop, drop, eye);
+        }
+        vSpan = min(vSpan, float(uShells - i));
+    }
+    // Straight down, a ray crosses every shell at the same texel, which is why shell.frag's seen
+    // shell is exact there, and the dropped shells hide nothing the ground's texel does not show.
+    // At a slant it crosses them at independent texels, and would have stopped on one of them
+    // with probability 1 - pass(span), once its crossings are a pixel's footprint apart: they
+    // are S sin(theta) / cos(theta) apart on the ground and the footprint is d / (f cos(theta))
+    // long, so the ratio is S f sin(theta) / d (theta from the normal, d the distance).
+    vCover = 0.0;
+    if (i == 0 && vSpan > 0.0) {
+        int m0 = int(vSpan);
+        float pass0 = texelFetch(uShellPass, ivec2(m0, 0), 0).r;
+        float pass1 = texelFetch(uShellPass, ivec2(min(m0 + 1, uShells), 0), 0).r;
+        float pass = mix(pass0, pass1, vSpan - float(m0));
+        vec3 toEye = uEyePos - aPosition;
+        float d = max(length(toEye), 1e-6);
+        float mu = min(abs(dot(toEye, aNormal)) / d, 1.0);
+        float apart = sqrt(1.0 - mu * mu) * uShellFocal / d;
+        vCover = (1.0 - pass) * min(apart, 1.0);
+    }
 
     // Thesis 3.1: shell i keeps texels with alpha >= i/N; the ground keeps every texel. Half an
     // 8-bit step of slack so a blade of alpha 255 i/N passes its shell despite rounding; never
@@ -187,9 +230,7 @@ void main() {
         float attenuation = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
         lit += uLightColor[l] * (attenuation * (diffuse + specular));
     }
-    // Banks 1994 self-shadowing (thesis 3.3.3): S = (D_cur / D_max)(1 - S_min) + S_min with
-    // D_cur / D_max = i / N; ambient added after attenuation and shadowing (thesis 3.3.4).
-    float S = float(i) / float(max(uShells, 1)) * (1.0 - uShadowMin) + uShadowMin;
-    S = mix(S, 1.0, vStandIn);
-    vLight = lit * S + uAmbient;
+    // The self-shadowing and the ambient term are applied per fragment (shell.frag), where the
+    // texel says which dropped shell a blade would have been seen on.
+    vLit = lit;
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <glm/mat4x4.hpp>
 #include <memory>
+#include <set>
 
 #include "RenderTestUtil.h"
 #include "render/CameraMath.h"
@@ -18,46 +19,69 @@
 namespace gale::render {
 namespace {
 
-TEST(LodShellRange, DropsTheWholeStackTogetherAtTheFarDistance) {
-    // D = 160 m, 17 shells: nearer than 160 m every shell, from 160 m the ground alone.
-    const auto at = [](float d) { return detail::shellRange(17, 160.0f, d); };
+TEST(LodShellRange, DropsShellsByTrailingZeroBitsOfTheirIndex) {
+    // D1 = 10 m, 17 shells: nearer than 10 m every shell; 10-20 m the even ones (16, 14 .. 0);
+    // 20-40 m multiples of 4; ... from 160 m the ground alone.
+    const auto at = [](float d) { return detail::shellRange(17, 10.0f, d); };
     EXPECT_EQ(at(0.0f).stride, 1);
     EXPECT_EQ(at(0.0f).top, 17);
-    EXPECT_EQ(at(10.0f).count(), 18);
-    EXPECT_EQ(at(159.9f).count(), 18);
+    EXPECT_EQ(at(9.99f).count(), 18);
+    EXPECT_EQ(at(10.0f).stride, 2);
+    EXPECT_EQ(at(10.0f).top, 16);
+    EXPECT_EQ(at(10.0f).count(), 9);
+    EXPECT_EQ(at(25.0f).stride, 4);
+    EXPECT_EQ(at(159.0f).top, 16);  // stride 16: shells 16 and 0
+    EXPECT_EQ(at(159.0f).count(), 2);
     EXPECT_EQ(at(160.0f).top, 0);  // the ground alone
     EXPECT_EQ(at(160.0f).count(), 1);
     EXPECT_EQ(at(1e30f).count(), 1);
     // No level of detail: every shell.
     EXPECT_EQ(detail::shellRange(17, 0.0f, 1e6f).count(), 18);
     EXPECT_EQ(detail::shellRange(17, INFINITY, 1e6f).count(), 18);
-}
-
-TEST(LodShellRange, TheFarDistanceIsWhereTheGrassIsHalfTheLodPixelsTall) {
-    // A blade of height h standing at distance D, seen face on, spans h f / D pixels; the rule
-    // puts that at P / 2.
-    const float h_m = 0.5f, focal_px = 579.4f, lodPixels = 3.0f;
-    const float far_m = detail::grassFarDistance_m(h_m, focal_px, lodPixels);
-    EXPECT_NEAR(h_m * focal_px / far_m, 0.5f * lodPixels, 1e-4f);
-    EXPECT_EQ(detail::grassFarDistance_m(h_m, focal_px, 0.0f), 0.0f);
+    // Every shell a chunk leaves out has dropped by the chunk's distance: D(i) <= d.
+    for (float d : {0.5f, 12.0f, 33.0f, 90.0f, 200.0f}) {
+        const detail::ShellRange r = detail::shellRange(17, 10.0f, d);
+        std::set<int> drawn;
+        for (int k = 0; k < r.count(); ++k) drawn.insert(r.top - k * r.stride);
+        for (int i = 1; i <= 17; ++i) {
+            int v = 0;
+            while (((i >> v) & 1) == 0) ++v;
+            const float drop_m = 10.0f * float(1 << v);
+            EXPECT_EQ(drawn.count(i) == 1, drop_m > d) << "shell " << i << " at " << d << " m";
+        }
+        EXPECT_EQ(drawn.count(0), 1u);
+    }
 }
 
 TEST(LodShellRange, AChunkDrawnWithoutTheFadeHasNoShellThinningInIt) {
     // The renderer draws a chunk with the plain program when chunkMayFade says no shell of it has
     // started to thin out and the ground does not yet stand in for the grass: check that against
-    // the shader's own rule, fade(d) = 1 and stand-in 0 for d <= 0.7 D, at every distance up to the
-    // chunk's far side.
-    const float grassFar_m = 100.0f;
+    // the shader's own rules, fade(i, d) = 1 for d <= 0.7 D(i) and the ground's stand-in 0 for
+    // d <= 0.7 D(last), last the largest power of two <= N, at every distance up to the chunk's
+    // far side.
+    const float d1_m = 10.0f;
     for (int shells : {1, 8, 17, 64}) {
-        for (float near_m : {0.0f, 3.0f, 30.0f, 75.0f, 400.0f}) {
+        for (float near_m : {0.0f, 3.0f, 9.0f, 14.0f, 30.0f, 75.0f, 400.0f}) {
+            const detail::ShellRange r = detail::shellRange(shells, d1_m, near_m);
             for (float far_m = near_m; far_m < near_m + 60.0f; far_m += 0.25f) {
-                if (far_m > detail::LOD_FADE_START * grassFar_m) {
-                    EXPECT_TRUE(detail::chunkMayFade(shells, grassFar_m, far_m))
+                int last = 1;
+                while (last * 2 <= shells) last *= 2;
+                bool anyFades = far_m > detail::LOD_FADE_START * d1_m * float(last);
+                for (int k = 0; k < r.count(); ++k) {
+                    const int i = r.top - k * r.stride;
+                    if (i == 0) continue;
+                    int v = 0;
+                    while (((i >> v) & 1) == 0) ++v;
+                    anyFades = anyFades || far_m > detail::LOD_FADE_START * d1_m * float(1 << v);
+                }
+                if (anyFades) {
+                    EXPECT_TRUE(detail::chunkMayFade(r, shells, d1_m, far_m))
                         << shells << " shells, chunk " << near_m << "-" << far_m << " m";
                 }
             }
         }
-        EXPECT_FALSE(detail::chunkMayFade(shells, 0.0f, 1e6f));
+        EXPECT_FALSE(
+            detail::chunkMayFade(detail::shellRange(shells, 0.0f, 5.0f), shells, 0.0f, 1e6f));
     }
 }
 
@@ -161,9 +185,9 @@ double differingRows(const Image& a, const Image& b, int y0, int y1, int toleran
 }
 
 constexpr int CHANNEL_TOLERANCE = 8;  // as the reference images
-// The frames are a quarter of the viewer's 640 x 480 across; 2 pixels here drop the stack at
-// D = 2 h f / P = 64 m for this grass (f = 129 px), inside the meadow, which reaches 110 m.
-constexpr float LOD_PIXELS = 2.0f;
+// The frames are a quarter of the viewer's 640 x 480 across: 0.5 pixels here drop shells at the
+// distances the default 2 pixels drops them at 640 x 480 (D1 = 15 m for this grass).
+constexpr float LOD_PIXELS = 0.5f;
 
 TEST(LodFrames, OnlyDistantGrassDiffersAndLessIsDrawn) {
     Meadow meadow;
