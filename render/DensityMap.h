@@ -6,8 +6,8 @@
 /// cover the map's fraction of the texture's blade area: blades vanish whole, tallest last, and
 /// the blades that stay keep their full height and bend. docs/render.md.
 
-#include <glm/vec2.hpp>
 #include <array>
+#include <glm/vec2.hpp>
 #include <string>
 #include <vector>
 

@@ -92,8 +92,9 @@ std::string shellVariantDefines(unsigned bits);
 
 /// Uniform locations of one shell program (-1 for a name the compiler dropped).
 struct ShellLocations {
-    GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns, maxTilt, shellPass, shellFocal,
-        shellStride, lodD1, lastShell, time, bladeColor, density, densityCut, densityMin, densitySize;
+    GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns, maxTilt,
+        shellPass, shellFocal, shellStride, lodD1, lastShell, time, bladeColor, density, densityCut,
+        densityMin, densitySize;
     GLint lightCount, lightPos, lightColor, lightAtten;
     GLint ambient, specularPower, specularStrength, shadowMin;
 };

@@ -229,10 +229,11 @@ int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float 
 
 bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m) {
     if (!(d1_m > 0.0f) || !std::isfinite(d1_m) || shells <= 0) return false;
-    int lastShell = 1;
-    while (lastShell * 2 <= shells) lastShell *= 2;
-    const int nearestDrop = range.top > 0 ? std::min(range.stride, lastShell) : lastShell;
-    return far_m >= LOD_FADE_START * d1_m * static_cast<float>(nearestDrop);
+    // Dropped shells: the drawn ones shade their blades where they were seen (shell.frag). With
+    // every shell drawn (stride 1, the ground drawn too), the first to thin out are the odd ones,
+    // at LOD_FADE_START D1.
+    if (range.stride > 1) return true;
+    return far_m >= LOD_FADE_START * d1_m;
 }
 
 }  // namespace gale::render::detail

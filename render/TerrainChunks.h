@@ -12,7 +12,10 @@
 /// density cut of render/DensityMap.h) between 0.7 D(i) and D(i), so at D(i) it is empty and
 /// dropping it changes no pixel: no popping. The ground (shell 0) is never dropped. A chunk whose
 /// nearest point is at distance d draws the shells with D(i) > d: every 2^k-th shell from the
-/// highest multiple of 2^k down to the ground.
+/// highest multiple of 2^k down to the ground. The shells drawn shade the blades of the dropped
+/// ones where they were seen, and the ground what they hid (shell.frag; tests/render/SeamTest.cpp
+/// holds the result to the full stack per 32 x 32 tile): a thinned stack drawn plainly is darker
+/// and draws a band.
 
 #include <cstdint>
 #include <glm/mat4x4.hpp>
@@ -125,13 +128,12 @@ int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float 
 float meshLevelError(int nx, const std::vector<glm::vec3>& wsPosition_m,
                      const std::vector<uint32_t>& indices, IndexRange range);
 
-/// True if, somewhere in a chunk whose ground reaches `far_m` metres from the eye, a shell of
-/// `range` (of N = `shells`) may have started to thin out, or the ground may have started to stand
-/// in for the dropped grass (shells.vert: between 0.7 and 1 of the drop distance of the shell
-/// dropped last, D1 times the largest power of two <= N). The nearest drop distance among the
-/// drawn shells above the ground is D1 stride (an odd multiple of the stride has no more trailing
-/// zero bits); thinning starts at LOD_FADE_START of it. False when D1 is 0 (no level of detail) or
-/// N is 0. A chunk for which this is false can be drawn without the fade.
+/// True if a chunk whose ground reaches `far_m` metres from the eye needs the level of detail's
+/// program (shell.vert's FADE): when `range` drops shells (stride > 1), since the shells drawn
+/// then shade the dropped shells' blades where they were seen, and when every shell is drawn but
+/// the chunk reaches LOD_FADE_START D1, where the odd shells (the first to go) start to thin out.
+/// False when D1 is 0 (no level of detail) or N = `shells` is 0. A chunk for which this is false
+/// is drawn with every shell and self-shadowing per vertex.
 bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m);
 
 }  // namespace gale::render::detail

@@ -12,7 +12,8 @@
 // not free on llvmpipe, which runs the code of both sides under a lane mask. Measured: the unused
 // aperiodic branch alone cost the shell pass 0.34 -> 0.80 of the trivial fill (docs/render.md).
 //   APERIODIC  1: the jittered-cell layout; 0: the plain repeat
-//   FADE       1: the level of detail's fade (vFade) thins the blades
+//   FADE       1: the level of detail's fade (vFade) thins the blades, and the blades of dropped
+//              shells are shaded where they were seen; 0: every shell is drawn
 //   DENSITY    1: the density map (uDensity) thins the blades
 #ifndef APERIODIC
 #define APERIODIC 0
@@ -28,9 +29,6 @@ uniform sampler2D uGrass;       // RGB colour, alpha = blade height fraction, bl
 uniform sampler2D uDensity;     // density in [0, 1] over the plan (R channel)
 uniform sampler2D uDensityCut;  // 256 x 1: texel k is the alpha cut for density k / 255
 uniform vec3 uBladeColor;       // mean colour of the texture's blade texels (level 0)
-uniform int uShells;            // N
-uniform vec3 uAmbient;
-uniform float uShadowMin;       // Banks S_min
 
 in vec2 vUv;
 in vec2 vDensityUv;
@@ -39,10 +37,17 @@ in float vFade;
 in float vFadeCut;
 #endif
 in float vStandIn;
+#if FADE
 in vec3 vLit;
 flat in float vShell;
 in float vSpan;
 in float vCover;
+uniform int uShells;            // N
+uniform vec3 uAmbient;
+uniform float uShadowMin;       // Banks S_min
+#else
+in vec3 vLight;
+#endif
 flat in float vThreshold;
 
 out vec4 oColor;
@@ -124,7 +129,6 @@ void main() {
 #if FADE
     // The far ground standing in for the dropped grass (shell.vert) shows the blades' colour.
     texel.rgb = mix(texel.rgb, uBladeColor, vStandIn);
-#endif
     // Banks 1994 self-shadowing (thesis 3.3.3): S = (D_cur / D_max)(1 - S_min) + S_min, with
     // D_cur / D_max = k / N for the shell k the blade is seen on; ambient added after attenuation
     // and shadowing (thesis 3.3.4). With every shell drawn k = i. Where the level of detail has
@@ -141,4 +145,7 @@ void main() {
     float S = seen / n * (1.0 - uShadowMin) + uShadowMin;
     S = mix(S, 1.0, vStandIn);
     oColor = vec4(texel.rgb * (vLit * S + uAmbient), 1.0);
+#else
+    oColor = vec4(texel.rgb * vLight, 1.0);
+#endif
 }

@@ -3,14 +3,17 @@
 // One instance per shell, drawn top first: shell i = uTopShell - gl_InstanceID (0 = ground, N =
 // top; uTopShell = N unless the viewer hides the grass); see
 // ShellRenderer::draw for why. Everything here is world space,
-// metres; the key lights are evaluated per vertex, as in the thesis; the fragment stage adds the
-// self-shadowing of the shell the blade is seen on and the ambient term (shell.frag).
+// metres; lighting is evaluated per vertex, as in the thesis, except that with the level of detail's
+// FADE the fragment stage applies the self-shadowing of the shell the blade is seen on.
 
 // Specialised by defines (ShellRenderer compiles one program per combination, see shell.frag):
 //   BLEND_GROUPS  1: blend the four nearest groups at aGroupCoord (bilinear), so no stripes show
 //                 where groups change; 0: this vertex's group alone.
-//   FADE          1: pass the level of detail's fade to the fragment stage; without DENSITY as
-//                 the alpha cut it implies (one lookup per vertex instead of per fragment).
+//   FADE          1: the level of detail's work in chunks that thin or drop shells: pass the
+//                 fade to the fragment stage (without DENSITY as the alpha cut it implies, one
+//                 lookup per vertex instead of per fragment), and what the fragment stage needs
+//                 to shade the blades of dropped shells where they were seen; 0: every shell
+//                 drawn, self-shadowing per vertex.
 //   DENSITY       1: a density map thins the blades too (the fragment stage looks the cut up).
 #ifndef BLEND_GROUPS
 #define BLEND_GROUPS 0
@@ -76,6 +79,7 @@ uniform sampler2D uDensityCut;
 out float vFadeCut;
 #endif
 out float vStandIn;        // ground only: how far it stands in for the dropped grass, [0, 1]
+#if FADE
 out vec3 vLit;             // key light reaching the vertex before self-shadowing (fragment: S)
 flat out float vShell;     // this shell's index i
 // How many shells above this one the level of detail has dropped (fractionally while they thin
@@ -89,6 +93,11 @@ out float vCover;
 // shells 1..m at texels of their own without stopping on a blade.
 uniform sampler2D uShellPass;
 uniform float uShellFocal;  // S f: the shell spacing (metres) times the focal length (pixels)
+#else
+out vec3 vLight;           // light reaching the vertex, multiplies the texture colour
+uniform vec3 uAmbient;
+uniform float uShadowMin;  // Banks S_min
+#endif
 flat out float vThreshold; // alpha test: keep texels with alpha >= vThreshold
 
 float groupTilt() {
@@ -167,7 +176,6 @@ void main() {
         float drop = uLodD1 * float(uLastShell);
         vStandIn = smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
     }
-#endif
     // The dropped shells this one stands for (render/TerrainChunks.h): the shells between i and
     // the next drawn shell above it, i + 1 .. i + 2^v(i) - 1 (v the trailing zero bits; for the
     // ground every shell up to the last dropped), are dropped level by level, 2^l of them at
@@ -201,6 +209,7 @@ void main() {
         float apart = sqrt(1.0 - mu * mu) * uShellFocal / d;
         vCover = (1.0 - pass) * min(apart, 1.0);
     }
+#endif
 
     // Thesis 3.1: shell i keeps texels with alpha >= i/N; the ground keeps every texel. Half an
     // 8-bit step of slack so a blade of alpha 255 i/N passes its shell despite rounding; never
@@ -230,7 +239,14 @@ void main() {
         float attenuation = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
         lit += uLightColor[l] * (attenuation * (diffuse + specular));
     }
+#if FADE
     // The self-shadowing and the ambient term are applied per fragment (shell.frag), where the
     // texel says which dropped shell a blade would have been seen on.
     vLit = lit;
+#else
+    // Banks 1994 self-shadowing (thesis 3.3.3): S = (D_cur / D_max)(1 - S_min) + S_min with
+    // D_cur / D_max = i / N; ambient added after attenuation and shadowing (thesis 3.3.4).
+    float S = float(i) / float(max(uShells, 1)) * (1.0 - uShadowMin) + uShadowMin;
+    vLight = lit * S + uAmbient;
+#endif
 }

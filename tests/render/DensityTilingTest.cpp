@@ -40,6 +40,27 @@ TEST(DensityCuts, KeepTheWantedShareOfBladeAreaTallestFirst) {
     for (float c : densityCuts(test::makeUniformImage(4, 9, 9, 9, 0))) EXPECT_EQ(c, 0.0f);
 }
 
+TEST(ShellPassFractions, MultiplyTheSharesEachShellLetsThrough) {
+    // Four equal classes, alpha 64, 128, 192, 255. With N = 4, shell k keeps alpha >=
+    // 255 k / 4 - 0.5: shell 1 (63.25) keeps all, so no ray passes it; N = 2: shell 1 (127)
+    // keeps three classes, shell 2 (254.5) one.
+    const std::array<size_t, 256> count = alphaHistogram(fourHeightClasses());
+    EXPECT_EQ(count[64] + count[128] + count[192] + count[255], size_t(256));
+    const std::vector<float> four = shellPassFractions(count, 4);
+    ASSERT_EQ(four.size(), size_t(5));
+    EXPECT_FLOAT_EQ(four[0], 1.0f);
+    for (int m = 1; m <= 4; ++m) EXPECT_FLOAT_EQ(four[m], 0.0f) << m;
+    const std::vector<float> two = shellPassFractions(count, 2);
+    ASSERT_EQ(two.size(), size_t(3));
+    EXPECT_FLOAT_EQ(two[1], 0.25f);
+    EXPECT_FLOAT_EQ(two[2], 0.25f * 0.75f);
+    // Bare ground passes every ray; no shells, only entry 0.
+    const std::vector<float> bare =
+        shellPassFractions(alphaHistogram(test::makeUniformImage(4, 9, 9, 9, 0)), 6);
+    for (float p : bare) EXPECT_FLOAT_EQ(p, 1.0f);
+    EXPECT_EQ(shellPassFractions(count, 0).size(), size_t(1));
+}
+
 // A flat field seen from straight above (CoverageScene's light: brightness is the Banks factor,
 // the ground at half, the top shell full); the camera's view is 4.1 m across.
 struct TopView {
