@@ -122,6 +122,7 @@ void deleteBuffer(GLuint name) { glDeleteBuffers(1, &name); }
 void deleteTexture(GLuint name) { glDeleteTextures(1, &name); }
 void deleteVertexArray(GLuint name) { glDeleteVertexArrays(1, &name); }
 void deleteSampler(GLuint name) { glDeleteSamplers(1, &name); }
+void deleteFramebuffer(GLuint name) { glDeleteFramebuffers(1, &name); }
 
 }  // namespace detail
 

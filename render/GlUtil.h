@@ -65,11 +65,13 @@ void deleteBuffer(GLuint name);
 void deleteTexture(GLuint name);
 void deleteVertexArray(GLuint name);
 void deleteSampler(GLuint name);
+void deleteFramebuffer(GLuint name);
 
 using Program = GlName<deleteProgram>;
 using Buffer = GlName<deleteBuffer>;
 using Texture = GlName<deleteTexture>;
 using VertexArray = GlName<deleteVertexArray>;
 using Sampler = GlName<deleteSampler>;
+using Framebuffer = GlName<deleteFramebuffer>;
 
 }  // namespace gale::render::detail

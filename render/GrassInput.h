@@ -90,6 +90,10 @@ struct Lighting {
     float specularPower = 32.0f;     ///< Kajiya-Kay specular exponent p
     float specularStrength = 0.3f;   ///< weight of the specular term
     float selfShadowMin = 0.25f;     ///< Banks self-shadowing floor S_min at the ground
+    /// The first light (the key light) is shadowed by the terrain: a shadow map of the terrain
+    /// seen from it, looked up per vertex (render/ShadowMap.h). No effect without lights or
+    /// when the key light is inside the terrain's box.
+    bool shadows = true;
 };
 
 struct Camera {

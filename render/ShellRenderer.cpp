@@ -44,6 +44,8 @@ void ShellRenderer::Impl::init() {
     windVbo = detail::Buffer(name);
     glGenBuffers(1, &name);
     indexBuffer = detail::Buffer(name);
+    glGenBuffers(1, &name);
+    keyLightVbo = detail::Buffer(name);
     glGenTextures(1, &name);
     grassTexture = detail::Texture(name);
     glGenSamplers(1, &name);
@@ -54,6 +56,7 @@ void ShellRenderer::Impl::init() {
     glSamplerParameteri(name, GL_TEXTURE_WRAP_T, GL_REPEAT);
     tables = std::make_unique<detail::BendTables>();
     density = std::make_unique<detail::DensityTables>();
+    shadow = std::make_unique<detail::ShadowMap>();
 
     glBindVertexArray(vao.get());
     glBindBuffer(GL_ARRAY_BUFFER, terrainVbo.get());
@@ -81,6 +84,11 @@ void ShellRenderer::Impl::init() {
     glEnableVertexAttribArray(FLUTTER_LOC);
     glVertexAttribPointer(FLUTTER_LOC, 1, GL_FLOAT, GL_FALSE, windStride,
                           reinterpret_cast<const void*>(offsetof(WindVertex, flutter_rad)));
+    glBindBuffer(GL_ARRAY_BUFFER, keyLightVbo.get());
+    glVertexAttribPointer(KEY_LIGHT_LOC, 1, GL_FLOAT, GL_FALSE, sizeof(float), nullptr);
+    // Enabled while a shadow map's visibilities are uploaded (updateShadow); else every vertex
+    // reads the generic value 1, the key light unshadowed.
+    glDisableVertexAttribArray(KEY_LIGHT_LOC);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer.get());
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
@@ -338,6 +346,14 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     // The full mesh: every chunk's level 0, at the start of the index buffer (buildChunks).
     m.indexCount = static_cast<GLsizei>(static_cast<size_t>(mesh.nx - 1) * (mesh.ny - 1) * 6u);
     m.chunks = std::move(chunks);
+    m.terrainPositions_m = mesh.wsPosition_m;
+    m.terrainNormals = mesh.wsNormal;
+    m.terrainMin_m = m.terrainMax_m = mesh.wsPosition_m[0];
+    for (const glm::vec3& p : mesh.wsPosition_m) {
+        m.terrainMin_m = glm::min(m.terrainMin_m, p);
+        m.terrainMax_m = glm::max(m.terrainMax_m, p);
+    }
+    m.shadowDirty = true;
     m.haveTerrain = true;
     m.windUploaded = false;  // the per-vertex wind arrays must match the new vertex count
 }
@@ -397,6 +413,7 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
     detail::checkGlError("ShellRenderer::setGrass");
     m.grass = params;
     m.haveGrass = true;
+    m.shadowDirty = true;  // the map's box holds the grass
 }
 
 void ShellRenderer::setDensityMap(const DensityMap& map) {
@@ -441,6 +458,7 @@ void ShellRenderer::setLighting(const Lighting& lighting) {
     }
     mImpl->context.makeCurrent();
     mImpl->lighting = lighting;
+    mImpl->shadowDirty = true;
     for (const auto& program : mImpl->shellPrograms)
         if (program) mImpl->uploadLighting(*program);
 }

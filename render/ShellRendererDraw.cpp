@@ -24,6 +24,32 @@ void ShellRenderer::Impl::beginFrame() {
     glBindTexture(GL_TEXTURE_2D, grassTexture.get());
 }
 
+void ShellRenderer::Impl::updateShadow() {
+    if (!shadowDirty) return;
+    shadowDirty = false;
+    shadowView.reset();
+    if (lighting.shadows && !lighting.lights.empty() && indexCount > 0) {
+        // The box a bent blade can reach: the terrain raised by the grass height.
+        const glm::vec3 reach(0.0f, 0.0f, haveGrass ? grass.height_m : 0.0f);
+        shadowView = detail::keyLightView(lighting.lights[0].wsPosition_m, terrainMin_m - reach,
+                                          terrainMax_m + reach, detail::SHADOW_MAP_PX);
+    }
+    glBindVertexArray(vao.get());
+    if (shadowView) {
+        const std::vector<float> visible = shadow->vertexVisibility(
+            *shadowView, vao.get(), indexCount, terrainPositions_m, terrainNormals);
+        glBindBuffer(GL_ARRAY_BUFFER, keyLightVbo.get());
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(visible.size() * sizeof(float)),
+                     visible.data(), GL_STATIC_DRAW);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        glBindVertexArray(vao.get());
+        glEnableVertexAttribArray(KEY_LIGHT_LOC);
+    } else {
+        glDisableVertexAttribArray(KEY_LIGHT_LOC);
+    }
+    glBindVertexArray(0);
+}
+
 FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind) {
     return draw(camera, wind, DrawOptions{});
 }
@@ -48,6 +74,8 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     stats.cpu_ms = msSince(cpuStart);
 
     const auto gpuStart = Clock::now();
+    m.updateShadow();
+    glVertexAttrib1f(KEY_LIGHT_LOC, 1.0f);  // the value a vertex reads without a shadow map
     m.beginFrame();
     glActiveTexture(GL_TEXTURE0 + BEND_UNIT);
     glBindTexture(GL_TEXTURE_2D, m.tables->bendTexture());

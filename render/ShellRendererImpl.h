@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <glm/gtc/type_ptr.hpp>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -21,6 +22,7 @@
 #include "render/CameraMath.h"
 #include "render/GlInfo.h"
 #include "render/GlUtil.h"
+#include "render/ShadowMap.h"
 #include "render/ShellRenderer.h"
 #include "render/TerrainChunks.h"
 
@@ -45,6 +47,7 @@ constexpr GLuint WIND_DIR_LOC = 3;
 constexpr GLuint GROUP_LOC = 4;
 constexpr GLuint GROUP_COORD_LOC = 5;
 constexpr GLuint FLUTTER_LOC = 6;
+constexpr GLuint KEY_LIGHT_LOC = 7;
 
 // Texture units.
 constexpr GLint GRASS_UNIT = 0;
@@ -121,6 +124,12 @@ struct ShellRenderer::Impl {
     detail::Sampler nearestSampler;  ///< overrides the grass texture's filtering (DrawOptions)
     std::unique_ptr<detail::BendTables> tables;
     std::unique_ptr<detail::DensityTables> density;
+    std::unique_ptr<detail::ShadowMap> shadow;
+    /// The key light's view of the terrain when its shadow map is drawn (render/ShadowMap.h).
+    std::optional<detail::ShadowView> shadowView;
+    bool shadowDirty = true;     ///< terrain, grass height or lighting changed since the map
+    detail::Buffer keyLightVbo;  ///< per terrain vertex, the key light's visibility (KEY_LIGHT_LOC)
+    std::vector<glm::vec3> terrainPositions_m, terrainNormals;  ///< kept for the shadow's lookups
 
     struct {
         GLint clipFromWorld, shells, shellSpacing, grass;
@@ -133,6 +142,7 @@ struct ShellRenderer::Impl {
     size_t vertexCount = 0;
     GLsizei indexCount = 0;  ///< indices of the full mesh, from the buffer's start
     std::vector<detail::TerrainChunk> chunks;
+    glm::vec3 terrainMin_m{0.0f}, terrainMax_m{0.0f};  ///< the terrain's box, world metres
 
     // Grass.
     bool haveGrass = false;
@@ -159,6 +169,9 @@ struct ShellRenderer::Impl {
     void uploadWind(const GrassWind& wind);
     void requireReady(const char* what) const;
     void beginFrame();
+    /// Redraws the key light's shadow map if shadowDirty (or drops it: no light, shadows off, a
+    /// light inside the box).
+    void updateShadow();
 };
 
 }  // namespace gale::render

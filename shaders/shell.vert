@@ -35,6 +35,9 @@ layout(location = 3) in vec3 aWindDir;   // unit tangent-plane wind direction, o
 layout(location = 4) in uint aGroup;     // animation-step group
 layout(location = 5) in vec2 aGroupCoord; // position in the group grid (when BLEND_GROUPS)
 layout(location = 6) in float aFlutter;   // turbulent flutter amplitude of the tip tilt, radians
+// Share of the key light (light 0) that passes the terrain to this vertex, [0, 1], from its
+// shadow map (render/ShadowMap.h): 1 without one. The blades over a vertex share its value.
+layout(location = 7) in float aKeyLight;
 
 uniform mat4 uClipFromWorld;
 uniform vec3 uEyePos;          // camera position
@@ -180,15 +183,19 @@ void main() {
     // the next drawn shell above it, i + 1 .. i + 2^v(i) - 1 (v the trailing zero bits; for the
     // ground every shell up to the last dropped), are dropped level by level, 2^l of them at
     // level l, each thinning out over 0.7 D1 2^l .. D1 2^l like its fade above.
+    // The levels' ramps do not overlap (0.7 D1 2^(l+1) > D1 2^l): at distance d the levels
+    // l < L = floor(log2(d / D1)) + 1 are dropped whole, 2^L - 1 shells, and level L is
+    // thinning; the sum stops at the levels below v(i).
     vShell = float(i);
     vSpan = 0.0;
     if (uLodD1 > 0.0) {
         float eye = distance(aPosition, uEyePos);
-        int levels = (i == 0) ? findLSB(max(uLastShell, 1)) + 1 : findLSB(i);
-        for (int l = 0; l < levels; ++l) {
-            float drop = uLodD1 * float(1 << l);
-            vSpan += float(1 << l) * smoothstep(0.7 * drop, drop, eye);
-        }
+        float levels = (i == 0) ? float(findLSB(max(uLastShell, 1)) + 1) : float(findLSB(i));
+        float whole = (eye >= uLodD1) ? floor(log2(eye / uLodD1)) + 1.0 : 0.0;
+        float next = exp2(whole);
+        float partial = next * smoothstep(0.7 * uLodD1 * next, uLodD1 * next, eye);
+        vSpan = (whole >= levels) ? exp2(levels) - 1.0
+                                  : next - 1.0 + partial;
         vSpan = min(vSpan, float(uShells - i));
     }
     // Straight down, a ray crosses every shell at the same texel, which is why shell.frag's seen
@@ -237,7 +244,7 @@ void main() {
         // Thesis 3.3.4: 1 / (k_c + k_l d + k_q d^2).
         vec3 k = uLightAtten[l];
         float attenuation = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
-        lit += uLightColor[l] * (attenuation * (diffuse + specular));
+        lit += uLightColor[l] * (attenuation * (diffuse + specular) * (l == 0 ? aKeyLight : 1.0));
     }
 #if FADE
     // The self-shadowing and the ambient term are applied per fragment (shell.frag), where the

@@ -41,6 +41,7 @@ void readLighting(Context& ctx, Section s) {
         static_cast<float>(s.number("specular_strength", l.specularStrength, closed(0.0, 1e3)));
     l.selfShadowMin =
         static_cast<float>(s.number("self_shadow_min", l.selfShadowMin, closed(0.0, 1.0)));
+    l.shadows = s.boolean("shadows", l.shadows);
     std::vector<Section> lights = s.tables("light");
     s.finish();
     if (static_cast<int>(lights.size()) > maxLights())

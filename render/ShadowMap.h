@@ -1,0 +1,79 @@
+#pragma once
+/// \file ShadowMap.h
+/// The key light's shadow of the terrain (docs/render.md, "Shadows"): a depth map of the terrain
+/// seen from the first light, rendered once for a terrain and a light (neither moves while the
+/// grass does) and read back, and from it each terrain vertex's share of the key light, which
+/// shell.vert reads as a vertex attribute: a hill's shadow darkens the ground and the grass it
+/// covers at no cost per frame (a shadow-map fetch per vertex and shell cost 15-20 % of a frame
+/// on llvmpipe, which shades vertices on one thread). Internal to render/.
+///
+/// The map covers the terrain's box grown by the grass height. A light more than
+/// DIRECTIONAL_DISTANCE_RATIO box radii away is a direction (an orthographic map fitted to the
+/// box's corners); a nearer one is a point (a perspective map from it, its cone around the box's
+/// bounding sphere); a light inside 1.05 radii of the box's centre casts no shadow map (one
+/// perspective map cannot hold every direction).
+
+#include <GL/gl.h>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <optional>
+#include <vector>
+
+#include "render/GlUtil.h"
+
+namespace gale::render::detail {
+
+/// Side of the shadow map, texels: 2048 puts a texel at 0.1 m over a 200 m meadow, 0.6 m over the
+/// 1.28 km landscape; 16 MiB of 32-bit depth.
+constexpr int SHADOW_MAP_PX = 2048;
+/// A light farther than this many box radii from the box's centre is treated as a direction.
+constexpr float DIRECTIONAL_DISTANCE_RATIO = 100.0f;
+
+/// The key light's view of the box [lo, hi] (world, metres).
+struct ShadowView {
+    /// World to the map's texture space: x, y in [0, 1] across the map, z the depth in [0, 1].
+    glm::mat4 textureFromWorld{1.0f};
+    /// World to the map's clip space (what the depth pass draws with).
+    glm::mat4 clipFromWorld{1.0f};
+    /// Metres one texel spans at the box's centre.
+    float texel_m = 0.0f;
+};
+
+/// The share of light reaching texture-space point t (textureFromWorld of a world point) from a
+/// depth map `sizePx` a side, row 0 at t.y = 0: the four nearest texels' depths compared with
+/// t.z (lit where t.z <= depth) and blended bilinearly, as GL's linear sampler2DShadow does
+/// (percentage-closer filtering); texels beyond the map are lit.
+float mapVisibility(const std::vector<float>& depth, int sizePx, const glm::vec3& t);
+
+/// The offset, metres along the terrain normal, of a vertex's lookup (normal offset): 1.5 texels,
+/// so a slope the light grazes does not shadow itself between texels.
+constexpr float SHADOW_NORMAL_OFFSET_TEXELS = 1.5f;
+
+/// The view of a map `sizePx` texels a side for a light at `light_m`; nullopt when the light is
+/// within 1.05 box radii of the box's centre, the box is empty or a value is not finite.
+std::optional<ShadowView> keyLightView(const glm::vec3& light_m, const glm::vec3& lo,
+                                       const glm::vec3& hi, int sizePx);
+
+/// The depth map and the pass that draws it. Requires a current context.
+class ShadowMap {
+  public:
+    ShadowMap();
+    /// Draws the depth of `indexCount` indices of `vao` (positions at attribute 0, world metres)
+    /// seen through view.clipFromWorld into the map (allocated on first use), reads it back and
+    /// returns, for each of `positions_m` (with its unit normal), mapVisibility at the point
+    /// SHADOW_NORMAL_OFFSET_TEXELS texels off the surface. Leaves the default framebuffer bound;
+    /// the caller sets its own viewport afterwards.
+    std::vector<float> vertexVisibility(const ShadowView& view, GLuint vao, GLsizei indexCount,
+                                        const std::vector<glm::vec3>& positions_m,
+                                        const std::vector<glm::vec3>& normals);
+
+  private:
+    Program mProgram;
+    GLint mClipLoc = -1;
+    Texture mDepth;
+    Framebuffer mFbo;
+    bool mAllocated = false;
+};
+
+}  // namespace gale::render::detail

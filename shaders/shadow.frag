@@ -1,0 +1,4 @@
+#version 450 core
+// The key light's depth pass (render/ShadowMap.h): depth only, no colour attachment.
+
+void main() {}
