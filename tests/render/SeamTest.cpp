@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "RenderTestUtil.h"
+#include "SeamMeasure.h"
 #include "render/GlContext.h"
 #include "render/ShellRenderer.h"
 
@@ -24,19 +25,6 @@ namespace {
 // default lod_pixels are those a user sees at 640 x 480.
 constexpr int WIDTH_PX = 640;
 constexpr int HEIGHT_PX = 480;
-constexpr int TILE_PX = 32;
-// A tile's mean luminance (8-bit, Rec. 709 weights) may differ by this much: below what the eye
-// sees as a band across a textured field. Measured: the per-shell rule this test replaced gave
-// 21-77 on the hill and 25-65 on the flat meadow from 10 m up; the whole-stack rule 0.7-2.7.
-constexpr double TILE_MEAN_TOLERANCE = 6.0;
-// A step edge: the mean of the signed difference (level of detail minus all shells) over an
-// 8-pixel strip one tile long changes across a strip border by more than this. The largest
-// allowed step is the terrain's far edge, where the ground standing in for the grass lacks the
-// grass's 0.5 m above it: a one-pixel line of sky at the silhouette (measured 12.0; the per-shell
-// rule's bands gave 13-48).
-constexpr int STRIP_PX = 8;
-constexpr double STEP_TOLERANCE = 16.0;
-
 // The scene of the issue: a 200 x 200 m meadow, 1 m between vertices, with a 20 m Gaussian
 // hill (sigma 25 m) at the centre, or flat.
 TerrainMesh makeMeadow(bool hill) {
@@ -103,60 +91,6 @@ struct SeamScene {
     }
 };
 
-std::vector<double> luminance(const Image& image) {
-    std::vector<double> l(size_t(image.width) * image.height);
-    for (size_t p = 0; p < l.size(); ++p)
-        l[p] = 0.2126 * image.rgba[p * 4] + 0.7152 * image.rgba[p * 4 + 1] +
-               0.0722 * image.rgba[p * 4 + 2];
-    return l;
-}
-
-struct SeamReport {
-    double worstTileMean = 0.0;  // largest |mean difference| of a tile
-    int worstTileX = 0, worstTileY = 0;
-    double worstStep = 0.0;  // largest strip-mean step along a tile-long segment
-};
-
-SeamReport measureSeams(const Image& lod, const Image& full) {
-    const std::vector<double> a = luminance(lod), b = luminance(full);
-    const int w = lod.width, h = lod.height;
-    std::vector<double> d(a.size());
-    for (size_t p = 0; p < d.size(); ++p) d[p] = a[p] - b[p];
-    SeamReport r;
-    for (int ty = 0; ty < h / TILE_PX; ++ty)
-        for (int tx = 0; tx < w / TILE_PX; ++tx) {
-            double sum = 0.0;
-            for (int y = ty * TILE_PX; y < (ty + 1) * TILE_PX; ++y)
-                for (int x = tx * TILE_PX; x < (tx + 1) * TILE_PX; ++x) sum += d[size_t(y) * w + x];
-            const double mean = std::abs(sum / (TILE_PX * TILE_PX));
-            if (mean > r.worstTileMean) {
-                r.worstTileMean = mean;
-                r.worstTileX = tx;
-                r.worstTileY = ty;
-            }
-        }
-    // Strip means of d over STRIP_PX x TILE_PX (vertical edges) and TILE_PX x STRIP_PX
-    // (horizontal edges), compared with the neighbouring strip, at every STRIP_PX / 2 offset.
-    const auto stripMean = [&](int x0, int y0, int sw, int sh) {
-        double s = 0.0;
-        for (int y = y0; y < y0 + sh; ++y)
-            for (int x = x0; x < x0 + sw; ++x) s += d[size_t(y) * w + x];
-        return s / (sw * sh);
-    };
-    const int step = STRIP_PX / 2;
-    for (int y0 = 0; y0 + TILE_PX <= h; y0 += TILE_PX / 2)
-        for (int x0 = 0; x0 + 2 * STRIP_PX <= w; x0 += step)
-            r.worstStep =
-                std::max(r.worstStep, std::abs(stripMean(x0, y0, STRIP_PX, TILE_PX) -
-                                               stripMean(x0 + STRIP_PX, y0, STRIP_PX, TILE_PX)));
-    for (int x0 = 0; x0 + TILE_PX <= w; x0 += TILE_PX / 2)
-        for (int y0 = 0; y0 + 2 * STRIP_PX <= h; y0 += step)
-            r.worstStep =
-                std::max(r.worstStep, std::abs(stripMean(x0, y0, TILE_PX, STRIP_PX) -
-                                               stripMean(x0, y0 + STRIP_PX, TILE_PX, STRIP_PX)));
-    return r;
-}
-
 void checkScene(bool hill) {
     SeamScene scene(hill);
     const std::filesystem::path dir = test::freshTestDir(hill ? "seam_hill" : "seam_flat");
@@ -164,14 +98,15 @@ void checkScene(bool hill) {
     for (const View& view : views()) {
         const Image lod = scene.frame(view, defaultLod);
         const Image full = scene.frame(view, 0.0f);
-        const SeamReport r = measureSeams(lod, full);
+        const test::SeamReport r = test::measureSeams(lod, full);
         std::printf("seam %s %-18s worst tile |mean| %5.2f at (%d, %d), worst step %5.2f\n",
                     hill ? "hill" : "flat", view.name, r.worstTileMean, r.worstTileX, r.worstTileY,
                     r.worstStep);
-        const bool ok = r.worstTileMean <= TILE_MEAN_TOLERANCE && r.worstStep <= STEP_TOLERANCE;
-        EXPECT_LE(r.worstTileMean, TILE_MEAN_TOLERANCE)
+        const bool ok =
+            r.worstTileMean <= test::TILE_MEAN_TOLERANCE && r.worstStep <= test::STEP_TOLERANCE;
+        EXPECT_LE(r.worstTileMean, test::TILE_MEAN_TOLERANCE)
             << view.name << ": tile (" << r.worstTileX << ", " << r.worstTileY << ")";
-        EXPECT_LE(r.worstStep, STEP_TOLERANCE) << view.name;
+        EXPECT_LE(r.worstStep, test::STEP_TOLERANCE) << view.name;
         if (!ok || std::getenv("GALE_KEEP_SEAM_FRAMES")) {
             writeImageAtomic(lod, (dir / (std::string(view.name) + "_lod.png")).string());
             writeImageAtomic(full, (dir / (std::string(view.name) + "_full.png")).string());
