@@ -46,6 +46,11 @@ struct ShadowView {
 /// (percentage-closer filtering); texels beyond the map are lit.
 float mapVisibility(const std::vector<float>& depth, int sizePx, const glm::vec3& t);
 
+/// The largest share of the key light a coarse mesh level may misplace by interpolating the
+/// vertices' visibilities (TerrainChunk::shadowLevel): beyond it the chunk keeps a finer level,
+/// so a shadow's edge stays where the full mesh puts it.
+constexpr float SHADOW_LEVEL_TOLERANCE = 0.1f;
+
 /// The offset, metres along the terrain normal, of a vertex's lookup (normal offset): 1.5 texels,
 /// so a slope the light grazes does not shadow itself between texels.
 constexpr float SHADOW_NORMAL_OFFSET_TEXELS = 1.5f;

@@ -346,6 +346,8 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     // The full mesh: every chunk's level 0, at the start of the index buffer (buildChunks).
     m.indexCount = static_cast<GLsizei>(static_cast<size_t>(mesh.nx - 1) * (mesh.ny - 1) * 6u);
     m.chunks = std::move(chunks);
+    m.terrainIndices = std::move(indices);
+    m.terrainNx = mesh.nx;
     m.terrainPositions_m = mesh.wsPosition_m;
     m.terrainNormals = mesh.wsNormal;
     m.terrainMin_m = m.terrainMax_m = mesh.wsPosition_m[0];

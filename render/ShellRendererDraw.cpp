@@ -44,8 +44,20 @@ void ShellRenderer::Impl::updateShadow() {
         glBindBuffer(GL_ARRAY_BUFFER, 0);
         glBindVertexArray(vao.get());
         glEnableVertexAttribArray(KEY_LIGHT_LOC);
+        // A coarse level of a chunk interpolates the visibility between its own vertices: keep
+        // the levels that put every full-mesh vertex's light within the tolerance.
+        for (detail::TerrainChunk& chunk : chunks) {
+            chunk.shadowLevel = 0;
+            for (int l = 1; l < chunk.levelCount; ++l) {
+                if (detail::meshLevelValueError(terrainNx, visible, terrainIndices,
+                                                chunk.levels[l]) > detail::SHADOW_LEVEL_TOLERANCE)
+                    break;
+                chunk.shadowLevel = l;
+            }
+        }
     } else {
         glDisableVertexAttribArray(KEY_LIGHT_LOC);
+        for (detail::TerrainChunk& chunk : chunks) chunk.shadowLevel = chunk.levelCount - 1;
     }
     glBindVertexArray(0);
 }
@@ -153,7 +165,8 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         ++stats.chunks;
         const float chunkNear_m =
             detail::distanceToBox(camera.wsPosition_m, chunk.wsMin_m, chunk.wsMax_m);
-        const int level = detail::meshLevel(chunk, focal_px, m.grass.lodPixels, chunkNear_m);
+        const int level = std::min(
+            detail::meshLevel(chunk, focal_px, m.grass.lodPixels, chunkNear_m), chunk.shadowLevel);
         for (int b = 0; b < chunk.bandCount[level]; ++b) {
             const detail::ChunkBand& band = chunk.bands[level][b];
             if (!detail::boxMayBeVisible(clipFromWorldM, band.wsMin_m - reach,

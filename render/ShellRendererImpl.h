@@ -130,6 +130,8 @@ struct ShellRenderer::Impl {
     bool shadowDirty = true;     ///< terrain, grass height or lighting changed since the map
     detail::Buffer keyLightVbo;  ///< per terrain vertex, the key light's visibility (KEY_LIGHT_LOC)
     std::vector<glm::vec3> terrainPositions_m, terrainNormals;  ///< kept for the shadow's lookups
+    std::vector<uint32_t> terrainIndices;  ///< the index buffer's contents (chunk levels' errors)
+    int terrainNx = 0;
 
     struct {
         GLint clipFromWorld, shells, shellSpacing, grass;

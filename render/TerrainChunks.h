@@ -74,6 +74,10 @@ struct TerrainChunk {
     /// levelError_m[l]: the largest vertical distance, metres, between a full-mesh vertex of the
     /// chunk and level l's surface above or below it (0 for level 0).
     float levelError_m[MESH_LEVELS] = {};
+    /// The coarsest level the key light's shadow allows: the levels up to it interpolate every
+    /// full-mesh vertex's visibility within SHADOW_LEVEL_TOLERANCE (render/ShadowMap.h; the
+    /// renderer sets it with the shadow map, levelCount - 1 without one).
+    int shadowLevel = MESH_LEVELS - 1;
     /// bands[l][b], b < bandCount[l]: level l cut into bands of whole (coarse) rows, south first,
     /// together exactly levels[l] (render/TerrainChunks.h, CHUNK_BANDS).
     ChunkBand bands[MESH_LEVELS][CHUNK_BANDS];
@@ -127,6 +131,12 @@ int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float 
 /// vertices) and those triangles' surface at the vertex's plan position.
 float meshLevelError(int nx, const std::vector<glm::vec3>& wsPosition_m,
                      const std::vector<uint32_t>& indices, IndexRange range);
+
+/// meshLevelError for any per-vertex value (value.size() = nx * ny): the largest difference
+/// between a full-mesh vertex's value and the value level `range` interpolates there (the key
+/// light's visibility, render/ShadowMap.h: a coarse level must not smear a shadow's edge).
+float meshLevelValueError(int nx, const std::vector<float>& value,
+                          const std::vector<uint32_t>& indices, IndexRange range);
 
 /// True if a chunk whose ground reaches `far_m` metres from the eye needs the level of detail's
 /// program (shell.vert's FADE): when `range` drops shells (stride > 1), since the shells drawn
