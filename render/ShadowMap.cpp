@@ -10,6 +10,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 
+#include "render/GlUtil.h"
+
 namespace gale::render::detail {
 namespace {
 
@@ -80,57 +82,71 @@ float mapVisibility(const std::vector<float>& depth, int sizePx, const glm::vec3
            fy * ((1.0f - fx) * lit(x0, y0 + 1.0f) + fx * lit(x0 + 1.0f, y0 + 1.0f));
 }
 
-ShadowMap::ShadowMap() : mProgram(linkProgramFiles("shadow.vert", "shadow.frag")) {
-    mClipLoc = glGetUniformLocation(mProgram.get(), "uClipFromWorld");
-    GLuint name = 0;
-    glGenTextures(1, &name);
-    mDepth = Texture(name);
-    glGenFramebuffers(1, &name);
-    mFbo = Framebuffer(name);
-}
+std::vector<float> vertexVisibility(const ShadowView& view,
+                                    const std::vector<glm::vec3>& positions_m,
+                                    const std::vector<glm::vec3>& normals,
+                                    const std::vector<uint32_t>& indices, size_t indexCount) {
+    std::vector<float> depth(static_cast<size_t>(SHADOW_MAP_PX) * SHADOW_MAP_PX);
+    {
+        // The pass's objects, deleted at the end of this block.
+        Program program(linkProgramFiles("shadow.vert", "shadow.frag"));
+        GLuint name = 0;
+        glGenVertexArrays(1, &name);
+        VertexArray vao(name);
+        glGenBuffers(1, &name);
+        Buffer vertices(name);
+        glGenBuffers(1, &name);
+        Buffer elements(name);
+        glGenTextures(1, &name);
+        Texture depthTexture(name);
+        glGenFramebuffers(1, &name);
+        Framebuffer fbo(name);
 
-std::vector<float> ShadowMap::vertexVisibility(const ShadowView& view, GLuint vao,
-                                               GLsizei indexCount,
-                                               const std::vector<glm::vec3>& positions_m,
-                                               const std::vector<glm::vec3>& normals) {
-    if (!mAllocated) {
-        glBindTexture(GL_TEXTURE_2D, mDepth.get());
+        glBindVertexArray(vao.get());
+        glBindBuffer(GL_ARRAY_BUFFER, vertices.get());
+        glBufferData(GL_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(positions_m.size() * sizeof(glm::vec3)),
+                     positions_m.data(), GL_STATIC_DRAW);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, elements.get());
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(indexCount * sizeof(uint32_t)), indices.data(),
+                     GL_STATIC_DRAW);
+
+        glBindTexture(GL_TEXTURE_2D, depthTexture.get());
         glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT32F, SHADOW_MAP_PX, SHADOW_MAP_PX);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glBindTexture(GL_TEXTURE_2D, 0);
-        glBindFramebuffer(GL_FRAMEBUFFER, mFbo.get());
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, mDepth.get(), 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D,
+                               depthTexture.get(), 0);
         glDrawBuffer(GL_NONE);
         glReadBuffer(GL_NONE);
-        checkFramebufferComplete("ShadowMap");
-        mAllocated = true;
+        checkFramebufferComplete("shadow map");
+
+        glViewport(0, 0, SHADOW_MAP_PX, SHADOW_MAP_PX);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glClearDepth(1.0);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        // Slope-scaled offset: a slope the light grazes does not shadow itself.
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(2.0f, 4.0f);
+        glUseProgram(program.get());
+        glUniformMatrix4fv(glGetUniformLocation(program.get(), "uClipFromWorld"), 1, GL_FALSE,
+                           &view.clipFromWorld[0][0]);
+        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(indexCount), GL_UNSIGNED_INT, nullptr);
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+        checkGlError("shadow map");
+        glDisable(GL_POLYGON_OFFSET_FILL);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glBindVertexArray(0);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glUseProgram(0);
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, mFbo.get());
-    glViewport(0, 0, SHADOW_MAP_PX, SHADOW_MAP_PX);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
-    glClearDepth(1.0);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    // Slope-scaled offset: a slope the light grazes does not shadow itself.
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(2.0f, 4.0f);
-    glUseProgram(mProgram.get());
-    glUniformMatrix4fv(mClipLoc, 1, GL_FALSE, &view.clipFromWorld[0][0]);
-    glBindVertexArray(vao);
-    glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    std::vector<float> depth(static_cast<size_t>(SHADOW_MAP_PX) * SHADOW_MAP_PX);
-    glBindTexture(GL_TEXTURE_2D, mDepth.get());
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-    glBindTexture(GL_TEXTURE_2D, 0);
-    checkGlError("ShadowMap::vertexVisibility");
     const float offset_m = SHADOW_NORMAL_OFFSET_TEXELS * view.texel_m;
     std::vector<float> visible(positions_m.size(), 1.0f);
     for (size_t v = 0; v < positions_m.size(); ++v) {

@@ -13,14 +13,11 @@
 /// bounding sphere); a light inside 1.05 radii of the box's centre casts no shadow map (one
 /// perspective map cannot hold every direction).
 
-#include <GL/gl.h>
-
+#include <cstdint>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <optional>
 #include <vector>
-
-#include "render/GlUtil.h"
 
 namespace gale::render::detail {
 
@@ -60,25 +57,15 @@ constexpr float SHADOW_NORMAL_OFFSET_TEXELS = 1.5f;
 std::optional<ShadowView> keyLightView(const glm::vec3& light_m, const glm::vec3& lo,
                                        const glm::vec3& hi, int sizePx);
 
-/// The depth map and the pass that draws it. Requires a current context.
-class ShadowMap {
-  public:
-    ShadowMap();
-    /// Draws the depth of `indexCount` indices of `vao` (positions at attribute 0, world metres)
-    /// seen through view.clipFromWorld into the map (allocated on first use), reads it back and
-    /// returns, for each of `positions_m` (with its unit normal), mapVisibility at the point
-    /// SHADOW_NORMAL_OFFSET_TEXELS texels off the surface. Leaves the default framebuffer bound;
-    /// the caller sets its own viewport afterwards.
-    std::vector<float> vertexVisibility(const ShadowView& view, GLuint vao, GLsizei indexCount,
-                                        const std::vector<glm::vec3>& positions_m,
-                                        const std::vector<glm::vec3>& normals);
-
-  private:
-    Program mProgram;
-    GLint mClipLoc = -1;
-    Texture mDepth;
-    Framebuffer mFbo;
-    bool mAllocated = false;
-};
+/// Draws the terrain's depth (the first `indexCount` of `indices`, triangles over `positions_m`,
+/// world metres) as view.clipFromWorld sees it into a SHADOW_MAP_PX map, reads it back and
+/// returns, for each vertex, mapVisibility at the point SHADOW_NORMAL_OFFSET_TEXELS texels off
+/// the surface along its unit normal. Requires a current context; every GL object it makes is
+/// deleted before it returns (the map is 16 MiB), and it leaves the default framebuffer, no
+/// vertex array and no program bound, polygon offset off (the caller sets its own viewport).
+std::vector<float> vertexVisibility(const ShadowView& view,
+                                    const std::vector<glm::vec3>& positions_m,
+                                    const std::vector<glm::vec3>& normals,
+                                    const std::vector<uint32_t>& indices, size_t indexCount);
 
 }  // namespace gale::render::detail

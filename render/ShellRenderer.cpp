@@ -44,8 +44,7 @@ void ShellRenderer::Impl::init() {
     windVbo = detail::Buffer(name);
     glGenBuffers(1, &name);
     indexBuffer = detail::Buffer(name);
-    glGenBuffers(1, &name);
-    keyLightVbo = detail::Buffer(name);
+
     glGenTextures(1, &name);
     grassTexture = detail::Texture(name);
     glGenSamplers(1, &name);
@@ -56,7 +55,6 @@ void ShellRenderer::Impl::init() {
     glSamplerParameteri(name, GL_TEXTURE_WRAP_T, GL_REPEAT);
     tables = std::make_unique<detail::BendTables>();
     density = std::make_unique<detail::DensityTables>();
-    shadow = std::make_unique<detail::ShadowMap>();
 
     glBindVertexArray(vao.get());
     glBindBuffer(GL_ARRAY_BUFFER, terrainVbo.get());
@@ -70,6 +68,9 @@ void ShellRenderer::Impl::init() {
     glEnableVertexAttribArray(UV_LOC);
     glVertexAttribPointer(UV_LOC, 2, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(offsetof(TerrainVertex, uv)));
+    glEnableVertexAttribArray(KEY_LIGHT_LOC);
+    glVertexAttribPointer(KEY_LIGHT_LOC, 1, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(offsetof(TerrainVertex, keyLight)));
     glBindBuffer(GL_ARRAY_BUFFER, windVbo.get());
     const auto windStride = static_cast<GLsizei>(sizeof(WindVertex));
     glEnableVertexAttribArray(WIND_DIR_LOC);
@@ -84,11 +85,6 @@ void ShellRenderer::Impl::init() {
     glEnableVertexAttribArray(FLUTTER_LOC);
     glVertexAttribPointer(FLUTTER_LOC, 1, GL_FLOAT, GL_FALSE, windStride,
                           reinterpret_cast<const void*>(offsetof(WindVertex, flutter_rad)));
-    glBindBuffer(GL_ARRAY_BUFFER, keyLightVbo.get());
-    glVertexAttribPointer(KEY_LIGHT_LOC, 1, GL_FLOAT, GL_FALSE, sizeof(float), nullptr);
-    // Enabled while a shadow map's visibilities are uploaded (updateShadow); else every vertex
-    // reads the generic value 1, the key light unshadowed.
-    glDisableVertexAttribArray(KEY_LIGHT_LOC);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer.get());
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
@@ -324,7 +320,7 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
             throw std::logic_error("TerrainMesh vertex " + std::to_string(v) +
                                    " has a non-finite position, normal or uv");
         }
-        vertices[v] = TerrainVertex{{p.x, p.y, p.z}, {nn.x, nn.y, nn.z}, {uv.x, uv.y}};
+        vertices[v] = TerrainVertex{{p.x, p.y, p.z}, {nn.x, nn.y, nn.z}, {uv.x, uv.y}, 1.0f};
     }
     std::vector<uint32_t> indices;
     std::vector<detail::TerrainChunk> chunks =
@@ -347,6 +343,7 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     m.indexCount = static_cast<GLsizei>(static_cast<size_t>(mesh.nx - 1) * (mesh.ny - 1) * 6u);
     m.chunks = std::move(chunks);
     m.terrainIndices = std::move(indices);
+    m.terrainVertices = std::move(vertices);
     m.terrainNx = mesh.nx;
     m.terrainPositions_m = mesh.wsPosition_m;
     m.terrainNormals = mesh.wsNormal;

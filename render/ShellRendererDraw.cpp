@@ -34,16 +34,20 @@ void ShellRenderer::Impl::updateShadow() {
         shadowView = detail::keyLightView(lighting.lights[0].wsPosition_m, terrainMin_m - reach,
                                           terrainMax_m + reach, detail::SHADOW_MAP_PX);
     }
-    glBindVertexArray(vao.get());
+    std::vector<float> visible;
     if (shadowView) {
-        const std::vector<float> visible = shadow->vertexVisibility(
-            *shadowView, vao.get(), indexCount, terrainPositions_m, terrainNormals);
-        glBindBuffer(GL_ARRAY_BUFFER, keyLightVbo.get());
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(visible.size() * sizeof(float)),
-                     visible.data(), GL_STATIC_DRAW);
-        glBindBuffer(GL_ARRAY_BUFFER, 0);
-        glBindVertexArray(vao.get());
-        glEnableVertexAttribArray(KEY_LIGHT_LOC);
+        visible = detail::vertexVisibility(*shadowView, terrainPositions_m, terrainNormals,
+                                           terrainIndices, static_cast<size_t>(indexCount));
+    }
+    for (size_t v = 0; v < terrainVertices.size(); ++v)
+        terrainVertices[v].keyLight = shadowView ? visible[v] : 1.0f;
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, terrainVbo.get());
+    glBufferSubData(GL_ARRAY_BUFFER, 0,
+                    static_cast<GLsizeiptr>(terrainVertices.size() * sizeof(TerrainVertex)),
+                    terrainVertices.data());
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    if (shadowView) {
         // A coarse level of a chunk interpolates the visibility between its own vertices: keep
         // the levels that put every full-mesh vertex's light within the tolerance.
         for (detail::TerrainChunk& chunk : chunks) {
@@ -56,10 +60,8 @@ void ShellRenderer::Impl::updateShadow() {
             }
         }
     } else {
-        glDisableVertexAttribArray(KEY_LIGHT_LOC);
         for (detail::TerrainChunk& chunk : chunks) chunk.shadowLevel = chunk.levelCount - 1;
     }
-    glBindVertexArray(0);
 }
 
 FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind) {
@@ -87,7 +89,6 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
 
     const auto gpuStart = Clock::now();
     m.updateShadow();
-    glVertexAttrib1f(KEY_LIGHT_LOC, 1.0f);  // the value a vertex reads without a shadow map
     m.beginFrame();
     glActiveTexture(GL_TEXTURE0 + BEND_UNIT);
     glBindTexture(GL_TEXTURE_2D, m.tables->bendTexture());
@@ -165,8 +166,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         ++stats.chunks;
         const float chunkNear_m =
             detail::distanceToBox(camera.wsPosition_m, chunk.wsMin_m, chunk.wsMax_m);
-        const int level = std::min(
-            detail::meshLevel(chunk, focal_px, m.grass.lodPixels, chunkNear_m), chunk.shadowLevel);
+        const int level = detail::meshLevel(chunk, focal_px, m.grass.lodPixels, chunkNear_m);
         for (int b = 0; b < chunk.bandCount[level]; ++b) {
             const detail::ChunkBand& band = chunk.bands[level][b];
             if (!detail::boxMayBeVisible(clipFromWorldM, band.wsMin_m - reach,

@@ -62,6 +62,8 @@ struct TerrainVertex {
     float position[3];
     float normal[3];
     float uv[2];
+    /// The key light's share past the terrain (render/ShadowMap.h), 1 without a shadow map.
+    float keyLight;
 };
 
 /// Per-vertex wind data, re-uploaded only when GrassWind::revision changes.
@@ -124,11 +126,11 @@ struct ShellRenderer::Impl {
     detail::Sampler nearestSampler;  ///< overrides the grass texture's filtering (DrawOptions)
     std::unique_ptr<detail::BendTables> tables;
     std::unique_ptr<detail::DensityTables> density;
-    std::unique_ptr<detail::ShadowMap> shadow;
     /// The key light's view of the terrain when its shadow map is drawn (render/ShadowMap.h).
     std::optional<detail::ShadowView> shadowView;
-    bool shadowDirty = true;     ///< terrain, grass height or lighting changed since the map
-    detail::Buffer keyLightVbo;  ///< per terrain vertex, the key light's visibility (KEY_LIGHT_LOC)
+    bool shadowDirty = true;  ///< terrain, grass height or lighting changed since the map
+    /// The terrain buffer's contents, kept to rewrite TerrainVertex::keyLight with a shadow map.
+    std::vector<shell_detail::TerrainVertex> terrainVertices;
     std::vector<glm::vec3> terrainPositions_m, terrainNormals;  ///< kept for the shadow's lookups
     std::vector<uint32_t> terrainIndices;  ///< the index buffer's contents (chunk levels' errors)
     int terrainNx = 0;

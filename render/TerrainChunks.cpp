@@ -240,7 +240,14 @@ int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float 
     while (flat + 1 < chunk.levelCount && cellFits(flat + 1, MESH_FLAT_CELL_PER_LOD_PIXEL) &&
            chunk.levelError_m[flat + 1] * focal_px <= MESH_ERROR_PER_LOD_PIXEL * lodPixels * near_m)
         ++flat;
-    return std::max(level, flat);
+    level = std::max(level, flat);
+    if (level > chunk.shadowLevel) {
+        int small = 0;  // the coarsest level whose cells are small enough to smear a shadow
+        while (small + 1 < chunk.levelCount && cellFits(small + 1, MESH_SHADOW_CELL_PER_LOD_PIXEL))
+            ++small;
+        level = std::min(level, std::max(chunk.shadowLevel, small));
+    }
+    return level;
 }
 
 bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m) {

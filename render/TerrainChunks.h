@@ -43,6 +43,9 @@ constexpr float MESH_CELL_PER_LOD_PIXEL = 4.0f;
 /// examples. Measured on examples/knoll.toml (docs/render.md, "Where a frame's time goes"): the
 /// full mesh near the camera was 70 % of the frame's triangles and half its rasteriser time.
 constexpr float MESH_ERROR_PER_LOD_PIXEL = 0.5f;
+/// Cells of a level that misplaces the key light's shadow (TerrainChunk::shadowLevel) may span at
+/// most this many lodPixels on screen: the shells' own spacing.
+constexpr float MESH_SHADOW_CELL_PER_LOD_PIXEL = 4.0f;
 constexpr float MESH_FLAT_CELL_PER_LOD_PIXEL = 32.0f;
 
 /// Row bands per chunk: each mesh level's index list is also cut into bands of whole rows, each
@@ -122,8 +125,10 @@ ShellRange shellRange(int shells, float d1_m, float distance_m);
 /// the focal length in pixels), the coarser of two rules: the coarsest l < chunk.levelCount whose
 /// cells (2^l quad_m) span at most MESH_CELL_PER_LOD_PIXEL lodPixels on screen at that distance;
 /// and the coarsest l whose cells span at most MESH_FLAT_CELL_PER_LOD_PIXEL lodPixels and whose
-/// levelError_m, and that of every finer level, spans at most MESH_ERROR_PER_LOD_PIXEL lodPixels. 0
-/// when lodPixels is 0 (no level of detail).
+/// levelError_m, and that of every finer level, spans at most MESH_ERROR_PER_LOD_PIXEL lodPixels;
+/// then no coarser than chunk.shadowLevel unless its cells span at most
+/// MESH_SHADOW_CELL_PER_LOD_PIXEL lodPixels (a coarse level smears a shadow's edge over its cells:
+/// allowed where they are that small on screen). 0 when lodPixels is 0 (no level of detail).
 int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float near_m);
 
 /// The largest vertical distance, metres, between a vertex of the nx-wide grid `wsPosition_m`
