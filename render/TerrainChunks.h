@@ -44,7 +44,9 @@ constexpr float MESH_CELL_PER_LOD_PIXEL = 4.0f;
 /// full mesh near the camera was 70 % of the frame's triangles and half its rasteriser time.
 constexpr float MESH_ERROR_PER_LOD_PIXEL = 0.5f;
 /// Cells of a level that misplaces the key light's shadow (TerrainChunk::shadowLevel) may span at
-/// most this many lodPixels on screen: the shells' own spacing.
+/// most this many lodPixels on screen: MESH_CELL_PER_LOD_PIXEL's budget, so a shadowed chunk only
+/// forgoes the flat-ground coarsening (1 lodPixel cost the knoll 24 ms a frame against 21 for a
+/// 7.59 against 7.72-level worst tile, docs/render.md "Shadows").
 constexpr float MESH_SHADOW_CELL_PER_LOD_PIXEL = 4.0f;
 constexpr float MESH_FLAT_CELL_PER_LOD_PIXEL = 32.0f;
 
