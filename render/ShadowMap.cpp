@@ -82,6 +82,41 @@ float mapVisibility(const std::vector<float>& depth, int sizePx, const glm::vec3
            fy * ((1.0f - fx) * lit(x0, y0 + 1.0f) + fx * lit(x0 + 1.0f, y0 + 1.0f));
 }
 
+std::vector<float> levelVisibility(const std::vector<float>& visible, int nx, int ny, int levels,
+                                   int chunkQuads) {
+    const size_t n = static_cast<size_t>(nx) * static_cast<size_t>(ny);
+    std::vector<float> out(n * static_cast<size_t>(levels), 1.0f);
+    if (visible.size() != n || levels < 1) return out;
+    // Summed-area table, (nx + 1) x (ny + 1), in double.
+    std::vector<double> sat(static_cast<size_t>(nx + 1) * static_cast<size_t>(ny + 1), 0.0);
+    const auto at = [&](int i, int j) -> double& {
+        return sat[static_cast<size_t>(j) * static_cast<size_t>(nx + 1) + static_cast<size_t>(i)];
+    };
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i)
+            at(i + 1, j + 1) =
+                visible[static_cast<size_t>(j) * nx + i] + at(i, j + 1) + at(i + 1, j) - at(i, j);
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            const size_t v = static_cast<size_t>(j) * nx + i;
+            const bool border =
+                i % chunkQuads == 0 || j % chunkQuads == 0 || i == nx - 1 || j == ny - 1;
+            for (int l = 0; l < levels; ++l) {
+                float value = visible[v];
+                if (l > 0 && !border) {
+                    const int h = 1 << (l - 1);
+                    const int i0 = std::max(i - h, 0), i1 = std::min(i + h, nx - 1);
+                    const int j0 = std::max(j - h, 0), j1 = std::min(j + h, ny - 1);
+                    const double sum =
+                        at(i1 + 1, j1 + 1) - at(i0, j1 + 1) - at(i1 + 1, j0) + at(i0, j0);
+                    value = static_cast<float>(sum / double((i1 - i0 + 1) * (j1 - j0 + 1)));
+                }
+                out[v * static_cast<size_t>(levels) + static_cast<size_t>(l)] = value;
+            }
+        }
+    return out;
+}
+
 std::vector<float> vertexVisibility(const ShadowView& view,
                                     const std::vector<glm::vec3>& positions_m,
                                     const std::vector<glm::vec3>& normals,

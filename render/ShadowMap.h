@@ -43,11 +43,6 @@ struct ShadowView {
 /// (percentage-closer filtering); texels beyond the map are lit.
 float mapVisibility(const std::vector<float>& depth, int sizePx, const glm::vec3& t);
 
-/// The largest share of the key light a coarse mesh level may misplace by interpolating the
-/// vertices' visibilities (TerrainChunk::shadowLevel): beyond it the chunk keeps a finer level,
-/// so a shadow's edge stays where the full mesh puts it.
-constexpr float SHADOW_LEVEL_TOLERANCE = 0.1f;
-
 /// The offset, metres along the terrain normal, of a vertex's lookup (normal offset): 1.5 texels,
 /// so a slope the light grazes does not shadow itself between texels.
 constexpr float SHADOW_NORMAL_OFFSET_TEXELS = 1.5f;
@@ -63,6 +58,16 @@ std::optional<ShadowView> keyLightView(const glm::vec3& light_m, const glm::vec3
 /// the surface along its unit normal. Requires a current context; every GL object it makes is
 /// deleted before it returns (the map is 16 MiB), and it leaves the default framebuffer, no
 /// vertex array and no program bound, polygon offset off (the caller sets its own viewport).
+/// The visibility a vertex shows when the terrain is drawn at mesh level l (render/TerrainChunks.h:
+/// every 2^l-th vertex), for l = 0..levels-1, `levels` values per vertex: level 0 the vertex's own;
+/// level l >= 1 the mean over the (2^l + 1)^2 grid vertices around it (clipped to the grid), so a
+/// coarse cell shows the share of light its ground gets instead of its corners' (a point sample
+/// at a coarse vertex spread the knoll's shadow on the far meadow by 18.5 levels in a 32 x 32
+/// tile). Vertices on a chunk border (every `chunkQuads`-th row and column, and the grid's edge)
+/// keep their own value at every level: borders stay at full resolution in every level.
+std::vector<float> levelVisibility(const std::vector<float>& visible, int nx, int ny, int levels,
+                                   int chunkQuads);
+
 std::vector<float> vertexVisibility(const ShadowView& view,
                                     const std::vector<glm::vec3>& positions_m,
                                     const std::vector<glm::vec3>& normals,

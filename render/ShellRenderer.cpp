@@ -68,9 +68,14 @@ void ShellRenderer::Impl::init() {
     glEnableVertexAttribArray(UV_LOC);
     glVertexAttribPointer(UV_LOC, 2, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(offsetof(TerrainVertex, uv)));
+    static_assert(detail::MESH_LEVELS == 6, "the key light's levels take a vec4 and a vec2");
     glEnableVertexAttribArray(KEY_LIGHT_LOC);
-    glVertexAttribPointer(KEY_LIGHT_LOC, 1, GL_FLOAT, GL_FALSE, stride,
+    glVertexAttribPointer(KEY_LIGHT_LOC, 4, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(offsetof(TerrainVertex, keyLight)));
+    glEnableVertexAttribArray(KEY_LIGHT_LOC + 1);
+    glVertexAttribPointer(
+        KEY_LIGHT_LOC + 1, 2, GL_FLOAT, GL_FALSE, stride,
+        reinterpret_cast<const void*>(offsetof(TerrainVertex, keyLight) + 4 * sizeof(float)));
     glBindBuffer(GL_ARRAY_BUFFER, windVbo.get());
     const auto windStride = static_cast<GLsizei>(sizeof(WindVertex));
     glEnableVertexAttribArray(WIND_DIR_LOC);
@@ -130,6 +135,7 @@ ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
                                                     {&loc.densityCut, "uDensityCut"},
                                                     {&loc.shellPass, "uShellPass"},
                                                     {&loc.shellFocal, "uShellFocal"},
+                                                    {&loc.meshLevel, "uMeshLevel"},
                                                     {&loc.densityMin, "uDensityMin"},
                                                     {&loc.densitySize, "uDensitySize"},
                                                     {&loc.lightCount, "uLightCount"},
@@ -320,7 +326,10 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
             throw std::logic_error("TerrainMesh vertex " + std::to_string(v) +
                                    " has a non-finite position, normal or uv");
         }
-        vertices[v] = TerrainVertex{{p.x, p.y, p.z}, {nn.x, nn.y, nn.z}, {uv.x, uv.y}, 1.0f};
+        vertices[v] = TerrainVertex{{p.x, p.y, p.z},
+                                    {nn.x, nn.y, nn.z},
+                                    {uv.x, uv.y},
+                                    {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f}};
     }
     std::vector<uint32_t> indices;
     std::vector<detail::TerrainChunk> chunks =
@@ -345,6 +354,7 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     m.terrainIndices = std::move(indices);
     m.terrainVertices = std::move(vertices);
     m.terrainNx = mesh.nx;
+    m.terrainNy = mesh.ny;
     m.terrainPositions_m = mesh.wsPosition_m;
     m.terrainNormals = mesh.wsNormal;
     m.terrainMin_m = m.terrainMax_m = mesh.wsPosition_m[0];

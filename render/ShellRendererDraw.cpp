@@ -39,29 +39,20 @@ void ShellRenderer::Impl::updateShadow() {
         visible = detail::vertexVisibility(*shadowView, terrainPositions_m, terrainNormals,
                                            terrainIndices, static_cast<size_t>(indexCount));
     }
+    const std::vector<float> levels =
+        shadowView ? detail::levelVisibility(visible, terrainNx, terrainNy, detail::MESH_LEVELS,
+                                             detail::CHUNK_QUADS)
+                   : std::vector<float>();
     for (size_t v = 0; v < terrainVertices.size(); ++v)
-        terrainVertices[v].keyLight = shadowView ? visible[v] : 1.0f;
+        for (int l = 0; l < detail::MESH_LEVELS; ++l)
+            terrainVertices[v].keyLight[l] =
+                shadowView ? levels[v * detail::MESH_LEVELS + static_cast<size_t>(l)] : 1.0f;
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, terrainVbo.get());
     glBufferSubData(GL_ARRAY_BUFFER, 0,
                     static_cast<GLsizeiptr>(terrainVertices.size() * sizeof(TerrainVertex)),
                     terrainVertices.data());
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    if (shadowView) {
-        // A coarse level of a chunk interpolates the visibility between its own vertices: keep
-        // the levels that put every full-mesh vertex's light within the tolerance.
-        for (detail::TerrainChunk& chunk : chunks) {
-            chunk.shadowLevel = 0;
-            for (int l = 1; l < chunk.levelCount; ++l) {
-                if (detail::meshLevelValueError(terrainNx, visible, terrainIndices,
-                                                chunk.levels[l]) > detail::SHADOW_LEVEL_TOLERANCE)
-                    break;
-                chunk.shadowLevel = l;
-            }
-        }
-    } else {
-        for (detail::TerrainChunk& chunk : chunks) chunk.shadowLevel = chunk.levelCount - 1;
-    }
 }
 
 FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind) {
@@ -155,6 +146,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     struct Visible {
         float near_m, far_m;  // nearest and farthest point of the band's ground from the eye
         detail::IndexRange mesh;
+        int level;  // the chunk's mesh level
     };
     std::vector<Visible> visible;
     for (const detail::TerrainChunk& chunk : m.chunks) {
@@ -174,15 +166,15 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
                 continue;
             visible.push_back(
                 {detail::distanceToBox(camera.wsPosition_m, band.wsMin_m, band.wsMax_m),
-                 detail::farthestInBox(camera.wsPosition_m, band.wsMin_m, band.wsMax_m),
-                 band.range});
+                 detail::farthestInBox(camera.wsPosition_m, band.wsMin_m, band.wsMax_m), band.range,
+                 level});
         }
     }
     std::sort(visible.begin(), visible.end(),
               [](const Visible& a, const Visible& b) { return a.near_m < b.near_m; });
     if (options.nearestTexels) glBindSampler(GRASS_UNIT, m.nearestSampler.get());
     glBindVertexArray(m.vao.get());
-    for (const auto& [near_m, far_m, mesh] : visible) {
+    for (const auto& [near_m, far_m, mesh, level] : visible) {
         const detail::ShellRange range = detail::shellRange(shells, d1_m, near_m);
         // Instance k is shell top - k stride: top shell first, ground last. The thesis (3.1)
         // draws bottom to top because its shells were blended; ours are alpha-tested and opaque
@@ -195,6 +187,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         const ShellLocations& loc = useProgram(sceneBits | (fades ? VARIANT_FADE : 0u));
         glUniform1i(loc.topShell, range.top);
         glUniform1i(loc.shellStride, range.stride);
+        glUniform1i(loc.meshLevel, level);
         glDrawElementsInstanced(
             GL_TRIANGLES, static_cast<GLsizei>(mesh.count), GL_UNSIGNED_INT,
             reinterpret_cast<const void*>(size_t(mesh.first) * sizeof(uint32_t)), count);

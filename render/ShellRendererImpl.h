@@ -47,7 +47,7 @@ constexpr GLuint WIND_DIR_LOC = 3;
 constexpr GLuint GROUP_LOC = 4;
 constexpr GLuint GROUP_COORD_LOC = 5;
 constexpr GLuint FLUTTER_LOC = 6;
-constexpr GLuint KEY_LIGHT_LOC = 7;
+constexpr GLuint KEY_LIGHT_LOC = 7;  ///< levels 0-3; KEY_LIGHT_LOC + 1: levels 4-5
 
 // Texture units.
 constexpr GLint GRASS_UNIT = 0;
@@ -62,8 +62,9 @@ struct TerrainVertex {
     float position[3];
     float normal[3];
     float uv[2];
-    /// The key light's share past the terrain (render/ShadowMap.h), 1 without a shadow map.
-    float keyLight;
+    /// The key light's share past the terrain at each mesh level (render/ShadowMap.h,
+    /// levelVisibility), 1 without a shadow map.
+    float keyLight[detail::MESH_LEVELS];
 };
 
 /// Per-vertex wind data, re-uploaded only when GrassWind::revision changes.
@@ -102,6 +103,7 @@ struct ShellLocations {
         densityMin, densitySize;
     GLint lightCount, lightPos, lightColor, lightAtten;
     GLint ambient, specularPower, specularStrength, shadowMin;
+    GLint meshLevel;
 };
 
 struct ShellProgram {
@@ -133,7 +135,7 @@ struct ShellRenderer::Impl {
     std::vector<shell_detail::TerrainVertex> terrainVertices;
     std::vector<glm::vec3> terrainPositions_m, terrainNormals;  ///< kept for the shadow's lookups
     std::vector<uint32_t> terrainIndices;  ///< the index buffer's contents (chunk levels' errors)
-    int terrainNx = 0;
+    int terrainNx = 0, terrainNy = 0;
 
     struct {
         GLint clipFromWorld, shells, shellSpacing, grass;

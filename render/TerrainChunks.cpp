@@ -174,13 +174,9 @@ ShellRange shellRange(int shells, float d1_m, float distance_m) {
     return range;
 }
 
-namespace {
-
-/// The largest |value(vertex) - value interpolated on level `range`'s triangles| over the grid
-/// vertices inside those triangles (barycentric in grid-index space); `value(v)` per vertex.
-template <class Value>
-float levelValueError(int nx, const std::vector<uint32_t>& indices, IndexRange range, Value value) {
-    float error = 0.0f;
+float meshLevelError(int nx, const std::vector<glm::vec3>& wsPosition_m,
+                     const std::vector<uint32_t>& indices, IndexRange range) {
+    float error_m = 0.0f;
     for (uint32_t t = range.first; t + 2 < range.first + range.count; t += 3) {
         // The triangle in grid-index space, where the vertices inside it are the integer points.
         int gi[3], gj[3];
@@ -189,7 +185,7 @@ float levelValueError(int nx, const std::vector<uint32_t>& indices, IndexRange r
             const uint32_t v = indices[t + k];
             gi[k] = static_cast<int>(v % static_cast<uint32_t>(nx));
             gj[k] = static_cast<int>(v / static_cast<uint32_t>(nx));
-            z[k] = value(v);
+            z[k] = wsPosition_m[v].z;
         }
         const int twiceArea = (gi[1] - gi[0]) * (gj[2] - gj[0]) - (gj[1] - gj[0]) * (gi[2] - gi[0]);
         if (twiceArea == 0) continue;
@@ -203,27 +199,15 @@ float levelValueError(int nx, const std::vector<uint32_t>& indices, IndexRange r
                 const int w2 = twiceArea - w0 - w1;
                 if ((twiceArea > 0) ? (w0 < 0 || w1 < 0 || w2 < 0) : (w0 > 0 || w1 > 0 || w2 > 0))
                     continue;
-                const float surface =
+                const float surface_m =
                     (static_cast<float>(w0) * z[0] + static_cast<float>(w1) * z[1] +
                      static_cast<float>(w2) * z[2]) /
                     static_cast<float>(twiceArea);
-                const float vertex = value(static_cast<uint32_t>(static_cast<size_t>(j) * nx + i));
-                error = std::max(error, std::abs(vertex - surface));
+                const float vertex_m = wsPosition_m[static_cast<size_t>(j) * nx + i].z;
+                error_m = std::max(error_m, std::abs(vertex_m - surface_m));
             }
     }
-    return error;
-}
-
-}  // namespace
-
-float meshLevelError(int nx, const std::vector<glm::vec3>& wsPosition_m,
-                     const std::vector<uint32_t>& indices, IndexRange range) {
-    return levelValueError(nx, indices, range, [&](uint32_t v) { return wsPosition_m[v].z; });
-}
-
-float meshLevelValueError(int nx, const std::vector<float>& value,
-                          const std::vector<uint32_t>& indices, IndexRange range) {
-    return levelValueError(nx, indices, range, [&](uint32_t v) { return value[v]; });
+    return error_m;
 }
 
 int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float near_m) {
@@ -240,14 +224,7 @@ int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float 
     while (flat + 1 < chunk.levelCount && cellFits(flat + 1, MESH_FLAT_CELL_PER_LOD_PIXEL) &&
            chunk.levelError_m[flat + 1] * focal_px <= MESH_ERROR_PER_LOD_PIXEL * lodPixels * near_m)
         ++flat;
-    level = std::max(level, flat);
-    if (level > chunk.shadowLevel) {
-        int small = 0;  // the coarsest level whose cells are small enough to smear a shadow
-        while (small + 1 < chunk.levelCount && cellFits(small + 1, MESH_SHADOW_CELL_PER_LOD_PIXEL))
-            ++small;
-        level = std::min(level, std::max(chunk.shadowLevel, small));
-    }
-    return level;
+    return std::max(level, flat);
 }
 
 bool chunkMayFade(const ShellRange& range, int shells, float d1_m, float far_m) {

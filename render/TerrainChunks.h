@@ -43,11 +43,6 @@ constexpr float MESH_CELL_PER_LOD_PIXEL = 4.0f;
 /// examples. Measured on examples/knoll.toml (docs/render.md, "Where a frame's time goes"): the
 /// full mesh near the camera was 70 % of the frame's triangles and half its rasteriser time.
 constexpr float MESH_ERROR_PER_LOD_PIXEL = 0.5f;
-/// Cells of a level that misplaces the key light's shadow (TerrainChunk::shadowLevel) may span at
-/// most this many lodPixels on screen: MESH_CELL_PER_LOD_PIXEL's budget, so a shadowed chunk only
-/// forgoes the flat-ground coarsening (1 lodPixel cost the knoll 24 ms a frame against 21 for a
-/// 7.59 against 7.72-level worst tile, docs/render.md "Shadows").
-constexpr float MESH_SHADOW_CELL_PER_LOD_PIXEL = 4.0f;
 constexpr float MESH_FLAT_CELL_PER_LOD_PIXEL = 32.0f;
 
 /// Row bands per chunk: each mesh level's index list is also cut into bands of whole rows, each
@@ -79,10 +74,6 @@ struct TerrainChunk {
     /// levelError_m[l]: the largest vertical distance, metres, between a full-mesh vertex of the
     /// chunk and level l's surface above or below it (0 for level 0).
     float levelError_m[MESH_LEVELS] = {};
-    /// The coarsest level the key light's shadow allows: the levels up to it interpolate every
-    /// full-mesh vertex's visibility within SHADOW_LEVEL_TOLERANCE (render/ShadowMap.h; the
-    /// renderer sets it with the shadow map, levelCount - 1 without one).
-    int shadowLevel = MESH_LEVELS - 1;
     /// bands[l][b], b < bandCount[l]: level l cut into bands of whole (coarse) rows, south first,
     /// together exactly levels[l] (render/TerrainChunks.h, CHUNK_BANDS).
     ChunkBand bands[MESH_LEVELS][CHUNK_BANDS];
@@ -127,10 +118,8 @@ ShellRange shellRange(int shells, float d1_m, float distance_m);
 /// the focal length in pixels), the coarser of two rules: the coarsest l < chunk.levelCount whose
 /// cells (2^l quad_m) span at most MESH_CELL_PER_LOD_PIXEL lodPixels on screen at that distance;
 /// and the coarsest l whose cells span at most MESH_FLAT_CELL_PER_LOD_PIXEL lodPixels and whose
-/// levelError_m, and that of every finer level, spans at most MESH_ERROR_PER_LOD_PIXEL lodPixels;
-/// then no coarser than chunk.shadowLevel unless its cells span at most
-/// MESH_SHADOW_CELL_PER_LOD_PIXEL lodPixels (a coarse level smears a shadow's edge over its cells:
-/// allowed where they are that small on screen). 0 when lodPixels is 0 (no level of detail).
+/// levelError_m, and that of every finer level, spans at most MESH_ERROR_PER_LOD_PIXEL lodPixels. 0
+/// when lodPixels is 0 (no level of detail).
 int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float near_m);
 
 /// The largest vertical distance, metres, between a vertex of the nx-wide grid `wsPosition_m`
@@ -138,12 +127,6 @@ int meshLevel(const TerrainChunk& chunk, float focal_px, float lodPixels, float 
 /// vertices) and those triangles' surface at the vertex's plan position.
 float meshLevelError(int nx, const std::vector<glm::vec3>& wsPosition_m,
                      const std::vector<uint32_t>& indices, IndexRange range);
-
-/// meshLevelError for any per-vertex value (value.size() = nx * ny): the largest difference
-/// between a full-mesh vertex's value and the value level `range` interpolates there (the key
-/// light's visibility, render/ShadowMap.h: a coarse level must not smear a shadow's edge).
-float meshLevelValueError(int nx, const std::vector<float>& value,
-                          const std::vector<uint32_t>& indices, IndexRange range);
 
 /// True if a chunk whose ground reaches `far_m` metres from the eye needs the level of detail's
 /// program (shell.vert's FADE): when `range` drops shells (stride > 1), since the shells drawn

@@ -36,8 +36,12 @@ layout(location = 4) in uint aGroup;     // animation-step group
 layout(location = 5) in vec2 aGroupCoord; // position in the group grid (when BLEND_GROUPS)
 layout(location = 6) in float aFlutter;   // turbulent flutter amplitude of the tip tilt, radians
 // Share of the key light (light 0) that passes the terrain to this vertex, [0, 1], from its
-// shadow map (render/ShadowMap.h): 1 without one. The blades over a vertex share its value.
-layout(location = 7) in float aKeyLight;
+// shadow map (render/ShadowMap.h), at each mesh level (.x-.w levels 0-3, then 4-5): at a coarse
+// level, the mean over the ground its cells stand for. 1 without a map. The blades over a vertex
+// share its value.
+layout(location = 7) in vec4 aKeyLight0;
+layout(location = 8) in vec2 aKeyLight4;
+uniform int uMeshLevel;  // the mesh level this draw's chunk takes (render/TerrainChunks.h)
 
 uniform mat4 uClipFromWorld;
 uniform vec3 uEyePos;          // camera position
@@ -230,6 +234,7 @@ void main() {
     vec3 V = normalize(uEyePos - pos);
 
     vec3 lit = vec3(0.0);
+    float key = (uMeshLevel < 4) ? aKeyLight0[uMeshLevel] : aKeyLight4[uMeshLevel - 4];
     for (int l = 0; l < uLightCount; ++l) {
         vec3 toLight = uLightPos[l] - pos;
         float d = length(toLight);
@@ -244,7 +249,7 @@ void main() {
         // Thesis 3.3.4: 1 / (k_c + k_l d + k_q d^2).
         vec3 k = uLightAtten[l];
         float attenuation = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
-        lit += uLightColor[l] * (attenuation * (diffuse + specular) * (l == 0 ? aKeyLight : 1.0));
+        lit += uLightColor[l] * (attenuation * (diffuse + specular) * (l == 0 ? key : 1.0));
     }
 #if FADE
     // The self-shadowing and the ambient term are applied per fragment (shell.frag), where the

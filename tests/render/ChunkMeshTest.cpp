@@ -224,12 +224,6 @@ TEST(ChunkMesh, LevelErrorIsZeroOnAPlaneAndTheSpikeHeightWhereASpikeIsCut) {
             EXPECT_NEAR(
                 detail::meshLevelError(mesh->nx, mesh->wsPosition_m, indices, chunks[0].levels[l]),
                 expected, ERROR_TOLERANCE_M);
-            // The same error for a per-vertex value (the key light's visibility): the heights
-            // as values give the heights' error.
-            std::vector<float> value;
-            for (const glm::vec3& p : mesh->wsPosition_m) value.push_back(p.z);
-            EXPECT_NEAR(detail::meshLevelValueError(mesh->nx, value, indices, chunks[0].levels[l]),
-                        expected, ERROR_TOLERANCE_M);
         }
     }
 }

@@ -42,16 +42,22 @@ struct ShadowScene {
     std::unique_ptr<GlContext> context = createOsMesaContext(SIZE_PX, SIZE_PX);
     ShellRenderer renderer{*context};
     Camera camera;
-    explicit ShadowScene(const TerrainMesh& mesh) {
+    GrassTexture texture = generateGrassTexture(GrassTextureSpec{});
+    explicit ShadowScene(const TerrainMesh& mesh, float lodPixels = GrassParams{}.lodPixels) {
         renderer.setTerrain(mesh);
-        GrassParams grass;
-        grass.height_m = 0.3f;
-        grass.shells = 8;
-        renderer.setGrass(grass, generateGrassTexture(GrassTextureSpec{}));
+        setLod(lodPixels);
         // Straight down from 150 m, a little off the vertical so lookAt has an up direction.
         camera.wsPosition_m = glm::vec3(0.0f, -1.0f, 150.0f);
         camera.wsTarget_m = glm::vec3(0.0f);
         camera.far_m = 400.0f;
+    }
+    // lodPixels 0: every shell on the full mesh, where a vertex's visibility is its own.
+    void setLod(float lodPixels) {
+        GrassParams grass;
+        grass.height_m = 0.3f;
+        grass.shells = 8;
+        grass.lodPixels = lodPixels;
+        renderer.setGrass(grass, texture);
     }
     Image frame(const Lighting& lighting) {
         renderer.setLighting(lighting);
@@ -101,9 +107,36 @@ TEST(Shadows, TheMapLookupBlendsFourDepthComparisonsLikeGlsLinearShadowSampler) 
     EXPECT_FLOAT_EQ(detail::mapVisibility(depth, 2, {0.5f, NAN, 0.9f}), 1.0f);
 }
 
+TEST(Shadows, ACoarseLevelShowsTheMeanVisibilityOfTheGroundItsCellsStandFor) {
+    // A 65 x 65 grid lit for i < 40, shadowed from column 40 on; chunks of 32 quads.
+    constexpr int N = 65;
+    std::vector<float> visible(N * N);
+    for (int j = 0; j < N; ++j)
+        for (int i = 0; i < N; ++i) visible[j * N + i] = i < 40 ? 1.0f : 0.0f;
+    const std::vector<float> levels = detail::levelVisibility(visible, N, N, 6, 32);
+    ASSERT_EQ(levels.size(), visible.size() * 6);
+    const auto at = [&](int i, int j, int l) { return levels[size_t(j * N + i) * 6 + l]; };
+    // Level 0 is the vertex's own; level 2 at column 38 averages columns 36..40: 4 of 5 lit.
+    EXPECT_FLOAT_EQ(at(38, 10, 0), 1.0f);
+    EXPECT_FLOAT_EQ(at(38, 10, 2), 0.8f);
+    // Level 3 at column 44 averages 40..48: all shadowed; at column 36, 32..40: 8 of 9 lit.
+    EXPECT_FLOAT_EQ(at(44, 10, 3), 0.0f);
+    EXPECT_FLOAT_EQ(at(36, 10, 3), 8.0f / 9.0f);
+    // Chunk borders (row 32, column 32, the grid's edges) keep their own value at every level.
+    for (int l = 0; l < 6; ++l) {
+        EXPECT_FLOAT_EQ(at(39, 32, l), 1.0f);
+        EXPECT_FLOAT_EQ(at(32, 10, l), 1.0f);
+        EXPECT_FLOAT_EQ(at(64, 10, l), 0.0f);
+    }
+    // The mean over the grid is kept at every level away from the step (no light made or lost).
+    EXPECT_FLOAT_EQ(at(10, 10, 5), 1.0f);
+}
+
 TEST(Shadows, ARidgeUnderALowSunDarkensTheGroundItsShadowCovers) {
+    // The full mesh: the shadow's edge as sharp as the vertices (coarse levels average it over
+    // their cells; checked below).
     ShadowScene scene(
-        test::makeGridMesh(241, 241, HALF_M, 3.0f, [](float x, float) { return ridge(x); }));
+        test::makeGridMesh(241, 241, HALF_M, 3.0f, [](float x, float) { return ridge(x); }), 0.0f);
     constexpr float ELEVATION_DEG = 20.0f;
     const Image on = scene.frame(sunFromEast(ELEVATION_DEG, true));
     const Image off = scene.frame(sunFromEast(ELEVATION_DEG, false));
@@ -140,6 +173,25 @@ TEST(Shadows, ARidgeUnderALowSunDarkensTheGroundItsShadowCovers) {
     EXPECT_LT(shadowedOn / shadowedOff, 0.5);
     // Lit: unchanged but for the odd texel at a shadow's soft edge.
     EXPECT_NEAR(litOn / litOff, 1.0, 0.01);
+
+    // With the level of detail the far chunks take coarse meshes, whose vertices show the mean
+    // visibility of the ground their cells stand for: the edge blurs over a cell, the light on
+    // the whole shadowed strip and its surroundings stays (the mean over x in [-45, 10] m).
+    const auto stripMean = [&](const Image& image) {
+        double sum = 0;
+        int n = 0;
+        for (float x = -45.0f; x <= 10.0f; x += 0.5f)
+            for (float y = -20.0f; y <= 20.0f; y += 2.0f, ++n)
+                sum += luminance(image, scene.pixelOf(glm::vec3(x, y, ridge(x))));
+        return sum / n;
+    };
+    const double full = stripMean(on);
+    scene.setLod(GrassParams{}.lodPixels);
+    const double lod = stripMean(scene.frame(sunFromEast(ELEVATION_DEG, true)));
+    const double lodUnshadowed = stripMean(scene.frame(sunFromEast(ELEVATION_DEG, false)));
+    std::printf("strip mean: every shell %.2f, level of detail %.2f (unshadowed %.2f)\n", full, lod,
+                lodUnshadowed);
+    EXPECT_NEAR(lod / full, 1.0, 0.03);
 }
 
 TEST(Shadows, AFlatMeadowDoesNotShadowItself) {
