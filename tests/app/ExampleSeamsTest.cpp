@@ -7,11 +7,11 @@
 ///
 /// Disabled: it is the measurement of what is left of issue 26's seams, not yet a bound the
 /// examples meet. Session 13 measured (worst tile |mean|, levels; bound 6): fractal_meadow 8.0,
-/// gust_ridge_valley 4.7, knoll 10.0 (its far shadow, sharp with every shell, spread over
-/// coarse cells; 6.7 without shadows), landscape 1.3, landscape_source 100 (seen from over a
-/// kilometre away, where the full stack itself aliases), lee_ridge 8.2, meadow_path 3.5,
-/// ridge_solved 8.2, valley 6.8, whirlwind_meadow 4.9; docs/render.md. GALE_SEAMS_NO_SHADOWS=1
-/// draws without the key light's shadow. Run it with --gtest_also_run_disabled_tests.
+/// gust_ridge_valley 4.7, knoll 10.0 (its far shadow, sharp with every shell, spread over coarse
+/// cells; 6.7 without shadows), landscape 1.3, landscape_source 100 (seen from over a kilometre
+/// away, where the full stack itself aliases), lee_ridge 8.2, meadow_path 3.5, ridge_solved 8.2,
+/// valley 6.8, whirlwind_meadow 4.9; docs/render.md. GALE_SEAMS_NO_SHADOWS=1 draws without the
+/// key light's shadow. Run it with --gtest_also_run_disabled_tests.
 
 #include <gtest/gtest.h>
 
