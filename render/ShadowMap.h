@@ -52,12 +52,6 @@ constexpr float SHADOW_NORMAL_OFFSET_TEXELS = 1.5f;
 std::optional<ShadowView> keyLightView(const glm::vec3& light_m, const glm::vec3& lo,
                                        const glm::vec3& hi, int sizePx);
 
-/// Draws the terrain's depth (the first `indexCount` of `indices`, triangles over `positions_m`,
-/// world metres) as view.clipFromWorld sees it into a SHADOW_MAP_PX map, reads it back and
-/// returns, for each vertex, mapVisibility at the point SHADOW_NORMAL_OFFSET_TEXELS texels off
-/// the surface along its unit normal. Requires a current context; every GL object it makes is
-/// deleted before it returns (the map is 16 MiB), and it leaves the default framebuffer, no
-/// vertex array and no program bound, polygon offset off (the caller sets its own viewport).
 /// The visibility a vertex shows when the terrain is drawn at mesh level l (render/TerrainChunks.h:
 /// every 2^l-th vertex), for l = 0..levels-1, `levels` values per vertex: level 0 the vertex's own;
 /// level l >= 1 the mean over the (2^l + 1)^2 grid vertices around it (clipped to the grid), so a
@@ -68,6 +62,12 @@ std::optional<ShadowView> keyLightView(const glm::vec3& light_m, const glm::vec3
 std::vector<float> levelVisibility(const std::vector<float>& visible, int nx, int ny, int levels,
                                    int chunkQuads);
 
+/// Draws the terrain's depth (the first `indexCount` of `indices`, triangles over `positions_m`,
+/// world metres) as view.clipFromWorld sees it into a SHADOW_MAP_PX map, reads it back and
+/// returns, for each vertex, mapVisibility at the point SHADOW_NORMAL_OFFSET_TEXELS texels off
+/// the surface along its unit normal. Requires a current context; every GL object it makes is
+/// deleted before it returns (the map is 16 MiB), and it leaves the default framebuffer, no
+/// vertex array and no program bound, polygon offset off (the caller sets its own viewport).
 std::vector<float> vertexVisibility(const ShadowView& view,
                                     const std::vector<glm::vec3>& positions_m,
                                     const std::vector<glm::vec3>& normals,

@@ -44,7 +44,6 @@ void ShellRenderer::Impl::init() {
     windVbo = detail::Buffer(name);
     glGenBuffers(1, &name);
     indexBuffer = detail::Buffer(name);
-
     glGenTextures(1, &name);
     grassTexture = detail::Texture(name);
     glGenSamplers(1, &name);
@@ -351,12 +350,10 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     // The full mesh: every chunk's level 0, at the start of the index buffer (buildChunks).
     m.indexCount = static_cast<GLsizei>(static_cast<size_t>(mesh.nx - 1) * (mesh.ny - 1) * 6u);
     m.chunks = std::move(chunks);
-    m.terrainIndices = std::move(indices);
+    m.terrainIndices.assign(indices.begin(), indices.begin() + m.indexCount);
     m.terrainVertices = std::move(vertices);
     m.terrainNx = mesh.nx;
     m.terrainNy = mesh.ny;
-    m.terrainPositions_m = mesh.wsPosition_m;
-    m.terrainNormals = mesh.wsNormal;
     m.terrainMin_m = m.terrainMax_m = mesh.wsPosition_m[0];
     for (const glm::vec3& p : mesh.wsPosition_m) {
         m.terrainMin_m = glm::min(m.terrainMin_m, p);
@@ -420,9 +417,10 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
     m.density->setCuts(texture.levels[0]);
     m.bladeColor = meanBladeColor(texture.levels[0]);
     detail::checkGlError("ShellRenderer::setGrass");
+    // The map's box holds the grass: a new height redraws it, nothing else of the grass does.
+    if (!m.haveGrass || params.height_m != m.grass.height_m) m.shadowDirty = true;
     m.grass = params;
     m.haveGrass = true;
-    m.shadowDirty = true;  // the map's box holds the grass
 }
 
 void ShellRenderer::setDensityMap(const DensityMap& map) {

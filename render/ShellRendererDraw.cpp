@@ -36,8 +36,14 @@ void ShellRenderer::Impl::updateShadow() {
     }
     std::vector<float> visible;
     if (shadowView) {
-        visible = detail::vertexVisibility(*shadowView, terrainPositions_m, terrainNormals,
-                                           terrainIndices, static_cast<size_t>(indexCount));
+        std::vector<glm::vec3> positions_m(terrainVertices.size()), normals(positions_m.size());
+        for (size_t v = 0; v < terrainVertices.size(); ++v) {
+            const TerrainVertex& t = terrainVertices[v];
+            positions_m[v] = glm::vec3(t.position[0], t.position[1], t.position[2]);
+            normals[v] = glm::vec3(t.normal[0], t.normal[1], t.normal[2]);
+        }
+        visible = detail::vertexVisibility(*shadowView, positions_m, normals, terrainIndices,
+                                           terrainIndices.size());
     }
     const std::vector<float> levels =
         shadowView ? detail::levelVisibility(visible, terrainNx, terrainNy, detail::MESH_LEVELS,

@@ -133,8 +133,7 @@ struct ShellRenderer::Impl {
     bool shadowDirty = true;  ///< terrain, grass height or lighting changed since the map
     /// The terrain buffer's contents, kept to rewrite TerrainVertex::keyLight with a shadow map.
     std::vector<shell_detail::TerrainVertex> terrainVertices;
-    std::vector<glm::vec3> terrainPositions_m, terrainNormals;  ///< kept for the shadow's lookups
-    std::vector<uint32_t> terrainIndices;  ///< the index buffer's contents (chunk levels' errors)
+    std::vector<uint32_t> terrainIndices;  ///< the full mesh's indices (the shadow's depth pass)
     int terrainNx = 0, terrainNy = 0;
 
     struct {

@@ -391,9 +391,11 @@ void advectSingle(const MacGrid& g, Placement p, const std::vector<double>& q,
                   const std::vector<uint8_t>* mask, AdvectionScratch& scratch) {
     const double groundTop = g.terrainTop_m();
     std::vector<float> uf, vf, wf;
-    if (!vel.uSingle)
-        detail::roundToFloat(*vel.u, uf), detail::roundToFloat(*vel.v, vf),
-            detail::roundToFloat(*vel.w, wf);
+    if (!vel.uSingle) {
+        detail::roundToFloat(*vel.u, uf);
+        detail::roundToFloat(*vel.v, vf);
+        detail::roundToFloat(*vel.w, wf);
+    }
     std::vector<uint8_t> all;
     if (!mask) all.assign(q.size(), 1);
     const double h = g.voxelSize_m;
