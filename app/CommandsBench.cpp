@@ -198,6 +198,14 @@ void addModels(CLI::App& bench, VerbTable& verbs) {
     verb->add_flag("--eulerian-ridge", o->eulerianRidge,
                    "The table also solves the Cao and Tamura ridge with the Eulerian pseudo-time "
                    "step (solver.momentum_advection = \"eulerian\")");
+    verb->add_flag("--closures", o->closures,
+                   "The table also solves the Cao and Tamura ridge with every two-equation closure "
+                   "(solver.turbulence = \"k_epsilon\", \"k_omega_sst\"), beside the mixing "
+                   "length");
+    verb->add_option("--ridge-resolution", o->ridgeCellsPerH,
+                     "H / h of the Cao and Tamura ridge's solves, one or more (default 5 10; "
+                     "--quick 5)")
+        ->check(CLI::Range(1, 40));
     verb->footer(EXIT_CODES_FOOTER);
     verbs.add(verb, [o] { return runBench([o] { return runBenchModels(*o); }); });
 }

@@ -1,14 +1,14 @@
 /// \file MomentumEddyViscosity.cpp
 /// The eddy viscosity of each stress step (sim/MomentumTurbulence.h): the strain and vorticity
-/// on the z-faces, then nu_t from Prandtl's mixing length or from the k-epsilon transport, and
+/// on the z-faces, then nu_t from Prandtl's mixing length or from the two-equation transport, and
 /// the closure's k on the cells.
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "sim/KEpsilon.h"
 #include "sim/MomentumTurbulence.h"
+#include "sim/TwoEquation.h"
 
 namespace gale::sim {
 
@@ -25,8 +25,9 @@ void TurbulentStress::computeEddyViscosity(double dt, const std::vector<double>&
     // Cells and z-faces share the first nx * ny * nz indices (the strain lives on cells).
     auto zi = [&G](int i, int j, int k) { return G.faceZIndex(i, j, k); };
     mStrainH.assign(G.cellCount(), 0.0);
-    // The vorticity only feeds the k-epsilon production (Kato-Launder): the mixing length skips it.
-    const bool vorticity = mKEpsilon != nullptr;
+    // The vorticity only feeds the two-equation production (Kato-Launder): the mixing length skips
+    // it.
+    const bool vorticity = mTwoEquation != nullptr;
     mRotationH.assign(vorticity ? G.cellCount() : 0, 0.0);
     mNuZ.assign(G.count(Placement::FaceZ), 0.0);
     mShearZ.assign(G.count(Placement::FaceZ), 0.0);
@@ -87,11 +88,11 @@ void TurbulentStress::computeEddyViscosity(double dt, const std::vector<double>&
                                       0.5 * (mRotationH[zi(i, j, k - 1)] + mRotationH[zi(i, j, k)]);
                     mVorticityZ[zi(i, j, k)] = std::sqrt(w2);
                 }
-                if (!mKEpsilon)
+                if (!mTwoEquation)
                     mNuZ[zi(i, j, k)] = mNuMol + double(mL2Z[zi(i, j, k)]) * mShearZ[zi(i, j, k)];
             }
     });
-    if (mKEpsilon) kEpsilonStep(dt, U, V, W);
+    if (mTwoEquation) twoEquationStep(dt, U, V, W);
     // The wall-level and top faces of each column take the value of their air neighbour (the
     // wall's stress is the wall function's; the top's is prescribed): they only enter the
     // cell-centred averages.
@@ -110,8 +111,8 @@ void TurbulentStress::computeEddyViscosity(double dt, const std::vector<double>&
             mShearZ[zi(i, j, nz)] = nz - 1 > kb ? mShearZ[zi(i, j, nz - 1)] : mShearZ[zi(i, j, kb)];
         }
     });
-    if (mKEpsilon) {
-        mTke = mKEpsilon->tke_m2ps2();
+    if (mTwoEquation) {
+        mTke = mTwoEquation->tke_m2ps2();
         return;
     }
     // Local-equilibrium k on the cells (turbulentKineticEnergy_m2ps2): the two z-faces' mean.
@@ -130,24 +131,45 @@ void TurbulentStress::computeEddyViscosity(double dt, const std::vector<double>&
     });
 }
 
-void TurbulentStress::faceEddyViscosityFromKEpsilon() {
+void TurbulentStress::faceEddyViscosityFromTransport() {
     const AirDomain& D = mDomain;
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
     const GridIndex G = D.layout();
+    const TwoEquationTransport& T = *mTwoEquation;
+    const bool limited = T.model() == TwoEquationModel::KOmegaSst;
+    if (limited) mLimiterZ.assign(G.count(Placement::FaceZ), 1.0);
     tbb::parallel_for(1, nz, [&](int k) {
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 if (!D.isAir(i, j, k - 1)) continue;
                 const size_t f = G.faceZIndex(i, j, k);
-                const double nuT = 0.5 * (mKEpsilon->eddyViscosity_m2ps(G.cellIndex(i, j, k - 1)) +
-                                          mKEpsilon->eddyViscosity_m2ps(G.cellIndex(i, j, k)));
-                mNuZ[f] = mNuMol + nuT * double(mLogCorrectionZ[f]);
+                const size_t a = G.cellIndex(i, j, k - 1), b = G.cellIndex(i, j, k);
+                const bool upper = D.isAir(i, j, k);
+                const double correction = double(mLogCorrectionZ[f]);
+                double nuT = 0.5 * (T.eddyViscosity_m2ps(a) + T.eddyViscosity_m2ps(b)) * correction;
+                if (limited) {
+                    // SST's limiter nu_t = a1 k / max(a1 omega, S F2) as the factor
+                    // min(1, a1 omega / (S F2)) on k / omega, with the face's strain times the
+                    // log-law correction: a sampled log profile's exact strain u* / (kappa z),
+                    // where the limiter is inactive (a1 omega / S = 1.03 there).
+                    const double omega =
+                        upper ? 0.5 * (T.specificDissipation_1ps(a) + T.specificDissipation_1ps(b))
+                              : T.specificDissipation_1ps(a);
+                    const double f2 = upper ? 0.5 * (T.blendF2(a) + T.blendF2(b)) : T.blendF2(a);
+                    const double strain = mShearZ[f] * correction * f2;
+                    const double bound = sst::A1 * omega;
+                    if (strain > bound) {
+                        mLimiterZ[f] = bound / strain;
+                        nuT *= mLimiterZ[f];
+                    }
+                }
+                mNuZ[f] = mNuMol + nuT;
             }
     });
 }
 
-void TurbulentStress::kEpsilonStep(double dt, const std::vector<double>& U,
-                                   const std::vector<double>& V, const std::vector<double>& W) {
+void TurbulentStress::twoEquationStep(double dt, const std::vector<double>& U,
+                                      const std::vector<double>& V, const std::vector<double>& W) {
     const AirDomain& D = mDomain;
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
     const GridLayout& L = D.layout();
@@ -155,7 +177,7 @@ void TurbulentStress::kEpsilonStep(double dt, const std::vector<double>& U,
     // Production on the z-faces from the state before the step, P_f = nu_t S Omega (Kato and
     // Launder 1993), shared between the two cells by the log profile's energy split; the top
     // cell takes its bottom face's rate for its upper half.
-    faceEddyViscosityFromKEpsilon();
+    faceEddyViscosityFromTransport();
     mProductionZ.assign(G.count(Placement::FaceZ), 0.0);
     tbb::parallel_for(1, nz, [&](int k) {
         for (int j = 0; j < ny; ++j)
@@ -182,8 +204,25 @@ void TurbulentStress::kEpsilonStep(double dt, const std::vector<double>& U,
                 mProductionCell[G.cellIndex(i, j, k)] = energy / L.dz_m(k);
             }
     });
-    mKEpsilon->step(dt, U, V, W, mProductionCell);
-    faceEddyViscosityFromKEpsilon();
+    // SST: each cell's limiter, the mean of its z-faces' between air cells.
+    mLimiterCell.clear();
+    if (mTwoEquation->model() == TwoEquationModel::KOmegaSst) {
+        mLimiterCell.assign(G.cellCount(), 1.0);
+        tbb::parallel_for(0, nz, [&](int k) {
+            for (int j = 0; j < ny; ++j)
+                for (int i = 0; i < nx; ++i) {
+                    if (!D.isAir(i, j, k)) continue;
+                    double sum = 0.0;
+                    int n = 0;
+                    if (k > 0 && D.isAir(i, j, k - 1)) sum += mLimiterZ[G.faceZIndex(i, j, k)], ++n;
+                    if (k + 1 < nz && D.isAir(i, j, k + 1))
+                        sum += mLimiterZ[G.faceZIndex(i, j, k + 1)], ++n;
+                    if (n > 0) mLimiterCell[G.cellIndex(i, j, k)] = sum / n;
+                }
+        });
+    }
+    mTwoEquation->step(dt, U, V, W, mProductionCell, mLimiterCell);
+    faceEddyViscosityFromTransport();
 }
 
 }  // namespace gale::sim

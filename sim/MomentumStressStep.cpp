@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "sim/Format.h"
-#include "sim/KEpsilon.h"
+#include "sim/TwoEquation.h"
 #include "sim/MomentumTurbulence.h"
 #include "sim/Tridiagonal.h"
 #include "sim/WallLaw.h"
@@ -163,14 +163,14 @@ TurbulenceReport TurbulentStress::apply(double dt, std::vector<double>& U, std::
                         // length), or from the wall cells' k beside the face (k-epsilon,
                         // u*_k = C_mu^(1/4) sqrt(k); Richards and Hoxey 1993).
                         double uScale = cw * ws->tangentialSpeed;
-                        if (mKEpsilon) {
+                        if (mTwoEquation) {
                             int ia = std::min(i, nx - 1), ja = std::min(j, ny - 1), ib = ia,
                                 jb = ja;
                             if (c == 0) ia = std::max(i - 1, 0);
                             if (c == 1) ja = std::max(j - 1, 0);
-                            uScale = 0.5 * (mKEpsilon->wallFrictionVelocity_mps(
+                            uScale = 0.5 * (mTwoEquation->wallFrictionVelocity_mps(
                                                 G.column(Placement::Cell, ia, ja)) +
-                                            mKEpsilon->wallFrictionVelocity_mps(
+                                            mTwoEquation->wallFrictionVelocity_mps(
                                                 G.column(Placement::Cell, ib, jb)));
                         }
                         // tau_w = wallC * (U_t)_c over the wetted area q h^2 of the face's

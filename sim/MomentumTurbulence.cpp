@@ -15,7 +15,7 @@
 #include "base/Numbers.h"
 #include "base/ParameterError.h"
 #include "sim/Format.h"
-#include "sim/KEpsilon.h"
+#include "sim/TwoEquation.h"
 #include "sim/WallLaw.h"
 
 namespace gale::sim {
@@ -24,14 +24,23 @@ using detail::num, detail::wallHeight_m;
 }  // namespace
 
 const char* turbulenceClosureName(TurbulenceClosure c) {
-    return c == TurbulenceClosure::KEpsilon ? "k_epsilon" : "mixing_length";
+    switch (c) {
+        case TurbulenceClosure::KEpsilon:
+            return "k_epsilon";
+        case TurbulenceClosure::KOmegaSst:
+            return "k_omega_sst";
+        case TurbulenceClosure::MixingLength:
+            break;
+    }
+    return "mixing_length";
 }
 
 TurbulenceClosure turbulenceClosureFromName(const std::string& name) {
-    for (TurbulenceClosure c : {TurbulenceClosure::MixingLength, TurbulenceClosure::KEpsilon})
+    for (TurbulenceClosure c : {TurbulenceClosure::MixingLength, TurbulenceClosure::KEpsilon,
+                                TurbulenceClosure::KOmegaSst})
         if (name == turbulenceClosureName(c)) return c;
     throw ParameterError("solver.turbulence", "\"" + name + "\"",
-                         "one of \"mixing_length\", \"k_epsilon\"");
+                         "one of \"mixing_length\", \"k_epsilon\", \"k_omega_sst\"");
 }
 
 void validateWallAndMixing(double displacementHeight_m, double mixingLengthMax_m) {
@@ -47,9 +56,9 @@ void SurfaceLayerSettings::validate() const {
     if (!(roughness_m > 0.0) || !std::isfinite(roughness_m))
         throw ParameterError("wind.roughness_m", num(roughness_m), "must be > 0 m and finite");
     validateWallAndMixing(displacementHeight_m, mixingLengthMax_m);
-    if (closure == TurbulenceClosure::KEpsilon && !(eddyViscosity && wallStress && balanced))
+    if (isTwoEquation(closure) && !(eddyViscosity && wallStress && balanced))
         throw std::logic_error(
-            "SurfaceLayerSettings: the k-epsilon closure needs the eddy viscosity, the wall "
+            "SurfaceLayerSettings: a two-equation closure needs the eddy viscosity, the wall "
             "stress and the ambient profile (its inflow and top)");
     if (wallStress && !eddyViscosity)
         throw std::logic_error("SurfaceLayerSettings: the wall stress needs the eddy viscosity");
@@ -162,8 +171,8 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
     const double uStar = surface::frictionVelocity_mps(A.speed_mps, A.referenceHeight_m, z0, d);
     const double dir = gale::radiansFromDegrees(A.direction_deg),
                  e[2] = {std::cos(dir), std::sin(dir)};
-    if (s.closure == TurbulenceClosure::KEpsilon) {
-        setUpKEpsilon(uStar, e[0], e[1]);
+    if (isTwoEquation(s.closure)) {
+        setUpTwoEquation(uStar, e[0], e[1]);
         return;
     }
     for (int c = 0; c < 2; ++c) {
@@ -217,7 +226,7 @@ TurbulentStress::TurbulentStress(const AirDomain& D, const SurfaceLayerSettings&
 
 TurbulentStress::~TurbulentStress() = default;
 
-void TurbulentStress::setUpKEpsilon(double uStar, double ex, double ey) {
+void TurbulentStress::setUpTwoEquation(double uStar, double ex, double ey) {
     const AirDomain& D = mDomain;
     const int nx = D.nx(), ny = D.ny(), nz = D.nz();
     const GridLayout& L = D.layout();
@@ -237,7 +246,7 @@ void TurbulentStress::setUpKEpsilon(double uStar, double ex, double ey) {
                 }
         }
     // Per z-face with air on both sides: the log-law correction of nu_t and the share of the
-    // face's production that goes to the cell above (docs/solver.md, "The k-epsilon closure"):
+    // face's production that goes to the cell above (docs/solver.md, "The two-equation closures"):
     // with the samples at z- (the cell below: its centre, or the wall sample) and z+ (the centre
     // above), heights above the displacement plane, and the face at z_e,
     //   nu_t factor = (z+ - z-) / (z_e ln(z+ / z-))  (a sampled log profile then carries u*^2),
@@ -267,8 +276,10 @@ void TurbulentStress::setUpKEpsilon(double uStar, double ex, double ey) {
         const auto& g = mSlopeCell[col];
         wallDistance[col] = 0.5 * wallH[col] / std::sqrt(1.0 + g[0] * g[0] + g[1] * g[1]);
     }
-    mKEpsilon = std::make_unique<KEpsilonTransport>(D, mGroundCell, wallH, wallDistance, z0, d,
-                                                    uStar, mNuMol, mOkX, mOkY, mOkZ);
+    mTwoEquation = std::make_unique<TwoEquationTransport>(
+        mSettings.closure == TurbulenceClosure::KOmegaSst ? TwoEquationModel::KOmegaSst
+                                                          : TwoEquationModel::KEpsilon,
+        D, mGroundCell, wallH, wallDistance, z0, d, uStar, mNuMol, mOkX, mOkY, mOkZ);
     // Richards and Hoxey's top: the constant shear stress u*^2 along the wind; no body force.
     const double tau = uStar * uStar;
     for (size_t c = 0; c < mTopX.size(); ++c)

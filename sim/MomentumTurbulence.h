@@ -63,7 +63,7 @@
 
 namespace gale::sim {
 
-class KEpsilonTransport;
+class TwoEquationTransport;
 
 /// Throws ParameterError naming solver.displacement_height_m (m, must be >= 0) or
 /// solver.mixing_length_max_m (m, must be > 0), each finite: the checks both the momentum model and
@@ -78,9 +78,16 @@ enum class TurbulenceClosure {
     /// The standard k-epsilon model (Launder and Spalding 1974) with Richards and Hoxey's (1993)
     /// inflow and rough-wall functions: transported k and epsilon on the cells, no balance force.
     KEpsilon,
+    /// Menter's (1994) k-omega SST model with the same inflow, top and wall functions: k-omega
+    /// near the ground, k-epsilon away from it, and the eddy viscosity limited where the shear
+    /// stress would exceed a1 k (sim/TwoEquation.h).
+    KOmegaSst,
 };
 
-/// "mixing_length", "k_epsilon" and back; fromName throws gale::ParameterError
+/// true for the closures that transport k (sim/TwoEquation.h).
+inline bool isTwoEquation(TurbulenceClosure c) { return c != TurbulenceClosure::MixingLength; }
+
+/// "mixing_length", "k_epsilon", "k_omega_sst" and back; fromName throws gale::ParameterError
 /// (solver.turbulence) listing the valid names.
 const char* turbulenceClosureName(TurbulenceClosure c);
 TurbulenceClosure turbulenceClosureFromName(const std::string& name);
@@ -149,10 +156,10 @@ class TurbulentStress {
     static constexpr double BYTES_PER_CELL = 8.0 * 8 + 4.0 + 3.0;
 
   private:
-    void setUpKEpsilon(double uStar_mps, double windX, double windY);
-    void kEpsilonStep(double dt_s, const std::vector<double>& u, const std::vector<double>& v,
-                      const std::vector<double>& w);
-    void faceEddyViscosityFromKEpsilon();
+    void setUpTwoEquation(double uStar_mps, double windX, double windY);
+    void twoEquationStep(double dt_s, const std::vector<double>& u, const std::vector<double>& v,
+                         const std::vector<double>& w);
+    void faceEddyViscosityFromTransport();
     void computeEddyViscosity(double dt_s, const std::vector<double>& u,
                               const std::vector<double>& v, const std::vector<double>& w);
 
@@ -170,11 +177,12 @@ class TurbulentStress {
     std::vector<double> mNuZ, mStrainH, mOld, mNuFace;
     std::vector<double> mShearZ, mTke;            // |S| on z-faces (1/s), k on cells (m^2/s^2)
     std::vector<double> mRotationH, mVorticityZ;  // (du/dy - dv/dx)^2 on cells, |Omega| on z-faces
-    // k-epsilon (TurbulenceClosure::KEpsilon): the transport, and per z-face the log-law
-    // correction of nu_t and the upper cell's share of the face's production.
-    std::unique_ptr<KEpsilonTransport> mKEpsilon;
+    // Two-equation closures: the transport, and per z-face the log-law correction of nu_t and
+    // the upper cell's share of the face's production; SST's stress limiter per cell (the mean
+    // of its z-faces' factors).
+    std::unique_ptr<TwoEquationTransport> mTwoEquation;
     std::vector<float> mLogCorrectionZ, mUpperShareZ;
-    std::vector<double> mProductionZ, mProductionCell;
+    std::vector<double> mProductionZ, mProductionCell, mLimiterZ, mLimiterCell;
 };
 
 }  // namespace gale::sim

@@ -83,10 +83,11 @@ using validation::MEASURED_LEE_FOOT_SPEEDUP;
 /// given inflow (the published one unless stated), compares with the measured line.
 Row runRidge(bool momentum, int cellsPerH, const std::vector<RidgeMeasurement>& data,
              int maxIterations, double cfl = 2.0, ridge::Inflow inflow = ridge::Inflow::Published,
-             sim::PseudoTimeAdvection advection = sim::PseudoTimeAdvection::SemiLagrangian) {
+             sim::PseudoTimeAdvection advection = sim::PseudoTimeAdvection::SemiLagrangian,
+             sim::TurbulenceClosure closure = sim::TurbulenceClosure::MixingLength) {
     validation::CaoTamuraOptions o;
     o.momentum = momentum, o.cellsPerH = cellsPerH, o.maxIterations = maxIterations;
-    o.cfl = cfl, o.inflow = inflow, o.advection = advection;
+    o.cfl = cfl, o.inflow = inflow, o.advection = advection, o.turbulence = closure;
     const validation::CaoTamuraStudy s = validation::runCaoTamura(o, data);
     Row r;
     r.seconds = s.seconds;
@@ -94,6 +95,8 @@ Row runRidge(bool momentum, int cellsPerH, const std::vector<RidgeMeasurement>& 
     r.testCase = inflow == ridge::Inflow::Published ? "ridge (Cao, Tamura 2006)"
                                                     : "ridge, foot-fit inflow (history)";
     if (advection == sim::PseudoTimeAdvection::Eulerian) r.testCase = "ridge, Eulerian step";
+    if (closure != sim::TurbulenceClosure::MixingLength)
+        r.testCase += std::string(", ") + sim::turbulenceClosureName(closure);
     r.resolution = "H/h=" + std::to_string(cellsPerH);
     r.nx = s.nx, r.ny = s.ny, r.nz = s.nz;
     r.iterations = s.iterations;
@@ -181,7 +184,9 @@ int runBenchModels(const BenchModelsOptions& opt) {
     if (opt.pseudoTime) return runPseudoTimeStudy();
     if (opt.separation) return runSeparationStudy(opt);
     const std::vector<RidgeMeasurement> data = readValidation(opt.validationCsv);
-    const std::vector<int> ridgeRes = opt.quick ? std::vector<int>{5} : std::vector<int>{5, 10};
+    const std::vector<int> ridgeRes = !opt.ridgeCellsPerH.empty() ? opt.ridgeCellsPerH
+                                      : opt.quick                 ? std::vector<int>{5}
+                                                                  : std::vector<int>{5, 10};
     // Pseudo-time steps per level at most: the quick run is a smoke test of the table.
     const int ridgeIterations = opt.quick ? 300 : 1000;
     const std::vector<int> hemiRes = opt.quick ? std::vector<int>{4} : std::vector<int>{4, 8, 16};
@@ -199,12 +204,19 @@ int runBenchModels(const BenchModelsOptions& opt) {
     for (double h : flatRes) add(runFlat(h));
     // The near-ground gain of stretched layers: 4 m cells with a 1 m first layer.
     add(runFlat(4.0, 1.0));
+    std::vector<sim::TurbulenceClosure> closures = {sim::TurbulenceClosure::MixingLength};
+    if (opt.closures)
+        closures.insert(closures.end(),
+                        {sim::TurbulenceClosure::KEpsilon, sim::TurbulenceClosure::KOmegaSst});
     for (int n : ridgeRes) {
         add(runRidge(false, n, data, ridgeIterations));
-        add(runRidge(true, n, data, ridgeIterations));
-        if (opt.eulerianRidge)
+        for (sim::TurbulenceClosure c : closures) {
             add(runRidge(true, n, data, ridgeIterations, 2.0, ridge::Inflow::Published,
-                         sim::PseudoTimeAdvection::Eulerian));
+                         sim::PseudoTimeAdvection::SemiLagrangian, c));
+            if (opt.eulerianRidge)
+                add(runRidge(true, n, data, ridgeIterations, 2.0, ridge::Inflow::Published,
+                             sim::PseudoTimeAdvection::Eulerian, c));
+        }
     }
     // History: the earlier inflow, a log fit to the measured (already slowed) windward foot (the
     // full run only: the CI smoke run stays as short as before).

@@ -15,6 +15,7 @@
 /// periodic hill for every closure and both pseudo-time steps, error against run time.
 
 #include <string>
+#include <vector>
 
 namespace gale::app {
 
@@ -34,6 +35,11 @@ struct BenchModelsOptions {
     /// The table also solves the ridge with the Eulerian pseudo-time step
     /// (solver.momentum_advection = "eulerian"), beside the default semi-Lagrangian one.
     bool eulerianRidge = false;
+    /// The table also solves the ridge with every two-equation closure (solver.turbulence
+    /// = "k_epsilon", "k_omega_sst"), beside the mixing length, with the steps above.
+    bool closures = false;
+    /// H / h of the ridge's solves (each > 0); empty: 5 and 10 (5 with quick).
+    std::vector<int> ridgeCellsPerH;
     /// Instead of the table: the separation benchmarks (runSeparationStudy).
     bool separation = false;
 };

@@ -73,7 +73,8 @@ int runSeparationStudy(const BenchModelsOptions& opt) {
                                                          sim::PseudoTimeAdvection::Eulerian};
     std::vector<Run> runs;
     for (sim::TurbulenceClosure c :
-         {sim::TurbulenceClosure::MixingLength, sim::TurbulenceClosure::KEpsilon})
+         {sim::TurbulenceClosure::MixingLength, sim::TurbulenceClosure::KEpsilon,
+          sim::TurbulenceClosure::KOmegaSst})
         for (sim::PseudoTimeAdvection a : steps)
             for (int n : resolutions) {
                 Run r;

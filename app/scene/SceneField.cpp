@@ -157,6 +157,9 @@ std::string momentumText(const Scene& scene) {
         m.turbulence == sim::TurbulenceClosure::KEpsilon
             ? "k-epsilon closure (Launder and Spalding 1974, Kato-Launder production, Richards "
               "and Hoxey 1993 inflow and top), wall functions from k (z0 "
+        : m.turbulence == sim::TurbulenceClosure::KOmegaSst
+            ? "k-omega SST closure (Menter 1994, Kato-Launder production, Richards and Hoxey "
+              "1993 inflow and top), wall functions from k (z0 "
             : "mixing-length closure (Blackadar 1962, l_max " + formatG(m.mixingLengthMax_m, 3) +
                   " m), log-law wall stress (z0 ";
     return "momentum model (RANS): " + closure + formatG(scene.wind.ambient.roughness_m, 3) +
@@ -253,6 +256,8 @@ std::vector<std::string> describeSceneField(const Scene& scene, const sim::AirDo
                         (!us.surfaceLayer.enabled ? "no surface layer, "
                          : us.surfaceLayer.closure == sim::TurbulenceClosure::KEpsilon
                              ? "surface layer (k-epsilon, wall functions from k), "
+                         : us.surfaceLayer.closure == sim::TurbulenceClosure::KOmegaSst
+                             ? "surface layer (k-omega SST, wall functions from k), "
                              : "surface layer (mixing length, log-law wall stress), ") +
                         (us.openTop ? "open top" : "free-slip lid on top"));
     }

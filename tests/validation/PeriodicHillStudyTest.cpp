@@ -104,7 +104,8 @@ TEST(PeriodicHillStudy, CoarseChainSeparatesBehindTheCrestAndReattachesBeforeThe
     // Every closure: one the solver refuses (std::logic_error, not built yet) is skipped here
     // and runs, held to the same physics, once it lands.
     for (sim::TurbulenceClosure closure :
-         {sim::TurbulenceClosure::MixingLength, sim::TurbulenceClosure::KEpsilon}) {
+         {sim::TurbulenceClosure::MixingLength, sim::TurbulenceClosure::KEpsilon,
+          sim::TurbulenceClosure::KOmegaSst}) {
         SCOPED_TRACE(sim::turbulenceClosureName(closure));
         // The bench's chain (5 hills, the fourth measured) at h / 5 takes a minute; three hills
         // with the last one measured keep the test near 10 s and still hold the physics below.

@@ -1,11 +1,12 @@
-/// \file MomentumKEpsilonTest.cpp
-/// The k-epsilon closure (sim/KEpsilon.h through sim/MomentumTurbulence.h) against Richards and
-/// Hoxey's (1993) neutral surface layer, with no body force: from the mass-consistent start, from
-/// a uniform start and from a start 20 % off, and the transport's own invariants.
+/// \file MomentumTwoEquationTest.cpp
+/// The two-equation closures, k-epsilon and k-omega SST (sim/TwoEquation.h through
+/// sim/MomentumTurbulence.h), against Richards and Hoxey's (1993) neutral surface layer, with no
+/// body force: from the mass-consistent start, from a uniform start and from a start 20 % off.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "MomentumTestCases.h"
@@ -26,11 +27,14 @@ double richardsHoxeyTke(double speed_mps) {
     return uStar * uStar / 0.3;
 }
 
-MomentumSettings kEpsilon() {
+MomentumSettings withClosure(TurbulenceClosure closure) {
     MomentumSettings m;
-    m.turbulence = TurbulenceClosure::KEpsilon;
+    m.turbulence = closure;
     return m;
 }
+
+constexpr TurbulenceClosure TWO_EQUATION[] = {TurbulenceClosure::KEpsilon,
+                                              TurbulenceClosure::KOmegaSst};
 
 /// The box's middle column: k within TKE_TOLERANCE of Richards and Hoxey's from 1 m to 50 m.
 void expectRichardsHoxeyTke(const AirDomain& domain, const std::vector<double>& tke,
@@ -51,25 +55,29 @@ void expectRichardsHoxeyTke(const AirDomain& domain, const std::vector<double>& 
     EXPECT_GE(checked, 20);
 }
 
-class KEpsilonFlatGround : public ::testing::TestWithParam<double> {};
+class TwoEquationFlatGround
+    : public ::testing::TestWithParam<std::tuple<TurbulenceClosure, double>> {};
 
-TEST_P(KEpsilonFlatGround, KeepsTheLogProfileAndRichardsHoxeyTkeWithoutABodyForce) {
-    const double ground = GetParam();
+TEST_P(TwoEquationFlatGround, KeepsTheLogProfileAndRichardsHoxeyTkeWithoutABodyForce) {
+    const auto [closure, ground] = GetParam();
     AirDomain domain(flatGround(ground), {/*voxelSize_m=*/2.0, /*top_m=*/62.0});
-    const MomentumWindResult res = solveMomentumWind(domain, logWind(5.0), kEpsilon());
+    const MomentumWindResult res = solveMomentumWind(domain, logWind(5.0), withClosure(closure));
     EXPECT_TRUE(res.report.converged) << res.report.message;
     // Oracle: the neutral log law, 1 m to 50 m above the ground (expectLogLawColumn), and
     // k = u*^2 / sqrt(C_mu).
-    expectLogLawColumn(domain, res.field, 5.0, ground, "k-epsilon", 24);
+    expectLogLawColumn(domain, res.field, 5.0, ground, turbulenceClosureName(closure), 24);
     expectRichardsHoxeyTke(domain, res.tke_m2ps2, 5.0, ground);
 }
 
 // Ground on a cell face, and ground cutting the first cell (0.7 m into a 2 m cell).
-INSTANTIATE_TEST_SUITE_P(MomentumKEpsilon, KEpsilonFlatGround, ::testing::Values(0.0, 0.7));
+INSTANTIATE_TEST_SUITE_P(MomentumTwoEquation, TwoEquationFlatGround,
+                         ::testing::Combine(::testing::ValuesIn(TWO_EQUATION),
+                                            ::testing::Values(0.0, 0.7)));
 
-/// Steps the unsteady solver with the k-epsilon surface layer from `start` (inflow: the
+/// Steps the unsteady solver with a two-equation surface layer from `start` (inflow: the
 /// mass-consistent log wind) until its field changes by less than 1e-6 U per step.
-WindField settle(const AirDomain& domain, const WindField& start, int maxSteps) {
+WindField settle(const AirDomain& domain, TurbulenceClosure closure, const WindField& start,
+                 int maxSteps) {
     const AmbientWind wind = logWind(5.0);
     const SteadyWindResult steady = solveSteadyWind(domain, wind, {}, {});
     UnsteadySettings us;
@@ -78,7 +86,7 @@ WindField settle(const AirDomain& domain, const WindField& start, int maxSteps) 
     us.surfaceLayer.enabled = true;
     us.surfaceLayer.roughness_m = wind.roughness_m;
     us.surfaceLayer.balanced = wind;
-    us.surfaceLayer.closure = TurbulenceClosure::KEpsilon;
+    us.surfaceLayer.closure = closure;
     UnsteadyWindSolver solver(domain, steady.field, us, 5.0);
     solver.resetState(start);
     for (int n = 0; n < maxSteps; ++n) {
@@ -93,16 +101,24 @@ WindField settle(const AirDomain& domain, const WindField& start, int maxSteps) 
     return solver.field();
 }
 
-TEST(MomentumKEpsilon, ConvergesToTheLogLawFromAUniformStartAndFromOneTwentyPercentOff) {
+class TwoEquationSettles : public ::testing::TestWithParam<TurbulenceClosure> {};
+
+TEST_P(TwoEquationSettles, ToTheLogLawFromAUniformStartAndFromOneTwentyPercentOff) {
+    const TurbulenceClosure closure = GetParam();
     AirDomain domain(flatGround(0.0), {/*voxelSize_m=*/2.0, /*top_m=*/62.0});
     const SteadyWindResult steady = solveSteadyWind(domain, logWind(5.0), {}, {});
     WindField uniform = steady.field, off = steady.field;
     for (double& u : uniform.u_mps()) u = 5.0;
     for (double& u : off.u_mps()) u *= 1.2;
     constexpr int MAX_STEPS = 3000;  // 1200 s: many crossings and diffusion times of the box
-    expectLogLawColumn(domain, settle(domain, uniform, MAX_STEPS), 5.0, 0.0, "uniform start", 24);
-    expectLogLawColumn(domain, settle(domain, off, MAX_STEPS), 5.0, 0.0, "20 % fast start", 24);
+    expectLogLawColumn(domain, settle(domain, closure, uniform, MAX_STEPS), 5.0, 0.0,
+                       "uniform start", 24);
+    expectLogLawColumn(domain, settle(domain, closure, off, MAX_STEPS), 5.0, 0.0, "20 % fast start",
+                       24);
 }
+
+INSTANTIATE_TEST_SUITE_P(MomentumTwoEquation, TwoEquationSettles,
+                         ::testing::ValuesIn(TWO_EQUATION));
 
 }  // namespace
 }  // namespace gale::sim
