@@ -28,9 +28,11 @@ nlohmann::json momentumJson(const sim::MomentumReport& m, const sim::MomentumSet
                           {"min_iterations", l.minIterations},
                           {"momentum_residual", l.momentumResidual},
                           {"converged", l.converged},
+                          {"at_step_limit", l.atStepLimit},
+                          {"message", l.message},
                           {"seconds", l.seconds}});
     return {
-        {"closure", "mixing_length"},
+        {"closure", sim::turbulenceClosureName(s.turbulence)},
         {"advection", sim::pseudoTimeAdvectionName(s.advection)},
         {"stopped", m.stopped},
         {"converged", m.converged},

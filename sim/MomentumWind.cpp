@@ -351,12 +351,15 @@ LevelResult iterateLevel(const AirDomain& domain, const AmbientWind& ambient,
             break;
         }
     }
+    lv.atStepLimit =
+        lv.finite && !lv.converged && !rep.stopped && lv.iterations == settings.maxIterations;
     if (level == 0 && lv.finite && !lv.converged && !rep.stopped && settings.averageCycles)
         averageOverCycles(solver, settings, lv, rep, stepOnce);
     if (lv.message.empty() || rep.averagedSteps > 0)
         lv.message = "not converged: momentum residual " + num(lv.momentumResidual) + " > " +
                      num(settings.residualTolerance) + " after " + std::to_string(lv.iterations) +
-                     " iterations (raise solver.momentum_max_iterations)" + lv.message;
+                     " iterations, the step limit (raise solver.momentum_max_iterations)" +
+                     lv.message;
     lv.iterations += rep.averagedSteps;
     if (level == 0 && lv.finite) {
         rep.finalProjection = solver.project(settings.finalProjection);
@@ -446,6 +449,14 @@ MomentumWindResult solveMomentumWind(const AirDomain& domain, const AmbientWind&
     rep.converged = fine.converged;
     rep.message = fine.message;
     if (levels > 0 && !fromCoarse) rep.message += " (a coarse level became non-finite)";
+    // A coarse level at its step limit is no converged start: the solve is not converged, and
+    // the message names the level (the finest level's own verdict stays in its MomentumLevel).
+    for (const MomentumLevel& lv : rep.levels) {
+        if (lv.level == 0 || lv.converged) continue;
+        rep.converged = false;
+        rep.message += "; level " + std::to_string(lv.level) + " (" + num(lv.voxelSize_m) +
+                       " m cells) " + lv.message;
+    }
     if (rep.finite && !rep.finalProjection.converged) {
         rep.converged = false;
         rep.message += "; the final projection did not converge: " + rep.finalProjection.message;

@@ -31,7 +31,10 @@
 /// maximum, and the largest divergence after the projection, max |div u| h / U. Converged: the RMS
 /// residual at or below residualTolerance with a converged projection, and at least as many steps
 /// as the ambient wind needs to cross the box once (MomentumReport::minIterations; a low hill's
-/// small disturbance changes the field little per step from the start). Otherwise the report says
+/// small disturbance changes the field little per step from the start), within the level's step
+/// limit. A level, coarse or fine, that takes maxIterations steps without that is not converged,
+/// and neither is the solve (a coarse level's unconverged start may leave the finest level a
+/// slowly drifting field whose change per step is already small). Otherwise the report says
 /// why, and the field is the last iterate, except when the finest level's residual cycles (a
 /// periodic wake that the pseudo-time iteration follows instead of settling: residualCyclePeriod
 /// finds a period of P steps): then whole periods more are stepped and their mean field is
@@ -169,15 +172,21 @@ struct MomentumLevel {
     /// from the mass-consistent field, MomentumSettings::minIterationsAfterProlongation otherwise.
     int minIterations = 0;
     double momentumResidual = 0;  ///< of its last iteration (RMS)
+    /// The residual at or below the tolerance within the level's step budget. A level, coarse or
+    /// fine, that takes MomentumSettings::maxIterations steps without that is not converged, and
+    /// neither is the solve (MomentumReport::converged).
     bool converged = false;
+    bool atStepLimit = false;  ///< it took maxIterations steps without converging
     bool finite = true;
     double seconds = 0;  ///< wall time, its mass-consistent solve included
     std::string message;
 };
 
 struct [[nodiscard]] MomentumReport {
-    bool converged = false;  ///< the finest level converged (coarse levels are only a start)
-    bool finite = true;      ///< no NaN/Inf in the field
+    /// Every level converged (MomentumLevel::converged): a coarse level stopped at its step
+    /// limit hands the next level an unconverged start, and the message names it.
+    bool converged = false;
+    bool finite = true;  ///< no NaN/Inf in the field
     /// MomentumSettings::onStep returned false: the solve stopped after the last history entry,
     /// not converged; the field is the last iterate of the finest level, or the mass-consistent
     /// start when it stopped on a coarse level.

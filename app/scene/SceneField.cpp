@@ -240,7 +240,8 @@ std::vector<std::string> describeSceneField(const Scene& scene, const sim::AirDo
                   (m.coarseLevels > 0 ? "up to " + std::to_string(m.coarseLevels) +
                                             " coarser levels first (solver.momentum_coarse_levels)"
                                       : std::string("no coarser levels")) +
-                  ", converged at a momentum residual of " + formatG(m.residualTolerance, 3);
+                  ", converged at a momentum residual of " + formatG(m.residualTolerance, 3) +
+                  " within each level's step limit";
     }
     lines.push_back("budgets: " + budget);
     if (unsteady) {
@@ -389,6 +390,25 @@ ProvenanceDiff compareProvenance(const std::map<std::string, std::string>& file,
     return d;
 }
 
+namespace {
+
+/// "; level 2 (4 m cells) stopped at its step limit (300 steps in all)" for every level that did
+/// not converge, coarse ones included (MomentumLevel::converged), or "".
+std::string unconvergedLevels(const sim::MomentumReport& m) {
+    std::string out;
+    for (const sim::MomentumLevel& lv : m.levels) {
+        if (lv.converged) continue;
+        out += "; level " + std::to_string(lv.level) + " (" + formatG(lv.voxelSize_m, 3) +
+               " m cells) " +
+               (lv.atStepLimit ? "stopped at its step limit (" + std::to_string(lv.iterations) +
+                                     " steps in all)"
+                               : std::string("did not converge"));
+    }
+    return out;
+}
+
+}  // namespace
+
 std::string SceneField::summary() const {
     const sim::SolveReport& r = report;
     std::string head = modelText + ": ";
@@ -403,7 +423,7 @@ std::string SceneField::summary() const {
                std::to_string(m.levels.size()) + " level" + (m.levels.size() == 1 ? "" : "s") +
                "), momentum residual " + formatG(m.momentumResidual, 3) + ", max|div u| h/U " +
                formatG(m.maxDivergenceScaled, 3) + ", " + formatFixed(solve_s, 2) + " s, field " +
-               fieldDigest;
+               fieldDigest + unconvergedLevels(m);
     }
     return head + (r.converged ? "converged in " : "DID NOT CONVERGE in ") +
            std::to_string(r.iterations) + " iterations, relative residual " +

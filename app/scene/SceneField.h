@@ -129,7 +129,8 @@ struct SceneField {
     std::unique_ptr<sim::AirDomain> domain;  ///< the field's geometry (kept alive for the field)
     sim::WindField field;  ///< the steady field; for unsteady scenes the initial state
     /// The mass-consistent solve, or the momentum model's summary (iterations = pseudo-time
-    /// steps over all levels; converged only when the finest level converged and stayed finite).
+    /// steps over all levels; converged only when every level converged within its step limit
+    /// and the field stayed finite).
     sim::SolveReport report;
     std::optional<sim::MomentumReport> momentum;  ///< solver.model = "momentum"
     /// Turbulent kinetic energy k (m^2/s^2) on the domain's cells (GridIndex cell layout; sample it

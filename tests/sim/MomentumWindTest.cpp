@@ -251,6 +251,45 @@ TEST(MomentumWind, CoarseStartReachesTheSingleLevelSteadyState) {
     EXPECT_LT(b.report.fineIterations, a.report.fineIterations);
 }
 
+TEST(MomentumWind, ALevelAtItsStepLimitIsNotConvergedEvenWhenTheFinestIs) {
+    // Flat ground, 160 m along the wind, in 4 m cells with one coarse level (8 m), and a step
+    // budget below the coarse level's crossing rule (160 m at 10 m/s in 1.6 s steps: 10 steps)
+    // but above the finest level's minimum after prolongation (2): the coarse level must stop at
+    // its limit (the history holds exactly maxIterations of its steps, the oracle here), while
+    // the finest level, started from the exact log profile, converges. The coarse level and the
+    // solve may not be reported converged, and the message names the coarse level.
+    TerrainSpec t;
+    t.kind = TerrainKind::Flat;
+    t.sizeX_m = t.sizeY_m = 160, t.spacing_m = 2;
+    DomainSpec spec = cubes(4.0);
+    spec.momentumModel = true;
+    spec.top_m = 64.0;
+    const AirDomain domain(makeTerrain(t), spec);
+    MomentumSettings ms;
+    ms.coarseLevels = 1;
+    ms.maxIterations = 8;
+    ms.minIterationsAfterProlongation = 2;
+    ms.averageCycles = false;
+    const MomentumWindResult r = solveMomentumWind(domain, logWind(10.0), ms);
+    ASSERT_EQ(r.report.levels.size(), 2u);
+    auto stepsOf = [&](int level) {
+        return std::count_if(r.report.history.begin(), r.report.history.end(),
+                             [&](const MomentumIteration& m) { return m.level == level; });
+    };
+    const MomentumLevel& coarse = r.report.levels.front();
+    ASSERT_EQ(coarse.level, 1);
+    ASSERT_EQ(stepsOf(1), ms.maxIterations);
+    EXPECT_FALSE(coarse.converged);
+    EXPECT_TRUE(coarse.atStepLimit);
+    // The premise: the finest level converged on its own, before its limit.
+    const MomentumLevel& fine = r.report.levels.back();
+    ASSERT_LT(stepsOf(0), ms.maxIterations);
+    EXPECT_TRUE(fine.converged) << fine.message;
+    EXPECT_FALSE(fine.atStepLimit);
+    EXPECT_FALSE(r.report.converged) << r.report.message;
+    EXPECT_NE(r.report.message.find("level 1"), std::string::npos) << r.report.message;
+}
+
 TEST(MomentumWind, StaysFiniteForHugeWindTinyCellsAndACliff) {
     // A 20 m vertical step (a cliff) in 0.5 m cells, wind of 100 m/s at 10 m.
     Heightfield hf = makeHeightfield(81, 5, 0.5, std::vector<float>(81 * 5, 0.f));

