@@ -206,6 +206,10 @@ void addModels(CLI::App& bench, VerbTable& verbs) {
                      "H / h of the Cao and Tamura ridge's solves, one or more (default 5 10; "
                      "--quick 5)")
         ->check(CLI::Range(1, 40));
+    verb->add_option("--ridge-iterations", o->ridgeIterations,
+                     "Pseudo-time steps per level at most for the ridge's momentum solves "
+                     "(default 1000; --quick 300)")
+        ->check(CLI::Range(1, 100000));
     verb->footer(EXIT_CODES_FOOTER);
     verbs.add(verb, [o] { return runBench([o] { return runBenchModels(*o); }); });
 }

@@ -188,7 +188,9 @@ int runBenchModels(const BenchModelsOptions& opt) {
                                       : opt.quick                 ? std::vector<int>{5}
                                                                   : std::vector<int>{5, 10};
     // Pseudo-time steps per level at most: the quick run is a smoke test of the table.
-    const int ridgeIterations = opt.quick ? 300 : 1000;
+    const int ridgeIterations = opt.ridgeIterations > 0 ? opt.ridgeIterations
+                                : opt.quick             ? 300
+                                                        : 1000;
     const std::vector<int> hemiRes = opt.quick ? std::vector<int>{4} : std::vector<int>{4, 8, 16};
     const std::vector<double> flatRes =
         opt.quick ? std::vector<double>{4.0} : std::vector<double>{4.0, 2.0, 1.0};

@@ -40,6 +40,9 @@ struct BenchModelsOptions {
     bool closures = false;
     /// H / h of the ridge's solves (each > 0); empty: 5 and 10 (5 with quick).
     std::vector<int> ridgeCellsPerH;
+    /// Pseudo-time steps per level at most for the ridge's momentum solves; 0: 1000 (300 with
+    /// quick).
+    int ridgeIterations = 0;
     /// Instead of the table: the separation benchmarks (runSeparationStudy).
     bool separation = false;
 };
