@@ -66,6 +66,8 @@ RunMemory unsteadyRunMemory(const UnsteadySettings& settings) {
     // vorticity's magnitude, per cell.
     if (settings.vorticityConfinement > 0.0 || !settings.whirlwinds.empty())
         run.scratchCellBytes = (3 * 3 + 1) * 8.0;
+    if (settings.surfaceLayer.enabled)
+        run.closureCellBytes = TurbulentStress::closureBytesPerCell(settings.surfaceLayer.closure);
     return run;
 }
 
@@ -87,6 +89,7 @@ double solveArrays_bytes(double nx, double ny, double nz, double terrainSamples,
                           vdbBoxTree_bytes(nx + 1, ny + 1, nz + 1, 12.0);
     double extra = 0.0;
     if (momentum) extra += cells * MOMENTUM_EXTRA_BYTES_PER_CELL;
+    extra += cells * run.closureCellBytes;
     if (run.unsteady) {
         // UnsteadyWindSolver beside the steady solve: its own PoissonSystem weights and solver,
         // the mean field and the current field (a double per face each), face masks, the

@@ -48,6 +48,10 @@ struct RunMemory {
     double scratchFaceArrays = 0;
     double viscosityFaceArrays = 0;  ///< the implicit viscosity's CG vectors, doubles per face
     double scratchCellBytes = 0;
+    /// A two-equation closure's arrays, bytes per cell (TurbulentStress::closureBytesPerCell:
+    /// its transported variables and face arrays), for the momentum model or an unsteady surface
+    /// layer that uses one; 0 for the mixing length.
+    double closureCellBytes = 0;
     /// Resident bytes of the process before the domain is built (the program, its libraries, the
     /// scene and terrain), counted in the estimate; 0 for the arrays alone.
     double processBaseline_bytes = 0;

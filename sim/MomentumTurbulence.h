@@ -154,6 +154,16 @@ class TurbulentStress {
     static constexpr double TKE_EQUILIBRIUM_CMU = 0.09;
     /// Bytes per cell of the box this object holds and uses while applying (memory estimates).
     static constexpr double BYTES_PER_CELL = 8.0 * 8 + 4.0 + 3.0;
+    /// Bytes per cell a two-equation closure adds (0 for the mixing length): k-epsilon's five
+    /// cell arrays of its transport (k, epsilon, nu_t, the step's copy, the diffusivity) and the
+    /// stress's six (rotation, vorticity, production on faces and cells, the log-law correction
+    /// and energy split in floats); SST also F1, F2, the cross gradient and the limiter on faces
+    /// and cells.
+    static constexpr double closureBytesPerCell(TurbulenceClosure c) {
+        return c == TurbulenceClosure::MixingLength ? 0.0
+               : c == TurbulenceClosure::KEpsilon   ? 5 * 8.0 + 4 * 8.0 + 2 * 4.0
+                                                    : 5 * 8.0 + 4 * 8.0 + 2 * 4.0 + 5 * 8.0;
+    }
 
   private:
     void setUpTwoEquation(double uStar_mps, double windX, double windY);

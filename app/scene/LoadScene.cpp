@@ -3,6 +3,8 @@
 
 #include "app/scene/LoadScene.h"
 
+#include <algorithm>
+
 #include "app/io/Errors.h"
 #include "app/io/ProcessMemory.h"
 #include "app/scene/SceneParser.h"
@@ -28,6 +30,10 @@ Scene loadScene(const SceneRunOptions& options) {
     sim::DomainSpec& domain = scene.solver.domain;
     if (scene.wind.kind == WindKind::Unsteady)
         domain.run = sim::unsteadyRunMemory(scene.unsteady.settings);
+    if (scene.solver.model == sim::SteadyModel::Momentum)
+        domain.run.closureCellBytes =
+            std::max(domain.run.closureCellBytes,
+                     sim::TurbulentStress::closureBytesPerCell(scene.solver.momentum.turbulence));
     domain.run.processBaseline_bytes = residentBytes();
     return scene;
 }

@@ -16,6 +16,7 @@
 #include "sim/MemoryEstimate.h"
 #include "sim/PoissonSolver.h"
 #include "sim/SteadyWind.h"
+#include "sim/UnsteadyWind.h"
 
 namespace gale::sim {
 namespace {
@@ -109,6 +110,30 @@ TEST(MemoryEstimate, AThinColumnCostsFarMoreThanItsCellsTimesAFlatBoxsBytesPerCe
     const double flatPerCell = solveArrays_bytes(128, 128, 64, 0, false, {}) / (128.0 * 128 * 64);
     const double columnPerCell = solveArrays_bytes(2, 2, 100000, 0, false, {}) / (4.0 * 100000);
     EXPECT_GT(columnPerCell, 5.0 * flatPerCell);
+}
+
+TEST(MemoryEstimate, TwoEquationClosuresAreCountedPerCell) {
+    // A transported closure's arrays come on top of the mixing length's, per cell, for the
+    // unsteady surface layer as for the momentum model (RunMemory::closureCellBytes; measured on
+    // the 250 x 250 x 50 box: peak RSS 1.20 GiB with the mixing length, 1.51 GiB with SST).
+    UnsteadySettings us;
+    us.surfaceLayer.enabled = true;
+    const double nx = 40, ny = 30, nz = 20, cells = nx * ny * nz;
+    double previous = -1.0;
+    for (TurbulenceClosure c : {TurbulenceClosure::MixingLength, TurbulenceClosure::KEpsilon,
+                                TurbulenceClosure::KOmegaSst}) {
+        us.surfaceLayer.closure = c;
+        const RunMemory run = unsteadyRunMemory(us);
+        EXPECT_EQ(run.closureCellBytes, TurbulentStress::closureBytesPerCell(c));
+        RunMemory without = run;
+        without.closureCellBytes = 0;
+        EXPECT_DOUBLE_EQ(solveArrays_bytes(nx, ny, nz, 100, true, run) -
+                             solveArrays_bytes(nx, ny, nz, 100, true, without),
+                         cells * run.closureCellBytes);
+        // Each closure holds more than the one before it.
+        EXPECT_GT(run.closureCellBytes, previous);
+        previous = run.closureCellBytes;
+    }
 }
 
 TEST(MemoryEstimate, AbsurdBoxesArePricedFinitelyWithoutOverflow) {
