@@ -11,9 +11,9 @@
 #include <stdexcept>
 
 #include "sim/Format.h"
-#include "sim/TwoEquation.h"
 #include "sim/MomentumTurbulence.h"
 #include "sim/Tridiagonal.h"
+#include "sim/TwoEquation.h"
 #include "sim/WallLaw.h"
 
 namespace gale::sim {
