@@ -53,6 +53,7 @@ FrameTimes ViewPipeline::draw(const render::Camera& camera, double t_s, const Ov
         mRenderer.draw(camera, mShown.serial > 0 ? mShown.wind : still, options);
     times.upload_ms = stats.cpu_ms;
     times.draw_ms = stats.gpu_ms;
+    times.blades = stats.blades;
     if (overlay.any() && mShown.serial > 0) {
         const auto overlayStart = Clock::now();
         mOverlay.draw(camera, mShown.overlay);

@@ -44,6 +44,7 @@ struct FrameTimes {
     double upload_ms = 0.0;   ///< the renderer's CPU side: group tables and changed uploads
     double draw_ms = 0.0;     ///< draw calls through glFinish: grass, terrain and overlays
     double present_ms = 0.0;  ///< the context's present (a window's copy to the screen)
+    int blades = 0;           ///< near blades the frame drew (render::FrameStats::blades)
     double total_ms() const { return wind_ms + upload_ms + draw_ms + present_ms; }
 };
 

@@ -70,7 +70,7 @@ GLuint compileShaderSource(GLenum stage, const char* fileName, const char* sourc
 }
 
 GLuint linkProgramFiles(const char* vertexFile, const char* fragmentFile,
-                        const std::string& defines) {
+                        const std::string& defines, const std::vector<const char*>& feedback) {
     const GLuint vs = compileShaderFile(GL_VERTEX_SHADER, vertexFile, defines);
     GLuint fs = 0;
     try {
@@ -82,6 +82,9 @@ GLuint linkProgramFiles(const char* vertexFile, const char* fragmentFile,
     const GLuint program = glCreateProgram();
     glAttachShader(program, vs);
     glAttachShader(program, fs);
+    if (!feedback.empty())
+        glTransformFeedbackVaryings(program, static_cast<GLsizei>(feedback.size()), feedback.data(),
+                                    GL_INTERLEAVED_ATTRIBS);
     glLinkProgram(program);
     glDetachShader(program, vs);
     glDetachShader(program, fs);

@@ -7,6 +7,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace gale::render::detail {
 
@@ -23,9 +24,11 @@ GLuint compileShaderSource(GLenum stage, const char* fileName, const char* sourc
 
 /// Links a program from shaders/<vertexFile> and shaders/<fragmentFile>, both compiled with
 /// `defines` (as compileShaderFile). Throws std::runtime_error naming both files and carrying the
-/// compile or link log.
+/// compile or link log. `feedback`: the vertex stage's outputs a transform feedback records
+/// (interleaved, in this order; none by default).
 GLuint linkProgramFiles(const char* vertexFile, const char* fragmentFile,
-                        const std::string& defines = {});
+                        const std::string& defines = {},
+                        const std::vector<const char*>& feedback = {});
 
 /// Throws std::runtime_error naming `what` if the bound draw framebuffer is not complete.
 void checkFramebufferComplete(const char* what);

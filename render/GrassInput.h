@@ -118,6 +118,10 @@ struct GrassParams {
     /// the shells that remain are at most this many pixels apart on screen; 0 draws every shell
     /// everywhere. >= 0.
     float lodPixels = 3.0f;
+    /// Near blades (render/NearBlades.h): true blade geometry above the shells within the
+    /// distance where the frame holds this many blades, at the texture's own blade density,
+    /// thinning out towards that distance; 0: shells only (the paper's grass). 0..MAX_NEAR_BLADES.
+    int nearBlades = 6000;
 };
 
 /// An RGBA8 image, rows top-down.

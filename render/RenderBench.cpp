@@ -142,6 +142,7 @@ ShellFillResult measureShellFill(const ShellFillCase& c) {
     grass.shells = c.layers - 1;
     grass.tile_m = TILE_M;
     grass.lodPixels = 0.0f;  // the table measures N full layers: no level of detail
+    grass.nearBlades = 0;    // and the shells alone
     renderer.setGrass(grass, benchTexture());
     renderer.setLighting(makeBenchLighting(c.lights));
     const Camera camera = benchCamera();
@@ -278,6 +279,7 @@ std::vector<FillProfileRow> profileShellFill(const FillProfileCase& c) {
     grass.shells = c.layers - 1;
     grass.tile_m = TILE_M;
     grass.lodPixels = 0.0f;
+    grass.nearBlades = 0;
     const GrassTexture texture = benchTexture();
     renderer.setGrass(grass, texture);
     renderer.setLighting(makeBenchLighting(3));

@@ -13,4 +13,7 @@ constexpr int MAX_LIGHTS = 16;
 /// Most shells above the ground (GrassParams::shells); the bend table has MAX_SHELLS + 1 columns.
 constexpr int MAX_SHELLS = 256;
 
+/// Most near blades a frame draws (GrassParams::nearBlades): 1 M blades are 88 MB of instances.
+constexpr int MAX_NEAR_BLADES = 1000000;
+
 }  // namespace gale::render

@@ -93,6 +93,35 @@ void ShellRenderer::Impl::init() {
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 
+    // The near blades: every attribute per instance (shell.vert, BLADES).
+    glGenVertexArrays(1, &name);
+    bladeVao = detail::VertexArray(name);
+    glGenBuffers(1, &name);
+    bladeVbo = detail::Buffer(name);
+    glBindVertexArray(bladeVao.get());
+    glBindBuffer(GL_ARRAY_BUFFER, bladeVbo.get());
+    using detail::BladeInstance;
+    const auto bladeStride = static_cast<GLsizei>(sizeof(BladeInstance));
+    const auto perBlade = [bladeStride](GLuint loc, GLint size, size_t offset) {
+        glEnableVertexAttribArray(loc);
+        glVertexAttribPointer(loc, size, GL_FLOAT, GL_FALSE, bladeStride,
+                              reinterpret_cast<const void*>(offset));
+        glVertexAttribDivisor(loc, 1);
+    };
+    perBlade(POSITION_LOC, 3, offsetof(BladeInstance, root));
+    perBlade(NORMAL_LOC, 3, offsetof(BladeInstance, normal));
+    perBlade(UV_LOC, 4, offsetof(BladeInstance, blade));
+    perBlade(WIND_DIR_LOC, 3, offsetof(BladeInstance, windDir));
+    glEnableVertexAttribArray(GROUP_LOC);
+    glVertexAttribIPointer(GROUP_LOC, 1, GL_UNSIGNED_INT, bladeStride,
+                           reinterpret_cast<const void*>(offsetof(BladeInstance, group)));
+    glVertexAttribDivisor(GROUP_LOC, 1);
+    perBlade(GROUP_COORD_LOC, 2, offsetof(BladeInstance, groupCoord));
+    perBlade(FLUTTER_LOC, 1, offsetof(BladeInstance, flutter_rad));
+    perBlade(KEY_LIGHT_LOC, 4, offsetof(BladeInstance, color));
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     detail::checkFramebufferComplete("ShellRenderer (default framebuffer)");
     detail::checkGlError("ShellRenderer setup");
@@ -104,16 +133,23 @@ std::string shellVariantDefines(unsigned bits) {
         return std::string("#define ") + name + ((bits & bit) != 0u ? " 1\n" : " 0\n");
     };
     return line("APERIODIC", VARIANT_APERIODIC) + line("FADE", VARIANT_FADE) +
-           line("DENSITY", VARIANT_DENSITY) + line("BLEND_GROUPS", VARIANT_BLEND);
+           line("DENSITY", VARIANT_DENSITY) + line("BLEND_GROUPS", VARIANT_BLEND) +
+           line("BLADES", VARIANT_BLADES) + "#define BLADES_SEGMENTS " +
+           std::to_string(detail::BLADE_SEGMENTS) + "\n";
 }
 }  // namespace shell_detail
 
 ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
     std::unique_ptr<ShellProgram>& slot = shellPrograms.at(bits);
-    if (slot) return *slot;
+    if (!slot) slot = makeShellProgram(bits, {});
+    return *slot;
+}
+
+std::unique_ptr<ShellProgram> ShellRenderer::Impl::makeShellProgram(
+    unsigned bits, const std::vector<const char*>& feedback) const {
     auto p = std::make_unique<ShellProgram>();
     p->program = detail::Program(
-        detail::linkProgramFiles("shell.vert", "shell.frag", shellVariantDefines(bits)));
+        detail::linkProgramFiles("shell.vert", "shell.frag", shellVariantDefines(bits), feedback));
     const GLuint sp = p->program.get();
     ShellLocations& loc = p->loc;
     const std::pair<GLint*, const char*> names[] = {{&loc.clipFromWorld, "uClipFromWorld"},
@@ -137,6 +173,8 @@ ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
                                                     {&loc.meshLevel, "uMeshLevel"},
                                                     {&loc.densityMin, "uDensityMin"},
                                                     {&loc.densitySize, "uDensitySize"},
+                                                    {&loc.nearIn, "uNearIn"},
+                                                    {&loc.nearR, "uNearR"},
                                                     {&loc.lightCount, "uLightCount"},
                                                     {&loc.lightPos, "uLightPos"},
                                                     {&loc.lightColor, "uLightColor"},
@@ -168,8 +206,7 @@ ShellProgram& ShellRenderer::Impl::shellProgram(unsigned bits) {
     glUniform1f(loc.maxTilt, static_cast<float>(MAX_TIP_TILT_RAD));
     glUseProgram(0);
     uploadLighting(*p);
-    slot = std::move(p);
-    return *slot;
+    return p;
 }
 
 void ShellRenderer::Impl::uploadLighting(const ShellProgram& program) const {
@@ -267,6 +304,8 @@ void ShellRenderer::Impl::uploadWind(const GrassWind& wind) {
         windMaxGroup = maxGroup;
         windColumns = wind.vertex ? wind.vertex->groupColumns : 0;
         windBlends = blends;
+        // The near blades read the wind the shells were given: the uploaded revision's.
+        windVertex = none ? nullptr : wind.vertex;
     }
     if (!none && windMaxGroup >= wind.groupIntensity.size()) {
         throw std::logic_error("GrassWind.group holds group " + std::to_string(windMaxGroup) +
@@ -354,6 +393,8 @@ void ShellRenderer::setTerrain(const TerrainMesh& mesh) {
     m.terrainVertices = std::move(vertices);
     m.terrainNx = mesh.nx;
     m.terrainNy = mesh.ny;
+    m.terrainPlanRegular = detail::planRegular(mesh.nx, mesh.ny, mesh.wsPosition_m,
+                                               m.terrainOrigin_m, m.terrainSpacing_m);
     m.terrainMin_m = m.terrainMax_m = mesh.wsPosition_m[0];
     for (const glm::vec3& p : mesh.wsPosition_m) {
         m.terrainMin_m = glm::min(m.terrainMin_m, p);
@@ -379,6 +420,13 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
     if (!(params.stiffness > 0.0f) || !std::isfinite(params.stiffness)) {
         throw ParameterError("grass.stiffness", formatG(params.stiffness),
                              "must be > 0 and finite");
+    }
+    if (!(params.tile_m > 0.0f) || !std::isfinite(params.tile_m)) {
+        throw ParameterError("grass.tile_m", formatG(params.tile_m), "must be > 0 and finite");
+    }
+    if (params.nearBlades < 0 || params.nearBlades > MAX_NEAR_BLADES) {
+        throw ParameterError("grass.near_blades", std::to_string(params.nearBlades),
+                             "must be in 0.." + std::to_string(MAX_NEAR_BLADES));
     }
     if (texture.levels.empty()) {
         throw std::logic_error("GrassTexture has no levels");
@@ -416,6 +464,8 @@ void ShellRenderer::setGrass(const GrassParams& params, const GrassTexture& text
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     m.density->setCuts(texture.levels[0]);
     m.bladeColor = meanBladeColor(texture.levels[0]);
+    m.bladeStats = detail::bladeStatistics(texture.levels[0], params.tile_m);
+    m.bladeCuts = densityCuts(texture.levels[0]);
     detail::checkGlError("ShellRenderer::setGrass");
     // The map's box holds the grass: a new height redraws it, nothing else of the grass does.
     if (!m.haveGrass || params.height_m != m.grass.height_m) m.shadowDirty = true;
@@ -427,6 +477,7 @@ void ShellRenderer::setDensityMap(const DensityMap& map) {
     Impl& m = *mImpl;
     m.context.makeCurrent();
     m.density->setMap(map, m.maxTextureSize);
+    m.densityMap = map;
 }
 
 void ShellRenderer::setLighting(const Lighting& lighting) {

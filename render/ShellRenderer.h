@@ -9,6 +9,7 @@
 #include "render/GlContext.h"
 #include "render/GrassInput.h"
 #include "render/GrassTexture.h"
+#include "render/NearBlades.h"
 #include "render/RenderLimits.h"
 
 namespace gale::render {
@@ -20,6 +21,8 @@ struct FrameStats {
     int chunksCulled = 0;     ///< chunks outside it, not drawn
     long long layers = 0;     ///< layers drawn: over the chunks' row bands, the shells each drew
     long long triangles = 0;  ///< triangles drawn: over chunks, mesh triangles x layers
+    int blades = 0;           ///< near blades drawn (render/NearBlades.h)
+    float bladeRadius_m = 0;  ///< their distance R (they thin out over R_in .. R); 0: none
 };
 
 /// What draw() shows; the viewer's toggles. Both off draws only the sky.
@@ -30,6 +33,17 @@ struct DrawOptions {
     /// instead of its trilinear filtering: about twice the fill rate on a software rasteriser,
     /// at the price of blockier blades close up and visible MIP-level steps.
     bool nearestTexels = false;
+};
+
+/// The near blades of one frame as the GPU builds them (ShellRenderer::captureNearBlades).
+struct NearBladeCapture {
+    std::vector<detail::BladeInstance> blades;  ///< as placed (render/NearBlades.h)
+    float radius_m = 0.0f;                      ///< their distance R
+    float innerRadius_m = 0.0f;                 ///< R_in, where they start to thin out
+    /// Every blade's strip vertices as shell.vert places them, world metres, blade by blade,
+    /// detail::BLADE_STRIP_VERTICES each: vertices 2k and 2k + 1 the edges of level k, the last
+    /// the tip.
+    std::vector<glm::vec3> vertices;
 };
 
 class ShellRenderer {
@@ -48,9 +62,11 @@ class ShellRenderer {
     void setTerrain(const TerrainMesh& mesh);
     /// Uploads the grass texture with its blade-keeping MIP chain (thesis 3.4; GL_TEXTURE_MAX_LEVEL
     /// is the last level the chain kept). params.height_m > 0; params.shells in 0..MAX_SHELLS
-    /// (0 draws the ground only, the paper's one-shell row); stiffness > 0. Texture levels must be
-    /// square, halving from a power of two. Throws gale::ParameterError naming grass.height_m,
-    /// grass.shells, grass.lod_pixels or grass.stiffness, std::logic_error for bad texture levels.
+    /// (0 draws the ground only, the paper's one-shell row); stiffness > 0; tile_m > 0;
+    /// nearBlades in 0..MAX_NEAR_BLADES. Texture levels must be square, halving from a power of
+    /// two. Throws gale::ParameterError naming grass.height_m, grass.shells, grass.lod_pixels,
+    /// grass.stiffness, grass.tile_m or grass.near_blades, std::logic_error for bad texture
+    /// levels.
     void setGrass(const GrassParams& params, const GrassTexture& texture);
     /// Thins the grass by a density map (render/DensityMap.h); a map of width 0 removes it
     /// (density 1 everywhere). Requires density.size() == width * height, values finite, width
@@ -74,6 +90,10 @@ class ShellRenderer {
     FrameStats draw(const Camera& camera, const GrassWind& wind);
     /// draw() with parts left out (the viewer's terrain and grass toggles); same preconditions.
     FrameStats draw(const Camera& camera, const GrassWind& wind, const DrawOptions& options);
+    /// The near blades draw() would draw for this camera and wind, with their vertices recorded
+    /// by transform feedback from the drawing shader (no pixels are written): what the tests
+    /// hold against the bend's invariants. Same preconditions as draw.
+    NearBladeCapture captureNearBlades(const Camera& camera, const GrassWind& wind);
     /// Changes N without re-uploading the texture: 0..MAX_SHELLS, else gale::ParameterError
     /// (grass.shells).
     /// Requires setGrass first (std::logic_error otherwise).

@@ -61,6 +61,77 @@ void ShellRenderer::Impl::updateShadow() {
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
+void ShellRenderer::Impl::setFrameUniforms(const ShellLocations& loc,
+                                           const FrameUniforms& f) const {
+    glUniformMatrix4fv(loc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(f.clipFromWorld));
+    glUniform3fv(loc.eyePos, 1, glm::value_ptr(f.wsEye_m));
+    glUniform1i(loc.shells, grass.shells);
+    glUniform1i(loc.groupColumns, tables->columns());
+    glUniform1f(loc.lodD1, f.lodD1_m);
+    glUniform1f(loc.shellFocal, f.shellFocal);
+    glUniform1i(loc.lastShell, f.lastShell);
+    glUniform1f(loc.nearIn, f.nearIn_m);
+    glUniform1f(loc.nearR, f.nearR_m);
+    // Wrapped to a day so the float keeps millisecond steps (the flutter's periods are under 2 s
+    // and its phases are per vertex: the wrap is one jump a day).
+    glUniform1f(loc.time, float(std::fmod(f.time_s, 86400.0)));
+    glUniform3fv(loc.bladeColor, 1, glm::value_ptr(bladeColor));
+    glUniform2fv(loc.densityMin, 1, glm::value_ptr(density->wsMin_m()));
+    glUniform2fv(loc.densitySize, 1, glm::value_ptr(density->wsSize_m()));
+}
+
+detail::NearBladeSet ShellRenderer::Impl::placeBlades(const Camera& camera,
+                                                      const glm::mat4& clipFromWorld,
+                                                      float focal_px) const {
+    detail::BladeGround ground;
+    ground.nx = terrainNx;
+    ground.ny = terrainNy;
+    ground.planRegular = terrainPlanRegular;
+    ground.origin_m = terrainOrigin_m;
+    ground.spacing_m = terrainSpacing_m;
+    ground.vertices = terrainVertices.empty() ? nullptr : terrainVertices[0].position;
+    ground.stride = sizeof(TerrainVertex) / sizeof(float);
+    ground.positionAt = static_cast<int>(offsetof(TerrainVertex, position) / sizeof(float));
+    ground.normalAt = static_cast<int>(offsetof(TerrainVertex, normal) / sizeof(float));
+    // Level 0's share: the blades stand where the full mesh is drawn.
+    ground.keyLightAt = static_cast<int>(offsetof(TerrainVertex, keyLight) / sizeof(float));
+    ground.wind = windVertex.get();
+    ground.density = density->active() ? &densityMap : nullptr;
+    ground.densityCuts = &bladeCuts;
+    detail::BladeView view;
+    view.clipFromWorld = clipFromWorld;
+    view.wsEye_m = camera.wsPosition_m;
+    view.focal_px = focal_px;
+    view.grassHeight_m = grass.height_m;
+    view.budget = grass.nearBlades;
+    return detail::placeNearBlades(ground, bladeStats, view);
+}
+
+void ShellRenderer::Impl::uploadBlades(const std::vector<detail::BladeInstance>& blades) {
+    glBindBuffer(GL_ARRAY_BUFFER, bladeVbo.get());
+    // A new store each frame (the driver may keep the last one for a draw still in flight).
+    glBufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(blades.size() * sizeof(detail::BladeInstance)),
+                 blades.data(), GL_STREAM_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+glm::mat4 ShellRenderer::Impl::prepareFrame(const Camera& camera, const GrassWind& wind) {
+    const float aspect = static_cast<float>(context.width()) / static_cast<float>(context.height());
+    const glm::mat4 clip = clipFromWorld(camera, aspect);
+    context.makeCurrent();
+    uploadWind(wind);
+    const int groupCount = static_cast<int>(wind.groupIntensity.size());
+    const int columns = windColumns > 0 ? windColumns
+                        : windBlends    ? groupCount
+                                        : detail::DEFAULT_GROUP_COLUMNS;
+    tables->setBlade(grass.shells, grass.height_m, grass.stiffness);
+    tables->setGroups(wind, columns, maxTextureSize);
+    // Before the units are bound: a rebuilt pass table binds (and then unbinds) the active unit.
+    density->setShells(grass.shells);
+    return clip;
+}
+
 FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind) {
     return draw(camera, wind, DrawOptions{});
 }
@@ -70,17 +141,8 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     Impl& m = *mImpl;
     m.requireReady("draw");
     const auto cpuStart = Clock::now();
-    const float aspect =
-        static_cast<float>(m.context.width()) / static_cast<float>(m.context.height());
-    const glm::mat4 clipFromWorldM = clipFromWorld(camera, aspect);
-    m.context.makeCurrent();
-    m.uploadWind(wind);
+    const glm::mat4 clipFromWorldM = m.prepareFrame(camera, wind);
     const int groupCount = static_cast<int>(wind.groupIntensity.size());
-    const int columns = m.windColumns > 0 ? m.windColumns
-                        : m.windBlends    ? groupCount
-                                          : detail::DEFAULT_GROUP_COLUMNS;
-    m.tables->setBlade(m.grass.shells, m.grass.height_m, m.grass.stiffness);
-    m.tables->setGroups(wind, columns, m.maxTextureSize);
     FrameStats stats;
     stats.cpu_ms = msSince(cpuStart);
 
@@ -95,7 +157,6 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     glBindTexture(GL_TEXTURE_2D, m.density->mapTexture());
     glActiveTexture(GL_TEXTURE0 + DENSITY_CUT_UNIT);
     glBindTexture(GL_TEXTURE_2D, m.density->cutTexture());
-    m.density->setShells(m.grass.shells);
     glActiveTexture(GL_TEXTURE0 + SHELL_PASS_UNIT);
     glBindTexture(GL_TEXTURE_2D, m.density->passTexture());
     // The viewer's toggles: without grass the top shell is the ground; without terrain the
@@ -117,6 +178,13 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
                                (m.windBlends && groupCount > 0 ? VARIANT_BLEND : 0u);
     int lastShell = 0;  // the largest power of two <= shells (the one dropped last), 0 without
     while (shells > 0 && lastShell * 2 <= shells) lastShell = lastShell == 0 ? 1 : lastShell * 2;
+    Impl::FrameUniforms frame;
+    frame.clipFromWorld = clipFromWorldM;
+    frame.wsEye_m = camera.wsPosition_m;
+    frame.lodD1_m = d1_m;
+    frame.shellFocal = shells > 0 ? m.grass.height_m / static_cast<float>(shells) * focal_px : 0.0f;
+    frame.lastShell = lastShell;
+    frame.time_s = wind.time_s;
     unsigned preparedPrograms = 0;  // bit k: variant k has this frame's uniforms
     GLuint boundProgram = 0;
     const auto useProgram = [&](unsigned bits) -> const ShellLocations& {
@@ -127,20 +195,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         glUseProgram(boundProgram);
         if ((preparedPrograms & (1u << bits)) != 0u) return loc;
         preparedPrograms |= 1u << bits;
-        glUniformMatrix4fv(loc.clipFromWorld, 1, GL_FALSE, glm::value_ptr(clipFromWorldM));
-        glUniform3fv(loc.eyePos, 1, glm::value_ptr(camera.wsPosition_m));
-        glUniform1i(loc.shells, m.grass.shells);
-        glUniform1i(loc.groupColumns, m.tables->columns());
-        glUniform1f(loc.lodD1, d1_m);
-        glUniform1f(loc.shellFocal,
-                    shells > 0 ? m.grass.height_m / static_cast<float>(shells) * focal_px : 0.0f);
-        glUniform1i(loc.lastShell, lastShell);
-        // Wrapped to a day so the float keeps millisecond steps (the flutter's periods are
-        // under 2 s and its phases are per vertex: the wrap is one jump a day).
-        glUniform1f(loc.time, float(std::fmod(wind.time_s, 86400.0)));
-        glUniform3fv(loc.bladeColor, 1, glm::value_ptr(m.bladeColor));
-        glUniform2fv(loc.densityMin, 1, glm::value_ptr(m.density->wsMin_m()));
-        glUniform2fv(loc.densitySize, 1, glm::value_ptr(m.density->wsSize_m()));
+        m.setFrameUniforms(loc, frame);
         return loc;
     };
     // Visible chunks, their boxes grown by the grass height: a bent blade reaches that far from
@@ -178,7 +233,28 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     }
     std::sort(visible.begin(), visible.end(),
               [](const Visible& a, const Visible& b) { return a.near_m < b.near_m; });
+    // The near blades first: they stand in front of most of the shells they rise from, so the
+    // early depth test discards the shell fragments behind them.
+    if (shells > 0 && m.grass.nearBlades > 0) {
+        const auto placeStart = Clock::now();
+        const detail::NearBladeSet set = m.placeBlades(camera, clipFromWorldM, focal_px);
+        stats.cpu_ms += msSince(placeStart);
+        if (!set.blades.empty()) {
+            frame.nearIn_m = set.innerRadius_m;
+            frame.nearR_m = set.radius_m;
+            m.uploadBlades(set.blades);
+            useProgram((sceneBits & VARIANT_BLEND) | VARIANT_BLADES);
+            glBindVertexArray(m.bladeVao.get());
+            glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, detail::BLADE_STRIP_VERTICES,
+                                  static_cast<GLsizei>(set.blades.size()));
+            stats.blades = static_cast<int>(set.blades.size());
+            stats.bladeRadius_m = set.radius_m;
+            stats.triangles +=
+                static_cast<long long>(set.blades.size()) * (detail::BLADE_STRIP_VERTICES - 2);
+        }
+    }
     if (options.nearestTexels) glBindSampler(GRASS_UNIT, m.nearestSampler.get());
+    glEnable(GL_CLIP_DISTANCE0);
     glBindVertexArray(m.vao.get());
     for (const auto& [near_m, far_m, mesh, level] : visible) {
         const detail::ShellRange range = detail::shellRange(shells, d1_m, near_m);
@@ -189,7 +265,9 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         // +5-18 % fill rate on llvmpipe).
         if (range.top < bottom) continue;
         const int count = (range.top - bottom) / range.stride + 1;
-        const bool fades = detail::chunkMayFade(range, shells, d1_m, far_m);
+        // A band within the near blades' R hands its shells over to them (shell.vert uNearR).
+        const bool fades =
+            detail::chunkMayFade(range, shells, d1_m, far_m) || near_m < frame.nearR_m;
         const ShellLocations& loc = useProgram(sceneBits | (fades ? VARIANT_FADE : 0u));
         glUniform1i(loc.topShell, range.top);
         glUniform1i(loc.shellStride, range.stride);
@@ -201,12 +279,68 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
         stats.triangles += static_cast<long long>(mesh.count / 3) * count;
     }
     glBindVertexArray(0);
+    glDisable(GL_CLIP_DISTANCE0);
     glBindSampler(GRASS_UNIT, 0);
     glUseProgram(0);
     glFinish();
     stats.gpu_ms = msSince(gpuStart);
     detail::checkGlError("ShellRenderer::draw");
     return stats;
+}
+
+NearBladeCapture ShellRenderer::captureNearBlades(const Camera& camera, const GrassWind& wind) {
+    Impl& m = *mImpl;
+    m.requireReady("captureNearBlades");
+    const glm::mat4 clipFromWorldM = m.prepareFrame(camera, wind);
+    const int groupCount = static_cast<int>(wind.groupIntensity.size());
+    m.updateShadow();
+    const float focal_px = static_cast<float>(m.context.height()) /
+                           (2.0f * std::tan(0.5f * float(radiansFromDegrees(camera.fovY_deg))));
+    NearBladeCapture capture;
+    if (m.grass.shells <= 0 || m.grass.nearBlades <= 0) return capture;
+    detail::NearBladeSet set = m.placeBlades(camera, clipFromWorldM, focal_px);
+    capture.radius_m = set.radius_m;
+    capture.innerRadius_m = set.innerRadius_m;
+    capture.blades = std::move(set.blades);
+    if (capture.blades.empty()) return capture;
+    const bool blend = m.windBlends && groupCount > 0;
+    std::unique_ptr<ShellProgram>& program = m.bladeCapturePrograms[blend ? 1 : 0];
+    if (!program)
+        program =
+            m.makeShellProgram((blend ? VARIANT_BLEND : 0u) | VARIANT_BLADES, {"vBladeWorld"});
+    m.uploadBlades(capture.blades);
+    glActiveTexture(GL_TEXTURE0 + BEND_UNIT);
+    glBindTexture(GL_TEXTURE_2D, m.tables->bendTexture());
+    glActiveTexture(GL_TEXTURE0 + GROUP_UNIT);
+    glBindTexture(GL_TEXTURE_2D, m.tables->groupTexture());
+    glUseProgram(program->program.get());
+    Impl::FrameUniforms frame;
+    frame.clipFromWorld = clipFromWorldM;
+    frame.wsEye_m = camera.wsPosition_m;
+    frame.time_s = wind.time_s;
+    m.setFrameUniforms(program->loc, frame);
+    const size_t count = capture.blades.size() * detail::BLADE_STRIP_VERTICES;
+    GLuint name = 0;
+    glGenBuffers(1, &name);
+    const detail::Buffer recorded(name);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, recorded.get());
+    glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLsizeiptr>(count * sizeof(glm::vec3)),
+                 nullptr, GL_STATIC_READ);
+    glEnable(GL_RASTERIZER_DISCARD);
+    glBindVertexArray(m.bladeVao.get());
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArraysInstanced(GL_POINTS, 0, detail::BLADE_STRIP_VERTICES,
+                          static_cast<GLsizei>(capture.blades.size()));
+    glEndTransformFeedback();
+    glBindVertexArray(0);
+    glDisable(GL_RASTERIZER_DISCARD);
+    capture.vertices.resize(count);
+    glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
+                       static_cast<GLsizeiptr>(count * sizeof(glm::vec3)), capture.vertices.data());
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    glUseProgram(0);
+    detail::checkGlError("ShellRenderer::captureNearBlades");
+    return capture;
 }
 
 FrameStats ShellRenderer::drawFillBaseline(const Camera& camera, bool nearestSampling) {

@@ -22,6 +22,7 @@
 #include "render/CameraMath.h"
 #include "render/GlInfo.h"
 #include "render/GlUtil.h"
+#include "render/NearBlades.h"
 #include "render/ShadowMap.h"
 #include "render/ShellRenderer.h"
 #include "render/TerrainChunks.h"
@@ -86,8 +87,9 @@ enum ShellVariantBits : unsigned {
     VARIANT_FADE = 2u,       ///< FADE: the level of detail thins shells near their drop distance
     VARIANT_DENSITY = 4u,    ///< DENSITY: a density map thins the blades
     VARIANT_BLEND = 8u,      ///< BLEND_GROUPS: the four nearest groups blended per vertex
+    VARIANT_BLADES = 16u,    ///< BLADES: the near level's blade geometry (render/NearBlades.h)
 };
-constexpr unsigned SHELL_VARIANTS = 16;
+constexpr unsigned SHELL_VARIANTS = 32;
 
 /// Mean colour (linear RGB in [0, 1]) of the blade texels (alpha > 0) of a texture level; of all
 /// texels if it has no blade.
@@ -100,7 +102,7 @@ std::string shellVariantDefines(unsigned bits);
 struct ShellLocations {
     GLint clipFromWorld, eyePos, shells, topShell, bend, grass, groups, groupColumns, maxTilt,
         shellPass, shellFocal, shellStride, lodD1, lastShell, time, bladeColor, density, densityCut,
-        densityMin, densitySize;
+        densityMin, densitySize, nearIn, nearR;
     GLint lightCount, lightPos, lightColor, lightAtten;
     GLint ambient, specularPower, specularStrength, shadowMin;
     GLint meshLevel;
@@ -124,6 +126,15 @@ struct ShellRenderer::Impl {
     detail::Buffer terrainVbo;
     detail::Buffer windVbo;
     detail::Buffer indexBuffer;
+    /// The near blades (render/NearBlades.h): one BladeInstance per instance, refilled per frame.
+    detail::VertexArray bladeVao;
+    detail::Buffer bladeVbo;
+    detail::BladeStatistics bladeStats;  ///< of the grass texture's level 0
+    std::vector<float> bladeCuts;        ///< the texture's density cuts (render/DensityMap.h)
+    DensityMap densityMap;               ///< the map the shells use, for the blades' own cut
+    bool terrainPlanRegular = false;     ///< near blades need a plan-regular grid
+    glm::vec2 terrainOrigin_m{0.0f}, terrainSpacing_m{1.0f};
+    std::shared_ptr<const VertexWind> windVertex;  ///< the uploaded wind's per-vertex arrays
     detail::Texture grassTexture;
     detail::Sampler nearestSampler;  ///< overrides the grass texture's filtering (DrawOptions)
     std::unique_ptr<detail::BendTables> tables;
@@ -170,6 +181,32 @@ struct ShellRenderer::Impl {
     void init();
     /// The program of `bits`, compiled (with its samplers and lighting set) on first use.
     shell_detail::ShellProgram& shellProgram(unsigned bits);
+    /// A new program of `bits` whose transform feedback records `feedback` (shellProgram's
+    /// set-up otherwise).
+    std::unique_ptr<shell_detail::ShellProgram> makeShellProgram(
+        unsigned bits, const std::vector<const char*>& feedback) const;
+    /// The uniforms every program of a frame shares.
+    struct FrameUniforms {
+        glm::mat4 clipFromWorld{1.0f};
+        glm::vec3 wsEye_m{0.0f};
+        float lodD1_m = 0.0f;     ///< shell.vert uLodD1
+        float shellFocal = 0.0f;  ///< shell.vert uShellFocal
+        int lastShell = 0;        ///< shell.vert uLastShell
+        float nearIn_m = 0.0f;    ///< shell.vert uNearIn: the near blades' R_in
+        float nearR_m = 0.0f;     ///< shell.vert uNearR: the near blades' R, 0 without
+        double time_s = 0.0;      ///< the wind's time
+    };
+    void setFrameUniforms(const shell_detail::ShellLocations& loc, const FrameUniforms& f) const;
+    /// A frame's CPU side: makes the context current, uploads the wind if it changed, builds the
+    /// bend, group and pass tables; returns the camera's clip-from-world matrix.
+    glm::mat4 prepareFrame(const Camera& camera, const GrassWind& wind);
+    /// The near blades of a frame (render/NearBlades.h) for this camera.
+    detail::NearBladeSet placeBlades(const Camera& camera, const glm::mat4& clipFromWorld,
+                                     float focal_px) const;
+    /// Writes `blades` to the instance buffer.
+    void uploadBlades(const std::vector<detail::BladeInstance>& blades);
+    /// The blade program recording vBladeWorld, by BLEND_GROUPS (ShellRenderer::captureNearBlades).
+    std::array<std::unique_ptr<shell_detail::ShellProgram>, 2> bladeCapturePrograms;
     void uploadLighting(const shell_detail::ShellProgram& program) const;
     void uploadWind(const GrassWind& wind);
     void requireReady(const char* what) const;

@@ -15,6 +15,8 @@
 //   FADE       1: the level of detail's fade (vFade) thins the blades, and the blades of dropped
 //              shells are shaded where they were seen; 0: every shell is drawn
 //   DENSITY    1: the density map (uDensity) thins the blades
+//   BLADES     1: the near level's blade geometry (shell.vert): the blade's colour, lit; no
+//              texture and no alpha test (FADE and DENSITY are 0 with it)
 #ifndef APERIODIC
 #define APERIODIC 0
 #endif
@@ -22,6 +24,15 @@
 #define FADE 0
 #endif
 #ifndef DENSITY
+#define DENSITY 0
+#endif
+#ifndef BLADES
+#define BLADES 0
+#endif
+#if BLADES  // the blades are placed and thinned on the CPU: no fade, no density map
+#undef FADE
+#define FADE 0
+#undef DENSITY
 #define DENSITY 0
 #endif
 
@@ -99,6 +110,10 @@ vec4 aperiodicTexel(vec2 uv) {
 }
 #endif
 
+#if BLADES
+in vec3 vColor;
+void main() { oColor = vec4(vColor * vLight, 1.0); }
+#else
 void main() {
 #if APERIODIC
     vec4 texel = aperiodicTexel(vUv);
@@ -149,3 +164,4 @@ void main() {
     oColor = vec4(texel.rgb * vLight, 1.0);
 #endif
 }
+#endif

@@ -15,6 +15,10 @@
 //                 to shade the blades of dropped shells where they were seen; 0: every shell
 //                 drawn, self-shadowing per vertex.
 //   DENSITY       1: a density map thins the blades too (the fragment stage looks the cut up).
+//   BLADES        1: not a shell but the near level's blade geometry (render/NearBlades.h): one
+//                 instance per blade, a strip of 2 BLADES_SEGMENTS + 1 vertices up the curve the
+//                 shells' bend tables give its root, lit as the shells are at each height.
+//                 FADE and DENSITY are 0 with it (the CPU placed and thinned the blades).
 #ifndef BLEND_GROUPS
 #define BLEND_GROUPS 0
 #endif
@@ -24,10 +28,37 @@
 #ifndef DENSITY
 #define DENSITY 0
 #endif
+#ifndef BLADES
+#define BLADES 0
+#endif
+#if BLADES  // the blades are placed and thinned on the CPU: no fade, no density map
+#undef FADE
+#define FADE 0
+#undef DENSITY
+#define DENSITY 0
+#endif
+#ifndef BLADES_SEGMENTS
+#define BLADES_SEGMENTS 5
+#endif
 
 // Must equal gale::render::MAX_LIGHTS (render/RenderLimits.h); ShellRenderer checks the array size.
 #define MAX_LIGHTS 16
 
+#if BLADES
+// One blade per instance (render/NearBlades.h, BladeInstance).
+layout(location = 0) in vec3 aPosition;  // the blade's root on the terrain
+layout(location = 1) in vec3 aNormal;    // unit terrain normal at the root
+// Height as a fraction of the grass height, width (m), facing (radians about the normal), tilt
+// factor (a stiffer blade bends less).
+layout(location = 2) in vec4 aBlade;
+layout(location = 3) in vec3 aWindDir;   // unit tangent-plane wind direction, or zero
+layout(location = 4) in uint aGroup;     // the root's nearest vertex's group
+layout(location = 5) in vec2 aGroupCoord; // position in the group grid (when BLEND_GROUPS)
+layout(location = 6) in float aFlutter;   // turbulent flutter amplitude of the tip tilt, radians
+layout(location = 7) in vec4 aColor;      // linear RGB, then the key light's share at the root
+out vec3 vColor;
+out vec3 vBladeWorld;  // the vertex, world metres (ShellRenderer::captureNearBlades records it)
+#else
 layout(location = 0) in vec3 aPosition;  // vertex on the terrain
 layout(location = 1) in vec3 aNormal;    // unit terrain normal
 layout(location = 2) in vec2 aUv;        // grass texture coordinates
@@ -41,6 +72,7 @@ layout(location = 6) in float aFlutter;   // turbulent flutter amplitude of the 
 // share its value.
 layout(location = 7) in vec4 aKeyLight0;
 layout(location = 8) in vec2 aKeyLight4;
+#endif
 uniform int uMeshLevel;  // the mesh level this draw's chunk takes (render/TerrainChunks.h)
 
 uniform mat4 uClipFromWorld;
@@ -54,6 +86,12 @@ uniform float uLodD1;
 // The shell the level of detail drops last: the largest power of two <= N (render/TerrainChunks.h).
 uniform int uLastShell;
 uniform float uTime_s;         // the wind's time (GrassWind::time_s), seconds
+// The near blades' distances R_in and R (render/NearBlades.h), metres; R = 0: none. Within R the
+// blade geometry takes over from shells 1..N: they thin out towards R_in as the blades thin out
+// towards R, and are clipped away inside R_in (gl_ClipDistance[0], so those fragments are never
+// shaded); the ground stays.
+uniform float uNearIn;
+uniform float uNearR;
 // Bends over tip tilts (render/BendTables.h): texel (i, l) holds (n_i, w_i) in metres for shell i
 // of a blade whose tip tilts by -uMaxTilt + 2 uMaxTilt l / (L - 1) (Bakay 2003, 3.2), and in .ba
 // segment i, (n_i - n_{i-1}, w_i - w_{i-1}): interpolated between rows like the offsets, it is
@@ -141,7 +179,12 @@ float smoothTriangle(float x) {
 // where the air is turbulent, stillness where aFlutter is 0 (calm or sheltered air).
 float flutterTilt() {
     if (aFlutter <= 0.0) return 0.0;
+#if BLADES
+    // Each blade its own phase (its root's 1 cm cell).
+    uvec2 h = uvec2(ivec2(floor(aPosition.xy * 100.0)) + (1 << 30));
+#else
     uvec2 h = uvec2(ivec2(floor(aPosition.xy * 4.0)) + 32768);
+#endif
     h = h * 1664525u + 1013904223u;
     h.x += h.y * 1664525u;
     h.y += h.x * 1664525u;
@@ -152,6 +195,72 @@ float flutterTilt() {
     return aFlutter * wave;
 }
 
+// Kajiya and Kay 1989 strand lighting at `pos` for the strand tangent T (thesis 3.3.1-3.3.4):
+// the lights' sum, attenuated, the key light scaled by `key` (its share past the terrain).
+vec3 strandLight(vec3 pos, vec3 T, float key) {
+    vec3 V = normalize(uEyePos - pos);
+    vec3 lit = vec3(0.0);
+    for (int l = 0; l < uLightCount; ++l) {
+        vec3 toLight = uLightPos[l] - pos;
+        float d = length(toLight);
+        vec3 L = toLight / max(d, 1e-6);
+        vec3 H = normalize(L + V);
+        // The best normal on the strand's normal disk gives cos = sqrt(1 - (T.L)^2) for diffuse
+        // and sqrt(1 - (T.H)^2) for the highlight.
+        float tl = dot(T, L);
+        float th = dot(T, H);
+        float diffuse = sqrt(max(1.0 - tl * tl, 0.0));
+        float specular = uSpecularStrength * pow(sqrt(max(1.0 - th * th, 0.0)), uSpecularPower);
+        // Thesis 3.3.4: 1 / (k_c + k_l d + k_q d^2).
+        vec3 k = uLightAtten[l];
+        float attenuation = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
+        lit += uLightColor[l] * (attenuation * (diffuse + specular) * (l == 0 ? key : 1.0));
+    }
+    return lit;
+}
+
+#if BLADES
+// A blade of height fraction f = aBlade.x is the lower part, up to f of its length, of the full
+// blade the bend tables describe at its root (the shells show a shorter texel blade the same
+// way: on the shells up to its height, at the full blade's positions). Vertex k of the strip:
+// level k / 2 of BLADES_SEGMENTS, on the left (even) or right (odd) edge; the last is the tip.
+void main() {
+    int level = min(gl_VertexID / 2, BLADES_SEGMENTS);
+    float side = (gl_VertexID == 2 * BLADES_SEGMENTS) ? 0.0 : ((gl_VertexID & 1) == 0 ? -0.5 : 0.5);
+    float last = float(textureSize(uBend, 0).y - 1);
+    float tilt = (groupTilt() + flutterTilt()) * aBlade.w;
+    float row = clamp((tilt / uMaxTilt * 0.5 + 0.5) * last, 0.0, last);
+    float along = aBlade.x * float(level) / float(BLADES_SEGMENTS);  // of the full length
+    float column = along * float(uShells);
+    int c0 = min(int(column), uShells - 1);
+    vec4 b0 = shellBend(c0, row);
+    vec4 b1 = shellBend(c0 + 1, row);
+    vec2 nw = mix(b0.xy, b1.xy, column - float(c0));
+    // Across the blade: a tangent direction turned by the blade's own facing about the normal,
+    // whatever the wind (a blade does not turn to face it; only its bend follows the wind).
+    vec3 any = abs(aNormal.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
+    vec3 t0 = normalize(cross(aNormal, any));
+    vec3 across = cos(aBlade.z) * t0 + sin(aBlade.z) * cross(aNormal, t0);
+    float taper = 1.0 - float(level) / float(BLADES_SEGMENTS);
+    vec3 spine = aPosition + nw.x * aNormal + nw.y * aWindDir;
+    vec3 pos = spine + (side * aBlade.y * sqrt(taper)) * across;
+    gl_Position = uClipFromWorld * vec4(pos, 1.0);
+    vBladeWorld = pos;
+    vUv = vec2(0.0);
+    vDensityUv = vec2(0.0);
+    vFade = 1.0;
+    vStandIn = 0.0;
+    vThreshold = -1.0;
+    vColor = aColor.rgb;
+    // The strand tangent of the segment this vertex starts (the tip: the last one's).
+    vec3 T = normalize(b1.z * aNormal + b1.w * aWindDir);
+    vec3 lit = strandLight(pos, T, aColor.a);
+    // Banks 1994 self-shadowing at the height the vertex is at, as on the shell of that height.
+    float S = along * (1.0 - uShadowMin) + uShadowMin;
+    vLight = lit * S + uAmbient;
+}
+#else
+out float gl_ClipDistance[1];
 void main() {
     int i = uTopShell - gl_InstanceID * uShellStride;
     float last = float(textureSize(uBend, 0).y - 1);
@@ -165,10 +274,17 @@ void main() {
     vDensityUv = vec2(plan.x, 1.0 - plan.y);
     vFade = 1.0;
     vStandIn = 0.0;
+    gl_ClipDistance[0] = 1.0;
 #if FADE
-    if (uLodD1 > 0.0 && i > 0) {
-        float drop = uLodD1 * float(1 << findLSB(i));
-        vFade = 1.0 - smoothstep(0.7 * drop, drop, distance(aPosition, uEyePos));
+    // The level of detail drops a shell whole at its distance (render/TerrainChunks.h,
+    // shellRange) and does not thin it before: thinning by the density cut removes the short
+    // blades first, so rays reach the darker lower shells early and the thinning band showed up
+    // to 7 levels darker per 32 x 32 tile than every shell drawn (tests/render/SeamTest.cpp); the
+    // drop is shaded by vSpan below. Only the hand-over to the near blades thins the shells.
+    if (uNearR > 0.0 && i > 0) {
+        float eye = distance(aPosition, uEyePos);
+        vFade *= smoothstep(uNearIn, uNearR, eye);
+        gl_ClipDistance[0] = eye - uNearIn;
     }
 #if !DENSITY
     // Shell 0 keeps every texel; a full fade's cut is 0 (every blade kept).
@@ -231,26 +347,8 @@ void main() {
     // Strand tangent (thesis 3.3.1): from this vertex on shell i-1 to shell i; the ground uses the
     // terrain normal.
     vec3 T = (i == 0) ? aNormal : normalize(bend.z * aNormal + bend.w * aWindDir);
-    vec3 V = normalize(uEyePos - pos);
-
-    vec3 lit = vec3(0.0);
     float key = (uMeshLevel < 4) ? aKeyLight0[uMeshLevel] : aKeyLight4[uMeshLevel - 4];
-    for (int l = 0; l < uLightCount; ++l) {
-        vec3 toLight = uLightPos[l] - pos;
-        float d = length(toLight);
-        vec3 L = toLight / max(d, 1e-6);
-        vec3 H = normalize(L + V);
-        // Kajiya & Kay 1989 via thesis 3.3.1-3.3.2: the best normal on the strand's normal disk
-        // gives cos = sqrt(1 - (T.L)^2) for diffuse and sqrt(1 - (T.H)^2) for the highlight.
-        float tl = dot(T, L);
-        float th = dot(T, H);
-        float diffuse = sqrt(max(1.0 - tl * tl, 0.0));
-        float specular = uSpecularStrength * pow(sqrt(max(1.0 - th * th, 0.0)), uSpecularPower);
-        // Thesis 3.3.4: 1 / (k_c + k_l d + k_q d^2).
-        vec3 k = uLightAtten[l];
-        float attenuation = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
-        lit += uLightColor[l] * (attenuation * (diffuse + specular) * (l == 0 ? key : 1.0));
-    }
+    vec3 lit = strandLight(pos, T, key);
 #if FADE
     // The self-shadowing and the ambient term are applied per fragment (shell.frag), where the
     // texel says which dropped shell a blade would have been seen on.
@@ -262,3 +360,4 @@ void main() {
     vLight = lit * S + uAmbient;
 #endif
 }
+#endif

@@ -210,6 +210,8 @@ void readGrass(Context& ctx, Section s) {
     g.params.aperiodic = s.boolean("aperiodic", g.params.aperiodic);
     g.params.lodPixels =
         static_cast<float>(s.number("lod_pixels", g.params.lodPixels, closed(0.0, 1000.0)));
+    g.params.nearBlades =
+        static_cast<int>(s.integer("near_blades", g.params.nearBlades, 0, render::MAX_NEAR_BLADES));
     const std::string densityMap = s.string("density_map", "");
     if (s.given("density_map")) {
         if (densityMap.empty()) s.failKey("density_map", "expected an image path (got \"\")");

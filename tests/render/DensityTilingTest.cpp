@@ -74,6 +74,7 @@ struct TopView {
         grass.shells = shells;
         grass.aperiodic = aperiodic;
         grass.lodPixels = 0.0f;  // every shell at every distance: the tests count shells
+        grass.nearBlades = 0;    // and no blade geometry in their place
         renderer.setGrass(grass, grassTextureFromImage(texture));
         Lighting lighting;
         lighting.ambient = glm::vec3(0.0f);

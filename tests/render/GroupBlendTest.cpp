@@ -32,6 +32,7 @@ struct StripeScene {
         GrassParams grass;
         grass.height_m = 0.4f;
         grass.shells = 8;
+        grass.nearBlades = 0;  // the stripes are the shells' (blades take the nearest group)
         renderer.setGrass(grass,
                           grassTextureFromImage(test::makeUniformImage(16, 200, 200, 200, 255)));
         Lighting lighting;

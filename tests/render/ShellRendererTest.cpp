@@ -37,6 +37,7 @@ struct ReferenceScene {
         grass.stiffness = 1.0f;
         grass.tile_m = 1.5f;
         grass.lodPixels = 0.0f;  // every shell everywhere: the reference pins the shading
+        grass.nearBlades = 0;    // of the shells (NearBladesTest holds the blades)
         GrassTextureSpec spec;
         spec.size = 128;
         spec.seed = 2003;
@@ -178,6 +179,7 @@ struct CoverageScene {
         GrassParams grass;
         grass.height_m = 0.4f;
         grass.shells = SHELLS;
+        grass.nearBlades = 0;  // the shells' coverage alone
         renderer.setGrass(grass, grassTextureFromImage(texture));
         Lighting lighting;
         lighting.ambient = glm::vec3(0.0f);
