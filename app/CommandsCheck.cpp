@@ -19,6 +19,7 @@
 #include "base/Numbers.h"
 #include "coupling/PointSourceWind.h"
 #include "render/GrassTexture.h"
+#include "render/NearBlades.h"
 
 namespace gale::app {
 namespace {
@@ -235,6 +236,27 @@ int runCheck(const SceneRunOptions& options) {
                        (scene.autoCameraPosition ? " (default 3/4 view)" : "") + ", fov " +
                        formatG(c.fovY_deg, 3) + " deg, near " + formatG(c.near_m, 3) + " m, far " +
                        formatG(c.far_m, 3) + " m");
+
+    // The near level (docs/render.md, "Near blades"): what the texture says a blade is and how
+    // far from the eye it is drawn as geometry at the output's size.
+    if (grass.params.nearBlades == 0) {
+        line("blades", "off (grass.near_blades = 0: the shells alone)");
+    } else {
+        const render::detail::BladeStatistics blades =
+            render::detail::bladeStatistics(level0, grass.params.tile_m);
+        const double focal_px =
+            scene.output.height / (2.0 * std::tan(0.5 * radiansFromDegrees(c.fovY_deg)));
+        line("blades",
+             blades.bladesPerM2 > 0.0f
+                 ? "up to " + std::to_string(grass.params.nearBlades) + " a frame, " +
+                       formatG(blades.bladesPerM2, 4) + " per m^2 of " +
+                       formatG(100.0 * blades.width_m, 3) + " cm (the texture's), within " +
+                       formatG(blades.width_m * focal_px / render::detail::MIN_BLADE_PX, 3) +
+                       " m of the eye at most (where a blade is " +
+                       formatG(render::detail::MIN_BLADE_PX, 2) + " px wide at " +
+                       std::to_string(scene.output.height) + " px)"
+                 : "none: the texture has no blades");
+    }
 
     const coupling::OverlaySpec& ov = scene.overlay;
     if (ov.any()) {

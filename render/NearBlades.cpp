@@ -36,10 +36,6 @@ enum Stream : uint32_t { JITTER_X, JITTER_Y, HEIGHT, WIDTH, FACING, STIFFNESS, T
 
 /// A blade's ribbon faces any way about the normal: facing in [-pi, pi), radians.
 constexpr float MAX_FACING_RAD = 3.14159265f;
-/// A blade is drawn as geometry only while it is at least this many pixels wide: narrower, the
-/// shells draw it as well, and blades of 1-2 pixels 7-18 m away cost the examples' frames
-/// 0.2-0.5 of the fill floor for no visible gain (docs/render.md, "Near blades").
-constexpr float MIN_BLADE_PX = 2.0f;
 
 /// The six planes of a clip-from-world matrix (Gribb and Hartmann 2001), normalised so that a
 /// plane's value at a point is its distance, positive inside.

@@ -51,6 +51,11 @@ namespace gale::render::detail {
 constexpr int BLADE_SEGMENTS = 4;
 constexpr int BLADE_STRIP_VERTICES = 2 * BLADE_SEGMENTS + 1;
 
+/// A blade is drawn as geometry only while it is at least this many pixels wide: narrower, the
+/// shells draw it as well, and blades of 1-2 pixels 7-18 m away cost the examples' frames
+/// 0.2-0.5 of the fill floor for no visible gain (docs/render.md, "Near blades").
+constexpr float MIN_BLADE_PX = 2.0f;
+
 /// Bins of the blade colour by height (BladeStatistics::colorByHeight).
 constexpr int BLADE_COLOR_BINS = 16;
 

@@ -101,8 +101,8 @@ void ShellRenderer::Impl::init() {
     glBindVertexArray(bladeVao.get());
     glBindBuffer(GL_ARRAY_BUFFER, bladeVbo.get());
     using detail::BladeInstance;
-    const auto bladeStride = static_cast<GLsizei>(sizeof(BladeInstance));
-    const auto perBlade = [bladeStride](GLuint loc, GLint size, size_t offset) {
+    constexpr auto bladeStride = static_cast<GLsizei>(sizeof(BladeInstance));
+    const auto perBlade = [](GLuint loc, GLint size, size_t offset) {
         glEnableVertexAttribArray(loc);
         glVertexAttribPointer(loc, size, GL_FLOAT, GL_FALSE, bladeStride,
                               reinterpret_cast<const void*>(offset));
