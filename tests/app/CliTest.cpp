@@ -133,6 +133,25 @@ TEST(Cli, CheckOnKnollSucceedsAndSaysWhatItLeavesOut) {
     EXPECT_FALSE(test::fs::exists(dir / "o"));  // check creates nothing
 }
 
+TEST(Cli, CheckSaysWhatTheNearBladesDrawAndRefusesAnAbsurdBudget) {
+    TempDir dir;
+    const RunResult knoll =
+        runGale({"check", test::sourcePath("examples/knoll.toml"), "-o", dir / "o"});
+    ASSERT_EQ(knoll.exitCode, 0) << knoll.err;
+    EXPECT_NE(knoll.out.find("blades    up to 6000 a frame"), std::string::npos) << knoll.out;
+    EXPECT_NE(knoll.out.find("2 px wide at 480 px"), std::string::npos) << knoll.out;
+    test::writeFile(dir / "shells.toml", "[terrain]\nkind = \"flat\"\n[grass]\nnear_blades = 0\n");
+    const RunResult off = runGale({"check", dir / "shells.toml", "-o", dir / "o"});
+    ASSERT_EQ(off.exitCode, 0) << off.err;
+    EXPECT_NE(off.out.find("blades    off"), std::string::npos) << off.out;
+    test::writeFile(dir / "absurd.toml",
+                    "[terrain]\nkind = \"flat\"\n[grass]\nnear_blades = 1000001\n");
+    const RunResult absurd = runGale({"check", dir / "absurd.toml", "-o", dir / "o"});
+    EXPECT_EQ(absurd.exitCode, 2);
+    EXPECT_NE(absurd.err.find("grass.near_blades"), std::string::npos) << absurd.err;
+    EXPECT_FALSE(test::fs::exists(dir / "o"));
+}
+
 TEST(Cli, CheckNamesTheDefaultSunAndSkyWhenTheSceneHasNoLights) {
     TempDir dir;
     test::writeFile(dir / "dark.toml", "[terrain]\nkind = \"flat\"\n");
