@@ -18,6 +18,7 @@
 #include "app/scene/SceneParser.h"
 #include "base/Numbers.h"
 #include "coupling/PointSourceWind.h"
+#include "render/CameraMath.h"
 #include "render/GrassTexture.h"
 #include "render/NearBlades.h"
 
@@ -244,8 +245,7 @@ int runCheck(const SceneRunOptions& options) {
     } else {
         const render::detail::BladeStatistics blades =
             render::detail::bladeStatistics(level0, grass.params.tile_m);
-        const double focal_px =
-            scene.output.height / (2.0 * std::tan(0.5 * radiansFromDegrees(c.fovY_deg)));
+        const float focal_px = render::focalLength_px(c, scene.output.height);
         line("blades",
              blades.bladesPerM2 > 0.0f
                  ? "up to " + std::to_string(grass.params.nearBlades) + " a frame, " +

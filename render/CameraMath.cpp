@@ -62,6 +62,11 @@ glm::mat4 clipFromWorld(const Camera& camera, float aspect) {
     return clipFromCamera(camera, aspect) * cameraFromWorld(camera);
 }
 
+float focalLength_px(const Camera& camera, int height_px) {
+    return static_cast<float>(height_px) /
+           (2.0f * std::tan(0.5f * float(radiansFromDegrees(camera.fovY_deg))));
+}
+
 WorldRay pixelRay(const Camera& camera, int width_px, int height_px, double x_px, double y_px) {
     if (width_px < 1 || height_px < 1)
         throw std::logic_error("pixelRay: the view must be at least 1 x 1 pixels, got " +

@@ -23,6 +23,10 @@ glm::mat4 clipFromCamera(const Camera& camera, float aspect);
 /// clipFromCamera * cameraFromWorld.
 glm::mat4 clipFromWorld(const Camera& camera, float aspect);
 
+/// The focal length in pixels of a view height_px tall: height_px / (2 tan(fovY / 2)), the size
+/// on screen of one metre seen from one metre away.
+float focalLength_px(const Camera& camera, int height_px);
+
 /// A ray in world space (metres): wsOrigin_m + s wsDirection, s >= 0, wsDirection unit length.
 struct WorldRay {
     glm::vec3 wsOrigin_m{0.0f};

@@ -164,8 +164,7 @@ FrameStats ShellRenderer::draw(const Camera& camera, const GrassWind& wind,
     const int shells = options.grass ? m.grass.shells : 0;
     const int bottom = options.terrain ? 0 : 1;
     // Level of detail (render/TerrainChunks.h): D1 = 2 S f / P, f the focal length in pixels.
-    const float focal_px = static_cast<float>(m.context.height()) /
-                           (2.0f * std::tan(0.5f * float(radiansFromDegrees(camera.fovY_deg))));
+    const float focal_px = focalLength_px(camera, m.context.height());
     const float d1_m =
         m.grass.lodPixels > 0.0f && shells > 0
             ? 2.0f * (m.grass.height_m / static_cast<float>(shells)) * focal_px / m.grass.lodPixels
@@ -294,8 +293,7 @@ NearBladeCapture ShellRenderer::captureNearBlades(const Camera& camera, const Gr
     const glm::mat4 clipFromWorldM = m.prepareFrame(camera, wind);
     const int groupCount = static_cast<int>(wind.groupIntensity.size());
     m.updateShadow();
-    const float focal_px = static_cast<float>(m.context.height()) /
-                           (2.0f * std::tan(0.5f * float(radiansFromDegrees(camera.fovY_deg))));
+    const float focal_px = focalLength_px(camera, m.context.height());
     NearBladeCapture capture;
     if (m.grass.shells <= 0 || m.grass.nearBlades <= 0) return capture;
     detail::NearBladeSet set = m.placeBlades(camera, clipFromWorldM, focal_px);
